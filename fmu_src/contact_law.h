@@ -1,0 +1,91 @@
+/*
+ * Coupled orthotropic adhesion-friction interface law (Konyukhov & Schweizerhof).
+ *
+ * This core knows nothing of FMI.  It holds the parameters, the derived
+ * tensors, one return-mapping step and its consistent tangent.  Conventions
+ * (see README and shared/design/model-notes.md):
+ *   q = B (u - s)  elastic tangential force [N]; the surface acts on the
+ *                  body with T = -q.
+ *   B = Q(alpha) diag(eps1, eps2) Q(alpha)^T        [N/m]
+ *   F = Q(beta)  diag(1/mu1^2, 1/mu2^2) Q(beta)^T   [-]
+ *   Phi(q, N) = sqrt(q . F q) - N
+ */
+#ifndef OC_CONTACT_LAW_H
+#define OC_CONTACT_LAW_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum {
+    OC_RULE_ASSOCIATED = 1, /* G = F: classical orthotropic Coulomb */
+    OC_RULE_COUPLED = 2,    /* G = (B F B)^-1: Konyukhov-Schweizerhof */
+    OC_RULE_EQ20 = 3        /* the paper's explicit eq. (20), step-size dependent */
+} oc_rule;
+
+typedef enum { OC_OPEN = 0, OC_STICK = 1, OC_SLIP = 2 } oc_contact;
+
+typedef struct {
+    double mu1, mu2;   /* friction coefficients along the friction axes [-] */
+    double eps1, eps2; /* tangential stiffnesses along the adhesion axes [N/m] */
+    double alpha;      /* adhesion axis 1, counterclockwise from X1 [rad] */
+    double beta;       /* friction axis 1, counterclockwise from X1 [rad] */
+    int rule;          /* an oc_rule */
+} oc_params;
+
+/* Everything a step needs that depends on the parameters only. */
+typedef struct {
+    oc_params p;
+    double B[2][2], Binv[2][2], F[2][2];
+    /* Yield coordinates: a = P (u - s) are the components of F^(1/2) q_tr in
+     * the eigenbasis of the slip operator S, so that Phi = |a| - N and the
+     * slip step decouples into a_i / (1 + dgamma sigma_i). */
+    double P[2][2];
+    double Minv[2][2]; /* q = Minv a */
+    double sigma[2];   /* eigenvalues of S */
+    double BF[2][2];   /* for eq. (20) */
+    double P_norm;     /* max row sum of |P|: scales the yield tolerance */
+} oc_law;
+
+/* The internal state committed between steps. */
+typedef struct {
+    double s[2];   /* slip [m] */
+    double energy; /* dissipated energy [J] */
+} oc_state;
+
+/* The result of one step, and what the tangent needs of it. */
+typedef struct {
+    double q[2];     /* elastic force B (u - s) [N]; T = -q */
+    oc_state next;   /* state after the step */
+    int contact;     /* an oc_contact */
+    double dgamma;   /* plastic multiplier of the step (0 unless slipping) */
+    double a[2];     /* yield coordinates of q after the step */
+    double w[2];     /* 1 + dgamma sigma_i */
+} oc_step;
+
+/* NULL if the parameters are admissible, otherwise why not. */
+const char *oc_params_check(const oc_params *p);
+
+/* Computes the derived tensors; returns 0, or -1 (and leaves law untouched)
+ * if the parameters are inadmissible or lead to non-finite tensors. */
+int oc_law_init(oc_law *law, const oc_params *p);
+
+/* One return-mapping step from the committed state `start` with the inputs
+ * u [m] and N [N].  Pure: it changes nothing but *out. */
+void oc_law_step(const oc_law *law, const oc_state *start, const double u[2],
+                 double N, oc_step *out);
+
+/* Jacobian of the outputs y = (T1, T2, s1, s2, energy) with respect to
+ * x = (u1, u2, N) for the step `st` computed from `start` with (u, N). */
+enum { OC_JAC_ROWS = 5, OC_JAC_COLS = 3 };
+void oc_law_jacobian(const oc_law *law, const oc_state *start,
+                     const double u[2], double N, const oc_step *st,
+                     double J[OC_JAC_ROWS][OC_JAC_COLS]);
+
+/* 1 if every number in the step is finite. */
+int oc_step_is_finite(const oc_step *st);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
