@@ -78,6 +78,13 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     const double Vt[2][2] = {{c, s}, {-s, c}};
     L.sigma[0] = c * c * S[0][0] + 2 * c * s * S[0][1] + s * s * S[1][1];
     L.sigma[1] = s * s * S[0][0] - 2 * c * s * S[0][1] + c * c * S[1][1];
+    /* The rotation gets the larger eigenvalue to full relative accuracy, the
+     * smaller one only to DBL_EPSILON times the larger.  det S is known
+     * exactly from the parameters, so the smaller follows from it. */
+    const double detF = 1.0 / (p->mu1 * p->mu1 * p->mu2 * p->mu2), detB = p->eps1 * p->eps2;
+    const double detS = p->rule == OC_RULE_ASSOCIATED ? detF * detB : 1.0 / (detF * detB);
+    const int big = L.sigma[0] >= L.sigma[1] ? 0 : 1;
+    L.sigma[1 - big] = detS / L.sigma[big];
 
     double M[2][2];
     matmul(Vt, Fh, M);
@@ -95,23 +102,58 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     return 0;
 }
 
-/* Solves sum_i a_i^2 / (1 + x sigma_i)^2 = N^2 for x > 0, given |a| > N.
- * N / |p(x)| is a power mean of exponent -2 of the affine 1 + x sigma_i, hence
- * concave and increasing in x: Newton from x = 0 climbs monotonically to the
- * root, and is exact in one step when sigma_1 = sigma_2. */
-static double solve_dgamma(const double a[2], const double sigma[2], double N) {
-    double x = 0.0;
-    for (int it = 0; it < 100; ++it) {
-        const double w0 = 1.0 + x * sigma[0], w1 = 1.0 + x * sigma[1];
-        const double p0 = a[0] / w0, p1 = a[1] / w1;
-        const double n = hypot(p0, p1);
-        const double c = p0 * p0 * sigma[0] / w0 + p1 * p1 * sigma[1] / w1;
-        const double dx = (n - N) * (n / N) * (n / c);
-        /* A step that is not positive means rounding has reached the root. */
-        if (!(dx > 0)) break;
+/* Solves sum_i a_i^2 / (1 + x sigma_i)^2 = rho^2 for x > 0, given |a| = 1 > rho
+ * (the caller divides by the trial norm, so that no square under- or
+ * overflows).  k(x) = rho / |p(x)| - 1 is a power mean of exponent -2 of the
+ * affine 1 + x sigma_i, hence concave and increasing: Newton from the left of
+ * the root climbs monotonically to it, and from the right it lands on the
+ * left in one step.  The first step is Halley's from x = 0 (cubic, exact
+ * when sigma_1 = sigma_2), which leaves typically one Newton step to reach
+ * rounding level; that last step is taken to first order (see below).  Returns x and the p (and |p|) of the last evaluation. */
+static double solve_dgamma(const double a[2], const double sigma[2], double rho, double p[2],
+                           double *norm) {
+    const double inv_rho = 1.0 / rho, delta = 1.0 - rho;
+    /* k(0) = -delta, k'(0) = rho m1, k''(0) = -3 rho v: the moments of sigma
+     * under the weights a_i^2 (which sum to 1). */
+    const double wt0 = a[0] * a[0], wt1 = a[1] * a[1];
+    const double m1 = wt0 * sigma[0] + wt1 * sigma[1];
+    const double d0 = sigma[0] - m1, d1 = sigma[1] - m1;
+    const double v = wt0 * d0 * d0 + wt1 * d1 * d1;
+    const double den = 2 * rho * m1 * m1 - 3 * delta * v;
+    /* Far from the root Halley's denominator can vanish: take Newton's step. */
+    double x = den > rho * m1 * m1 ? 2 * delta * m1 / den : delta * inv_rho / m1;
+    /* Iterate on g_i = W p_i with W = w_0 w_1, w_i = 1 + x sigma_i, so that
+     * an iteration costs one square root and one division:
+     * m = W |p|, residual m - rho W, Newton step (m - rho W) m^2 / (rho C)
+     * with C = g_0^2 sigma_0 w_1 + g_1^2 sigma_1 w_0. */
+    double p0, p1, n;
+    for (int it = 0;; ++it) {
+        const double w0x = 1.0 + x * sigma[0], w1x = 1.0 + x * sigma[1], W = w0x * w1x;
+        const double g0 = a[0] * w1x, g1 = a[1] * w0x;
+        const double m = sqrt(g0 * g0 + g1 * g1);
+        const double res = m - rho * W;
+        double dx = 0.0;
+        if (fabs(res) > 2 * DBL_EPSILON * rho * W && it < 100) {
+            const double C = g0 * g0 * sigma[0] * w1x + g1 * g1 * sigma[1] * w0x;
+            dx = res * m * m * inv_rho / C;
+            if (fabs(dx) > 1e-8 * x) {
+                x = fmax(x + dx, 0.0);
+                continue;
+            }
+        }
+        /* Converged, or one step short of it: both the Newton error after
+         * that step and the Taylor remainder of p are below (dx/x)^2 <= 1e-16
+         * relative, so the step is taken to first order. */
+        const double invW = 1.0 / W;
+        p0 = g0 * invW * (1.0 - sigma[0] * w1x * invW * dx);
+        p1 = g1 * invW * (1.0 - sigma[1] * w0x * invW * dx);
+        n = dx == 0.0 ? m * invW : sqrt(p0 * p0 + p1 * p1);
         x += dx;
-        if (dx <= 4 * DBL_EPSILON * x) break;
+        break;
     }
+    p[0] = p0;
+    p[1] = p1;
+    *norm = n;
     return x;
 }
 
@@ -135,7 +177,8 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
     const double e[2] = {u[0] - start->s[0], u[1] - start->s[1]};
     double a[2];
     matvec(L->P, e, a);
-    const double n_tr = hypot(a[0], a[1]);
+    double n_tr = sqrt(a[0] * a[0] + a[1] * a[1]);
+    if (!isfinite(n_tr)) n_tr = hypot(a[0], a[1]); /* squares overflowed */
     /* u - s is computed with an absolute rounding error of order
      * DBL_EPSILON (|u| + |s|); a trial within that distance of the yield
      * surface cannot be told from one on it, and must stick, or held inputs
@@ -162,14 +205,16 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
         out->q[1] = N * y[1] / ny;
         out->a[0] = out->a[1] = 0.0; /* unused by the eq. (20) tangent */
     } else {
-        const double x = solve_dgamma(a, L->sigma, N);
+        const double inv_ntr = 1.0 / n_tr;
+        const double an[2] = {a[0] * inv_ntr, a[1] * inv_ntr};
+        double ap[2], n_p;
+        const double x = solve_dgamma(an, L->sigma, N * inv_ntr, ap, &n_p);
         out->dgamma = x;
         out->w[0] = 1.0 + x * L->sigma[0];
         out->w[1] = 1.0 + x * L->sigma[1];
-        double ap[2] = {a[0] / out->w[0], a[1] / out->w[1]};
         /* Newton stops within an ulp or two of the yield surface; the radial
          * scaling puts the force on it to rounding of one product. */
-        const double scale = N / hypot(ap[0], ap[1]);
+        const double scale = N / n_p;
         ap[0] *= scale;
         ap[1] *= scale;
         out->a[0] = ap[0];

@@ -1,0 +1,404 @@
+/* Unit tests of the FMI-free core against closed forms and balances. */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "check.h"
+#include "contact_law.h"
+#include "model_variables.h"
+#include "oc_model.h"
+
+static const double PI = 3.14159265358979323846;
+
+static oc_params params(int rule, double mu1, double mu2, double e1, double e2, double a,
+                        double b) {
+    oc_params p = {mu1, mu2, e1, e2, a, b, rule};
+    return p;
+}
+
+static double yield(const oc_law *L, const double q[2]) {
+    const double Fq0 = L->F[0][0] * q[0] + L->F[0][1] * q[1];
+    const double Fq1 = L->F[1][0] * q[0] + L->F[1][1] * q[1];
+    return sqrt(q[0] * Fq0 + q[1] * Fq1);
+}
+
+static void test_params_check(void) {
+    oc_params good = params(2, 0.1, 0.5, 1e4, 1e3, 0.3, 0.4), p;
+    CHECK(oc_params_check(&good) == NULL, "valid parameters rejected");
+    p = good; p.mu1 = 0; CHECK(oc_params_check(&p) != NULL, "mu1 = 0 accepted");
+    p = good; p.mu2 = -1; CHECK(oc_params_check(&p) != NULL, "mu2 < 0 accepted");
+    p = good; p.eps1 = NAN; CHECK(oc_params_check(&p) != NULL, "eps1 NaN accepted");
+    p = good; p.eps2 = INFINITY; CHECK(oc_params_check(&p) != NULL, "eps2 inf accepted");
+    p = good; p.alpha = NAN; CHECK(oc_params_check(&p) != NULL, "alpha NaN accepted");
+    p = good; p.rule = 4; CHECK(oc_params_check(&p) != NULL, "rule 4 accepted");
+    oc_law L;
+    memset(&L, 0x5a, sizeof L);
+    p = good; p.rule = 0;
+    CHECK(oc_law_init(&L, &p) == -1, "init with bad rule succeeded");
+}
+
+/* B and F as the paper builds them (eq. 6, 30), component by component. */
+static void test_tensors(void) {
+    const double a = 0.3, b = 1.1;
+    oc_params p = params(2, 0.2, 0.7, 3e4, 2e3, a, b);
+    oc_law L;
+    CHECK(oc_law_init(&L, &p) == 0, "init failed");
+    const double ca = cos(a), sa = sin(a), cb = cos(b), sb = sin(b);
+    CHECK_CLOSE(L.B[0][0], 3e4 * ca * ca + 2e3 * sa * sa, 1e-9, "B11");
+    CHECK_CLOSE(L.B[0][1], (3e4 - 2e3) * sa * ca, 1e-9, "B12");
+    CHECK_CLOSE(L.B[1][1], 3e4 * sa * sa + 2e3 * ca * ca, 1e-9, "B22");
+    const double f1 = 1 / 0.04, f2 = 1 / 0.49;
+    CHECK_CLOSE(L.F[0][0], f1 * cb * cb + f2 * sb * sb, 1e-12, "F11");
+    CHECK_CLOSE(L.F[0][1], (f1 - f2) * sb * cb, 1e-12, "F12");
+    CHECK_CLOSE(L.F[1][1], f1 * sb * sb + f2 * cb * cb, 1e-12, "F22");
+}
+
+static void test_stick_and_open(void) {
+    oc_params p = params(2, 0.4, 0.6, 2e4, 5e3, 0.7, 0.2);
+    oc_law L;
+    oc_law_init(&L, &p);
+    oc_state s0 = {{1e-4, -2e-4}, 0.5};
+    const double u[2] = {1.3e-4, -1.8e-4};
+    oc_step st;
+    oc_law_step(&L, &s0, u, 10.0, &st);
+    CHECK(st.contact == OC_STICK, "small displacement did not stick (state %d)", st.contact);
+    const double e0 = u[0] - s0.s[0], e1 = u[1] - s0.s[1];
+    CHECK_CLOSE(st.q[0], L.B[0][0] * e0 + L.B[0][1] * e1, 1e-12, "stick q1 = B e");
+    CHECK_CLOSE(st.q[1], L.B[1][0] * e0 + L.B[1][1] * e1, 1e-12, "stick q2 = B e");
+    CHECK(st.next.s[0] == s0.s[0] && st.next.s[1] == s0.s[1], "stick changed the slip");
+    CHECK(st.next.energy == s0.energy, "stick dissipated energy");
+
+    oc_law_step(&L, &s0, u, 0.0, &st);
+    CHECK(st.contact == OC_OPEN, "N = 0 is not open");
+    CHECK(st.q[0] == 0 && st.q[1] == 0, "open contact carries force");
+    CHECK(st.next.s[0] == u[0] && st.next.s[1] == u[1], "open: slip does not follow the body");
+    CHECK(st.next.energy == s0.energy, "open contact counted released energy");
+    /* Re-contact starts unloaded. */
+    oc_step st2;
+    oc_law_step(&L, &st.next, u, 5.0, &st2);
+    CHECK(st2.contact == OC_STICK && st2.q[0] == 0 && st2.q[1] == 0, "re-contact is loaded");
+    oc_law_step(&L, &s0, u, -3.0, &st);
+    CHECK(st.contact == OC_OPEN, "N < 0 is not open");
+}
+
+/* A trial far outside the ellipse returns onto it, for every rule and many
+ * directions, with positive dissipation. */
+static void test_return_onto_yield_surface(void) {
+    for (int rule = 1; rule <= 3; ++rule) {
+        oc_params p = params(rule, 0.1, 0.5, 1e4, 1e3, 0.46, 0.46 + PI / 2);
+        oc_law L;
+        oc_law_init(&L, &p);
+        for (int k = 0; k < 36; ++k) {
+            const double th = 2 * PI * k / 36;
+            const double mag = 1e-3 * (1 + k);
+            const double u[2] = {mag * cos(th), mag * sin(th)};
+            oc_state s0 = {{0, 0}, 0};
+            oc_step st;
+            const double N = 7.5;
+            oc_law_step(&L, &s0, u, N, &st);
+            CHECK(st.contact == OC_SLIP, "rule %d dir %d did not slip", rule, k);
+            CHECK_CLOSE(yield(&L, st.q), N, 1e-12 * N, "on the yield surface");
+            CHECK(st.next.energy > 0, "rule %d dir %d: dissipation %g not positive", rule, k,
+                  st.next.energy);
+            /* The elastic relation holds after the step. */
+            const double e0 = u[0] - st.next.s[0], e1 = u[1] - st.next.s[1];
+            CHECK_CLOSE(L.B[0][0] * e0 + L.B[0][1] * e1, st.q[0], 1e-12 * N, "q = B(u - s)");
+            if (rule != OC_RULE_EQ20) {
+                /* Implicit rule: slip increment is dgamma G q with G = F or (BFB)^-1. */
+                double G[2][2];
+                if (rule == OC_RULE_ASSOCIATED) memcpy(G, L.F, sizeof G);
+                else {
+                    double A[2][2];
+                    for (int i = 0; i < 2; ++i)
+                        for (int j = 0; j < 2; ++j) {
+                            double acc = 0;
+                            for (int k1 = 0; k1 < 2; ++k1)
+                                for (int k2 = 0; k2 < 2; ++k2)
+                                    acc += L.B[i][k1] * L.F[k1][k2] * L.B[k2][j];
+                            A[i][j] = acc;
+                        }
+                    const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+                    G[0][0] = A[1][1] / det; G[1][1] = A[0][0] / det;
+                    G[0][1] = -A[0][1] / det; G[1][0] = -A[1][0] / det;
+                }
+                const double Gq0 = G[0][0] * st.q[0] + G[0][1] * st.q[1];
+                const double Gq1 = G[1][0] * st.q[0] + G[1][1] * st.q[1];
+                const double cross = st.next.s[0] * Gq1 - st.next.s[1] * Gq0;
+                const double scale = hypot(st.next.s[0], st.next.s[1]) * hypot(Gq0, Gq1);
+                CHECK(fabs(cross) <= 1e-10 * scale, "rule %d: slip not along G q (%g)", rule,
+                      cross / scale);
+            }
+        }
+    }
+}
+
+/* Isotropic B and F: the classic radial return, q = N q_tr / |q_tr| mu. */
+static void test_isotropic_radial_return(void) {
+    oc_params p = params(2, 0.3, 0.3, 5e3, 5e3, 0.2, 1.0);
+    oc_law L;
+    oc_law_init(&L, &p);
+    oc_state s0 = {{0, 0}, 0};
+    const double u[2] = {0.01, -0.004};
+    oc_step st;
+    oc_law_step(&L, &s0, u, 20.0, &st);
+    const double n = hypot(u[0], u[1]);
+    CHECK_CLOSE(st.q[0], 0.3 * 20 * u[0] / n, 1e-12, "radial q1");
+    CHECK_CLOSE(st.q[1], 0.3 * 20 * u[1] / n, 1e-12, "radial q2");
+    /* dissipated = q . s = mu N (|u| - mu N / eps) */
+    CHECK_CLOSE(st.next.energy, 6.0 * (n - 6.0 / 5e3), 1e-12, "radial dissipation");
+}
+
+/* Driving u along a straight line, the force settles where u - s is
+ * constant: the slip moves along the drive direction d, i.e. G q || d, and
+ * the steady force is independent of the step size (the steady state is a
+ * fixed point of the implicit update for any increment). */
+static void steady_force(int rule, double du, const double d[2], double q[2], int *state) {
+    oc_params p = params(rule, 0.1, 0.5, 1e4, 1e3, 0.4, 0.4 + PI / 2);
+    oc_law L;
+    oc_law_init(&L, &p);
+    oc_state s = {{0, 0}, 0};
+    oc_step st;
+    const double travel = 0.05;
+    const int n = (int)(travel / du + 0.5);
+    for (int k = 1; k <= n; ++k) {
+        const double u[2] = {k * du * d[0], k * du * d[1]};
+        oc_law_step(&L, &s, u, 10.0, &st);
+        s = st.next;
+    }
+    q[0] = st.q[0];
+    q[1] = st.q[1];
+    *state = st.contact;
+}
+
+static void test_step_size_independence(void) {
+    const double d[2] = {cos(0.3), sin(0.3)};
+    for (int rule = 1; rule <= 2; ++rule) {
+        double qa[2], qb[2], qc[2];
+        int sa, sb, sc;
+        steady_force(rule, 1e-3, d, qa, &sa);
+        steady_force(rule, 1e-4, d, qb, &sb);
+        steady_force(rule, 1e-5, d, qc, &sc);
+        CHECK(sa == OC_SLIP && sb == OC_SLIP && sc == OC_SLIP, "not sliding at the end");
+        CHECK_CLOSE(qa[0], qc[0], 1e-9, "steady q1, du 1e-3 vs 1e-5");
+        CHECK_CLOSE(qa[1], qc[1], 1e-9, "steady q2, du 1e-3 vs 1e-5");
+        CHECK_CLOSE(qb[0], qc[0], 1e-9, "steady q1, du 1e-4 vs 1e-5");
+        CHECK_CLOSE(qb[1], qc[1], 1e-9, "steady q2, du 1e-4 vs 1e-5");
+    }
+    /* The literal eq. (20) is not step-size independent: keep that visible. */
+    double qa[2], qc[2];
+    int sa, sc;
+    steady_force(3, 1e-3, d, qa, &sa);
+    steady_force(3, 1e-5, d, qc, &sc);
+    CHECK(fabs(qa[0] - qc[0]) + fabs(qa[1] - qc[1]) > 1e-3,
+          "eq. (20) unexpectedly step-size independent");
+}
+
+/* Discrete energy balance of backward Euler: the work of the force,
+ * sum q_{n+1} . du, equals the change of stored energy, the dissipation and
+ * the algorithmic term sum 1/2 de . B de, to rounding. */
+static void test_energy_balance(void) {
+    for (int rule = 1; rule <= 2; ++rule) {
+        oc_params p = params(rule, 0.2, 0.6, 8e3, 2e3, 0.9, -0.3);
+        oc_law L;
+        oc_law_init(&L, &p);
+        oc_state s = {{0, 0}, 0};
+        double u_prev[2] = {0, 0}, e_prev[2] = {0, 0};
+        double work = 0, algo = 0;
+        oc_step st;
+        for (int k = 1; k <= 2000; ++k) {
+            const double t = k * 1e-3;
+            const double u[2] = {0.02 * sin(3 * t) + 0.01 * t, 0.015 * sin(5 * t + 1) * cos(t)};
+            const double N = 8 + 3 * sin(7 * t);
+            oc_law_step(&L, &s, u, N, &st);
+            work += st.q[0] * (u[0] - u_prev[0]) + st.q[1] * (u[1] - u_prev[1]);
+            const double e[2] = {u[0] - st.next.s[0], u[1] - st.next.s[1]};
+            const double de[2] = {e[0] - e_prev[0], e[1] - e_prev[1]};
+            algo += 0.5 * (de[0] * (L.B[0][0] * de[0] + L.B[0][1] * de[1]) +
+                           de[1] * (L.B[1][0] * de[0] + L.B[1][1] * de[1]));
+            s = st.next;
+            memcpy(u_prev, u, sizeof u);
+            memcpy(e_prev, e, sizeof e);
+        }
+        const double stored = 0.5 * (e_prev[0] * (L.B[0][0] * e_prev[0] + L.B[0][1] * e_prev[1]) +
+                                     e_prev[1] * (L.B[1][0] * e_prev[0] + L.B[1][1] * e_prev[1]));
+        CHECK(s.energy > 0, "no dissipation over a sliding history");
+        CHECK_CLOSE(work, stored + s.energy + algo, 1e-10 * work, "discrete energy balance");
+    }
+}
+
+/* Held inputs after a slip step stick with the same force. */
+static void test_held_inputs_stick(void) {
+    for (int rule = 1; rule <= 3; ++rule) {
+        oc_params p = params(rule, 0.408, 0.625, 1.251e4, 1e4, 2.0, 0.43);
+        oc_law L;
+        oc_law_init(&L, &p);
+        oc_state s = {{0.3, -0.2}, 1.0};
+        const double u[2] = {0.47, -0.13};
+        oc_step a, b;
+        oc_law_step(&L, &s, u, 18.4, &a);
+        CHECK(a.contact == OC_SLIP, "did not slip");
+        oc_law_step(&L, &a.next, u, 18.4, &b);
+        CHECK(b.contact == OC_STICK, "rule %d: held inputs slipped again", rule);
+        CHECK_CLOSE(b.q[0], a.q[0], 1e-10 * 18.4, "held q1");
+        CHECK_CLOSE(b.q[1], a.q[1], 1e-10 * 18.4, "held q2");
+        CHECK(b.next.energy == a.next.energy, "held inputs dissipated");
+    }
+}
+
+/* The consistent tangent against central differences, in every branch. */
+static void check_jacobian(int rule, const oc_state *s0, const double u[2], double N,
+                           int expect_state) {
+    oc_params p = params(rule, 0.15, 0.45, 1.2e4, 3e3, 0.5, 1.3);
+    oc_law L;
+    oc_law_init(&L, &p);
+    oc_step st;
+    oc_law_step(&L, s0, u, N, &st);
+    CHECK(st.contact == expect_state, "rule %d: state %d, expected %d", rule, st.contact,
+          expect_state);
+    double J[OC_JAC_ROWS][OC_JAC_COLS];
+    oc_law_jacobian(&L, s0, u, N, &st, J);
+    const double hs[3] = {1e-8, 1e-8, 1e-6};
+    for (int j = 0; j < 3; ++j) {
+        double up[2] = {u[0], u[1]}, um[2] = {u[0], u[1]}, Np = N, Nm = N;
+        if (j < 2) { up[j] += hs[j]; um[j] -= hs[j]; }
+        else { Np += hs[j]; Nm -= hs[j]; }
+        oc_step sp, sm;
+        oc_law_step(&L, s0, up, Np, &sp);
+        oc_law_step(&L, s0, um, Nm, &sm);
+        const double yp[5] = {-sp.q[0], -sp.q[1], sp.next.s[0], sp.next.s[1], sp.next.energy};
+        const double ym[5] = {-sm.q[0], -sm.q[1], sm.next.s[0], sm.next.s[1], sm.next.energy};
+        for (int i = 0; i < 5; ++i) {
+            const double fd = (yp[i] - ym[i]) / (2 * hs[j]);
+            const double tol = 1e-5 * (fabs(J[i][j]) + fabs(fd)) + 1e-6;
+            CHECK(fabs(fd - J[i][j]) <= tol, "rule %d state %d dY%d/dX%d: tangent %.10g fd %.10g",
+                  rule, expect_state, i, j, J[i][j], fd);
+        }
+    }
+}
+
+static void test_jacobian(void) {
+    oc_state s0 = {{1e-3, 2e-3}, 0.25};
+    const double u_stick[2] = {1.05e-3, 2.02e-3}, u_slip[2] = {4e-3, -2e-3};
+    for (int rule = 1; rule <= 3; ++rule) {
+        check_jacobian(rule, &s0, u_stick, 12.0, OC_STICK);
+        check_jacobian(rule, &s0, u_slip, 12.0, OC_SLIP);
+        check_jacobian(rule, &s0, u_slip, -1.0, OC_OPEN);
+    }
+}
+
+/* Extreme but admissible inputs never give NaN. */
+static void test_finite_everywhere(void) {
+    const double Ns[] = {1e-9, 1e-3, 1.0, 1e3, 1e9};
+    const double us[] = {0.0, 1e-300, 1e-12, 1e-6, 1.0, 1e3};
+    for (int rule = 1; rule <= 3; ++rule) {
+        oc_params p = params(rule, 1e-3, 10.0, 1e-2, 1e9, 0.1, 2.2);
+        oc_law L;
+        CHECK(oc_law_init(&L, &p) == 0, "extreme params rejected");
+        for (size_t i = 0; i < sizeof Ns / sizeof Ns[0]; ++i)
+            for (size_t j = 0; j < sizeof us / sizeof us[0]; ++j) {
+                oc_state s0 = {{0, 0}, 0};
+                const double u[2] = {us[j], -0.5 * us[j]};
+                oc_step st;
+                oc_law_step(&L, &s0, u, Ns[i], &st);
+                CHECK(oc_step_is_finite(&st), "rule %d N %g u %g: non-finite step", rule, Ns[i],
+                      us[j]);
+            }
+    }
+}
+
+/* ---- oc_model: the instance layer --------------------------------------- */
+
+static void test_model_table_and_errors(void) {
+    oc_model m;
+    oc_model_init(&m);
+    oc_msg msg;
+    /* Every table entry is readable through its own type, nothing else is. */
+    int n_real = 0, n_int = 0;
+    for (unsigned vr = 0; vr < 40; ++vr) {
+        double d;
+        int i;
+        const int ok_r = oc_model_get_real(&m, &vr, 1, &d, &msg) == OC_OK;
+        const int ok_i = oc_model_get_integer(&m, &vr, 1, &i, &msg) == OC_OK;
+        CHECK(!(ok_r && ok_i), "vr %u readable as both types", vr);
+        CHECK((ok_r || ok_i) == (oc_variable_name(vr) != NULL), "vr %u table/accessor mismatch", vr);
+        n_real += ok_r;
+        n_int += ok_i;
+    }
+    CHECK(n_real == 14 && n_int == 2, "found %d Real and %d Integer variables", n_real, n_int);
+
+    const unsigned vr_mu1 = OC_VR_mu1, vr_T1 = OC_VR_T1, vr_u1 = OC_VR_u1, bad = 99;
+    double v = -1;
+    CHECK(oc_model_set_real(&m, &vr_mu1, 1, &v, OC_ALLOW_PARAMETERS, &msg) == OC_ERR, "mu1<0");
+    CHECK(strstr(msg.text, "mu1") != NULL, "message does not name mu1: %s", msg.text);
+    CHECK(m.params.mu1 == 0.408, "rejected call changed mu1");
+    v = 1;
+    CHECK(oc_model_set_real(&m, &vr_T1, 1, &v, 3, &msg) == OC_ERR, "output set");
+    CHECK(oc_model_set_real(&m, &bad, 1, &v, 3, &msg) == OC_ERR, "unknown vr set");
+    CHECK(oc_model_set_real(&m, &vr_mu1, 1, &v, OC_ALLOW_INPUTS, &msg) == OC_ERR,
+          "fixed parameter set after initialization");
+    v = NAN;
+    CHECK(oc_model_set_real(&m, &vr_u1, 1, &v, 3, &msg) == OC_ERR, "NaN input accepted");
+    v = 1e308;
+    const unsigned vrs[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+    const double big[3] = {1e308, -1e308, 1e308};
+    CHECK(oc_model_set_real(&m, vrs, 3, big, 3, &msg) == OC_ERR, "overflowing inputs accepted");
+    CHECK(m.u[0] == 0 && m.N == 0, "rejected inputs were kept");
+    /* Absurd but finite inputs: rejected or finite, never NaN. */
+    const double absurd[][3] = {{1e3, -1e3, 1e-300}, {1e-300, 1e-300, 1e-300}, {1e200, 0, 1e200}};
+    for (int k = 0; k < 3; ++k) {
+        const oc_status st = oc_model_set_real(&m, vrs, 3, absurd[k], 3, &msg);
+        const unsigned outs[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2, OC_VR_dissipatedEnergy};
+        double y[5];
+        oc_model_get_real(&m, outs, 5, y, &msg);
+        for (int i = 0; i < 5; ++i)
+            CHECK(isfinite(y[i]), "absurd inputs %d (status %d): output %d = %g", k, st, i, y[i]);
+    }
+    oc_model_init(&m);
+    /* Atomic: one bad value in a batch sets none of it. */
+    const unsigned mixed[2] = {OC_VR_mu2, OC_VR_eps1};
+    const double mv[2] = {0.9, -5};
+    CHECK(oc_model_set_real(&m, mixed, 2, mv, 3, &msg) == OC_ERR, "eps1 < 0 accepted");
+    CHECK(m.params.mu2 == 0.625, "partial batch applied");
+    const unsigned vr_rule = OC_VR_slidingRule;
+    int r = 7;
+    CHECK(oc_model_set_integer(&m, &vr_rule, 1, &r, 3, &msg) == OC_ERR, "rule 7 accepted");
+    CHECK(oc_model_do_step(&m, 0.0, 0.0, &msg) == OC_ERR, "h = 0 accepted");
+    CHECK(oc_model_do_step(&m, 5.0, 0.1, &msg) == OC_ERR, "wrong communication point accepted");
+}
+
+static void test_model_image(void) {
+    oc_model a, b;
+    oc_model_init(&a);
+    oc_model_init(&b);
+    oc_msg msg;
+    const unsigned vrs[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+    for (int k = 1; k <= 50; ++k) {
+        const double v[3] = {1e-4 * k, 3e-5 * k, 18.0};
+        oc_model_set_real(&a, vrs, 3, v, OC_ALLOW_INPUTS, &msg);
+        oc_model_do_step(&a, a.time, 1e-3, &msg);
+    }
+    unsigned char buf[4096];
+    CHECK(oc_model_image_size() <= sizeof buf, "image larger than expected");
+    oc_model_write_image(&a, buf);
+    CHECK(oc_model_read_image(&b, buf, oc_model_image_size(), &msg) == OC_OK, "%s", msg.text);
+    CHECK(memcmp(&a, &b, sizeof a) == 0, "image round trip not bit-exact");
+    buf[0] = 'X';
+    CHECK(oc_model_read_image(&b, buf, oc_model_image_size(), &msg) == OC_ERR, "bad magic read");
+    CHECK(oc_model_read_image(&b, buf, 10, &msg) == OC_ERR, "short image read");
+}
+
+int main(void) {
+    test_params_check();
+    test_tensors();
+    test_stick_and_open();
+    test_return_onto_yield_surface();
+    test_isotropic_radial_return();
+    test_step_size_independence();
+    test_energy_balance();
+    test_held_inputs_stick();
+    test_jacobian();
+    test_finite_everywhere();
+    test_model_table_and_errors();
+    test_model_image();
+    return oc_report();
+}

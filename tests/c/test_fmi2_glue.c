@@ -1,0 +1,170 @@
+/* The FMI 2.0 glue called directly: state machine, logging categories,
+ * instance independence and state handling. */
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "fmi2Functions.h"
+#include "model_variables.h"
+
+static int n_logged;
+static char last_category[64], last_message[512];
+static fmi2Status last_status;
+
+static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
+                   fmi2String category, fmi2String message, ...) {
+    (void)env; (void)name;
+    ++n_logged;
+    last_status = status;
+    snprintf(last_category, sizeof last_category, "%s", category);
+    va_list ap;
+    va_start(ap, message);
+    vsnprintf(last_message, sizeof last_message, message, ap);
+    va_end(ap);
+}
+
+static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
+
+static fmi2Component make(const char *name) {
+    fmi2Component c = fmi2Instantiate(name, fmi2CoSimulation, OC_GUID, "", &CB, fmi2False, fmi2False);
+    CHECK(c != NULL, "instantiate %s failed", name);
+    return c;
+}
+
+static void start(fmi2Component c) {
+    CHECK(fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0) == fmi2OK, "setup");
+    CHECK(fmi2EnterInitializationMode(c) == fmi2OK, "enter init");
+    CHECK(fmi2ExitInitializationMode(c) == fmi2OK, "exit init");
+}
+
+static void test_instantiate_rejects(void) {
+    n_logged = 0;
+    CHECK(fmi2Instantiate("x", fmi2ModelExchange, OC_GUID, "", &CB, 0, 0) == NULL, "ME accepted");
+    CHECK(n_logged == 1 && strstr(last_message, "Co-Simulation"), "no reason logged");
+    CHECK(fmi2Instantiate("x", fmi2CoSimulation, "{bad}", "", &CB, 0, 0) == NULL, "GUID accepted");
+    CHECK(strstr(last_message, "GUID") != NULL, "GUID reason not logged: %s", last_message);
+    CHECK(fmi2Instantiate("", fmi2CoSimulation, OC_GUID, "", &CB, 0, 0) == NULL, "empty name");
+    CHECK(fmi2Instantiate("x", fmi2CoSimulation, OC_GUID, "", NULL, 0, 0) == NULL, "NULL callbacks");
+}
+
+static void test_state_machine(void) {
+    fmi2Component c = make("sm");
+    const fmi2ValueReference vr_T1 = OC_VR_T1, vr_mu1 = OC_VR_mu1;
+    double v;
+    n_logged = 0;
+    CHECK(fmi2DoStep(c, 0, 1e-3, fmi2True) == fmi2Error, "doStep before init");
+    CHECK(n_logged == 1 && last_status == fmi2Error, "wrong-state call not logged");
+    CHECK(strcmp(last_category, "logStatusError") == 0, "category %s", last_category);
+    CHECK(fmi2GetReal(c, &vr_T1, 1, &v) == fmi2Error, "getReal while instantiated");
+    CHECK(fmi2ExitInitializationMode(c) == fmi2Error, "exit init before enter");
+    start(c);
+    CHECK(fmi2SetupExperiment(c, 0, 0, 0, 0, 0) == fmi2Error, "setup in step mode");
+    v = 0.5;
+    CHECK(fmi2SetReal(c, &vr_mu1, 1, &v) == fmi2Error, "fixed parameter set in step mode");
+    CHECK(strstr(last_message, "fixed") != NULL, "reason: %s", last_message);
+    CHECK(fmi2DoStep(c, 0, 1e-3, fmi2True) == fmi2OK, "doStep");
+    CHECK(fmi2DoStep(c, 0.5, 1e-3, fmi2True) == fmi2Error, "doStep at the wrong time");
+    CHECK(fmi2DoStep(c, 1e-3, -1, fmi2True) == fmi2Error, "negative step");
+    CHECK(fmi2GetReal(c, &vr_T1, 1, NULL) == fmi2Error, "NULL value array");
+    CHECK(fmi2Terminate(c) == fmi2OK, "terminate");
+    CHECK(fmi2DoStep(c, 1e-3, 1e-3, fmi2True) == fmi2Error, "doStep after terminate");
+    CHECK(fmi2GetReal(c, &vr_T1, 1, &v) == fmi2OK, "getReal after terminate");
+    CHECK(fmi2Reset(c) == fmi2OK, "reset");
+    v = 0.5;
+    CHECK(fmi2SetReal(c, &vr_mu1, 1, &v) == fmi2OK, "parameter after reset");
+    CHECK(fmi2EnterEventMode(c) == fmi2Error, "ME function accepted");
+    CHECK(fmi2DoStep(NULL, 0, 1, 0) == fmi2Error, "NULL instance");
+    fmi2FreeInstance(c);
+    fmi2FreeInstance(NULL);
+}
+
+static void test_logging_filter(void) {
+    fmi2Component c = make("log");
+    const fmi2ValueReference bad = 999;
+    double v = 0;
+    n_logged = 0;
+    CHECK(fmi2SetReal(c, &bad, 1, &v) == fmi2Error, "unknown vr");
+    CHECK(n_logged == 1 && strstr(last_message, "999"), "unknown vr not named: %s", last_message);
+    const fmi2String cats[] = {"logStatusError"};
+    CHECK(fmi2SetDebugLogging(c, fmi2False, 1, cats) == fmi2OK, "switch errors off");
+    n_logged = 0;
+    CHECK(fmi2SetReal(c, &bad, 1, &v) == fmi2Error, "still an error");
+    CHECK(n_logged == 0, "filtered category still logged");
+    CHECK(fmi2SetDebugLogging(c, fmi2True, 0, NULL) == fmi2OK, "all on");
+    n_logged = 0;
+    start(c);
+    CHECK(n_logged >= 3 && strcmp(last_category, "logCalls") == 0, "call trace missing");
+    const fmi2String unknown[] = {"logNonsense"};
+    CHECK(fmi2SetDebugLogging(c, fmi2True, 1, unknown) == fmi2Error, "unknown category");
+    /* A '%' in a message must reach the logger as a literal. */
+    const fmi2String pct[] = {"50%s"};
+    fmi2SetDebugLogging(c, fmi2True, 1, pct);
+    CHECK(strstr(last_message, "50%s") != NULL, "percent mangled: %s", last_message);
+    fmi2FreeInstance(c);
+}
+
+static void drive(fmi2Component c, double u1, double u2, double N, double *t) {
+    const fmi2ValueReference vrs[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+    const double v[3] = {u1, u2, N};
+    CHECK(fmi2SetReal(c, vrs, 3, v) == fmi2OK, "set inputs");
+    CHECK(fmi2DoStep(c, *t, 1e-3, fmi2True) == fmi2OK, "doStep");
+    *t += 1e-3;
+}
+
+static void test_instances_and_state(void) {
+    fmi2Component a = make("a"), b = make("b");
+    start(a);
+    start(b);
+    double ta = 0, tb = 0;
+    for (int k = 1; k <= 100; ++k) drive(a, 1e-4 * k, 2e-5 * k, 18.0, &ta);
+    drive(b, 1e-5, 0, 18.0, &tb);
+    const fmi2ValueReference out[4] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2};
+    double ya[4], yb[4];
+    fmi2GetReal(a, out, 4, ya);
+    fmi2GetReal(b, out, 4, yb);
+    CHECK(ya[2] != 0 && yb[2] == 0, "instances share state");
+
+    fmi2FMUstate st = NULL;
+    CHECK(fmi2GetFMUstate(a, &st) == fmi2OK, "get state");
+    size_t n = 0;
+    CHECK(fmi2SerializedFMUstateSize(a, st, &n) == fmi2OK && n > 0, "size");
+    fmi2Byte *bytes = malloc(n);
+    CHECK(fmi2SerializeFMUstate(a, st, bytes, n) == fmi2OK, "serialize");
+    for (int k = 101; k <= 150; ++k) drive(a, 1e-4 * k, -1e-5 * k, 18.0, &ta);
+    double later[4];
+    fmi2GetReal(a, out, 4, later);
+    CHECK(fmi2SetFMUstate(a, st) == fmi2OK, "set state");
+    double back[4];
+    fmi2GetReal(a, out, 4, back);
+    CHECK(memcmp(back, ya, sizeof ya) == 0, "restored outputs differ");
+    fmi2FMUstate st2 = NULL;
+    CHECK(fmi2DeSerializeFMUstate(b, bytes, n, &st2) == fmi2OK, "deserialize");
+    CHECK(fmi2SetFMUstate(b, st2) == fmi2OK, "set deserialized state on b");
+    double tb2 = ta - 50e-3;
+    for (int k = 101; k <= 150; ++k) drive(b, 1e-4 * k, -1e-5 * k, 18.0, &tb2);
+    double again[4];
+    fmi2GetReal(b, out, 4, again);
+    CHECK(memcmp(again, later, sizeof later) == 0, "continuation after deserialize not bit-exact");
+    bytes[0] ^= 0xff;
+    fmi2FMUstate st3 = NULL;
+    CHECK(fmi2DeSerializeFMUstate(b, bytes, n, &st3) == fmi2Error && st3 == NULL,
+          "corrupt image accepted");
+    CHECK(fmi2DeSerializeFMUstate(b, bytes, n - 1, &st3) == fmi2Error, "short image accepted");
+    free(bytes);
+    fmi2FreeFMUstate(a, &st);
+    fmi2FreeFMUstate(b, &st2);
+    CHECK(st == NULL && st2 == NULL, "free did not clear the handle");
+    fmi2FreeInstance(a);
+    fmi2FreeInstance(b);
+}
+
+int main(void) {
+    CHECK(strcmp(fmi2GetVersion(), "2.0") == 0, "version");
+    CHECK(strcmp(fmi2GetTypesPlatform(), "default") == 0, "types platform");
+    test_instantiate_rejects();
+    test_state_machine();
+    test_logging_filter();
+    test_instances_and_state();
+    return oc_report();
+}
