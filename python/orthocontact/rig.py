@@ -1,0 +1,210 @@
+"""The carriage/block test rig of the paper (section 2) coupled with the
+OrthotropicContact FMU.
+
+A block of mass m [kg] lies on the mat.  A carriage driven at constant
+velocity v [m/s] along X1 pushes it through a Teflon strip, so the block's
+X1 position follows the carriage, x1 = v t, while it is free to drift along
+X2, resisted only by the strip's friction (coefficient mu_strip on the
+carriage-block contact force P).  The FMU's inputs are the block's
+displacement (u1, u2) = (x1, x2) and N = m g; its force T acts on the block.
+The force sensor reads F = F_int + P with P = -T1 (the carriage moves at
+constant velocity, so the block's X1 inertia does not load it).
+
+Modes:
+  dynamic      the block's X2 motion m x2'' = T2 + f_strip, integrated by the
+               harness between communication points (symplectic Euler with the
+               force held over the step).
+  quasistatic  massless lateral equilibrium T2 + f_strip = 0 at every step,
+               solved by a safeguarded Newton on u2 with the FMU's directional
+               derivative, iterating on a saved FMU state before committing.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .closed_forms import G_STANDARD
+from .fmu import ContactFMU, ContactParams
+
+
+@dataclass(frozen=True)
+class Rig:
+    """The test rig.  Units: kg, m/s^2, N, m/s, m, s."""
+    mass_kg: float = 1.875
+    g: float = G_STANDARD
+    f_int_N: float = 5.0
+    velocity_m_s: float = 0.244
+    travel_m: float = 0.5
+    mu_strip: float = 0.0
+    mode: str = "dynamic"          # or "quasistatic"
+    step_s: float = 2e-4           # communication step
+    fit_from: float = 0.5          # fit phi over the travel after this fraction
+
+    @property
+    def normal_force(self) -> float:
+        return self.mass_kg * self.g
+
+
+@dataclass
+class RigResult:
+    """Time series of one run and the measured figures.
+
+    t [s], x1, x2 [m] block path, T1, T2 [N], s1, s2 [m], state, energy [J],
+    drive [N] the sensor's force; phi_deg the fitted trajectory angle
+    (counterclockwise), drive_mean_N the mean driving force over the fit range.
+    """
+    t: np.ndarray
+    x1: np.ndarray
+    x2: np.ndarray
+    T1: np.ndarray
+    T2: np.ndarray
+    s1: np.ndarray
+    s2: np.ndarray
+    state: np.ndarray
+    energy: np.ndarray
+    drive: np.ndarray
+    phi_deg: float
+    drive_mean_N: float
+    newton_iterations: int = 0
+
+    def as_columns(self) -> dict:
+        return {k: getattr(self, k) for k in
+                ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive")}
+
+
+def fit_angle_deg(x1: np.ndarray, x2: np.ndarray) -> float:
+    """Angle [deg] of the least-squares line x2 = a + b x1 (counterclockwise)."""
+    b = np.polyfit(x1, x2, 1)[0]
+    return math.degrees(math.atan(b))
+
+
+class LateralSolveError(RuntimeError):
+    pass
+
+
+def solve_lateral(fmu: ContactFMU, u1: float, u2: float, N: float, target: float = 0.0,
+                  scale: float = 1e-4, tol: float = 1e-12, max_iter: int = 200):
+    """u2 [m] with T2(u1, u2, N) = target [N], leaving the FMU's pending step
+    at the solution (not committed).
+
+    T2 falls with u2 (the return map is monotone), so every evaluation
+    tightens a bracket; Newton steps with the consistent tangent are taken
+    when they stay inside it, bisection otherwise, and before a bracket
+    exists steps are limited to a growing multiple of `scale` [m] (the
+    elastic displacement mu N / eps is a good scale).  tol is relative to N.
+    Returns (u2, iterations)."""
+    lo = hi = None  # T2(lo) > target > T2(hi)
+    grow = scale
+    for it in range(1, max_iter + 1):
+        fmu.set_inputs(u1, u2, N)
+        r = fmu.force()[1] - target
+        if abs(r) <= tol * max(abs(N), 1e-300):
+            return u2, it
+        if r > 0:
+            lo = u2
+        else:
+            hi = u2
+        d = fmu.tangent_column("u2")[1]
+        cand = u2 - r / d if d < 0 else math.nan
+        if lo is not None and hi is not None:
+            if not (min(lo, hi) < cand < max(lo, hi)):
+                cand = 0.5 * (lo + hi)
+            if abs(hi - lo) <= 4e-16 * max(abs(lo), abs(hi)):
+                return u2, it  # bracket at rounding level: T2 jumps across target
+        elif not math.isfinite(cand) or abs(cand - u2) > grow:
+            cand = u2 + math.copysign(grow, r)  # r > 0: T2 too big, increase u2
+            grow *= 4
+        u2 = cand
+    raise LateralSolveError(f"lateral equilibrium not reached in {max_iter} iterations "
+                            f"(u1={u1}, last u2={u2})")
+
+
+def run(params: ContactParams, rig: Rig, fmu: ContactFMU | None = None,
+        record_every: int = 1) -> RigResult:
+    """One rig run over rig.travel_m.  Uses `fmu` if given (reset here), else
+    a new instance."""
+    own = fmu is None
+    if own:
+        fmu = ContactFMU(instance_name="rig")
+    else:
+        fmu.reset()
+    try:
+        fmu.initialize(params)
+        return _simulate(fmu, params, rig, record_every)
+    finally:
+        if own:
+            fmu.close()
+
+
+def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: int) -> RigResult:
+    h, v, m, N = rig.step_s, rig.velocity_m_s, rig.mass_kg, rig.normal_force
+    n_steps = int(math.ceil(rig.travel_m / (v * h) - 1e-9))
+    n_rec = n_steps // record_every + 1
+    cols = {k: np.empty(n_rec) for k in ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive")}
+    scale = min(params.mu1, params.mu2) * N / max(params.eps1, params.eps2)
+    x2 = v2 = 0.0
+    T1 = T2 = 0.0
+    t = 0.0
+    newton = 0
+    dynamic = rig.mode == "dynamic"
+    mu_s = rig.mu_strip
+    rec = 0
+    set_inputs, force, do_step = fmu.set_inputs, fmu.force, fmu.do_step
+    snapshot = None
+    for k in range(1, n_steps + 1):
+        t = k * h
+        x1 = v * t
+        P = max(-T1, 0.0)  # the carriage can only push
+        if dynamic:
+            # Teflon strip: Coulomb friction on the lateral sliding, bounded by
+            # what stops the block within this step (no reversal by friction).
+            f_max = mu_s * P
+            a_free = T2 / m
+            if f_max > 0.0:
+                v_free = v2 + h * a_free
+                f = -math.copysign(min(f_max, abs(m * v_free / h)), v_free) if v_free != 0.0 \
+                    else -math.copysign(min(f_max, abs(T2)), T2)
+                v2 = v_free + h * f / m
+            else:
+                v2 += h * a_free
+            x2 += h * v2
+            set_inputs(x1, x2, N)
+            T1, T2 = force()
+        else:
+            # The strip holds the block while |T2| <= mu_s P; beyond that the
+            # block moves until T2 falls to the strip's limit.
+            snapshot = fmu.get_state() if snapshot is None else _refresh(fmu, snapshot)
+            set_inputs(x1, x2, N)
+            T1, T2 = force()
+            limit = mu_s * max(-T1, 0.0)
+            if abs(T2) > limit:
+                fmu.set_state(snapshot)  # iterate from the committed state
+                x2, it = solve_lateral(fmu, x1, x2, N, math.copysign(limit, T2), scale)
+                newton += it
+                T1, T2 = force()
+        do_step(h)
+        if k % record_every == 0 or k == n_steps:
+            o = fmu.outputs()
+            cols["t"][rec], cols["x1"][rec], cols["x2"][rec] = t, x1, x2
+            cols["T1"][rec], cols["T2"][rec] = T1, T2
+            cols["s1"][rec], cols["s2"][rec] = o["s1"], o["s2"]
+            cols["state"][rec], cols["energy"][rec] = o["contactState"], o["dissipatedEnergy"]
+            cols["drive"][rec] = rig.f_int_N - T1
+            rec += 1
+    if snapshot is not None:
+        fmu.free_state(snapshot)
+    for key in cols:
+        cols[key] = cols[key][:rec]
+    steady = cols["x1"] >= rig.fit_from * cols["x1"][-1]
+    phi = fit_angle_deg(cols["x1"][steady], cols["x2"][steady])
+    drive_mean = float(np.mean(cols["drive"][steady]))
+    return RigResult(**cols, phi_deg=phi, drive_mean_N=drive_mean, newton_iterations=newton)
+
+
+def _refresh(fmu: ContactFMU, state):
+    """Overwrites a saved FMU state in place with the current one (no new
+    allocation per step)."""
+    fmu.slave.fmi2GetFMUstate(fmu.slave.component, state)
+    return state
