@@ -107,7 +107,7 @@ def push_along_x1(f, N, du1, steps):
     u2 = 0.0
     s = []
     for k in range(1, steps + 1):
-        u2, _ = solve_lateral(f, k * du1, u2, N, 0.0, scale=1e-4, tol=1e-13)
+        u2, _ = solve_lateral(f, k * du1, u2, N, scale=1e-4, tol=1e-13)
         f.do_step(1e-3)
         o = f.outputs()
         s.append((o["s1"], o["s2"]))

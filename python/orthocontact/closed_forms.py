@@ -52,6 +52,27 @@ def steady_tan_phi(mu1, mu2, eps1, eps2, alpha, beta, rule: str = "coupled") -> 
     raise ValueError(f"unknown sliding rule {rule!r}")
 
 
+def steady_tan_phi_with_strip(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip) -> float:
+    """Steady tan(phi) when the Teflon strip resists the drift with Coulomb
+    friction mu_strip on the push P = q1 (beyond the paper).
+
+    Lateral equilibrium T2 = mu_strip P sgn(v2) gives q = q1 (1, -mu_strip s)
+    with s = sgn(v2); the block moves along G q, and s must agree with the sign
+    of its X2 component.  If neither sign does, the strip holds the block on
+    the X1 axis (tan phi = 0)."""
+    F = friction_tensor(mu1, mu2, beta)
+    if rule == "associated":
+        G = F
+    else:
+        B = adhesion_tensor(eps1, eps2, alpha)
+        G = np.linalg.inv(B @ F @ B)
+    for s in (1.0, -1.0):
+        d = G @ np.array([1.0, -mu_strip * s])
+        if d[1] * s > 0:
+            return d[1] / d[0]
+    return 0.0
+
+
 def steady_phi_deg(mu1, mu2, eps1, eps2, alpha, beta, rule="coupled") -> float:
     return math.degrees(math.atan(steady_tan_phi(mu1, mu2, eps1, eps2, alpha, beta, rule)))
 

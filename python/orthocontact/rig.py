@@ -74,45 +74,75 @@ class RigResult:
                 ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive")}
 
 
-def fit_angle_deg(x1: np.ndarray, x2: np.ndarray) -> float:
-    """Angle [deg] of the least-squares line x2 = a + b x1 (counterclockwise)."""
-    b = np.polyfit(x1, x2, 1)[0]
-    return math.degrees(math.atan(b))
+class LineFit:
+    """Streaming least-squares line x2 = a + b x1 and mean driving force,
+    over every step of the steady range (independent of what is recorded).
+    Sums are taken about the first point to avoid cancellation."""
+
+    def __init__(self):
+        self.n = 0
+        self.x0 = self.y0 = 0.0
+        self.sx = self.sy = self.sxx = self.sxy = self.sf = 0.0
+
+    def add(self, x1: float, x2: float, drive: float):
+        if self.n == 0:
+            self.x0, self.y0 = x1, x2
+        dx, dy = x1 - self.x0, x2 - self.y0
+        self.n += 1
+        self.sx += dx
+        self.sy += dy
+        self.sxx += dx * dx
+        self.sxy += dx * dy
+        self.sf += drive
+
+    def angle_deg(self) -> float:
+        n = self.n
+        den = n * self.sxx - self.sx * self.sx
+        if n < 2 or den <= 0:
+            return math.nan
+        return math.degrees(math.atan((n * self.sxy - self.sx * self.sy) / den))
+
+    def mean_drive(self) -> float:
+        return self.sf / self.n if self.n else math.nan
 
 
 class LateralSolveError(RuntimeError):
     pass
 
 
-def solve_lateral(fmu: ContactFMU, u1: float, u2: float, N: float, target: float = 0.0,
+def solve_lateral(fmu: ContactFMU, u1: float, u2: float, N: float, strip: float = 0.0,
                   scale: float = 1e-4, tol: float = 1e-12, max_iter: int = 200):
-    """u2 [m] with T2(u1, u2, N) = target [N], leaving the FMU's pending step
-    at the solution (not committed).
+    """u2 [m] with lateral equilibrium r(u2) = T2 - strip * P = 0, where
+    P = max(-T1, 0) [N] is the push and `strip` = mu_strip sgn(v2) the strip's
+    signed friction coefficient (0: free block, T2 = 0).  Leaves the FMU's
+    pending step at the solution (not committed).
 
-    T2 falls with u2 (the return map is monotone), so every evaluation
+    r falls with u2 (the return map is monotone), so every evaluation
     tightens a bracket; Newton steps with the consistent tangent are taken
     when they stay inside it, bisection otherwise, and before a bracket
     exists steps are limited to a growing multiple of `scale` [m] (the
     elastic displacement mu N / eps is a good scale).  tol is relative to N.
     Returns (u2, iterations)."""
-    lo = hi = None  # T2(lo) > target > T2(hi)
+    lo = hi = None  # r(lo) > 0 > r(hi)
     grow = scale
     for it in range(1, max_iter + 1):
         fmu.set_inputs(u1, u2, N)
-        r = fmu.force()[1] - target
+        T1, T2 = fmu.force()
+        r = T2 - strip * max(-T1, 0.0)
         if abs(r) <= tol * max(abs(N), 1e-300):
             return u2, it
         if r > 0:
             lo = u2
         else:
             hi = u2
-        d = fmu.tangent_column("u2")[1]
+        dT1, dT2 = fmu.tangent_column("u2")
+        d = dT2 + (strip * dT1 if T1 < 0 else 0.0)
         cand = u2 - r / d if d < 0 else math.nan
         if lo is not None and hi is not None:
             if not (min(lo, hi) < cand < max(lo, hi)):
                 cand = 0.5 * (lo + hi)
             if abs(hi - lo) <= 4e-16 * max(abs(lo), abs(hi)):
-                return u2, it  # bracket at rounding level: T2 jumps across target
+                return u2, it  # bracket at rounding level: r jumps across zero
         elif not math.isfinite(cand) or abs(cand - u2) > grow:
             cand = u2 + math.copysign(grow, r)  # r > 0: T2 too big, increase u2
             grow *= 4
@@ -151,6 +181,8 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
     dynamic = rig.mode == "dynamic"
     mu_s = rig.mu_strip
     rec = 0
+    fit = LineFit()
+    x1_fit = rig.fit_from * v * n_steps * h
     set_inputs, force, do_step = fmu.set_inputs, fmu.force, fmu.do_step
     snapshot = None
     for k in range(1, n_steps + 1):
@@ -178,13 +210,14 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
             snapshot = fmu.get_state() if snapshot is None else _refresh(fmu, snapshot)
             set_inputs(x1, x2, N)
             T1, T2 = force()
-            limit = mu_s * max(-T1, 0.0)
-            if abs(T2) > limit:
+            if abs(T2) > mu_s * max(-T1, 0.0):
                 fmu.set_state(snapshot)  # iterate from the committed state
-                x2, it = solve_lateral(fmu, x1, x2, N, math.copysign(limit, T2), scale)
+                x2, it = solve_lateral(fmu, x1, x2, N, math.copysign(mu_s, T2), scale)
                 newton += it
                 T1, T2 = force()
         do_step(h)
+        if x1 >= x1_fit:
+            fit.add(x1, x2, rig.f_int_N - T1)
         if k % record_every == 0 or k == n_steps:
             o = fmu.outputs()
             cols["t"][rec], cols["x1"][rec], cols["x2"][rec] = t, x1, x2
@@ -197,10 +230,8 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
         fmu.free_state(snapshot)
     for key in cols:
         cols[key] = cols[key][:rec]
-    steady = cols["x1"] >= rig.fit_from * cols["x1"][-1]
-    phi = fit_angle_deg(cols["x1"][steady], cols["x2"][steady])
-    drive_mean = float(np.mean(cols["drive"][steady]))
-    return RigResult(**cols, phi_deg=phi, drive_mean_N=drive_mean, newton_iterations=newton)
+    return RigResult(**cols, phi_deg=fit.angle_deg(), drive_mean_N=fit.mean_drive(),
+                     newton_iterations=newton)
 
 
 def _refresh(fmu: ContactFMU, state):

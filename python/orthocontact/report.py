@@ -1,0 +1,259 @@
+"""Results for machines (CSV, JSON) and for people (PNG figures, Markdown).
+
+Every writer takes the folder to write into; the CLI hands it a staging
+folder and moves the files into place only when all of them are written."""
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from . import closed_forms as cf
+from .scenarios import Scenario
+from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg
+
+
+def _plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def write_csv(path: Path, header: list[str], rows) -> None:
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(header)
+        for r in rows:
+            w.writerow([f"{x:.12g}" if isinstance(x, float) else x for x in r])
+
+
+def write_json(path: Path, data) -> None:
+    path.write_text(json.dumps(data, indent=2, sort_keys=False) + "\n")
+
+
+def sweep_outputs(sc: Scenario, res: SweepResult, out: Path) -> dict:
+    """sweep.csv, trajectories.csv, three figures; returns the summary."""
+    rows = []
+    for a, phi, c, d in zip(res.angles_deg, res.phi_deg, res.phi_closed_deg, res.drive_mean_N):
+        p = sc.params_at(a)
+        rows.append((float(a), math.degrees(p.alpha), math.degrees(p.beta), float(phi), float(c),
+                     float(phi - c), float(d)))
+    write_csv(out / "sweep.csv", ["angle_deg", "alpha_deg", "beta_deg", "phi_deg", "phi_closed_deg",
+                                  "deviation_deg", "drive_mean_N"], rows)
+    traj_rows = []
+    for a, r in res.trajectories.items():
+        for i in range(len(r.t)):
+            traj_rows.append((a, float(r.t[i]), float(r.x1[i]), float(r.x2[i]), float(r.T1[i]),
+                              float(r.T2[i]), float(r.drive[i]), int(r.state[i])))
+    write_csv(out / "trajectories.csv", ["angle_deg", "t_s", "x1_m", "x2_m", "T1_N", "T2_N",
+                                         "drive_N", "contact_state"], traj_rows)
+
+    plt = _plt()
+    fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 721)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    ax.plot(fine, [closed_form_phi_deg(sc, a) for a in fine], "-", color="0.3",
+            label=f"closed form ({sc.closed_form})")
+    ax.plot(res.angles_deg, res.phi_deg, "o", ms=3.5, color="C0", label=f"rig + FMU ({sc.rig.mode})")
+    e = res.extremum
+    ax.plot([e["angle_deg"]], [e["phi_deg"]], "*", ms=12, color="C3",
+            label=f"extremum {e['phi_deg']:.2f}° at {e['angle_deg']:.2f}°")
+    ax.set_xlabel(f"swept angle [deg]   (α = angle {math.degrees(sc.alpha_offset):+g}°, "
+                  f"β = angle {math.degrees(sc.beta_offset):+g}°)")
+    ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
+    ax.set_title(sc.title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "phi_vs_angle.png", dpi=120)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for a, r in res.trajectories.items():
+        ax.plot(r.x1 * 1e3, r.x2 * 1e3, label=f"{a:g}°")
+    ax.set_xlabel("x1 [mm] (driving direction)")
+    ax.set_ylabel("x2 [mm]")
+    ax.set_title(f"{sc.title}: block trajectories", fontsize=10)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, title="angle")
+    fig.tight_layout()
+    fig.savefig(out / "trajectories.png", dpi=120)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for a, r in res.trajectories.items():
+        ax.plot(r.x1 * 1e3, r.drive, label=f"{a:g}°")
+    ax.set_xlabel("travel x1 [mm]")
+    ax.set_ylabel("driving force (sensor) [N]")
+    ax.set_title(f"{sc.title}: driving force", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, title="angle")
+    fig.tight_layout()
+    fig.savefig(out / "force_vs_travel.png", dpi=120)
+    plt.close(fig)
+
+    summary = {
+        "scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
+        "rule": sc.law.rule, "n_angles": int(len(res.angles_deg)), "workers": res.workers,
+        "seconds": round(res.seconds, 3),
+        "extremum": {"angle_deg": e["angle_deg"], "phi_deg": e["phi_deg"]},
+        "extremum_refined": bool(e.get("refined", False)),
+        "grid_extremum": res.grid_extremum,
+        "max_abs_phi_deg": float(np.max(np.abs(res.phi_deg))),
+        "closed_form": sc.closed_form,
+        "closed_form_extremum": _closed_extremum(sc, res),
+        "max_deviation_deg": res.max_deviation_deg,
+        "angle_convention": "counterclockwise from X1; phi = atan(dx2/dx1) of the fitted path",
+    }
+    drives = {}
+    for target in (0.0, 90.0):
+        hit = np.where(np.abs(res.angles_deg - target) < 1e-9)[0]
+        if len(hit):
+            drives[f"{target:g}"] = float(res.drive_mean_N[hit[0]])
+    if drives:
+        summary["drive_mean_N"] = drives
+        if math.isclose(math.degrees(sc.beta_offset) % 180.0, 0.0, abs_tol=1e-9) and len(drives) == 2:
+            # Sliding along a friction axis at 0 and 90 deg: eq. (1).
+            r = sc.rig
+            summary["mu_from_drive"] = {
+                "mu1": cf.eq1_mu(drives["0"], r.f_int_N, r.mass_kg, r.g),
+                "mu2": cf.eq1_mu(drives["90"], r.f_int_N, r.mass_kg, r.g)}
+    write_json(out / "summary.json", summary)
+    return summary
+
+
+def _closed_extremum(sc: Scenario, res: SweepResult) -> dict:
+    fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 90001)
+    vals = np.array([closed_form_phi_deg(sc, a) for a in fine])
+    k = int(np.argmax(np.abs(vals)))
+    return {"angle_deg": float(fine[k]), "phi_deg": float(vals[k])}
+
+
+def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path) -> dict:
+    write_csv(out / "step_study.csv", ["rule", "step_s", "phi_deg", "phi_closed_deg", "deviation_deg",
+                                       "drive_mean_N"],
+              [(r["rule"], r["step_s"], r["phi_deg"], r["phi_closed_deg"], r["deviation_deg"],
+                r["drive_mean_N"]) for r in res.rows])
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    rules = list(dict.fromkeys(r["rule"] for r in res.rows))
+    for i, rule in enumerate(rules):
+        rs = [r for r in res.rows if r["rule"] == rule]
+        ax.plot([r["step_s"] for r in rs], [r["phi_deg"] for r in rs], "o-", color=f"C{i}", label=rule)
+        ax.axhline(rs[0]["phi_closed_deg"], color=f"C{i}", ls=":", lw=1)
+    ax.set_xscale("log")
+    ax.set_xlabel("communication step [s]")
+    ax.set_ylabel("steady trajectory angle φ [deg]")
+    ax.set_title(f"{sc.title} (dotted: closed form)", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out / "step_study.png", dpi=120)
+    plt.close(fig)
+    per_rule = {}
+    for rule in rules:
+        rs = [r for r in res.rows if r["rule"] == rule]
+        phis = [r["phi_deg"] for r in rs]
+        per_rule[rule] = {"phi_deg": dict((f"{r['step_s']:g}", r["phi_deg"]) for r in rs),
+                          "spread_deg": max(phis) - min(phis),
+                          "max_deviation_deg": max(abs(r["deviation_deg"]) for r in rs)}
+    summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
+               "angle_deg": res.angle_deg, "rules": per_rule, "seconds": round(res.seconds, 3)}
+    write_json(out / "summary.json", summary)
+    return summary
+
+
+# -- the paper reproduction report ---------------------------------------------------
+
+def paper_rows(sc: Scenario, summary: dict) -> list[dict]:
+    """Each published number of the scenario beside the value obtained here.
+    Tolerances: the paper's rounding (2 decimals for angles, 0.05 N for
+    forces, 3 decimals for mu) plus the fit's resolution."""
+    p = sc.paper
+    rows = []
+
+    def add(quantity, paper, here, tol, unit=""):
+        rows.append({"scenario": sc.name, "quantity": quantity, "paper": paper, "here": here,
+                     "difference": here - paper, "tolerance": tol, "unit": unit,
+                     "match": abs(here - paper) <= tol})
+
+    if sc.kind == "sweep":
+        e = summary["extremum"]
+        if "extremum_phi_deg" in p:
+            here = abs(e["phi_deg"]) if p.get("phi_sign_differs") else e["phi_deg"]
+            paper = abs(p["extremum_phi_deg"]) if p.get("phi_sign_differs") else p["extremum_phi_deg"]
+            add("extremal φ" + (" (magnitude)" if p.get("phi_sign_differs") else ""), paper, here, 0.05, "deg")
+        if "extremum_angle_deg" in p:
+            add("angle of the extremum", p["extremum_angle_deg"], e["angle_deg"], 0.05, "deg")
+        if "phi_max_deg" in p:
+            add("max |φ|", p["phi_max_deg"], abs(e["phi_deg"]), 0.05, "deg")
+        if "max_abs_phi_deg" in p:
+            rows.append({"scenario": sc.name, "quantity": "max |φ| (isotropy)",
+                         "paper": p["max_abs_phi_deg"], "here": summary["max_abs_phi_deg"],
+                         "difference": summary["max_abs_phi_deg"] - p["max_abs_phi_deg"],
+                         "tolerance": "≤ paper", "unit": "deg",
+                         "match": summary["max_abs_phi_deg"] <= p["max_abs_phi_deg"] + 1e-9})
+        d = summary.get("drive_mean_N", {})
+        if "drive_0_N" in p and "0" in d:
+            add("driving force at 0°", p["drive_0_N"], d["0"], 0.05, "N")
+        if "drive_90_N" in p and "90" in d:
+            add("driving force at 90°", p["drive_90_N"], d["90"], 0.05, "N")
+        mu = summary.get("mu_from_drive", {})
+        if "mu1" in p and "mu1" in mu:
+            add("μ1 from the forces (eq. 1)", p["mu1"], mu["mu1"], 5e-4)
+        if "mu2" in p and "mu2" in mu:
+            add("μ2 from the forces (eq. 1)", p["mu2"], mu["mu2"], 5e-4)
+    return rows
+
+
+def _fmt(x):
+    if isinstance(x, float):
+        return f"{x:.4f}" if abs(x) < 1e4 else f"{x:.4g}"
+    return str(x)
+
+
+def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list[dict],
+                        seconds: float) -> str:
+    lines = ["# orthocontact: reproduction of Konyukhov & Schweizerhof (2007)", "",
+             f"Every scenario of the paper run through the OrthotropicContact FMU in the rig "
+             f"harness ({seconds:.0f} s). Angles are counterclockwise from the driving axis X1; "
+             "where the paper counts φ the other way the magnitudes are compared.", "",
+             "| scenario | quantity | paper | here | difference | tolerance | match |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        tol = r["tolerance"] if isinstance(r["tolerance"], str) else f"±{r['tolerance']:g}"
+        lines.append(f"| {r['scenario']} | {r['quantity']} | {_fmt(r['paper'])} {r['unit']} | "
+                     f"{_fmt(r['here'])} {r['unit']} | {_fmt(r['difference'])} | {tol} | "
+                     f"{'yes' if r['match'] else '**NO**'} |")
+    n_ok = sum(r["match"] for r in rows)
+    lines += ["", f"**{n_ok} of {len(rows)} published numbers matched.**", "", "## Scenarios", ""]
+    for sc, s in runs:
+        lines.append(f"### {sc.title}")
+        lines.append("")
+        if sc.description:
+            lines += [sc.description, ""]
+        if sc.kind == "sweep":
+            e = s["extremum"]
+            lines.append(f"- mode {s['mode']}, rule {s['rule']}, {s['n_angles']} angles; extremum "
+                         f"φ = {e['phi_deg']:.3f}° at {e['angle_deg']:.3f}°; closed form "
+                         f"({s['closed_form']}) {s['closed_form_extremum']['phi_deg']:.3f}° at "
+                         f"{s['closed_form_extremum']['angle_deg']:.3f}°; largest deviation from "
+                         f"the closed form {s['max_deviation_deg']:.2e}°.")
+            lines.append(f"- figures: [φ vs angle]({sc.name}/phi_vs_angle.png), "
+                         f"[trajectories]({sc.name}/trajectories.png), "
+                         f"[driving force]({sc.name}/force_vs_travel.png); "
+                         f"data: [{sc.name}/sweep.csv]({sc.name}/sweep.csv)")
+        else:
+            for rule, d in s["rules"].items():
+                lines.append(f"- {rule}: spread over step sizes {d['spread_deg']:.2e}°, largest "
+                             f"deviation from the closed form {d['max_deviation_deg']:.3f}°")
+            lines.append(f"- figure: [step study]({sc.name}/step_study.png); data: "
+                         f"[{sc.name}/step_study.csv]({sc.name}/step_study.csv)")
+        lines.append("")
+    text = "\n".join(lines) + "\n"
+    (out / "report.md").write_text(text)
+    return text

@@ -1,0 +1,225 @@
+"""Orientation sweeps and step-size studies of the rig, run over local
+worker processes.  Each worker holds its own FMU instance and resets it for
+every run, so results do not depend on the number of workers or the order."""
+from __future__ import annotations
+
+import math
+import os
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from multiprocessing import get_context
+
+import numpy as np
+
+from . import closed_forms as cf
+from .fmu import ContactFMU, ContactParams
+from .rig import Rig, RigResult, run
+from .scenarios import Scenario, ScenarioError
+
+# -- closed form for a scenario --------------------------------------------------
+
+
+def closed_form_phi_deg(sc: Scenario, angle_deg: float, rule: str | None = None) -> float:
+    """The steady trajectory angle [deg] the paper's closed form predicts for
+    the scenario at the swept angle.  'general' is eq. (10)/(23) from the
+    tensors themselves; the named forms are the paper's case formulas."""
+    p = sc.params_at(angle_deg, rule)
+    form = sc.closed_form
+    if form == "general" or rule not in (None, sc.law.rule):
+        return cf.steady_phi_deg(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, p.rule)
+    if form == "eq11":
+        return math.degrees(math.atan(cf.eq11_tan_phi(p.mu1, p.mu2, p.beta)))
+    if form == "eq31":
+        return math.degrees(math.atan(cf.eq31_tan_phi(p.mu1, p.mu2, p.beta)))
+    if form == "eq33":
+        return math.degrees(math.atan(cf.eq33_tan_phi(p.eps1, p.eps2, p.alpha)))
+    if form == "eq25":
+        shift = math.degrees(sc.beta_offset - sc.alpha_offset) % 180.0
+        if abs(shift) < 1e-9 or abs(shift - 180.0) < 1e-9:
+            l1, l2 = cf.eigen_ratio_case4(p.mu1, p.mu2, p.eps1, p.eps2)
+        elif abs(shift - 90.0) < 1e-9:
+            l1, l2 = cf.eigen_ratio_case5(p.mu1, p.mu2, p.eps1, p.eps2)
+        else:
+            raise ScenarioError(sc.path, "geometry.closed_form",
+                                "eq25 only with beta_offset - alpha_offset = 0 or 90 deg")
+        return math.degrees(math.atan(cf.eq25_tan_phi(l1, l2, p.alpha)))
+    if form == "mat":
+        r = cf.mat_ratio(p.eps1 / p.eps2, p.mu1, p.mu2)
+        return math.degrees(math.atan(cf.mat_tan_phi(r, math.radians(angle_deg))))
+    raise ValueError(form)
+
+
+# -- workers ----------------------------------------------------------------------
+
+_worker_fmu: ContactFMU | None = None
+
+
+def _init_worker(fmu_path):
+    global _worker_fmu
+    _worker_fmu = ContactFMU(fmu_path, instance_name=f"worker{os.getpid()}")
+
+
+def _run_one(task):
+    """(index, params, rig) -> (index, phi_deg, drive_mean_N)"""
+    index, params, rig = task
+    r = run(params, rig, fmu=_worker_fmu, record_every=1 << 30)
+    return index, r.phi_deg, r.drive_mean_N
+
+
+class Progress:
+    """A progress bar on stderr (a line per 10% when not a terminal)."""
+
+    def __init__(self, total: int, label: str, enabled: bool = True):
+        self.total, self.label, self.enabled = total, label, enabled
+        self.done, self.t0, self.last_decile = 0, time.time(), -1
+        self.tty = sys.stderr.isatty()
+
+    def update(self, n: int = 1):
+        self.done += n
+        if not self.enabled:
+            return
+        frac = self.done / self.total
+        if self.tty:
+            bar = "#" * int(30 * frac)
+            sys.stderr.write(f"\r{self.label:<22} [{bar:<30}] {self.done}/{self.total} "
+                             f"{time.time() - self.t0:5.1f}s")
+            if self.done == self.total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+        elif int(10 * frac) > self.last_decile:
+            self.last_decile = int(10 * frac)
+            print(f"{self.label}: {self.done}/{self.total} ({100 * frac:.0f}%, "
+                  f"{time.time() - self.t0:.1f}s)", file=sys.stderr, flush=True)
+
+
+def default_workers() -> int:
+    return max(1, min(os.cpu_count() or 1, 8))
+
+
+def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, label: str,
+             progress: bool = True) -> list[tuple[float, float]]:
+    """(phi_deg, drive_mean_N) of each (params, rig), in order."""
+    out: list = [None] * len(tasks)
+    bar = Progress(len(tasks), label, progress)
+    indexed = [(i, p, r) for i, (p, r) in enumerate(tasks)]
+    if workers <= 1:
+        _init_worker(fmu_path)
+        for t in indexed:
+            i, phi, drive = _run_one(t)
+            out[i] = (phi, drive)
+            bar.update()
+        return out
+    with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"),
+                             initializer=_init_worker, initargs=(fmu_path,)) as ex:
+        futures = [ex.submit(_run_one, t) for t in indexed]
+        for fut in as_completed(futures):
+            i, phi, drive = fut.result()
+            out[i] = (phi, drive)
+            bar.update()
+    return out
+
+
+# -- sweeps ------------------------------------------------------------------------
+
+@dataclass
+class SweepResult:
+    angles_deg: np.ndarray
+    phi_deg: np.ndarray
+    phi_closed_deg: np.ndarray
+    drive_mean_N: np.ndarray
+    extremum: dict
+    grid_extremum: dict
+    workers: int
+    seconds: float
+    trajectories: dict = field(default_factory=dict)  # angle_deg -> RigResult
+
+    @property
+    def max_deviation_deg(self) -> float:
+        return float(np.max(np.abs(self.phi_deg - self.phi_closed_deg)))
+
+
+def _golden_extremum(f, a: float, b: float, tol: float = 1e-3) -> tuple[float, float]:
+    """Maximiser of f on [a, b] by golden-section search."""
+    g = (math.sqrt(5) - 1) / 2
+    c, d = b - g * (b - a), a + g * (b - a)
+    fc, fd = f(c), f(d)
+    while b - a > tol:
+        if fc > fd:
+            b, d, fd = d, c, fc
+            c = b - g * (b - a)
+            fc = f(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + g * (b - a)
+            fd = f(d)
+    x = 0.5 * (a + b)
+    return x, f(x)
+
+
+def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
+              fmu_path=None) -> SweepResult:
+    """phi(angle) over the scenario's grid, the extremum (refined by a
+    golden-section search on the rig itself when asked), and recorded runs
+    at the trajectory angles."""
+    workers = workers or default_workers()
+    fmu_path = fmu_path or sc.fmu
+    t0 = time.time()
+    angles = sc.sweep_angles()
+    res = run_many([(sc.params_at(a), sc.rig) for a in angles], workers, fmu_path, sc.name, progress)
+    phi = np.array([r[0] for r in res])
+    drive = np.array([r[1] for r in res])
+    closed = np.array([closed_form_phi_deg(sc, a) for a in angles])
+    k = int(np.argmax(np.abs(phi)))
+    grid_ext = {"angle_deg": float(angles[k]), "phi_deg": float(phi[k])}
+    extremum = dict(grid_ext, refined=False)
+    fmu = ContactFMU(fmu_path, instance_name="main")
+    try:
+        if sc.sweep["refine_extremum"] and len(angles) >= 3 and abs(phi[k]) > 1e-6:
+            sign = 1.0 if phi[k] > 0 else -1.0
+            step = sc.sweep["step_deg"]
+            lo, hi = max(angles[0], angles[k] - step), min(angles[-1], angles[k] + step)
+            cache = {}
+
+            def f(a):
+                if a not in cache:
+                    cache[a] = sign * run(sc.params_at(a), sc.rig, fmu=fmu, record_every=1 << 30).phi_deg
+                return cache[a]
+            a_ext, v = _golden_extremum(f, lo, hi)
+            if v >= sign * phi[k]:
+                extremum = {"angle_deg": a_ext, "phi_deg": sign * v, "refined": True,
+                            "evaluations": len(cache)}
+        traj = {}
+        n_rec = max(1, int(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) / 400))
+        for a in sc.sweep["trajectory_angles_deg"]:
+            traj[float(a)] = run(sc.params_at(a), sc.rig, fmu=fmu, record_every=n_rec)
+    finally:
+        fmu.close()
+    return SweepResult(np.array(angles, dtype=float), phi, closed, drive, extremum, grid_ext, workers,
+                       time.time() - t0, traj)
+
+
+@dataclass
+class StepStudyResult:
+    rows: list  # dicts: rule, step_s, phi_deg, phi_closed_deg, deviation_deg
+    angle_deg: float
+    seconds: float
+
+
+def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = True,
+                   fmu_path=None) -> StepStudyResult:
+    """The steady angle of each sliding rule at each communication step."""
+    from dataclasses import replace
+    workers = workers or default_workers()
+    t0 = time.time()
+    a = sc.study["angle_deg"]
+    combos = [(rule, h) for rule in sc.study["rules"] for h in sc.study["steps_s"]]
+    tasks = [(sc.params_at(a, rule), replace(sc.rig, step_s=h)) for rule, h in combos]
+    res = run_many(tasks, workers, fmu_path or sc.fmu, sc.name, progress)
+    rows = []
+    for (rule, h), (phi, drive) in zip(combos, res):
+        closed = closed_form_phi_deg(sc, a, rule)
+        rows.append({"rule": rule, "step_s": h, "phi_deg": phi, "phi_closed_deg": closed,
+                     "deviation_deg": phi - closed, "drive_mean_N": drive})
+    return StepStudyResult(rows, a, time.time() - t0)

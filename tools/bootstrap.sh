@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs what the project needs on a fresh machine: system tools (apt),
+# a virtual environment in .venv with the Python dependencies, and the
+# orthocontact package itself (whose install builds the FMU through CMake).
+# Idempotent: a second run only rebuilds what changed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+missing=()
+command -v cmake >/dev/null 2>&1 || missing+=(cmake)
+command -v cc >/dev/null 2>&1 || missing+=(gcc)
+command -v make >/dev/null 2>&1 || missing+=(make)
+command -v python3 >/dev/null 2>&1 || missing+=(python3)
+python3 -c "import venv, ensurepip" >/dev/null 2>&1 || missing+=(python3-venv)
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "bootstrap: installing system packages: ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" = 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+if [ ! -x .venv/bin/python ]; then
+  echo "bootstrap: creating .venv"
+  python3 -m venv .venv
+fi
+# Build requirements too, so that the package builds without isolation
+# (faster, and incremental through build/).
+.venv/bin/python -m pip install -q --disable-pip-version-check \
+  "scikit-build-core>=0.9" "fmpy>=0.3.20" "numpy>=1.22" "casadi>=3.6" "matplotlib>=3.5" "pytest>=7"
+echo "bootstrap: building and installing orthocontact (FMU via CMake)"
+.venv/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation .
