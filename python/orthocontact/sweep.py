@@ -111,7 +111,10 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
             out[i] = (phi, drive)
             bar.update()
         return out
-    with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("spawn"),
+    # fork starts workers in milliseconds; each creates its own FMU instance
+    # after the fork, so no FMU state is shared.  spawn where fork is absent.
+    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    with ProcessPoolExecutor(max_workers=workers, mp_context=get_context(method),
                              initializer=_init_worker, initargs=(fmu_path,)) as ex:
         futures = [ex.submit(_run_one, t) for t in indexed]
         for fut in as_completed(futures):

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Benchmarks (not tests): the C step cost through the FMI calls, and the
+# harness against a bare fmpy loop. Figures only; nothing here can fail a build.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+FMI_DIR=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
+cmake -S . -B build/ctest-release -DOC_BUILD_TESTS=ON -DFMI_HEADERS_DIR="$FMI_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build/ctest-release -j2 --target bench_fmi2 >/dev/null
+echo "== C: one step through the FMI calls =="
+build/ctest-release/bench_fmi2
+echo "== Python: harness vs bare fmpy, sweep scaling =="
+.venv/bin/python benchmarks/bench_harness.py
