@@ -36,20 +36,47 @@ def friction_tensor(mu1: float, mu2: float, beta: float) -> np.ndarray:
     return Q @ np.diag([1.0 / mu1**2, 1.0 / mu2**2]) @ Q.T
 
 
-def steady_tan_phi(mu1, mu2, eps1, eps2, alpha, beta, rule: str = "coupled") -> float:
+def _sym2(d1, d2, t):
+    """Entries (r11, r12, r22) of Q(t) diag(d1, d2) Q(t)^T.  Plain arithmetic
+    on d1, d2 (t is a number), so that d1, d2 may be casadi symbols."""
+    c, s = math.cos(t), math.sin(t)
+    return d1 * c * c + d2 * s * s, (d1 - d2) * s * c, d1 * s * s + d2 * c * c
+
+
+def steady_tan_phi(mu1, mu2, eps1, eps2, alpha, beta, rule: str = "coupled"):
     """tan(phi) of steady sliding under a push along X1 with lateral
     equilibrium T2 = 0: the slip moves along G q with q = (q1, 0).
 
     associated: G = F                -> tan phi = f21 / f11, eq. (10)
     coupled:    G = (B F B)^-1 = A^-1 -> tan phi = -a21 / a22, eq. (23)
+
+    Angles are numbers; mu and eps may be floats or casadi symbols.
     """
-    F = friction_tensor(mu1, mu2, beta)
+    f11, f12, f22 = _sym2(1 / mu1**2, 1 / mu2**2, beta)
     if rule == "associated":
-        return F[1, 0] / F[0, 0]
-    if rule in ("coupled", "eq20"):
-        A = adhesion_tensor(eps1, eps2, alpha) @ F @ adhesion_tensor(eps1, eps2, alpha)
-        return -A[1, 0] / A[1, 1]
-    raise ValueError(f"unknown sliding rule {rule!r}")
+        return f12 / f11
+    if rule not in ("coupled", "eq20"):
+        raise ValueError(f"unknown sliding rule {rule!r}")
+    b11, b12, b22 = _sym2(eps1, eps2, alpha)
+    # rows 2 of B F, then (B F B)_21 and (B F B)_22
+    bf21, bf22 = b12 * f11 + b22 * f12, b12 * f12 + b22 * f22
+    a21, a22 = bf21 * b11 + bf22 * b12, bf21 * b12 + bf22 * b22
+    return -a21 / a22
+
+
+def steady_drive_force(mu1, mu2, beta, f_int_N, mass_kg, g=G_STANDARD):
+    """Driving force [N] of steady sliding with lateral equilibrium: q = (q1, 0)
+    on the yield ellipse, q1 = N / sqrt(f11), for any sliding rule.  At
+    beta = 0 and 90 deg this is eq. (1): F_int + mu_i m g."""
+    f11, _, _ = _sym2(1 / mu1**2, 1 / mu2**2, beta)
+    return f_int_N + mass_kg * g / f11**0.5
+
+
+def stick_stiffness_x1(eps1, eps2, alpha):
+    """Stiffness [N/m] of the push against the block's X1 displacement while it
+    sticks with lateral equilibrium (q2 = 0): 1 / (B^-1)_11."""
+    c, s = math.cos(alpha), math.sin(alpha)
+    return 1 / (c * c / eps1 + s * s / eps2)
 
 
 def steady_tan_phi_with_strip(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip) -> float:
@@ -175,12 +202,11 @@ def mat_extremum(r) -> tuple[float, float]:
 
 
 def mat_ratio_from_extremum(phi_ext: float) -> float:
-    """r from the extremal trajectory angle (eq. 29 in this convention):
-    tan phi = (r^2 - 1)/(2r) with r > 0, r < 1 for phi < 0.  Takes either
-    sign of phi_ext and returns the r < 1 branch for |phi_ext| (the paper's
-    aged mat: lambda1 < lambda2)."""
-    tp = abs(math.tan(phi_ext))
-    return -tp + math.sqrt(tp * tp + 1)
+    """r = lambda1/lambda2 from the mat's extremal trajectory angle [rad]
+    (eq. 29 in this convention: tan phi_ext = (r^2 - 1)/(2r), so phi < 0
+    gives r < 1 as for the paper's aged mat)."""
+    tp = math.tan(phi_ext)
+    return tp + math.sqrt(tp * tp + 1)
 
 
 def eps_ratio_from_r(r: float, mu1: float, mu2: float) -> float:
@@ -194,23 +220,34 @@ def isotropic_eps_ratio(mu1: float, mu2: float) -> float:
     return mu2 / mu1
 
 
-def eq40_objective(r2: float, theta, tan_phi) -> float:
-    """Sum of squared residuals of tan(phi) for r^2 (eq. 40 in this convention)."""
-    t = np.tan(np.asarray(theta))
-    res = np.asarray(tan_phi) - (r2 - 1) * t / (r2 + t**2)
+def eq40_objective(r2: float, tan_alpha, tan_phi) -> float:
+    """Eq. (40): sum over the data of (tan phi_k - eq25(r, alpha_k))^2 with
+    l1/l2 = r, in the eq. (25) form: tan_alpha is the tangent of the adhesion
+    axis angle, tan_phi the measured tangent in this (counterclockwise)
+    convention."""
+    t = np.asarray(tan_alpha, dtype=float)
+    res = np.asarray(tan_phi, dtype=float) + (r2 - 1) * t / (r2 * t**2 + 1)
     return float(np.sum(res**2))
 
 
-def eq41_r2(theta, tan_phi) -> float:
-    """The paper's published closed form eq. (41) for r^2, with its
-    beta = pi/2 - alpha, mapped to this convention.  It is not the minimiser of
-    eq. (40) (model notes, erratum 3); kept to show the difference.
-
-    The paper's variables: tan beta_k = cot(theta_k) = 1/t, and its phi has the
-    opposite sign (tan phi_paper = -tan phi)."""
-    t = np.tan(np.asarray(theta, dtype=float))
-    tb = 1.0 / t
-    tphi = -np.asarray(tan_phi, dtype=float)
+def eq41_r2(tan_alpha, tan_phi) -> float:
+    """The paper's published closed form eq. (41) for r^2 (its tan beta_k is
+    tan_alpha here, as in eq. 40).  It is not the minimiser of eq. (40)
+    (model notes, erratum 3); kept to show the difference."""
+    tb = np.asarray(tan_alpha, dtype=float)
+    tphi = np.asarray(tan_phi, dtype=float)
     num = np.sum(tb * (1 + tb**2) * (tb - tphi))
     den = np.sum(tb * (1 + tb**2) * (tb + tphi))
     return float(num / den)
+
+
+def eq25_lambdas(mu1, mu2, eps1, eps2, beta_minus_alpha: float):
+    """(lambda1, lambda2) of A = B F B when its eigenbasis is alpha: Case 4
+    (beta - alpha = 0 mod 180 deg) or Case 5 (= 90 mod 180 deg); None
+    otherwise."""
+    d = math.degrees(beta_minus_alpha) % 180.0
+    if min(d, 180.0 - d) < 1e-9:
+        return eigen_ratio_case4(mu1, mu2, eps1, eps2)
+    if abs(d - 90.0) < 1e-9:
+        return eigen_ratio_case5(mu1, mu2, eps1, eps2)
+    return None
