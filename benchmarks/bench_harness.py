@@ -8,7 +8,6 @@ a sweep on 2 workers over 1.  Prints the figures; targets: harness within
 from __future__ import annotations
 
 import argparse
-import math
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -17,7 +16,7 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 
 from orthocontact.fmu import ContactFMU, find_fmu
-from orthocontact.rig import Rig, run
+from orthocontact.rig import run
 from orthocontact.scenarios import load
 from orthocontact.sweep import run_sweep
 

@@ -156,6 +156,13 @@ oc_status oc_model_set_integer(oc_model *m, const unsigned int vr[], size_t n, c
     return apply(m, &p, n > 0, m->u, m->N, msg);
 }
 
+/* The error of a get with a value reference that is not of the asked type. */
+static oc_status not_of_type(unsigned int vr, const char *type, oc_msg *msg) {
+    const var_info *info = lookup(vr);
+    if (info) return fail(msg, "variable %s (vr %u) is not of type %s", info->name, vr, type);
+    return fail(msg, "unknown value reference %u", vr);
+}
+
 oc_status oc_model_get_real(const oc_model *m, const unsigned int vr[], size_t n, double v[],
                             oc_msg *msg) {
     for (size_t i = 0; i < n; ++i) {
@@ -174,11 +181,7 @@ oc_status oc_model_get_real(const oc_model *m, const unsigned int vr[], size_t n
         case OC_VR_s1: v[i] = m->result.next.s[0]; break;
         case OC_VR_s2: v[i] = m->result.next.s[1]; break;
         case OC_VR_dissipatedEnergy: v[i] = m->result.next.energy; break;
-        default: {
-            const var_info *info = lookup(vr[i]);
-            if (info) return fail(msg, "variable %s (vr %u) is not of type Real", info->name, vr[i]);
-            return fail(msg, "unknown value reference %u", vr[i]);
-        }
+        default: return not_of_type(vr[i], "Real", msg);
         }
     }
     return OC_OK;
@@ -190,12 +193,7 @@ oc_status oc_model_get_integer(const oc_model *m, const unsigned int vr[], size_
         switch (vr[i]) {
         case OC_VR_slidingRule: v[i] = m->params.rule; break;
         case OC_VR_contactState: v[i] = m->result.contact; break;
-        default: {
-            const var_info *info = lookup(vr[i]);
-            if (info)
-                return fail(msg, "variable %s (vr %u) is not of type Integer", info->name, vr[i]);
-            return fail(msg, "unknown value reference %u", vr[i]);
-        }
+        default: return not_of_type(vr[i], "Integer", msg);
         }
     }
     return OC_OK;

@@ -2,7 +2,6 @@
 synthetic data made by the FMU harness (not by the closed forms the fit
 uses): exact recovery, honest intervals, clear non-identifiability."""
 import json
-import math
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +11,7 @@ from orthocontact import closed_forms as cf
 from orthocontact.cli import main
 from orthocontact.fmu import ContactParams
 from orthocontact.identify import (MeasurementSet, RigSetup, _start_values, eq40_fit, identify,
-                                   joint_fit, load_data, max_rule, simulate_measurements,
+                                   joint_fit, load_data, simulate_measurements,
                                    write_measurements)
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "scenarios" / "example_identification"

@@ -27,14 +27,14 @@ class FMUError(RuntimeError):
 def find_fmu(path: str | os.PathLike | None = None) -> Path:
     """The FMU to use: `path`, else $ORTHOCONTACT_FMU, else the one installed
     with the package."""
-    candidates = [path, os.environ.get(FMU_ENV), Path(__file__).with_name(MODEL_IDENTIFIER + ".fmu")]
-    for c in candidates:
-        if c:
-            p = Path(c)
-            if p.is_file():
-                return p
-            if c is path or c == os.environ.get(FMU_ENV):
-                raise FileNotFoundError(f"FMU not found: {p}")
+    for given, where in ((path, "given path"), (os.environ.get(FMU_ENV), f"${FMU_ENV}")):
+        if given:
+            if not Path(given).is_file():
+                raise FileNotFoundError(f"FMU not found: {given} ({where})")
+            return Path(given)
+    packaged = Path(__file__).with_name(MODEL_IDENTIFIER + ".fmu")
+    if packaged.is_file():
+        return packaged
     raise FileNotFoundError(
         f"{MODEL_IDENTIFIER}.fmu is not installed with the package; run `pip install .` "
         f"from the repository or set {FMU_ENV}")
@@ -234,10 +234,11 @@ class ContactFMU:
 
     def close(self):
         if self._slave is not None:
-            try:
-                self._slave.terminate() if self.initialized else None
-            except Exception:
-                pass
+            if self.initialized:
+                try:
+                    self._slave.terminate()
+                except Exception:  # already terminated or in error: freeing is what matters
+                    pass
             self._slave.freeInstance()
             self._slave = None
 

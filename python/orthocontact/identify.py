@@ -33,7 +33,12 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
-PARAMS = ("mu1", "mu2", "eps_ratio", "eps2")
+REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
+
+
+def _reported(j: dict) -> list:
+    """The parameters a summary lists: the five, and l1/l2 when angles alone were fitted."""
+    return list(REPORTED) + (["l1_l2_ratio"] if "l1_l2_ratio" in j else [])
 
 
 # -- data ------------------------------------------------------------------------
@@ -561,7 +566,7 @@ class Identification:
     def as_json(self) -> dict:
         f = self.fit
         out = {}
-        for n in ("mu1", "mu2", "eps_ratio", "eps1", "eps2"):
+        for n in REPORTED:
             if n in f.values:
                 out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n]}
             else:
@@ -672,7 +677,7 @@ def _figure(res: Identification, path: Path):
 def summary_text(res: Identification) -> str:
     j = res.as_json()
     lines = []
-    for n in ("mu1", "mu2", "eps_ratio", "eps1", "eps2"):
+    for n in _reported(j):
         e = j[n]
         if "value" in e:
             lines.append(f"{n:>9} = {e['value']:.6g} ± {e['stderr']:.2g}  (95%: {e['ci95'][0]:.6g} .. {e['ci95'][1]:.6g})")
@@ -694,7 +699,7 @@ def _markdown(res: Identification) -> str:
          f"Rule {j['assumptions']['rule']}, alpha = angle {j['assumptions']['alpha_offset_deg']:+g}°, "
          f"beta = angle {j['assumptions']['beta_offset_deg']:+g}°.", "",
          "| parameter | value | std. error | 95% interval |", "|---|---|---|---|"]
-    for n in ("mu1", "mu2", "eps_ratio", "eps1", "eps2"):
+    for n in _reported(j):
         e = j[n]
         if "value" in e:
             L.append(f"| {n} | {e['value']:.6g} | {e['stderr']:.3g} | {e['ci95'][0]:.6g} … {e['ci95'][1]:.6g} |")
@@ -710,7 +715,7 @@ def _markdown(res: Identification) -> str:
     if j["eq40"]:
         L.append(f"- eq. (40) by IPOPT: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f} (objective {j['eq40']['objective']:.3e}); "
                  f"the paper's eq. (41): l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} (objective {j['eq41']['objective']:.3e}) — not the minimiser")
-    L.append(f"- noise estimated from the residuals: " + ", ".join(f"{k} {v:.3g}" for k, v in j["noise_estimate"].items()))
+    L.append("- noise estimated from the residuals: " + ", ".join(f"{k} {v:.3g}" for k, v in j["noise_estimate"].items()))
     v = j["validation_fmu"]
     if v and "skipped" not in v:
         parts = [f"{k} rms {v[k]['rms']:.3g}" for k in ("forces_N", "angles_deg", "ramp_N") if k in v]

@@ -69,10 +69,6 @@ class RigResult:
     drive_mean_N: float
     newton_iterations: int = 0
 
-    def as_columns(self) -> dict:
-        return {k: getattr(self, k) for k in
-                ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive")}
-
 
 class LineFit:
     """Streaming least-squares line x2 = a + b x1 and mean driving force,

@@ -55,14 +55,6 @@ def _num(lo=None, hi=None, lo_open=False):
     return check
 
 
-def _int(lo=None):
-    def check(v):
-        if isinstance(v, bool) or not isinstance(v, int) or (lo is not None and v < lo):
-            return f"an integer >= {lo}" if lo is not None else "an integer"
-        return None
-    return check
-
-
 def _choice(options):
     def check(v):
         return None if v in options else "one of " + ", ".join(repr(o) for o in options)

@@ -15,7 +15,7 @@ import numpy as np
 
 from . import closed_forms as cf
 from .fmu import ContactFMU, ContactParams
-from .rig import Rig, RigResult, run
+from .rig import Rig, run
 from .scenarios import Scenario, ScenarioError
 
 # -- closed form for a scenario --------------------------------------------------
