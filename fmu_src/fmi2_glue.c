@@ -51,6 +51,8 @@ static void emit(Instance *I, fmi2Status status, int cat, const char *fmt, ...) 
 }
 
 #define LOG_ERR(I, ...) emit((I), fmi2Error, LOG_ERROR, __VA_ARGS__)
+/* A status that is not available is fmi2Discard, not an error (FMI 2.0, 4.2.3). */
+#define DISCARD(I, ...) emit((I), fmi2Discard, LOG_WARNING, __VA_ARGS__)
 
 /* Every entry point starts here: a NULL instance or a call in the wrong
  * state is an error that changes nothing. */
@@ -456,7 +458,7 @@ fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *va
     Instance *I = c;
     (void)s; (void)value;
     if (!allowed(I, "fmi2GetStatus", M_STEP | M_TERMINATED)) return fmi2Error;
-    LOG_ERR(I, "fmi2GetStatus: no status kind of type fmi2Status is provided (doStep is synchronous)");
+    DISCARD(I, "fmi2GetStatus: no status kind of type fmi2Status is provided (doStep is synchronous)");
     return fmi2Discard;
 }
 
@@ -467,7 +469,7 @@ fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *
         *value = I->model.time;
         return fmi2OK;
     }
-    LOG_ERR(I, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is provided");
+    DISCARD(I, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is provided");
     return fmi2Discard;
 }
 
@@ -475,7 +477,7 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Int
     Instance *I = c;
     (void)s; (void)value;
     if (!allowed(I, "fmi2GetIntegerStatus", M_STEP | M_TERMINATED)) return fmi2Error;
-    LOG_ERR(I, "fmi2GetIntegerStatus: no Integer status is provided");
+    DISCARD(I, "fmi2GetIntegerStatus: no Integer status is provided");
     return fmi2Discard;
 }
 
@@ -486,7 +488,7 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
         *value = fmi2False; /* the contact never asks to end the simulation */
         return fmi2OK;
     }
-    LOG_ERR(I, "fmi2GetBooleanStatus: only fmi2Terminated is provided");
+    DISCARD(I, "fmi2GetBooleanStatus: only fmi2Terminated is provided");
     return fmi2Discard;
 }
 
@@ -494,7 +496,7 @@ fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2Stri
     Instance *I = c;
     (void)s; (void)value;
     if (!allowed(I, "fmi2GetStringStatus", M_STEP | M_TERMINATED)) return fmi2Error;
-    LOG_ERR(I, "fmi2GetStringStatus: no String status is provided");
+    DISCARD(I, "fmi2GetStringStatus: no String status is provided");
     return fmi2Discard;
 }
 

@@ -105,11 +105,14 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
     bar = Progress(len(tasks), label, progress)
     indexed = [(i, p, r) for i, (p, r) in enumerate(tasks)]
     if workers <= 1:
-        _init_worker(fmu_path)
-        for t in indexed:
-            i, phi, drive = _run_one(t)
-            out[i] = (phi, drive)
-            bar.update()
+        fmu = ContactFMU(fmu_path, instance_name="serial")
+        try:
+            for i, p, r in indexed:
+                res = run(p, r, fmu=fmu, record_every=1 << 30)
+                out[i] = (res.phi_deg, res.drive_mean_N)
+                bar.update()
+        finally:
+            fmu.close()
         return out
     # fork starts workers in milliseconds; each creates its own FMU instance
     # after the fork, so no FMU state is shared.  spawn where fork is absent.
