@@ -45,6 +45,23 @@ def test_archive_layout_and_capabilities(fmu_path):
     assert all(deps == {"u1", "u2", "N"} for deps in outs.values())
 
 
+def test_every_fmi2_function_is_exported(fmu_path, tmp_path):
+    """The names come from the FMI 2.0 header that fmpy ships, not from a list
+    of ours."""
+    import ctypes
+    import os
+    import re
+    import fmpy
+    header = open(os.path.join(os.path.dirname(fmpy.__file__), "c-code", "fmi2Functions.h")).read()
+    names = set(re.findall(r"FMI2_Export\s+\w+TYPE\s+(fmi2\w+)\s*;", header))
+    assert len(names) == 44
+    zipfile.ZipFile(fmu_path).extract("binaries/linux64/OrthotropicContact.so", tmp_path)
+    lib = ctypes.CDLL(str(tmp_path / "binaries/linux64/OrthotropicContact.so"))
+    missing = [n for n in sorted(names) if not hasattr(lib, n)]
+    assert missing == []
+    assert not hasattr(lib, "oc_law_step")  # the core stays internal
+
+
 def test_model_description_at_repo_root_is_the_packaged_one(fmu_path):
     import pathlib
     root = pathlib.Path(__file__).resolve().parents[1] / "modelDescription.xml"
