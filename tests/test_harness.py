@@ -211,3 +211,24 @@ def test_failed_run_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
         main(["run", str(f), "--out", str(out), "--workers", "1"])
     assert [p.name for p in out.iterdir()] == ["keep.txt"]
     assert not list(tmp_path.glob(".out.partial-*"))
+
+
+def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
+    """The main job's code path: every packaged scenario on a 10-degree grid
+    (the extremum search refines it), the report and its table."""
+    folder = tmp_path / "scen"
+    folder.mkdir()
+    for f in SCEN.glob("*.toml"):
+        text = f.read_text().replace("step_deg = 1.0", "step_deg = 10.0")
+        text = text.replace("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]", "steps_s = [1.0e-3, 5.0e-4]")
+        (folder / f.name).write_text(text)
+    out = tmp_path / "results"
+    assert main(["reproduce", "--out", str(out), "--scenarios", str(folder), "--workers", "2"]) == 0
+    report = (out / "report.md").read_text()
+    rows = json.loads((out / "summary.json").read_text())["rows"]
+    assert len(rows) == 21 and all(r["match"] for r in rows)
+    assert "21 of 21 published numbers matched" in report
+    for name in ("case1", "case5", "mat_aged", "step_study"):
+        assert (out / name / "summary.json").exists()
+    assert {r["scenario"] for r in rows} >= {"case1", "case2", "case3", "case4", "case5", "mat_aged",
+                                            "mat_new", "calibration"}

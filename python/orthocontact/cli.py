@@ -88,6 +88,7 @@ def cmd_reproduce(args) -> int:
             summary = _run_scenario(sc, stage / sc.name, args.workers)
             runs.append((sc, summary))
             rows += report.paper_rows(sc, summary)
+        rows += report.calibration_rows()
         report.write_json(stage / "summary.json", {"rows": rows, "scenarios": {sc.name: s for sc, s in runs}})
         text = report.reproduction_report(stage, runs, rows, time.time() - t0)
     print(text.split("## Scenarios")[0].rstrip())

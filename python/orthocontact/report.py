@@ -210,6 +210,28 @@ def paper_rows(sc: Scenario, summary: dict) -> list[dict]:
     return rows
 
 
+def calibration_rows() -> list[dict]:
+    """The paper's calibration (sec. 2.2, 4.6) run through orthocontact.identify
+    on the paper's own measured inputs: forces 12.50 / 16.50 N with F_int = 5 N,
+    m = 1.875 kg, and phi_max = 11.5 deg."""
+    from pathlib import Path
+    from .identify import MeasurementSet, RigSetup, eq1, max_rule
+    data = MeasurementSet(Path("paper"), RigSetup(mass_kg=1.875, f_int_N=5.0),
+                          forces=np.array([[0.0, 12.50], [90.0, 16.50]]),
+                          angles=np.array([[39.2, -11.5]]))  # counterclockwise sign
+    mu = eq1(data)
+    mr = max_rule(data, 0.408, 0.625)  # eq. (39) with the paper's rounded mu
+    rows = []
+    for q, paper, here, tol in (("μ1 by eq. (1) from 12.50 N", 0.408, mu["mu1"], 5e-4),
+                                ("μ2 by eq. (1) from 16.50 N", 0.625, mu["mu2"], 5e-4),
+                                ("l1/l2 by the maximum rule, eq. (38)", 0.817, mr["l1_l2_ratio"], 5e-4),
+                                ("ε1/ε2 by eq. (39)", 1.251, mr["eps_ratio"], 1e-3)):
+        rows.append({"scenario": "calibration", "quantity": q, "paper": paper, "here": here,
+                     "difference": here - paper, "tolerance": tol, "unit": "",
+                     "match": abs(here - paper) <= tol})
+    return rows
+
+
 def _fmt(x):
     if isinstance(x, float):
         return f"{x:.4f}" if abs(x) < 1e4 else f"{x:.4g}"
