@@ -176,8 +176,9 @@ oc_status oc_model_get_real(const oc_model *m, const unsigned int vr[], size_t n
         case OC_VR_u1: v[i] = m->u[0]; break;
         case OC_VR_u2: v[i] = m->u[1]; break;
         case OC_VR_N: v[i] = m->N; break;
-        case OC_VR_T1: v[i] = -m->result.q[0]; break;
-        case OC_VR_T2: v[i] = -m->result.q[1]; break;
+        /* 0.0 - q rather than -q: an open contact reads +0.0, not -0.0 */
+        case OC_VR_T1: v[i] = 0.0 - m->result.q[0]; break;
+        case OC_VR_T2: v[i] = 0.0 - m->result.q[1]; break;
         case OC_VR_s1: v[i] = m->result.next.s[0]; break;
         case OC_VR_s2: v[i] = m->result.next.s[1]; break;
         case OC_VR_dissipatedEnergy: v[i] = m->result.next.energy; break;

@@ -254,6 +254,7 @@ def test_open_contact_and_unloaded_recontact(make):
     f.do_step(1e-3)
     o = f.outputs()
     assert (o["contactState"], o["T1"], o["T2"], o["s1"], o["s2"]) == (0, 0.0, 0.0, 0.02, 0.004)
+    assert math.copysign(1.0, o["T1"]) == 1.0  # +0.0, not -0.0
     assert o["dissipatedEnergy"] == e_before
     f.set_inputs(0.02, 0.004, G_N)
     o = f.outputs()
