@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import ctypes
 import os
-from dataclasses import dataclass, fields
+import dataclasses
+from dataclasses import dataclass
 from pathlib import Path
 
 from fmpy import extract, read_model_description
@@ -59,9 +60,7 @@ class ContactParams:
     rule: str = "coupled"
 
     def replace(self, **kw) -> "ContactParams":
-        d = {f.name: getattr(self, f.name) for f in fields(self)}
-        d.update(kw)
-        return ContactParams(**d)
+        return dataclasses.replace(self, **kw)
 
 
 _extracted: dict[Path, str] = {}
@@ -109,7 +108,6 @@ class ContactFMU:
         self._out_val = (ctypes.c_double * 5)()
         self._state_vr = (ctypes.c_uint * 1)(vr["contactState"])
         self._state_val = (ctypes.c_int * 1)()
-        self._dT_vr = (ctypes.c_uint * 2)(vr["T1"], vr["T2"])
         self._dT_val = (ctypes.c_double * 2)()
         self._known_vr = [(ctypes.c_uint * 1)(vr[n]) for n in ("u1", "u2", "N")]
         self._one = (ctypes.c_double * 1)(1.0)
@@ -206,7 +204,7 @@ class ContactFMU:
     def tangent_column(self, known: str) -> tuple[float, float]:
         """d(T1, T2)/d(known) for known in u1 [N/m], u2 [N/m], N [-]."""
         k = ("u1", "u2", "N").index(known)
-        st = self._fDirDer(self._c, self._dT_vr, 2, self._known_vr[k], 1, self._one, self._dT_val)
+        st = self._fDirDer(self._c, self._T_vr, 2, self._known_vr[k], 1, self._one, self._dT_val)
         if st > 1:
             self._check(st, "fmi2GetDirectionalDerivative")
         return self._dT_val[0], self._dT_val[1]
