@@ -69,6 +69,25 @@ class RigSetup:
         return (math.radians(angle_deg + self.alpha_offset_deg),
                 math.radians(angle_deg + self.beta_offset_deg))
 
+    def params_at(self, law: ContactParams, angle_deg: float) -> ContactParams:
+        """The law's parameters with the tensors' axes of this orientation and rig.rule."""
+        alpha, beta = self.axes(angle_deg)
+        return law.replace(alpha=alpha, beta=beta, rule=self.rule)
+
+    def harness(self, **overrides):
+        """The rig harness (orthocontact.rig.Rig) for this setup."""
+        from .rig import Rig
+        kw = dict(mass_kg=self.mass_kg, g=self.g, f_int_N=self.f_int_N,
+                  velocity_m_s=self.velocity_m_s, travel_m=self.travel_m, mode=self.mode,
+                  step_s=self.step_s)
+        kw.update(overrides)
+        return Rig(**kw)
+
+    @property
+    def beta_minus_alpha(self) -> float:
+        """Angle [rad] of the friction axes from the adhesion axes."""
+        return math.radians(self.beta_offset_deg - self.alpha_offset_deg)
+
 
 @dataclass
 class MeasurementSet:
@@ -224,11 +243,7 @@ def max_rule(data: MeasurementSet, mu1: float | None, mu2: float | None) -> dict
     """The paper's maximum rule (eq. 29, 37-39): l1/l2 from the largest
     |phi| of the mean angle curve, then eps1/eps2 from mu1, mu2."""
     rig = data.rig
-    if data.angles is None or rig.rule == "associated":
-        return None
-    shift = math.radians(rig.beta_offset_deg - rig.alpha_offset_deg)
-    lam = cf.eq25_lambdas(1.0, 1.0, 1.0, 1.0, shift)
-    if lam is None:
+    if data.angles is None or rig.rule == "associated" or not _eq25_geometry(rig):
         return None
     a, phi = _mean_by_angle(data.angles)
     k = int(np.argmax(np.abs(phi)))
@@ -238,14 +253,14 @@ def max_rule(data: MeasurementSet, mu1: float | None, mu2: float | None) -> dict
     ratio = cf.eq29_ratio(s * math.tan(math.radians(phi[k])))
     out = {"phi_ext_deg": float(phi[k]), "at_alpha_deg": float(a[k]), "l1_l2_ratio": ratio}
     if mu1 is not None:
-        out["eps_ratio"] = _eps_ratio_from_l(ratio, mu1, mu2, shift)
+        out["eps_ratio"] = _eps_ratio_from_l(ratio, mu1, mu2, rig)
     return out
 
 
-def _eps_ratio_from_l(ratio, mu1, mu2, shift):
+def _eps_ratio_from_l(ratio, mu1, mu2, rig: RigSetup):
     """eps1/eps2 from l1/l2: Case 5 geometry l = eps1 mu1/(eps2 mu2) (eq. 37, 39),
     Case 4 l = eps1 mu2/(eps2 mu1)."""
-    d = math.degrees(shift) % 180.0
+    d = math.degrees(rig.beta_minus_alpha) % 180.0
     return ratio * mu2 / mu1 if abs(d - 90.0) < 1e-9 else ratio * mu1 / mu2
 
 
@@ -254,10 +269,7 @@ def eq40_fit(data: MeasurementSet, mu1=None, mu2=None) -> dict | None:
     and the paper's closed form eq. (41) beside it."""
     import casadi as ca
     rig = data.rig
-    if data.angles is None or rig.rule == "associated":
-        return None
-    shift = math.radians(rig.beta_offset_deg - rig.alpha_offset_deg)
-    if cf.eq25_lambdas(1.0, 1.0, 1.0, 1.0, shift) is None:
+    if data.angles is None or rig.rule == "associated" or not _eq25_geometry(rig):
         return None
     ta = _tan_alpha(rig, data.angles[:, 0])
     tphi = np.tan(np.radians(data.angles[:, 1]))
@@ -278,8 +290,8 @@ def eq40_fit(data: MeasurementSet, mu1=None, mu2=None) -> dict | None:
                     "objective": cf.eq40_objective(r2_41, ta, tphi),
                     "note": "the paper's closed form (41); not the minimiser of eq. (40)"}}
     if mu1 is not None:
-        out["eps_ratio"] = _eps_ratio_from_l(out["l1_l2_ratio"], mu1, mu2, shift)
-        out["eq41"]["eps_ratio"] = _eps_ratio_from_l(out["eq41"]["l1_l2_ratio"], mu1, mu2, shift)
+        out["eps_ratio"] = _eps_ratio_from_l(out["l1_l2_ratio"], mu1, mu2, rig)
+        out["eq41"]["eps_ratio"] = _eps_ratio_from_l(out["eq41"]["l1_l2_ratio"], mu1, mu2, rig)
     return out
 
 
@@ -353,8 +365,7 @@ def identifiability(data: MeasurementSet) -> tuple[list, dict]:
 
 def _eq25_geometry(rig: RigSetup) -> bool:
     """A = B F B has its eigenbasis at alpha (Case 4 or 5 geometry), so eq. (25) holds."""
-    return cf.eq25_lambdas(1.0, 1.0, 1.0, 1.0, math.radians(rig.beta_offset_deg - rig.alpha_offset_deg)) \
-        is not None
+    return cf.eq25_lambdas(1.0, 1.0, 1.0, 1.0, rig.beta_minus_alpha) is not None
 
 
 def _stick_mask(data: MeasurementSet, mu1, mu2) -> np.ndarray:
@@ -496,8 +507,8 @@ def _start_values(data: MeasurementSet) -> dict:
             xs, F = data.ramp[stick, 0], data.ramp[stick, 1] - rig.f_int_N
             k = float(xs @ F / (xs @ xs))
             al, _ = rig.axes(rig.ramp_angle_deg)
-            c2, s2 = math.cos(al) ** 2, math.sin(al) ** 2
-            start["eps2"] = max(k * (c2 / start["eps_ratio"] + s2), 1e-9)
+            # the stick stiffness is linear in eps2 for a given ratio
+            start["eps2"] = max(k / cf.stick_stiffness_x1(start["eps_ratio"], 1.0, al), 1e-9)
     return start
 
 
@@ -507,7 +518,7 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None) -> dict:
     """Simulates the identified parameters in the rig harness with the FMU at
     the data's orientations (and the ramp) and returns the residuals
     data - simulation."""
-    from .rig import Rig, run
+    from .rig import run
     from .sweep import default_workers, run_many
     rig = data.rig
     mu1, mu2 = values.get("mu1"), values.get("mu2")
@@ -515,14 +526,10 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None) -> dict:
         return {"skipped": "mu1, mu2 not identified: nothing to simulate"}
     ratio = values.get("eps_ratio", 1.0)
     eps2 = values.get("eps2", rig.eps2_nominal_N_m)
-    h = Rig(mass_kg=rig.mass_kg, g=rig.g, f_int_N=rig.f_int_N, velocity_m_s=rig.velocity_m_s,
-            travel_m=rig.travel_m, mode=rig.mode, step_s=rig.step_s)
-
-    def params(a):
-        al, be = rig.axes(a)
-        return ContactParams(mu1, mu2, ratio * eps2, eps2, al, be, rig.rule)
+    law = ContactParams(mu1, mu2, ratio * eps2, eps2)
+    h = rig.harness()
     angles = sorted(set(np.concatenate([d[:, 0] for d in (data.forces, data.angles) if d is not None])))
-    sims = run_many([(params(a), h) for a in angles], workers or default_workers(), None,
+    sims = run_many([(rig.params_at(law, a), h) for a in angles], workers or default_workers(), None,
                     "validation", progress=False)
     sim = dict(zip(angles, sims))
     out = {"rig_mode": rig.mode, "eps_used": {"eps1": ratio * eps2, "eps2": eps2,
@@ -535,10 +542,10 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None) -> dict:
         out["angles_deg"] = _res_stats(res)
     if data.ramp is not None:
         xmax = float(data.ramp[:, 0].max())
-        from dataclasses import replace
         # fine steps: the comparison interpolates the simulation at the data's x1
-        r = run(params(rig.ramp_angle_deg), replace(h, travel_m=max(xmax * 1.01, 1e-6),
-                                                     step_s=min(h.step_s, xmax / rig.velocity_m_s / 4000)))
+        r = run(rig.params_at(law, rig.ramp_angle_deg),
+                rig.harness(travel_m=max(xmax * 1.01, 1e-6),
+                            step_s=min(h.step_s, xmax / rig.velocity_m_s / 4000)))
         x = np.concatenate([[0.0], r.x1])
         F = np.concatenate([[rig.f_int_N], r.drive])
         res = data.ramp[:, 1] - np.interp(data.ramp[:, 0], x, F)
@@ -632,6 +639,10 @@ def _figure(res: Identification, path: Path):
                                 ("ramp", d.ramp is not None)) if have]
     fig, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4), squeeze=False)
     grid = np.linspace(0, 90, 181)
+
+    def phi_curve(eps_ratio):
+        return [math.degrees(math.atan(cf.steady_tan_phi(v["mu1"], v["mu2"], eps_ratio, 1.0,
+                                                         *rig.axes(a), rig.rule))) for a in grid]
     for ax, p in zip(axes[0], panels):
         if p == "forces":
             ax.plot(d.forces[:, 0], d.forces[:, 1], "o", ms=4, label="data")
@@ -643,15 +654,11 @@ def _figure(res: Identification, path: Path):
         elif p == "angles":
             ax.plot(d.angles[:, 0], d.angles[:, 1], "o", ms=4, label="data")
             if "eps_ratio" in v:
-                phi = [math.degrees(math.atan(cf.steady_tan_phi(v["mu1"], v["mu2"], v["eps_ratio"], 1.0,
-                                                                *rig.axes(a), rig.rule))) for a in grid]
-                ax.plot(grid, phi, "-", label=f"joint fit: ε1/ε2={v['eps_ratio']:.4f}")
+                ax.plot(grid, phi_curve(v["eps_ratio"]), "-", label=f"joint fit: ε1/ε2={v['eps_ratio']:.4f}")
             for key, style, lab in (("max_rule", ":", "maximum rule"), ("eq41", "--", "eq. (41)")):
                 src = res.max_rule if key == "max_rule" else (res.eq40 or {}).get("eq41")
                 if src and "eps_ratio" in src and "mu1" in v and math.isfinite(src["eps_ratio"]):
-                    phi = [math.degrees(math.atan(cf.steady_tan_phi(v["mu1"], v["mu2"], src["eps_ratio"], 1.0,
-                                                                    *rig.axes(a), rig.rule))) for a in grid]
-                    ax.plot(grid, phi, style, label=f"{lab}: ε1/ε2={src['eps_ratio']:.4f}")
+                    ax.plot(grid, phi_curve(src["eps_ratio"]), style, label=f"{lab}: ε1/ε2={src['eps_ratio']:.4f}")
             ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
         else:
             ax.plot(d.ramp[:, 0] * 1e3, d.ramp[:, 1], "o", ms=3, label="data")
@@ -733,24 +740,19 @@ def simulate_measurements(truth: ContactParams, rig: RigSetup, force_angles, ang
     and fitted trajectory angles at the given orientations [deg], and the
     start of a pull at rig.ramp_angle_deg up to ramp_max_x1_m [m].
     truth.alpha/beta are ignored: the rig's geometry sets them per angle."""
-    from dataclasses import replace
-    from .rig import Rig, run
+    from .rig import run
     from .sweep import run_many
-    h = Rig(mass_kg=rig.mass_kg, g=rig.g, f_int_N=rig.f_int_N, velocity_m_s=rig.velocity_m_s,
-            mode="quasistatic", step_s=1e-3, travel_m=0.2)
-
-    def at(a):
-        al, be = rig.axes(a)
-        return truth.replace(alpha=al, beta=be, rule=rig.rule)
+    h = rig.harness(mode="quasistatic", step_s=1e-3, travel_m=0.2)
     angles = sorted(set(force_angles) | set(angle_angles))
-    sims = dict(zip(angles, run_many([(at(a), h) for a in angles], workers, None, "synthesize",
-                                     progress=False)))
+    sims = dict(zip(angles, run_many([(rig.params_at(truth, a), h) for a in angles], workers, None,
+                                     "synthesize", progress=False)))
     out = {"forces": np.array([[a, sims[a][1]] for a in force_angles]),
            "angles": np.array([[a, sims[a][0]] for a in angle_angles])}
     if ramp_max_x1_m:
         steps = 400
-        r = run(at(rig.ramp_angle_deg), replace(h, travel_m=ramp_max_x1_m,
-                                                step_s=ramp_max_x1_m / rig.velocity_m_s / steps))
+        r = run(rig.params_at(truth, rig.ramp_angle_deg),
+                rig.harness(mode="quasistatic", travel_m=ramp_max_x1_m,
+                            step_s=ramp_max_x1_m / rig.velocity_m_s / steps))
         out["ramp"] = np.column_stack([r.x1, r.drive])
     return out
 
