@@ -23,6 +23,16 @@ def _plt():
     return plt
 
 
+def _finish(fig, ax, path: Path, title: str, legend_title: str | None = None) -> None:
+    """The common end of every figure: title, grid, legend, file, close."""
+    ax.set_title(title, fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, title=legend_title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    _plt().close(fig)
+
+
 def write_csv(path: Path, header: list[str], rows) -> None:
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
@@ -64,37 +74,22 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path) -> dict:
     ax.set_xlabel(f"swept angle [deg]   (α = angle {math.degrees(sc.alpha_offset):+g}°, "
                   f"β = angle {math.degrees(sc.beta_offset):+g}°)")
     ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
-    ax.set_title(sc.title, fontsize=10)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out / "phi_vs_angle.png", dpi=120)
-    plt.close(fig)
+    _finish(fig, ax, out / "phi_vs_angle.png", sc.title)
 
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for a, r in res.trajectories.items():
         ax.plot(r.x1 * 1e3, r.x2 * 1e3, label=f"{a:g}°")
     ax.set_xlabel("x1 [mm] (driving direction)")
     ax.set_ylabel("x2 [mm]")
-    ax.set_title(f"{sc.title}: block trajectories", fontsize=10)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, title="angle")
-    fig.tight_layout()
-    fig.savefig(out / "trajectories.png", dpi=120)
-    plt.close(fig)
+    _finish(fig, ax, out / "trajectories.png", f"{sc.title}: block trajectories", "angle")
 
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for a, r in res.trajectories.items():
         ax.plot(r.x1 * 1e3, r.drive, label=f"{a:g}°")
     ax.set_xlabel("travel x1 [mm]")
     ax.set_ylabel("driving force (sensor) [N]")
-    ax.set_title(f"{sc.title}: driving force", fontsize=10)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, title="angle")
-    fig.tight_layout()
-    fig.savefig(out / "force_vs_travel.png", dpi=120)
-    plt.close(fig)
+    _finish(fig, ax, out / "force_vs_travel.png", f"{sc.title}: driving force", "angle")
 
     summary = {
         "scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
@@ -148,12 +143,7 @@ def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path) -> dict:
     ax.set_xscale("log")
     ax.set_xlabel("communication step [s]")
     ax.set_ylabel("steady trajectory angle φ [deg]")
-    ax.set_title(f"{sc.title} (dotted: closed form)", fontsize=10)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out / "step_study.png", dpi=120)
-    plt.close(fig)
+    _finish(fig, ax, out / "step_study.png", f"{sc.title} (dotted: closed form)")
     per_rule = {}
     for rule in rules:
         rs = [r for r in res.rows if r["rule"] == rule]
