@@ -109,7 +109,8 @@ int oc_law_init(oc_law *out, const oc_params *p) {
  * the root climbs monotonically to it, and from the right it lands on the
  * left in one step.  The first step is Halley's from x = 0 (cubic, exact
  * when sigma_1 = sigma_2), which leaves typically one Newton step to reach
- * rounding level; that last step is taken to first order (see below).  Returns x and the p (and |p|) of the last evaluation. */
+ * rounding level; that last step is taken to first order (see below).
+ * Returns x and the p (and |p|) of the last evaluation. */
 static double solve_dgamma(const double a[2], const double sigma[2], double rho, double p[2],
                            double *norm) {
     const double inv_rho = 1.0 / rho, delta = 1.0 - rho;
