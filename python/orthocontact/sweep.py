@@ -61,10 +61,11 @@ def _init_worker(fmu_path):
     _worker_fmu = ContactFMU(fmu_path, instance_name=f"worker{os.getpid()}")
 
 
-def _run_one(task):
-    """(index, params, rig) -> (index, phi_deg, drive_mean_N)"""
+def _run_one(task, fmu: ContactFMU | None = None):
+    """(index, params, rig) -> (index, phi_deg, drive_mean_N), on `fmu` or the
+    worker's own instance."""
     index, params, rig = task
-    r = run(params, rig, fmu=_worker_fmu, record_every=1 << 30)
+    r = run(params, rig, fmu=fmu or _worker_fmu, record_every=1 << 30)
     return index, r.phi_deg, r.drive_mean_N
 
 
@@ -107,9 +108,9 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
     if workers <= 1:
         fmu = ContactFMU(fmu_path, instance_name="serial")
         try:
-            for i, p, r in indexed:
-                res = run(p, r, fmu=fmu, record_every=1 << 30)
-                out[i] = (res.phi_deg, res.drive_mean_N)
+            for t in indexed:
+                i, phi, drive = _run_one(t, fmu)
+                out[i] = (phi, drive)
                 bar.update()
         finally:
             fmu.close()
