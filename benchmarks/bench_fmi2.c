@@ -24,7 +24,7 @@ static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2St
  * slip = 1: the body is pushed steadily, every step slips. */
 static double run(int rule, int slip, long steps) {
     const fmi2CallbackFunctions cb = {quiet, calloc, free, NULL, NULL};
-    fmi2Component c = fmi2Instantiate("bench", fmi2CoSimulation, OC_GUID, "", &cb, 0, 0);
+    fmi2Component c = fmi2Instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, 0, 0);
     const fmi2ValueReference vr_rule = OC_VR_slidingRule;
     const int r = rule;
     fmi2SetInteger(c, &vr_rule, 1, &r);
@@ -64,7 +64,7 @@ static double run(int rule, int slip, long steps) {
 int main(int argc, char **argv) {
     const long steps = argc > 1 ? atol(argv[1]) : 2000000;
     const char *names[4] = {"", "associated", "coupled", "eq20"};
-    printf("# ns per step: fmi2SetReal(u1,u2,N) + fmi2DoStep + fmi2GetReal(T1,T2), %ld steps\n",
+    printf("# FMI 2.0, ns per step: fmi2SetReal(u1,u2,N) + fmi2DoStep + fmi2GetReal(T1,T2), %ld steps\n",
            steps);
     printf("%-11s %10s %10s %8s\n", "rule", "stick_ns", "slip_ns", "ratio");
     for (int rule = 1; rule <= 3; ++rule) {

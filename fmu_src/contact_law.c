@@ -1,6 +1,11 @@
 /* Return mapping for the coupled orthotropic adhesion-friction law.
  * The derivation of the yield coordinates and of the tangent is in
- * docs/law.md; the comments here say why the code takes its shape. */
+ * docs/law.md; the comments here say why the code takes its shape.
+ *
+ * Scale: the law is homogeneous (N, eps -> k N, k eps scales forces and
+ * energy by k; u, eps -> m u, eps / m scales slip and energy by m).  So
+ * every tolerance here is relative, every norm is taken without squaring
+ * overflow, and the slip solve works in dimensionless variables. */
 #include "contact_law.h"
 
 #include <float.h>
@@ -35,6 +40,22 @@ static int all_finite(const double *v, size_t n) {
     for (size_t i = 0; i < n; ++i)
         if (!isfinite(v[i])) return 0;
     return 1;
+}
+
+double oc_norm2(double x, double y) {
+    const double sq = x * x + y * y;
+    /* The common case: the squares neither overflow nor lose digits. */
+    if (sq >= 0x1p-900 && sq <= 0x1p900) return sqrt(sq);
+    const double ax = fabs(x), ay = fabs(y);
+    const double big = ax > ay ? ax : ay, small = ax > ay ? ay : ax;
+    if (!(big > 0) || !isfinite(big)) return big + small; /* 0, inf or NaN */
+    const double r = small / big;
+    return big * sqrt(1.0 + r * r);
+}
+
+oc_state oc_state_unloaded(double s1, double s2, double energy) {
+    oc_state st = {{s1, s2}, 0.0, {0.0, 0.0}, {s1, s2}, energy};
+    return st;
 }
 
 const char *oc_params_check(const oc_params *p) {
@@ -80,82 +101,136 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     L.sigma[1] = s * s * S[0][0] - 2 * c * s * S[0][1] + c * c * S[1][1];
     /* The rotation gets the larger eigenvalue to full relative accuracy, the
      * smaller one only to DBL_EPSILON times the larger.  det S is known
-     * exactly from the parameters, so the smaller follows from it. */
-    const double detF = 1.0 / (p->mu1 * p->mu1 * p->mu2 * p->mu2), detB = p->eps1 * p->eps2;
-    const double detS = p->rule == OC_RULE_ASSOCIATED ? detF * detB : 1.0 / (detF * detB);
+     * exactly from the parameters, so the smaller follows from it; the
+     * factors are ordered so that no intermediate product overflows. */
     const int big = L.sigma[0] >= L.sigma[1] ? 0 : 1;
-    L.sigma[1 - big] = detS / L.sigma[big];
+    const double mm = p->mu1 * p->mu2, sb = L.sigma[big];
+    L.sigma[1 - big] = p->rule == OC_RULE_ASSOCIATED ? ((p->eps1 / mm) / sb) * (p->eps2 / mm)
+                                                      : ((mm / p->eps1) / sb) * (mm / p->eps2);
+    L.sigma_ref = sb;
+    L.inv_sigma_ref = 1.0 / sb;
+    L.sig_hat[big] = 1.0;
+    L.sig_hat[1 - big] = L.sigma[1 - big] / sb;
+    L.kappa = sb / L.sigma[1 - big];
 
-    double M[2][2];
-    matmul(Vt, Fh, M);
-    matmul(M, L.B, L.P);
+    matmul(Vt, Fh, L.Y);
+    matmul(L.Y, L.B, L.P);
     matmul(Fhinv, V, L.Minv);
     matmul(L.B, L.F, L.BF);
-    L.P_norm = fmax(fabs(L.P[0][0]) + fabs(L.P[0][1]), fabs(L.P[1][0]) + fabs(L.P[1][1]));
 
     if (!all_finite(&L.B[0][0], 4) || !all_finite(&L.Binv[0][0], 4) ||
         !all_finite(&L.F[0][0], 4) || !all_finite(&L.P[0][0], 4) ||
-        !all_finite(&L.Minv[0][0], 4) || !all_finite(L.sigma, 2) ||
-        !all_finite(&L.BF[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0))
+        !all_finite(&L.Minv[0][0], 4) || !all_finite(&L.Y[0][0], 4) || !all_finite(L.sigma, 2) ||
+        !all_finite(&L.BF[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
+        !(L.sig_hat[1 - big] > 0) || !isfinite(L.kappa) || !isfinite(L.inv_sigma_ref))
         return -1;
     *out = L;
     return 0;
 }
 
-/* Solves sum_i a_i^2 / (1 + x sigma_i)^2 = rho^2 for x > 0, given |a| = 1 > rho
- * (the caller divides by the trial norm, so that no square under- or
- * overflows).  k(x) = rho / |p(x)| - 1 is a power mean of exponent -2 of the
- * affine 1 + x sigma_i, hence concave and increasing: Newton from the left of
- * the root climbs monotonically to it, and from the right it lands on the
- * left in one step.  The first step is Halley's from x = 0 (cubic, exact
- * when sigma_1 = sigma_2), which leaves typically one Newton step to reach
- * rounding level; that last step is taken to first order (see below).
- * Returns x and the p (and |p|) of the last evaluation. */
-static double solve_dgamma(const double a[2], const double sigma[2], double rho, double p[2],
-                           double *norm) {
-    const double inv_rho = 1.0 / rho, delta = 1.0 - rho;
-    /* k(0) = -delta, k'(0) = rho m1, k''(0) = -3 rho v: the moments of sigma
-     * under the weights a_i^2 (which sum to 1). */
-    const double wt0 = a[0] * a[0], wt1 = a[1] * a[1];
-    const double m1 = wt0 * sigma[0] + wt1 * sigma[1];
-    const double d0 = sigma[0] - m1, d1 = sigma[1] - m1;
-    const double v = wt0 * d0 * d0 + wt1 * d1 * d1;
-    const double den = 2 * rho * m1 * m1 - 3 * delta * v;
-    /* Far from the root Halley's denominator can vanish: take Newton's step. */
-    double x = den > rho * m1 * m1 ? 2 * delta * m1 / den : delta * inv_rho / m1;
-    /* Iterate on g_i = W p_i with W = w_0 w_1, w_i = 1 + x sigma_i, so that
-     * an iteration costs one square root and one division:
-     * m = W |p|, residual m - rho W, Newton step (m - rho W) m^2 / (rho C)
-     * with C = g_0^2 sigma_0 w_1 + g_1^2 sigma_1 w_0. */
-    double p0, p1, n;
+/* Solves sum_i a_i^2 / (1 + y s_i)^2 = rho^2 for y > 0, given |a| = 1 > rho
+ * and s_i = sigma_i / sigma_ref in (0, 1] (so y = dgamma sigma_ref is
+ * dimensionless).  k(y) = rho / |p(y)| - 1 is a power mean of exponent -2
+ * of the affine 1 + y s_i, hence concave and increasing: Newton from the
+ * left of the root climbs monotonically to it, and from the right it lands
+ * on the left in one step.  The start is the root's series to third order
+ * about y = 0 (exact when s_1 = s_2); left of the root the iteration goes on with
+ * Halley steps, whose error is the cube of the step, so that a step below
+ * 5e-6 y is the last: it is taken to second order in p (remainder below
+ * (dy/y)^3 ~ 1e-16).  Typically that is one evaluation after the start.
+ * a_raw is the trial (|a_raw|^2 = sq, |a_raw| = n_tr > N).  Returns y and
+ * the p (and 1 / |p|) after the last step, p for a_raw / n_tr.
+ *
+ * The iteration works on g_i = W p_i with W = w_0 w_1, w_i = 1 + y s_i, so
+ * that an evaluation costs one square root and one division; its products
+ * (up to W^7) stay finite while W < 1e40, which the caller guarantees
+ * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest. */
+static double solve_dgamma(const double a_raw[2], double sq, double n_tr, double N,
+                           const double sh[2], double p[2], double *inv_norm) {
+    /* The divisions depend only on the trial, not on its square root:
+     * they run beside it.  Moments are taken over a_i^2 / |a|^2. */
+    const double A0 = a_raw[0] * a_raw[0], A1 = a_raw[1] * a_raw[1];
+    const double s0 = sh[0], s1 = sh[1];
+    const double R1 = A0 * s0 + A1 * s1;
+    const double inv_sq = 1.0 / sq, inv_R1 = 1.0 / R1, inv_N = 1.0 / N;
+    const double inv_ntr = n_tr * inv_sq, rho = N * inv_ntr, inv_rho = n_tr * inv_N;
+    const double a[2] = {a_raw[0] * inv_ntr, a_raw[1] * inv_ntr};
+    /* The start: the root's series in the Newton step h from y = 0, to
+     * third order (error O(h^4)), from the moments M_j = sum_i a_i^2 s_i^j:
+     * k(0) = rho - 1, k' = rho M1, k''/(2 k') = A2 = 3 (M1^2 - M2) / (2 M1),
+     * k'''/(6 k') = A3 = (15 M1^3 - 27 M1 M2 + 12 M3) / (6 M1). */
+    const double M1 = R1 * inv_sq, M2 = (A0 * s0 * s0 + A1 * s1 * s1) * inv_sq;
+    const double M3 = (A0 * s0 * s0 * s0 + A1 * s1 * s1 * s1) * inv_sq;
+    const double inv_M1 = sq * inv_R1;
+    const double h = (1.0 - rho) * inv_rho * inv_M1;
+    const double A2 = 1.5 * (M1 * M1 - M2) * inv_M1;
+    const double A3 = (15 * M1 * M1 * M1 - 27 * M1 * M2 + 12 * M3) * inv_M1 * (1.0 / 6.0);
+    double x = h * (1.0 - A2 * h + (2 * A2 * A2 - A3) * h * h);
+    /* Far from the root the series need not converge: Newton's step then. */
+    if (!(x > 0) || !(x < 4 * h)) x = h;
     for (int it = 0;; ++it) {
-        const double w0x = 1.0 + x * sigma[0], w1x = 1.0 + x * sigma[1], W = w0x * w1x;
+        const double w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;
         const double g0 = a[0] * w1x, g1 = a[1] * w0x;
-        const double m = sqrt(g0 * g0 + g1 * g1);
+        const double G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = sqrt(m2);
         const double res = m - rho * W;
+        /* u_i = W s_i / w_i: in these, k' = rho C / m^3 with C = sum g_i^2 u_i
+         * and k'' / k' = -3 (m^2 D2 - C^2) / (W m^2 C), D2 = sum g_i^2 u_i^2. */
+        const double u0 = sh[0] * w1x, u1 = sh[1] * w0x;
         double dx = 0.0;
         if (fabs(res) > 2 * DBL_EPSILON * rho * W && it < 100) {
-            const double C = g0 * g0 * sigma[0] * w1x + g1 * g1 * sigma[1] * w0x;
-            dx = res * m * m * inv_rho / C;
-            if (fabs(dx) > 1e-8 * x) {
+            const double C = G0 * u0 + G1 * u1;
+            int last;
+            if (res > 0) { /* left of the root: Halley, in one division */
+                const double D2 = G0 * u0 * u0 + G1 * u1 * u1;
+                dx = res * m2 * W * C / (rho * W * C * C + 1.5 * res * (m2 * D2 - C * C));
+                last = fabs(dx) <= 5e-6 * x;
+            } else {
+                dx = res * m2 * inv_rho / C;
+                last = fabs(dx) <= 1e-8 * x;
+            }
+            if (!last) {
                 x = fmax(x + dx, 0.0);
                 continue;
             }
         }
-        /* Converged, or one step short of it: both the Newton error after
-         * that step and the Taylor remainder of p are below (dx/x)^2 <= 1e-16
-         * relative, so the step is taken to first order. */
+        /* p_i(x + dx) = p_i / (1 + t_i) with t_i = s_i dx / w_i = u_i dx / W. */
         const double invW = 1.0 / W;
-        p0 = g0 * invW * (1.0 - sigma[0] * w1x * invW * dx);
-        p1 = g1 * invW * (1.0 - sigma[1] * w0x * invW * dx);
-        n = dx == 0.0 ? m * invW : sqrt(p0 * p0 + p1 * p1);
-        x += dx;
-        break;
+        const double t0 = u0 * dx * invW, t1 = u1 * dx * invW;
+        p[0] = g0 * invW * (1.0 - t0 + t0 * t0);
+        p[1] = g1 * invW * (1.0 - t1 + t1 * t1);
+        /* |p| = rho to rounding now, so 1 / |p| is one Newton step of the
+         * inverse square root from 1 / rho: no square root, no division. */
+        const double pp = p[0] * p[0] + p[1] * p[1];
+        *inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho);
+        return x + dx;
+    }
+}
+
+/* The same root for a trial far outside the yield surface, in a form whose
+ * every quantity is bounded (p_i = a_i / w_i, ratios to |p|): two divisions
+ * an iteration, taken only where the fast form could overflow. */
+static double solve_dgamma_far(const double a[2], const double sh[2], double rho, double p[2],
+                               double *inv_norm) {
+    double y = 0.0, p0 = a[0], p1 = a[1], n = 1.0;
+    for (int it = 0; it < 200; ++it) {
+        const double w0 = 1.0 + y * sh[0], w1 = 1.0 + y * sh[1];
+        p0 = a[0] / w0;
+        p1 = a[1] / w1;
+        n = oc_norm2(p0, p1);
+        const double r0 = p0 / n, r1 = p1 / n;
+        /* k = rho / n - 1, k' = (rho / n) kp with kp = sum_i r_i^2 s_i / w_i;
+         * the Newton step -k / k' = (n / rho - 1) / kp is formed so that
+         * neither rho kp nor n / rho leaves the range where the result is
+         * representable. */
+        const double kp = r0 * r0 * (sh[0] / w0) + r1 * r1 * (sh[1] / w1);
+        const double dy = (n / rho - 1.0) / kp;
+        if (!(dy > 1e-15 * y) || !isfinite(dy)) break; /* monotone from the left: stalls at the root */
+        y += dy;
     }
     p[0] = p0;
     p[1] = p1;
-    *norm = n;
-    return x;
+    *inv_norm = 1.0 / n;
+    return y;
 }
 
 void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], double N,
@@ -163,82 +238,115 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
     out->dgamma = 0.0;
     out->w[0] = out->w[1] = 1.0;
     out->next = *start;
+    out->next.u[0] = u[0];
+    out->next.u[1] = u[1];
+    out->next.N = N;
 
     if (!(N > 0)) {
         /* Open: no force, and the slip follows the body so that a new contact
          * starts unloaded.  Released elastic energy is not dissipation. */
         out->contact = OC_OPEN;
         out->q[0] = out->q[1] = 0.0;
-        out->a[0] = out->a[1] = 0.0;
+        out->next.a[0] = out->next.a[1] = 0.0;
         out->next.s[0] = u[0];
         out->next.s[1] = u[1];
         return;
     }
 
-    const double e[2] = {u[0] - start->s[0], u[1] - start->s[1]};
+    /* The trial in yield coordinates: the committed force plus the elastic
+     * response to the change of the inputs. */
+    const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
     double a[2];
-    matvec(L->P, e, a);
-    double n_tr = sqrt(a[0] * a[0] + a[1] * a[1]);
-    if (!isfinite(n_tr)) n_tr = hypot(a[0], a[1]); /* squares overflowed */
-    /* u - s is computed with an absolute rounding error of order
-     * DBL_EPSILON (|u| + |s|); a trial within that distance of the yield
-     * surface cannot be told from one on it, and must stick, or held inputs
-     * after a slip step would slip again by rounding noise. */
-    const double mag = fmax(fabs(u[0]), fabs(u[1])) + fmax(fabs(start->s[0]), fabs(start->s[1]));
-    const double tol = 16 * DBL_EPSILON * (N + L->P_norm * mag);
+    matvec(L->P, du, a);
+    a[0] += start->a[0];
+    a[1] += start->a[1];
+    const double n_tr = oc_norm2(a[0], a[1]);
 
-    if (n_tr <= N + tol) {
+    /* A committed force lies on or inside the yield surface to a few
+     * rounding errors of N; such a trial sticks, so held inputs stick. */
+    if (n_tr <= N * (1.0 + 8 * DBL_EPSILON)) {
         out->contact = OC_STICK;
-        matvec(L->B, e, out->q);
-        out->a[0] = a[0];
-        out->a[1] = a[1];
+        matvec(L->Minv, a, out->q);
+        out->next.a[0] = a[0];
+        out->next.a[1] = a[1];
         return;
     }
 
     out->contact = OC_SLIP;
+    double ap[2];
     if (L->p.rule == OC_RULE_EQ20) {
+        /* q = N y / |y|_F, y = B F q_tr; y is scaled to unit size first so
+         * that its F-norm cannot overflow (q is homogeneous of degree 0 in y). */
         double qtr[2], y[2], Fy[2];
-        matvec(L->B, e, qtr);
+        matvec(L->Minv, a, qtr);
         matvec(L->BF, qtr, y);
+        const double ym = fmax(fabs(y[0]), fabs(y[1]));
+        y[0] /= ym;
+        y[1] /= ym;
         matvec(L->F, y, Fy);
         const double ny = sqrt(y[0] * Fy[0] + y[1] * Fy[1]);
-        out->q[0] = N * y[0] / ny;
-        out->q[1] = N * y[1] / ny;
-        out->a[0] = out->a[1] = 0.0; /* unused by the eq. (20) tangent */
+        const double q[2] = {N * (y[0] / ny), N * (y[1] / ny)};
+        matvec(L->Y, q, ap);
     } else {
-        const double inv_ntr = 1.0 / n_tr;
-        const double an[2] = {a[0] * inv_ntr, a[1] * inv_ntr};
-        double ap[2], n_p;
-        const double x = solve_dgamma(an, L->sigma, N * inv_ntr, ap, &n_p);
-        out->dgamma = x;
-        out->w[0] = 1.0 + x * L->sigma[0];
-        out->w[1] = 1.0 + x * L->sigma[1];
-        /* Newton stops within an ulp or two of the yield surface; the radial
-         * scaling puts the force on it to rounding of one product. */
-        const double scale = N / n_p;
+        /* The fast solve needs W <= kappa / rho^2 < 1e40 and |a|^2 finite. */
+        const double sq = a[0] * a[0] + a[1] * a[1];
+        double inv_np, y;
+        if (L->kappa <= 1e20 && n_tr <= 1e10 * N && sq >= 0x1p-900 && sq <= 0x1p900) {
+            y = solve_dgamma(a, sq, n_tr, N, L->sig_hat, ap, &inv_np);
+        } else {
+            const double an[2] = {a[0] / n_tr, a[1] / n_tr};
+            y = solve_dgamma_far(an, L->sig_hat, N / n_tr, ap, &inv_np);
+        }
+        out->dgamma = y * L->inv_sigma_ref;
+        out->w[0] = 1.0 + y * L->sig_hat[0];
+        out->w[1] = 1.0 + y * L->sig_hat[1];
+        /* The solve stops within an ulp or two of the yield surface; the
+         * radial scaling puts the force on it to rounding. */
+        const double scale = N * inv_np;
         ap[0] *= scale;
         ap[1] *= scale;
-        out->a[0] = ap[0];
-        out->a[1] = ap[1];
-        matvec(L->Minv, ap, out->q);
+        /* Dissipation dgamma q.Gq = sum_i dgamma c_i a_i^2 with c_i = 1
+         * (associated) or sigma_i^2 (coupled): a sum of products of equal
+         * signs, so it is >= 0 by construction, in an order that does not
+         * overflow where the result does not. */
+        double dE;
+        if (L->p.rule == OC_RULE_ASSOCIATED)
+            dE = (out->dgamma * ap[0]) * ap[0] + (out->dgamma * ap[1]) * ap[1];
+        else
+            dE = ((y * L->sig_hat[0]) * ap[0]) * (L->sigma[0] * ap[0]) +
+                 ((y * L->sig_hat[1]) * ap[1]) * (L->sigma[1] * ap[1]);
+        out->next.energy = start->energy + dE;
     }
-    /* The slip follows from the elastic relation rather than from
-     * s_n + dgamma G q, so that held inputs reproduce q exactly next step. */
+    if (L->p.rule == OC_RULE_EQ20) {
+        /* Put the eq. (20) force exactly on the yield surface too, so that
+         * the committed state is one the implicit rules would accept. */
+        const double scale = N / oc_norm2(ap[0], ap[1]);
+        ap[0] *= scale;
+        ap[1] *= scale;
+    }
+    out->next.a[0] = ap[0];
+    out->next.a[1] = ap[1];
+    matvec(L->Minv, ap, out->q);
     double e_new[2];
     matvec(L->Binv, out->q, e_new);
     out->next.s[0] = u[0] - e_new[0];
     out->next.s[1] = u[1] - e_new[1];
-    out->next.energy = start->energy + out->q[0] * (out->next.s[0] - start->s[0]) +
-                       out->q[1] * (out->next.s[1] - start->s[1]);
+    if (L->p.rule == OC_RULE_EQ20) {
+        /* The explicit rule is not derived from a dissipation potential:
+         * its q . ds can come out negative; dissipated energy never does. */
+        const double dE = out->q[0] * (out->next.s[0] - start->s[0]) +
+                          out->q[1] * (out->next.s[1] - start->s[1]);
+        out->next.energy = start->energy + (dE > 0 ? dE : 0.0);
+    }
 }
 
 void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], double N,
                      const oc_step *st, double J[OC_JAC_ROWS][OC_JAC_COLS]) {
-    (void)u;
     double dq_du[2][2] = {{0, 0}, {0, 0}};
     double dq_dN[2] = {0, 0};
     double ds_du[2][2] = {{0, 0}, {0, 0}};
     double ds_dN[2] = {0, 0};
+    int eq20_clamped = 0;
 
     if (st->contact == OC_OPEN) {
         ds_du[0][0] = ds_du[1][1] = 1.0;
@@ -247,37 +355,53 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
             for (int j = 0; j < 2; ++j) dq_du[i][j] = L->B[i][j];
     } else {
         if (L->p.rule == OC_RULE_EQ20) {
-            /* q = N y / |y|_F with y = B F B (u - s_n). */
-            const double e[2] = {u[0] - start->s[0], u[1] - start->s[1]};
-            double qtr[2], y[2], Fy[2], BFB[2][2];
-            matvec(L->B, e, qtr);
+            /* q = N y / |y|_F with y = B F q_tr, dq_tr/du = B.  The
+             * derivative of y/|y|_F is homogeneous of degree -1 in y: taken
+             * at y / max|y_i| and divided by that scale. */
+            const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
+            double a[2], qtr[2], y[2], Fy[2];
+            matvec(L->P, du, a);
+            a[0] += start->a[0];
+            a[1] += start->a[1];
+            matvec(L->Minv, a, qtr);
             matvec(L->BF, qtr, y);
+            const double ym = fmax(fabs(y[0]), fabs(y[1]));
+            y[0] /= ym;
+            y[1] /= ym;
             matvec(L->F, y, Fy);
-            matmul(L->BF, L->B, BFB);
             const double ny = sqrt(y[0] * Fy[0] + y[1] * Fy[1]);
-            double D[2][2];
+            double D[2][2], BFs[2][2];
             for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 2; ++j)
-                    D[i][j] = N * ((i == j ? 1.0 : 0.0) / ny - y[i] * Fy[j] / (ny * ny * ny));
-            matmul(D, BFB, dq_du);
+                for (int j = 0; j < 2; ++j) {
+                    D[i][j] = N * ((i == j ? 1.0 : 0.0) - y[i] * Fy[j] / (ny * ny)) / ny;
+                    BFs[i][j] = L->BF[i][j] / ym;
+                }
+            matmul(D, BFs, D);
+            matmul(D, L->B, dq_du);
             dq_dN[0] = y[0] / ny;
             dq_dN[1] = y[1] / ny;
+            const double dE = st->q[0] * (st->next.s[0] - start->s[0]) +
+                              st->q[1] * (st->next.s[1] - start->s[1]);
+            eq20_clamped = !(dE > 0);
         } else {
             /* a_i(final) = a_tr,i / w_i with |a| = N: differentiating the
              * constraint gives d dgamma = (g . da_tr - N dN) / c, with
-             * g_i = a_i / w_i, v_i = sigma_i a_i / w_i, c = a . v. */
-            const double *a = st->a, *w = st->w;
-            const double g[2] = {a[0] / w[0], a[1] / w[1]};
-            const double v[2] = {L->sigma[0] * a[0] / w[0], L->sigma[1] * a[1] / w[1]};
-            const double c = a[0] * v[0] + a[1] * v[1];
+             * g_i = a_i / w_i, v_i = sigma_i a_i / w_i, c = a . v.  v g^T / c
+             * and v N / c are homogeneous of degree 0 in sigma and in a, so
+             * they are formed from sig_hat and a / N: no overflow. */
+            const double *w = st->w, *sh = L->sig_hat;
+            const double ah[2] = {st->next.a[0] / N, st->next.a[1] / N};
+            const double g[2] = {ah[0] / w[0], ah[1] / w[1]};
+            const double v[2] = {sh[0] * ah[0] / w[0], sh[1] * ah[1] / w[1]};
+            const double c = ah[0] * v[0] + ah[1] * v[1];
             double Da[2][2];
             for (int i = 0; i < 2; ++i)
                 for (int j = 0; j < 2; ++j)
-                    Da[i][j] = (i == j ? 1.0 / w[i] : 0.0) - v[i] * g[j] / c;
+                    Da[i][j] = (i == j ? 1.0 / w[i] : 0.0) - (v[i] / c) * g[j];
             double T[2][2];
             matmul(Da, L->P, T);
             matmul(L->Minv, T, dq_du);
-            const double daN[2] = {v[0] * N / c, v[1] * N / c};
+            const double daN[2] = {v[0] / c, v[1] / c};
             matvec(L->Minv, daN, dq_dN);
         }
         /* s = u - B^-1 q */
@@ -291,24 +415,45 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
         ds_dN[1] = -Bi_dqN[1];
     }
 
-    /* energy = E_n + q . (s - s_n) */
+    /* energy = E_n + q . (s - s_n): the dissipation increment's derivative
+     * (the law computes the same increment in a sign-safe form). */
     const double ds[2] = {st->next.s[0] - start->s[0], st->next.s[1] - start->s[1]};
     for (int j = 0; j < 2; ++j) {
         J[0][j] = -dq_du[0][j];
         J[1][j] = -dq_du[1][j];
         J[2][j] = ds_du[0][j];
         J[3][j] = ds_du[1][j];
-        J[4][j] = dq_du[0][j] * ds[0] + dq_du[1][j] * ds[1] + st->q[0] * ds_du[0][j] +
-                  st->q[1] * ds_du[1][j];
+        J[4][j] = eq20_clamped ? 0.0
+                               : dq_du[0][j] * ds[0] + dq_du[1][j] * ds[1] +
+                                     st->q[0] * ds_du[0][j] + st->q[1] * ds_du[1][j];
     }
     J[0][2] = -dq_dN[0];
     J[1][2] = -dq_dN[1];
     J[2][2] = ds_dN[0];
     J[3][2] = ds_dN[1];
-    J[4][2] = dq_dN[0] * ds[0] + dq_dN[1] * ds[1] + st->q[0] * ds_dN[0] + st->q[1] * ds_dN[1];
+    J[4][2] = eq20_clamped ? 0.0
+                           : dq_dN[0] * ds[0] + dq_dN[1] * ds[1] + st->q[0] * ds_dN[0] +
+                                 st->q[1] * ds_dN[1];
 }
 
 int oc_step_is_finite(const oc_step *st) {
-    return all_finite(st->q, 2) && all_finite(st->next.s, 2) && isfinite(st->next.energy) &&
-           isfinite(st->dgamma);
+    return all_finite(st->q, 2) && all_finite(st->next.a, 2) && all_finite(st->next.s, 2) &&
+           isfinite(st->next.energy) && isfinite(st->dgamma) && all_finite(st->w, 2);
+}
+
+const char *oc_state_check(const oc_law *L, const oc_state *st) {
+    (void)L;
+    const double v[] = {st->u[0], st->u[1], st->N, st->a[0], st->a[1], st->s[0], st->s[1],
+                        st->energy};
+    if (!all_finite(v, sizeof v / sizeof v[0])) return "a committed value is not finite";
+    if (!(st->energy >= 0)) return "the dissipated energy is negative";
+    if (!(st->N > 0)) {
+        if (st->a[0] != 0 || st->a[1] != 0) return "an open contact carries a force";
+        if (st->s[0] != st->u[0] || st->s[1] != st->u[1])
+            return "an open contact's slip does not follow the body";
+        return NULL;
+    }
+    if (!(oc_norm2(st->a[0], st->a[1]) <= st->N * (1.0 + 64 * DBL_EPSILON)))
+        return "the committed force lies outside the yield surface";
+    return NULL;
 }

@@ -44,22 +44,35 @@ typedef struct {
     double Minv[2][2]; /* q = Minv a */
     double sigma[2];   /* eigenvalues of S */
     double BF[2][2];   /* for eq. (20) */
-    double P_norm;     /* max row sum of |P|: scales the yield tolerance */
+    double Y[2][2];    /* a = Y q: yield coordinates of a force */
+    double sigma_ref;  /* the larger sigma: the slip solve works in dgamma sigma_ref */
+    double inv_sigma_ref;
+    double sig_hat[2]; /* sigma_i / sigma_ref, in (0, 1] */
+    double kappa;      /* sigma_max / sigma_min: bounds how far the slip solve reaches */
 } oc_law;
 
-/* The internal state committed between steps. */
+/* The internal state committed between steps.  The elastic force is kept
+ * in yield coordinates a (with |a| <= N), not recomputed from u - s: a
+ * step with held inputs then starts from exactly the force it committed,
+ * however anisotropic B and F are, instead of from a difference of large
+ * nearly equal displacements amplified by the stiff direction. */
 typedef struct {
+    double u[2];   /* inputs of the committed step: displacement [m] */
+    double N;      /*   and normal force [N] */
+    double a[2];   /* yield coordinates of the elastic force q [N] */
     double s[2];   /* slip [m] */
     double energy; /* dissipated energy [J] */
 } oc_state;
 
+/* The unloaded state with slip s [m] and dissipated energy [J]. */
+oc_state oc_state_unloaded(double s1, double s2, double energy);
+
 /* The result of one step, and what the tangent needs of it. */
 typedef struct {
-    double q[2];     /* elastic force B (u - s) [N]; T = -q */
-    oc_state next;   /* state after the step */
+    double q[2];     /* elastic force [N]; T = -q */
+    oc_state next;   /* state after the step (next.a: yield coordinates of q) */
     int contact;     /* an oc_contact */
     double dgamma;   /* plastic multiplier of the step (0 unless slipping) */
-    double a[2];     /* yield coordinates of q after the step */
     double w[2];     /* 1 + dgamma sigma_i */
 } oc_step;
 
@@ -71,7 +84,8 @@ const char *oc_params_check(const oc_params *p);
 int oc_law_init(oc_law *law, const oc_params *p);
 
 /* One return-mapping step from the committed state `start` with the inputs
- * u [m] and N [N].  Pure: it changes nothing but *out. */
+ * u [m] and N [N].  Pure: it changes nothing but *out.  Homogeneous: the
+ * result does not depend on the units (no absolute tolerance anywhere). */
 void oc_law_step(const oc_law *law, const oc_state *start, const double u[2],
                  double N, oc_step *out);
 
@@ -84,6 +98,15 @@ void oc_law_jacobian(const oc_law *law, const oc_state *start,
 
 /* 1 if every number in the step is finite. */
 int oc_step_is_finite(const oc_step *st);
+
+/* NULL if `st` can be a committed state of `law` (finite, energy >= 0,
+ * open contact unloaded, force inside the yield surface up to rounding),
+ * otherwise why not. */
+const char *oc_state_check(const oc_law *law, const oc_state *st);
+
+/* Euclidean norm of (x, y) without overflow or underflow of the squares
+ * (hypot, without needing a recent libm). */
+double oc_norm2(double x, double y);
 
 #ifdef __cplusplus
 }

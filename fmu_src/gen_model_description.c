@@ -1,21 +1,67 @@
-/* Writes the FMI 2.0 modelDescription.xml from model_variables.h, so that
- * the XML and the C value references cannot drift apart.
- * Usage: gen_model_description [OUTPUT]   (stdout without OUTPUT) */
+/* Writes a model's FMI 2.0 and FMI 3.0 model descriptions, the FMI 3.0
+ * buildDescription.xml and documentation/index.html from its variable table,
+ * so that the XML, the documentation and the C value references cannot drift
+ * apart.  Compiled once per model with -DFMU_TABLE_HEADER="<table header>".
+ *
+ * Usage: gen_model_description fmi2|fmi3|build|html [OUTPUT]   (stdout without OUTPUT) */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include "model_variables.h"
+#include FMU_TABLE_HEADER
+
+#define STR(x) #x
+#define XSTR(x) STR(x)
 
 typedef struct {
-    const char *name, *type, *causality, *variability, *initial, *start, *unit, *display, *desc;
+    const char *name, *type, *causality, *variability, *initial, *unit, *display, *desc;
     unsigned int vr;
+    double start, min, max;
 } row;
 
-#define OC_ROW(name, vr, type, caus, var, init, start, unit, disp, desc) \
-    {#name, #type, #caus, #var, #init, #start, unit, disp, desc, vr},
-static const row ROWS[] = {OC_VARIABLES(OC_ROW)};
-#undef OC_ROW
+#define ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc) \
+    {#name, #type, #caus, #var, #init, unit, disp, desc, vr, start, lo, hi},
+static const row ROWS[] = {FMU_VARIABLES(ROW)};
+#undef ROW
 enum { NROWS = sizeof ROWS / sizeof ROWS[0] };
+
+typedef struct {
+    const char *name, *desc;
+    int value;
+} item;
+#ifdef FMU_ENUM_TYPE
+#define ITEM(name, value, desc) {#name, desc, value},
+static const item ITEMS[] = {FMU_ENUM_ITEMS(ITEM)};
+#undef ITEM
+enum { NITEMS = sizeof ITEMS / sizeof ITEMS[0] };
+#define ENUM_NAME XSTR(FMU_ENUM_TYPE)
+#else
+static const item ITEMS[1];
+enum { NITEMS = 0 };
+#define ENUM_NAME ""
+#endif
+
+#define SRC(f) #f,
+static const char *const SOURCES[] = {FMU_SOURCES(SRC)};
+#undef SRC
+enum { NSOURCES = sizeof SOURCES / sizeof SOURCES[0] };
+
+/* SI units this project's models use: name, base-unit exponents. */
+static const struct {
+    const char *name, *base, *display;
+} UNITS[] = {
+    {"s", "s=\"1\"", NULL},
+    {"m", "m=\"1\"", NULL},
+    {"kg", "kg=\"1\"", NULL},
+    {"N", "kg=\"1\" m=\"1\" s=\"-2\"", NULL},
+    {"N/m", "kg=\"1\" s=\"-2\"", NULL},
+    {"N.s/m", "kg=\"1\" s=\"-1\"", NULL},
+    {"J", "kg=\"1\" m=\"2\" s=\"-2\"", NULL},
+    {"m/s", "m=\"1\" s=\"-1\"", NULL},
+    {"m/s2", "m=\"1\" s=\"-2\"", NULL},
+    {"rad", "rad=\"1\"", "<DisplayUnit name=\"deg\" factor=\"57.29577951308232\"/>"},
+};
 
 static void esc(FILE *f, const char *s) {
     for (; *s; ++s) {
@@ -29,69 +75,103 @@ static void esc(FILE *f, const char *s) {
     }
 }
 
-/* 1-based indices of the inputs, as the ModelStructure lists them. */
-static void input_indices(FILE *f) {
-    int first = 1;
-    for (int i = 0; i < NROWS; ++i)
-        if (strcmp(ROWS[i].causality, "input") == 0) {
-            fprintf(f, first ? "%d" : " %d", i + 1);
-            first = 0;
-        }
+/* The shortest decimal that reads back as the same double. */
+static void num(char *buf, size_t n, double x) {
+    for (int prec = 15; prec <= 17; ++prec) {
+        snprintf(buf, n, "%.*g", prec, x);
+        if (strtod(buf, NULL) == x) return;
+    }
 }
 
-int main(int argc, char **argv) {
-    FILE *f = stdout;
-    if (argc > 1 && !(f = fopen(argv[1], "w"))) {
-        perror(argv[1]);
-        return 1;
+static int is(const char *a, const char *b) { return strcmp(a, b) == 0; }
+static int is_int(const row *r) { return !is(r->type, "Float64"); }
+static int has_start(const row *r) {
+    return !is(r->initial, "calculated") && !is(r->causality, "independent");
+}
+
+static void value_attrs(FILE *f, const row *r) {
+    char b[64];
+    if (*r->unit && !is(r->unit, "1")) fprintf(f, " unit=\"%s\"", r->unit);
+    if (*r->display) fprintf(f, " displayUnit=\"%s\"", r->display);
+    if (isfinite(r->min)) {
+        if (is_int(r)) fprintf(f, " min=\"%d\"", (int)r->min);
+        else { num(b, sizeof b, r->min); fprintf(f, " min=\"%s\"", b); }
     }
-    fprintf(f,
-            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-            "<!-- Generated from fmu_src/model_variables.h by gen_model_description: edit the table, "
-            "not this file. -->\n"
-            "<fmiModelDescription\n"
-            "  fmiVersion=\"2.0\"\n"
-            "  modelName=\"%s\"\n"
-            "  guid=\"%s\"\n"
-            "  description=\"Coupled orthotropic adhesion-friction contact interface "
-            "(Konyukhov and Schweizerhof 2007), return mapping\"\n"
-            "  version=\"%s\"\n"
-            "  generationTool=\"orthocontact gen_model_description\"\n"
-            "  variableNamingConvention=\"flat\"\n"
-            "  numberOfEventIndicators=\"0\">\n\n",
-            OC_MODEL_NAME, OC_GUID, OC_VERSION);
-    fprintf(f,
-            "  <CoSimulation\n"
-            "    modelIdentifier=\"%s\"\n"
-            "    canHandleVariableCommunicationStepSize=\"true\"\n"
-            "    canGetAndSetFMUstate=\"true\"\n"
-            "    canSerializeFMUstate=\"true\"\n"
-            "    providesDirectionalDerivative=\"true\">\n"
-            "    <SourceFiles>\n"
-            "      <File name=\"contact_law.c\"/>\n"
-            "      <File name=\"oc_model.c\"/>\n"
-            "      <File name=\"fmi2_glue.c\"/>\n"
-            "    </SourceFiles>\n"
-            "  </CoSimulation>\n\n",
-            OC_MODEL_IDENTIFIER);
-    fputs("  <UnitDefinitions>\n"
-          "    <Unit name=\"J\"><BaseUnit kg=\"1\" m=\"2\" s=\"-2\"/></Unit>\n"
-          "    <Unit name=\"N\"><BaseUnit kg=\"1\" m=\"1\" s=\"-2\"/></Unit>\n"
-          "    <Unit name=\"N/m\"><BaseUnit kg=\"1\" s=\"-2\"/></Unit>\n"
-          "    <Unit name=\"m\"><BaseUnit m=\"1\"/></Unit>\n"
-          "    <Unit name=\"rad\">\n"
-          "      <BaseUnit rad=\"1\"/>\n"
-          "      <DisplayUnit name=\"deg\" factor=\"57.29577951308232\"/>\n"
-          "    </Unit>\n"
-          "  </UnitDefinitions>\n\n"
-          "  <LogCategories>\n"
+    if (isfinite(r->max)) {
+        if (is_int(r)) fprintf(f, " max=\"%d\"", (int)r->max);
+        else { num(b, sizeof b, r->max); fprintf(f, " max=\"%s\"", b); }
+    }
+    if (has_start(r)) {
+        if (is_int(r)) fprintf(f, " start=\"%d\"", (int)r->start);
+        else { num(b, sizeof b, r->start); fprintf(f, " start=\"%s\"", b); }
+    }
+}
+
+static void unit_definitions(FILE *f) {
+    fputs("  <UnitDefinitions>\n", f);
+    for (size_t u = 0; u < sizeof UNITS / sizeof UNITS[0]; ++u) {
+        int used = 0;
+        for (int i = 0; i < NROWS; ++i) used |= is(ROWS[i].unit, UNITS[u].name);
+        if (!used) continue;
+        fprintf(f, "    <Unit name=\"%s\">\n      <BaseUnit %s/>\n", UNITS[u].name, UNITS[u].base);
+        if (UNITS[u].display) fprintf(f, "      %s\n", UNITS[u].display);
+        fputs("    </Unit>\n", f);
+    }
+    fputs("  </UnitDefinitions>\n\n", f);
+}
+
+static void log_categories(FILE *f) {
+    fputs("  <LogCategories>\n"
           "    <Category name=\"logStatusError\" description=\"Errors: rejected calls and why\"/>\n"
           "    <Category name=\"logStatusWarning\" description=\"Warnings\"/>\n"
           "    <Category name=\"logCalls\" description=\"Trace of FMI function calls\"/>\n"
           "  </LogCategories>\n\n"
-          "  <DefaultExperiment startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\"/>\n\n"
-          "  <ModelVariables>\n",
-          f);
+          "  <DefaultExperiment " FMU_DEFAULT_EXPERIMENT "/>\n\n", f);
+}
+
+static void header(FILE *f, const char *version) {
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+               "<!-- Generated from the variable table by gen_model_description: edit the table, "
+               "not this file. -->\n"
+               "<fmiModelDescription\n  fmiVersion=\"%s\"\n  modelName=\"%s\"\n", version,
+            FMU_MODEL_NAME);
+}
+
+static void common_attrs(FILE *f, const char *license_path) {
+    fputs("  description=\"", f);
+    esc(f, FMU_DESCRIPTION);
+    fprintf(f, "\"\n  author=\"the orthocontact developers\"\n  version=\"%s\"\n"
+               "  copyright=\"Copyright (c) 2026 the orthocontact developers\"\n"
+               "  license=\"BSD-2-Clause (see %s)\"\n"
+               "  generationTool=\"orthocontact gen_model_description\"\n"
+               "  variableNamingConvention=\"flat\"",
+            FMU_VERSION, license_path);
+}
+
+static void inputs_of(FILE *f, int by_index) {
+    int first = 1;
+    for (int i = 0; i < NROWS; ++i)
+        if (is(ROWS[i].causality, "input")) {
+            fprintf(f, first ? "%u" : " %u", by_index ? (unsigned)(i + 1) : ROWS[i].vr);
+            first = 0;
+        }
+}
+
+static void fmi2(FILE *f) {
+    header(f, "2.0");
+    fprintf(f, "  guid=\"%s\"\n", FMU_GUID);
+    common_attrs(f, "documentation/LICENSE.txt");
+    fprintf(f, "\n  numberOfEventIndicators=\"0\">\n\n"
+               "  <CoSimulation\n    modelIdentifier=\"%s\"\n"
+               "    canHandleVariableCommunicationStepSize=\"true\"\n"
+               "    canGetAndSetFMUstate=\"true\"\n    canSerializeFMUstate=\"true\"\n"
+               "    providesDirectionalDerivative=\"true\">\n    <SourceFiles>\n",
+            FMU_MODEL_IDENTIFIER);
+    for (int i = 0; i < NSOURCES; ++i) fprintf(f, "      <File name=\"%s\"/>\n", SOURCES[i]);
+    fputs("      <File name=\"fmi2_glue.c\"/>\n    </SourceFiles>\n  </CoSimulation>\n\n", f);
+    unit_definitions(f);
+    log_categories(f);
+    fputs("  <ModelVariables>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
         fprintf(f, "    <!-- index %d -->\n    <ScalarVariable name=\"%s\" valueReference=\"%u\"",
@@ -100,26 +180,149 @@ int main(int argc, char **argv) {
         if (*r->initial) fprintf(f, " initial=\"%s\"", r->initial);
         fputs(" description=\"", f);
         esc(f, r->desc);
-        fprintf(f, "\">\n      <%s", r->type);
-        if (*r->unit && strcmp(r->unit, "1") != 0) fprintf(f, " unit=\"%s\"", r->unit);
-        if (*r->display) fprintf(f, " displayUnit=\"%s\"", r->display);
-        if (strcmp(r->initial, "calculated") != 0) fprintf(f, " start=\"%s\"", r->start);
+        fprintf(f, "\">\n      <%s", is_int(r) ? "Integer" : "Real");
+        value_attrs(f, r);
         fputs("/>\n    </ScalarVariable>\n", f);
     }
     fputs("  </ModelVariables>\n\n  <ModelStructure>\n    <Outputs>\n", f);
     for (int i = 0; i < NROWS; ++i)
-        if (strcmp(ROWS[i].causality, "output") == 0) {
+        if (is(ROWS[i].causality, "output")) {
             fprintf(f, "      <Unknown index=\"%d\" dependencies=\"", i + 1);
-            input_indices(f);
+            inputs_of(f, 1);
             fputs("\"/>\n", f);
         }
     /* In initialization mode the outputs depend on the parameters too; no
      * dependencies attribute says "on every known", which is the truth. */
     fputs("    </Outputs>\n    <InitialUnknowns>\n", f);
     for (int i = 0; i < NROWS; ++i)
-        if (strcmp(ROWS[i].causality, "output") == 0)
-            fprintf(f, "      <Unknown index=\"%d\"/>\n", i + 1);
+        if (is(ROWS[i].causality, "output")) fprintf(f, "      <Unknown index=\"%d\"/>\n", i + 1);
     fputs("    </InitialUnknowns>\n  </ModelStructure>\n\n</fmiModelDescription>\n", f);
+}
+
+static void fmi3(FILE *f) {
+    header(f, "3.0");
+    fprintf(f, "  instantiationToken=\"%s\"\n", FMU_GUID);
+    common_attrs(f, "documentation/licenses/LICENSE.txt");
+    fprintf(f, ">\n\n  <CoSimulation\n    modelIdentifier=\"%s\"\n"
+               "    canHandleVariableCommunicationStepSize=\"true\"\n"
+               "    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"\n"
+               "    providesDirectionalDerivatives=\"true\"\n"
+               "    providesAdjointDerivatives=\"true\"\n    hasEventMode=\"false\"/>\n\n",
+            FMU_MODEL_IDENTIFIER);
+    unit_definitions(f);
+    if (NITEMS > 0) {
+        fprintf(f, "  <TypeDefinitions>\n    <EnumerationType name=\"%s\">\n", ENUM_NAME);
+        for (int k = 0; k < NITEMS; ++k) {
+            fprintf(f, "      <Item name=\"%s\" value=\"%d\" description=\"", ITEMS[k].name,
+                    ITEMS[k].value);
+            esc(f, ITEMS[k].desc);
+            fputs("\"/>\n", f);
+        }
+        fputs("    </EnumerationType>\n  </TypeDefinitions>\n\n", f);
+    }
+    log_categories(f);
+    fputs("  <ModelVariables>\n", f);
+    for (int i = 0; i < NROWS; ++i) {
+        const row *r = &ROWS[i];
+        const char *el = is(r->type, "Enum") ? "Enumeration" : r->type;
+        fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\"", el, r->name, r->vr);
+        if (is(r->type, "Enum")) fprintf(f, " declaredType=\"%s\"", ENUM_NAME);
+        fprintf(f, " causality=\"%s\" variability=\"%s\"", r->causality, r->variability);
+        if (*r->initial) fprintf(f, " initial=\"%s\"", r->initial);
+        fputs(" description=\"", f);
+        esc(f, r->desc);
+        fputc('"', f);
+        value_attrs(f, r);
+        fputs("/>\n", f);
+    }
+    fputs("  </ModelVariables>\n\n  <ModelStructure>\n", f);
+    for (int i = 0; i < NROWS; ++i)
+        if (is(ROWS[i].causality, "output")) {
+            fprintf(f, "    <Output valueReference=\"%u\" dependencies=\"", ROWS[i].vr);
+            inputs_of(f, 0);
+            fputs("\"/>\n", f);
+        }
+    for (int i = 0; i < NROWS; ++i)
+        if (is(ROWS[i].causality, "output"))
+            fprintf(f, "    <InitialUnknown valueReference=\"%u\"/>\n", ROWS[i].vr);
+    fputs("  </ModelStructure>\n\n</fmiModelDescription>\n", f);
+}
+
+static void build(FILE *f) {
+    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+               "<!-- Generated by gen_model_description: how to compile sources/ into the "
+               "binary. -->\n"
+               "<fmiBuildDescription fmiVersion=\"3.0\">\n"
+               "  <BuildConfiguration modelIdentifier=\"%s\">\n"
+               "    <SourceFileSet language=\"C99\">\n", FMU_MODEL_IDENTIFIER);
+    for (int i = 0; i < NSOURCES; ++i) fprintf(f, "      <SourceFile name=\"%s\"/>\n", SOURCES[i]);
+    fputs("      <SourceFile name=\"fmi3_glue.c\"/>\n    </SourceFileSet>\n"
+          "    <Library name=\"m\" description=\"the C math library (Linux)\"/>\n"
+          "  </BuildConfiguration>\n</fmiBuildDescription>\n", f);
+}
+
+static void html(FILE *f) {
+    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\">"
+               "<title>%s</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:2em auto}"
+               "table{border-collapse:collapse}td,th{border:1px solid #999;padding:2px 6px;"
+               "text-align:left;vertical-align:top}code{background:#eee}</style></head>\n<body>\n"
+               "<!-- Generated from the variable table by gen_model_description. -->\n"
+               "<h1>%s %s</h1>\n<p>", FMU_MODEL_NAME, FMU_MODEL_NAME, FMU_VERSION);
+    esc(f, FMU_DESCRIPTION);
+    fputs(".</p>\n", f);
+#ifdef FMU_DOC_HTML
+    fputs(FMU_DOC_HTML, f);
+#endif
+    fputs("<h2>Variables</h2>\n<table>\n<tr><th>name</th><th>vr</th><th>causality</th>"
+          "<th>variability</th><th>type</th><th>unit</th><th>start</th><th>min</th><th>max</th>"
+          "<th>description</th></tr>\n", f);
+    for (int i = 0; i < NROWS; ++i) {
+        const row *r = &ROWS[i];
+        char s[64] = "", lo[64] = "", hi[64] = "";
+        if (has_start(r)) num(s, sizeof s, r->start);
+        if (isfinite(r->min)) num(lo, sizeof lo, r->min);
+        if (isfinite(r->max)) num(hi, sizeof hi, r->max);
+        fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>%s</td><td>%s</td><td>%s</td>"
+                   "<td>%s%s%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>",
+                r->name, r->vr, r->causality, r->variability,
+                is(r->type, "Enum") ? "Enumeration (FMI 2.0: Integer)" : r->type,
+                is(r->unit, "1") ? "" : r->unit, *r->display ? " (display " : "", r->display,
+                *r->display ? ")" : "", s, lo, hi);
+        esc(f, r->desc);
+        fputs("</td></tr>\n", f);
+    }
+    fputs("</table>\n", f);
+    if (NITEMS > 0) {
+        fprintf(f, "<h2>Enumeration %s</h2>\n<ul>\n", ENUM_NAME);
+        for (int k = 0; k < NITEMS; ++k) {
+            fprintf(f, "<li><code>%d</code> %s: ", ITEMS[k].value, ITEMS[k].name);
+            esc(f, ITEMS[k].desc);
+            fputs("</li>\n", f);
+        }
+        fputs("</ul>\n", f);
+    }
+    fputs("<h2>License</h2>\n<p>BSD-2-Clause: see <code>LICENSE.txt</code> beside this page "
+          "(FMI 2.0) or <code>licenses/LICENSE.txt</code> (FMI 3.0).</p>\n</body>\n</html>\n", f);
+}
+
+int main(int argc, char **argv) {
+    if (argc < 2) {
+        fprintf(stderr, "usage: %s fmi2|fmi3|build|html [OUTPUT]\n", argv[0]);
+        return 2;
+    }
+    FILE *f = stdout;
+    if (argc > 2 && !(f = fopen(argv[2], "w"))) {
+        perror(argv[2]);
+        return 1;
+    }
+    if (is(argv[1], "fmi2")) fmi2(f);
+    else if (is(argv[1], "fmi3")) fmi3(f);
+    else if (is(argv[1], "build")) build(f);
+    else if (is(argv[1], "html")) html(f);
+    else {
+        fprintf(stderr, "unknown output %s\n", argv[1]);
+        return 2;
+    }
     if (f != stdout) fclose(f);
     return 0;
 }

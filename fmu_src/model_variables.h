@@ -1,56 +1,105 @@
 /*
- * The one table of the FMU's variables.  modelDescription.xml is generated
- * from it (tools: gen_model_description; the committed copy at the repo root
- * is checked against the generated one by the CTest `model_description_in_sync`),
- * and the value references of the C code are these enums.
+ * The one table of the OrthotropicContact FMU's variables.  gen_model_description
+ * writes both model descriptions (FMI 2.0 and 3.0) and documentation/index.html
+ * from it (the committed copies under model/ are checked against the generated
+ * ones by the CTest `model_description_in_sync`), and the C code takes its value
+ * references, types, start values and min/max from it.
  *
- * X(name, vr, type, causality, variability, initial, start, unit, displayUnit, description)
- *   initial: exact or calculated ("calculated" entries have no start in the XML);
- *   inputs leave initial empty, as FMI 2.0 requires.
+ * X(name, vr, type, causality, variability, initial, start, min, max, unit,
+ *   displayUnit, description)
+ *   type: Float64, Int32 or Enum (the declared type FMU_ENUM_TYPE; an Integer
+ *         with min/max in FMI 2.0, an Enumeration in FMI 3.0);
+ *   initial: exact or calculated ("calculated" entries have no start);
+ *   min, max: numbers (NO_MIN / NO_MAX for none); the model refuses values
+ *         outside them.
+ * Value reference 0 is the independent variable time.
  */
 #ifndef OC_MODEL_VARIABLES_H
 #define OC_MODEL_VARIABLES_H
 
-#define OC_MODEL_NAME "OrthotropicContact"
-#define OC_MODEL_IDENTIFIER "OrthotropicContact"
-#define OC_GUID "{8c6e3f52-4d1a-4b7e-9a35-0f1473db3576}"
-#define OC_VERSION "0.1.0"
+#include <math.h>
 
-#define OC_VARIABLES(X)                                                                        \
-    X(mu1, 1, Real, parameter, fixed, exact, 0.408, "1", "",                                   \
+#define NO_MIN (-HUGE_VAL)
+#define NO_MAX HUGE_VAL
+
+#define FMU_MODEL_NAME "OrthotropicContact"
+#define FMU_MODEL_IDENTIFIER "OrthotropicContact"
+#define FMU_GUID "{8c6e3f52-4d1a-4b7e-9a35-0f1473db3a02}"
+#define FMU_VERSION "0.2.0"
+#define FMU_STATE_TAG {'O', 'C', 'S', 'T'}
+#define FMU_DESCRIPTION                                                                      \
+    "Coupled orthotropic adhesion-friction contact interface (Konyukhov and Schweizerhof "   \
+    "2007): tangential force from the displacement of a body on a surface by an implicit " \
+    "return mapping"
+/* Sources of the binary besides the version's glue (fmi2_glue.c / fmi3_glue.c). */
+#define FMU_SOURCES(S) S(contact_law.c) S(oc_model.c) S(fmu_instance.c)
+#define FMU_HEADERS(S) \
+    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(model_variables.h)
+#define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
+
+/* The law in short, for documentation/index.html. */
+#define FMU_DOC_HTML                                                                           \
+    "<h2>The law</h2>\n<ul>\n"                                                                 \
+    "<li>B = Q(alpha) diag(eps1, eps2) Q(alpha)<sup>T</sup> (adhesion), "                      \
+    "F = Q(beta) diag(1/mu1<sup>2</sup>, 1/mu2<sup>2</sup>) Q(beta)<sup>T</sup> (friction); "  \
+    "angles counterclockwise from X1.</li>\n"                                                 \
+    "<li>Elastic force q = B (u - s), force on the body T = -q, yield function "              \
+    "&Phi; = sqrt(q &middot; F q) - N.</li>\n"                                                \
+    "<li>Stick if &Phi;(trial) &le; 0; otherwise slip s = s<sub>n</sub> + &Delta;&gamma; G q "  \
+    "with &Phi;(q) = 0, solved implicitly to machine precision; G = F (associated) or "        \
+    "(B F B)<sup>-1</sup> (coupled).  N &le; 0 opens the contact (T = 0, s follows u).</li>\n" \
+    "<li>Dissipated energy: the sum of q &middot; &Delta;s over committed steps, never "       \
+    "negative.  Rate-independent: the step size does not enter.</li>\n"                       \
+    "</ul>\n<h2>Step semantics</h2>\n<p>After setting u1, u2, N the outputs read the step "  \
+    "from the committed state without committing it (a master may iterate, with the "         \
+    "directional derivative); doStep commits it.  The FMU state (get/set/serialize) holds "   \
+    "everything, the FMI mode included: it restores into a freshly instantiated instance."   \
+    "</p>\n"
+
+#define FMU_ENUM_TYPE SlidingRule
+#define FMU_ENUM_ITEMS(E)                                                                      \
+    E(associated, 1, "G = F: classical orthotropic Coulomb friction (paper Case 1)")           \
+    E(coupled, 2, "G = (B F B)^-1: the coupled law of Konyukhov and Schweizerhof")             \
+    E(eq20, 3, "the paper's explicit eq. (20), step-size dependent: for reproduction only")
+
+#define FMU_VARIABLES(X)                                                                       \
+    X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "", "Simulation time")     \
+    X(mu1, 1, Float64, parameter, fixed, exact, 0.408, 1e-150, 1e150, "1", "",             \
       "Friction coefficient along friction axis 1 (at angle beta)")                            \
-    X(mu2, 2, Real, parameter, fixed, exact, 0.625, "1", "",                                   \
+    X(mu2, 2, Float64, parameter, fixed, exact, 0.625, 1e-150, 1e150, "1", "",             \
       "Friction coefficient along friction axis 2 (at angle beta + 90 deg)")                   \
-    X(eps1, 3, Real, parameter, fixed, exact, 12510.0, "N/m", "",                              \
+    X(eps1, 3, Float64, parameter, fixed, exact, 12510.0, 1e-300, 1e300, "N/m", "",        \
       "Tangential (adhesion) stiffness along adhesion axis 1 (at angle alpha)")                \
-    X(eps2, 4, Real, parameter, fixed, exact, 10000.0, "N/m", "",                              \
+    X(eps2, 4, Float64, parameter, fixed, exact, 10000.0, 1e-300, 1e300, "N/m", "",        \
       "Tangential (adhesion) stiffness along adhesion axis 2 (at angle alpha + 90 deg)")       \
-    X(alpha, 5, Real, parameter, fixed, exact, 1.5707963267948966, "rad", "deg",               \
-      "Angle of adhesion axis 1, counterclockwise from X1")                                    \
-    X(beta, 6, Real, parameter, fixed, exact, 0.0, "rad", "deg",                               \
-      "Angle of friction axis 1, counterclockwise from X1")                                    \
-    X(slidingRule, 7, Integer, parameter, fixed, exact, 2, "", "",                             \
+    X(alpha, 5, Float64, parameter, fixed, exact, 1.5707963267948966, -12.566370614359172,        \
+      12.566370614359172, "rad", "deg", "Angle of adhesion axis 1, counterclockwise from X1") \
+    X(beta, 6, Float64, parameter, fixed, exact, 0.0, -12.566370614359172,                    \
+      12.566370614359172, "rad", "deg", "Angle of friction axis 1, counterclockwise from X1") \
+    X(slidingRule, 7, Enum, parameter, fixed, exact, 2, 1, 3, "", "",                      \
       "Sliding rule: 1 associated (G = F), 2 coupled (G = (B F B)^-1), "                       \
       "3 literal eq. (20) of the paper (step-size dependent, for reproduction only)")         \
-    X(u1, 8, Real, input, continuous, , 0.0, "m", "",                                          \
+    X(u1, 8, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                               \
       "Displacement of the body relative to the surface along X1")                             \
-    X(u2, 9, Real, input, continuous, , 0.0, "m", "",                                          \
+    X(u2, 9, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                               \
       "Displacement of the body relative to the surface along X2")                             \
-    X(N, 10, Real, input, continuous, , 0.0, "N", "",                                          \
+    X(N, 10, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                               \
       "Normal force pressing the body on the surface (N <= 0: open contact)")                  \
-    X(T1, 11, Real, output, continuous, calculated, 0.0, "N", "",                              \
+    X(T1, 11, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",                   \
       "Tangential force of the surface on the body along X1")                                  \
-    X(T2, 12, Real, output, continuous, calculated, 0.0, "N", "",                              \
+    X(T2, 12, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",                   \
       "Tangential force of the surface on the body along X2")                                  \
-    X(s1, 13, Real, output, continuous, calculated, 0.0, "m", "", "Slip displacement along X1") \
-    X(s2, 14, Real, output, continuous, calculated, 0.0, "m", "", "Slip displacement along X2") \
-    X(contactState, 15, Integer, output, discrete, calculated, 0, "", "",                      \
+    X(s1, 13, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "m", "",                   \
+      "Slip displacement along X1")                                                           \
+    X(s2, 14, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "m", "",                   \
+      "Slip displacement along X2")                                                           \
+    X(contactState, 15, Int32, output, discrete, calculated, 0, 0, 2, "", "",              \
       "State of the step: 0 open, 1 stick, 2 slip")                                            \
-    X(dissipatedEnergy, 16, Real, output, continuous, calculated, 0.0, "J", "",                \
-      "Frictional energy dissipated over the committed steps")
+    X(dissipatedEnergy, 16, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J", "",     \
+      "Frictional energy dissipated over the committed steps (never decreases)")
 
 #define OC_VR_ENUM_ENTRY(name, vr, ...) OC_VR_##name = vr,
-enum { OC_VARIABLES(OC_VR_ENUM_ENTRY) OC_VR_COUNT_PLUS_ONE };
+enum { FMU_VARIABLES(OC_VR_ENUM_ENTRY) OC_VR_COUNT_PLUS_ONE };
 #undef OC_VR_ENUM_ENTRY
 
 #endif

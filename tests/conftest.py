@@ -9,9 +9,16 @@ CASE5 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e3, rule="coupled")
 G_N = 1.875 * 9.806  # the rig's normal force [N]
 
 
+@pytest.fixture(scope="session", params=[2, 3], ids=["fmi2", "fmi3"])
+def fmu_path(request):
+    """Each FMU test runs on both FMUs: the FMI 2.0 and the FMI 3.0 one."""
+    return find_fmu(fmi_version=request.param)
+
+
 @pytest.fixture(scope="session")
-def fmu_path():
-    return find_fmu()
+def fmi_version(fmu_path):
+    from orthocontact.fmu import fmi_version_of
+    return fmi_version_of(fmu_path)
 
 
 @pytest.fixture

@@ -22,49 +22,87 @@ def test_fmpy_validate_is_clean(fmu_path):
     assert validate_fmu(str(fmu_path)) == []
 
 
-def test_archive_layout_and_capabilities(fmu_path):
+HOST_DIR = {2: "linux64", 3: "x86_64-linux"}
+PLATFORMS = {2: ("linux64", "win64", "darwin64"),
+             3: ("x86_64-linux", "aarch64-linux", "x86_64-windows", "x86_64-darwin", "aarch64-darwin")}
+def _ext(platform):
+    return "dylib" if "darwin" in platform else "dll" if "win" in platform else "so"
+
+
+def test_archive_layout_and_capabilities(fmu_path, fmi_version):
     names = set(zipfile.ZipFile(fmu_path).namelist())
     assert "modelDescription.xml" in names
-    assert "binaries/linux64/OrthotropicContact.so" in names
-    for src in ("contact_law.c", "oc_model.c", "fmi2_glue.c", "model_variables.h"):
+    for platform in PLATFORMS[fmi_version]:
+        assert f"binaries/{platform}/OrthotropicContact.{_ext(platform)}" in names
+    assert not [n for n in names if n.startswith("binaries/") and n.count("/") != 2 and not n.endswith("/")]
+    for src in ("contact_law.c", "oc_model.c", "fmu_instance.c", f"fmi{fmi_version}_glue.c",
+                "model_variables.h"):
         assert f"sources/{src}" in names
+    assert "documentation/index.html" in names
+    assert ("documentation/LICENSE.txt" if fmi_version == 2
+            else "documentation/licenses/LICENSE.txt") in names
+    if fmi_version == 3:
+        assert "sources/buildDescription.xml" in names
     md = read_model_description(str(fmu_path))
+    assert md.fmiVersion == f"{fmi_version}.0"
     cs = md.coSimulation
     assert md.modelName == cs.modelIdentifier == "OrthotropicContact"
     assert cs.canHandleVariableCommunicationStepSize and cs.canGetAndSetFMUstate
-    assert cs.canSerializeFMUstate and cs.providesDirectionalDerivative
+    assert cs.canSerializeFMUstate
+    xml = zipfile.ZipFile(fmu_path).read("modelDescription.xml").decode()
+    if fmi_version == 2:
+        assert cs.providesDirectionalDerivative
+    else:  # fmpy reads FMI 3.0's plural attribute under the FMI 2.0 name: check the XML
+        assert 'providesDirectionalDerivatives="true"' in xml and cs.providesAdjointDerivatives
+    assert md.license.startswith("BSD-2-Clause") and md.copyright and md.author
     v = {x.name: x for x in md.modelVariables}
     units = {"u1": "m", "u2": "m", "N": "N", "T1": "N", "T2": "N", "s1": "m", "s2": "m",
-             "eps1": "N/m", "eps2": "N/m", "alpha": "rad", "beta": "rad", "dissipatedEnergy": "J"}
+             "eps1": "N/m", "eps2": "N/m", "alpha": "rad", "beta": "rad", "dissipatedEnergy": "J",
+             "time": "s"}
     for name, unit in units.items():
         assert v[name].unit == unit, name
-    assert v["alpha"].displayUnit == "deg"
+    assert v["alpha"].displayUnit == "deg" and v["beta"].displayUnit == "deg"
+    assert v["time"].causality == "independent"
     assert {n for n, x in v.items() if x.causality == "input"} == {"u1", "u2", "N"}
+    params = [x for x in v.values() if x.causality == "parameter"]
+    assert len(params) == 7 and all(x.min is not None and x.max is not None for x in params)
+    rule = v["slidingRule"]
+    if fmi_version == 2:
+        assert rule.type == "Integer" and (rule.min, rule.max) == ("1", "3")
+    else:
+        assert rule.type == "Enumeration" and rule.declaredType.name == "SlidingRule"
+        items = {i.name: i.value for i in rule.declaredType.items}
+        assert items == {"associated": "1", "coupled": "2", "eq20": "3"}
+    assert v["contactState"].type == ("Integer" if fmi_version == 2 else "Int32")
     outs = {o.variable.name: {d.name for d in o.dependencies} for o in md.outputs}
     assert set(outs) == {"T1", "T2", "s1", "s2", "contactState", "dissipatedEnergy"}
     assert all(deps == {"u1", "u2", "N"} for deps in outs.values())
 
 
-def test_every_fmi2_function_is_exported(fmu_path, tmp_path):
-    """The names come from the FMI 2.0 header that fmpy ships, not from a list
+def test_every_fmi_function_is_exported(fmu_path, fmi_version, tmp_path):
+    """The names come from the FMI header that fmpy ships, not from a list
     of ours."""
     import ctypes
     import os
     import re
     import fmpy
-    header = open(os.path.join(os.path.dirname(fmpy.__file__), "c-code", "fmi2Functions.h")).read()
-    names = set(re.findall(r"FMI2_Export\s+\w+TYPE\s+(fmi2\w+)\s*;", header))
-    assert len(names) == 44
-    zipfile.ZipFile(fmu_path).extract("binaries/linux64/OrthotropicContact.so", tmp_path)
-    lib = ctypes.CDLL(str(tmp_path / "binaries/linux64/OrthotropicContact.so"))
+    header = open(os.path.join(os.path.dirname(fmpy.__file__), "c-code",
+                               f"fmi{fmi_version}Functions.h")).read()
+    names = set(re.findall(rf"FMI{fmi_version}_Export\s+\w+TYPE\s+(fmi{fmi_version}\w+)\s*;", header))
+    assert len(names) == (44 if fmi_version == 2 else 75)
+    member = f"binaries/{HOST_DIR[fmi_version]}/OrthotropicContact.so"
+    zipfile.ZipFile(fmu_path).extract(member, tmp_path)
+    lib = ctypes.CDLL(str(tmp_path / member))
     missing = [n for n in sorted(names) if not hasattr(lib, n)]
     assert missing == []
     assert not hasattr(lib, "oc_law_step")  # the core stays internal
+    assert not hasattr(lib, "fmu_model_init")
 
 
-def test_model_description_at_repo_root_is_the_packaged_one(fmu_path):
+def test_model_description_at_repo_root_is_the_packaged_one(fmu_path, fmi_version):
     import pathlib
-    root = pathlib.Path(__file__).resolve().parents[1] / "modelDescription.xml"
+    name = "modelDescription.xml" if fmi_version == 2 else "modelDescription-fmi3.xml"
+    root = pathlib.Path(__file__).resolve().parents[1] / name
     packaged = zipfile.ZipFile(fmu_path).read("modelDescription.xml").decode()
     assert root.read_text() == packaged
 
@@ -297,7 +335,7 @@ _CHILD = r"""
 import pickle, sys
 from orthocontact.fmu import ContactFMU
 data = pickle.load(open(sys.argv[1], "rb"))
-f = ContactFMU(instance_name="child")
+f = ContactFMU(data["fmu"], instance_name="child")
 f.initialize(data["params"])
 f.set_state(f.deserialize(data["state"]))
 f.time = data["time"]
@@ -316,7 +354,7 @@ def test_serialized_state_continues_bit_exactly_in_another_process(make, tmp_pat
         f.set_inputs(3e-4 * k, 1e-4 * math.sin(k), G_N)
         f.do_step(1e-3)
     st = f.get_state()
-    data = {"params": p, "state": f.serialize(st), "time": f.time,
+    data = {"params": p, "state": f.serialize(st), "time": f.time, "fmu": str(f.path),
             "inputs": [(3e-4 * k, 1e-4 * math.cos(k), G_N * (1 + 0.1 * math.sin(k))) for k in range(40, 90)]}
     f.free_state(st)
     for u in data["inputs"]:
@@ -342,13 +380,27 @@ def test_instances_are_independent(make):
 
 # -- the error contract ------------------------------------------------------
 
+def set_real(f, vrs, values):
+    """fmpy's raising setter of the FMU's version: setReal (2.0) / setFloat64 (3.0)."""
+    return f.slave.setReal(vrs, values) if f.fmi_version == 2 else f.slave.setFloat64(vrs, values)
+
+
+def get_real(f, vrs):
+    return f.slave.getReal(vrs) if f.fmi_version == 2 else f.slave.getFloat64(vrs)
+
+
+def set_rule(f, vrs, values):
+    """slidingRule: an Integer in FMI 2.0, an Enumeration (Int64 calls) in FMI 3.0."""
+    return f.slave.setInteger(vrs, values) if f.fmi_version == 2 else f.slave.setInt64(vrs, values)
+
+
 @pytest.mark.parametrize("name,value,why", [
     ("mu1", 0.0, "mu1"), ("mu2", -0.2, "mu2"), ("eps1", 0.0, "eps1"), ("eps2", -1.0, "eps2"),
     ("mu1", float("nan"), "finite"), ("alpha", float("inf"), "finite")])
 def test_invalid_parameters_are_rejected_and_logged(make, name, value, why):
     f = make()
     with pytest.raises(FMICallException):
-        f.slave.setReal([f.vr[name]], [value])
+        set_real(f, [f.vr[name]], [value])
     assert f.messages and f.messages[-1][0] == 3 and why in f.messages[-1][2]
     f.initialize(CASE5)  # the rejected value did not stick: defaults are still valid
 
@@ -356,7 +408,7 @@ def test_invalid_parameters_are_rejected_and_logged(make, name, value, why):
 def test_unknown_rule_rejected(make):
     f = make()
     with pytest.raises(FMICallException):
-        f.slave.setInteger([f.vr["slidingRule"]], [4])
+        set_rule(f, [f.vr["slidingRule"]], [4])
     assert "slidingRule" in f.messages[-1][2]
 
 
@@ -368,7 +420,7 @@ def test_nonfinite_inputs_rejected_state_kept(make, bad):
     with pytest.raises(FMUError, match="finite"):
         f.set_inputs(0.002, bad, G_N)
     assert f.outputs() == before
-    assert f.slave.getReal([f.vr["u1"]]) == [0.001]
+    assert get_real(f, [f.vr["u1"]]) == [0.001]
 
 
 def test_overflowing_inputs_rejected_never_nan(make):
@@ -381,12 +433,12 @@ def test_overflowing_inputs_rejected_never_nan(make):
 def test_unknown_value_reference_and_wrong_type(make):
     f = make(CASE5)
     with pytest.raises(FMICallException):
-        f.slave.getReal([999])
+        get_real(f, [999])
     assert "999" in f.messages[-1][2]
     with pytest.raises(FMICallException):
-        f.slave.getReal([f.vr["contactState"]])
+        get_real(f, [f.vr["contactState"]])
     with pytest.raises(FMICallException):
-        f.slave.setReal([f.vr["T1"]], [1.0])
+        set_real(f, [f.vr["T1"]], [1.0])
     assert "output" in f.messages[-1][2]
 
 
@@ -397,7 +449,7 @@ def test_illegal_call_sequences(make):
     assert "must not be called" in f.messages[-1][2]
     f.initialize(CASE5)
     with pytest.raises(FMICallException):
-        f.slave.setReal([f.vr["mu1"]], [0.3])  # fixed parameter after init
+        set_real(f, [f.vr["mu1"]], [0.3])  # fixed parameter after init
     assert "fixed" in f.messages[-1][2]
     with pytest.raises(FMICallException):
         f.slave.doStep(1.0, 1e-3)  # wrong communication point
@@ -408,7 +460,7 @@ def test_illegal_call_sequences(make):
     with pytest.raises(FMICallException):
         f.slave.doStep(0.0, 1e-3)
     f.reset(CASE1)  # reset makes parameters settable again
-    assert f.slave.getReal([f.vr["mu2"]]) == [0.5]
+    assert get_real(f, [f.vr["mu2"]]) == [0.5]
 
 
 def test_debug_logging_categories(make):
@@ -418,7 +470,8 @@ def test_debug_logging_categories(make):
     assert len(f.messages) == n  # no call trace unless asked for
     f.slave.setDebugLogging(True, ["logCalls"])
     f.set_inputs(0.0, 0.0, 2.0)
-    assert f.messages[-1][1] == "logCalls" and "fmi2SetReal" in f.messages[-1][2]
+    assert f.messages[-1][1] == "logCalls"
+    assert ("fmi2SetReal" if f.fmi_version == 2 else "fmi3SetFloat64") in f.messages[-1][2]
     f.slave.setDebugLogging(False, ["logCalls", "logStatusError"])
     n = len(f.messages)
     with pytest.raises(FMUError):
@@ -428,13 +481,14 @@ def test_debug_logging_categories(make):
         f.slave.setDebugLogging(True, ["noSuchCategory"])
 
 
-def test_sources_compile_into_a_working_binary(fmu_path, tmp_path):
-    """The sources/ folder builds on an importer's side (fmpy's CMake build)."""
+def test_sources_compile_into_a_working_binary(fmu_path, fmi_version, tmp_path):
+    """The sources/ folder builds on an importer's side (fmpy's CMake build;
+    for FMI 3.0 from sources/buildDescription.xml)."""
     from fmpy import extract
     from fmpy.build import build_platform_binary
     from orthocontact.fmu import ContactFMU
     unzip = extract(str(fmu_path), unzipdir=str(tmp_path / "fmu"))
-    so = tmp_path / "fmu" / "binaries" / "linux64" / "OrthotropicContact.so"
+    so = tmp_path / "fmu" / "binaries" / HOST_DIR[fmi_version] / "OrthotropicContact.so"
     so.unlink()
     (tmp_path / "build").mkdir()
     build_platform_binary(unzip, build_dir=str(tmp_path / "build"))

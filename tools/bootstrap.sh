@@ -5,6 +5,8 @@
 # Idempotent: a second run only rebuilds what changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Two cores: compile the cross targets side by side.
+export CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-2}"
 
 missing=()
 command -v cmake >/dev/null 2>&1 || missing+=(cmake)
@@ -25,8 +27,10 @@ if [ ! -x .venv/bin/python ]; then
   python3 -m venv .venv
 fi
 # Build requirements too, so that the package builds without isolation
-# (faster, and incremental through build/).
+# (faster, and incremental through build/); ziglang cross-compiles the FMU
+# binaries for Linux, Windows and macOS.
 .venv/bin/python -m pip install -q --disable-pip-version-check \
-  "scikit-build-core>=0.9" "fmpy>=0.3.20" "numpy>=1.22" "casadi>=3.6" "matplotlib>=3.5" "pytest>=7"
-echo "bootstrap: building and installing orthocontact (FMU via CMake)"
+  "scikit-build-core>=0.9" "fmpy>=0.3.20" "ziglang>=0.13" "numpy>=1.22" "casadi>=3.6" \
+  "matplotlib>=3.5" "pytest>=7"
+echo "bootstrap: building and installing orthocontact (both FMUs, all platforms, via CMake)"
 .venv/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation .

@@ -4,6 +4,16 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/bootstrap.sh
+# What only the tests need: a second FMU importer (libcosim), property-based
+# testing, and qemu-user with the arm64 C library to run the aarch64 binary.
+.venv/bin/python -m pip install -q --disable-pip-version-check "hypothesis>=6" "libcosimpy>=0.0.6"
+if ! command -v qemu-aarch64 >/dev/null 2>&1 || [ ! -e /usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1 ]; then
+  echo "run_tests: installing qemu-user and libc6-arm64-cross (apt)"
+  SUDO=""
+  [ "$(id -u)" = 0 ] || SUDO="sudo"
+  { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq \
+      qemu-user libc6-arm64-cross >/dev/null; } || echo "run_tests: qemu-user not installed; the aarch64 run is skipped"
+fi
 FMI_DIR=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
 for variant in release asan; do
   flags=(-DOC_BUILD_TESTS=ON -DFMI_HEADERS_DIR="$FMI_DIR")

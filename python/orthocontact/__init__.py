@@ -13,4 +13,4 @@ Modules, one job each:
     cli           -- the `orthocontact` command
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"

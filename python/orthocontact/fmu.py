@@ -1,4 +1,5 @@
-"""Access to the OrthotropicContact FMU (FMI 2.0 Co-Simulation) through fmpy.
+"""Access to the OrthotropicContact FMU (FMI 2.0 or FMI 3.0 Co-Simulation)
+through fmpy.
 
 Units: displacements u, slip s in m; forces N, T in N; stiffness eps in N/m;
 angles alpha, beta in rad; energy in J.
@@ -6,17 +7,17 @@ angles alpha, beta in rad; energy in J.
 from __future__ import annotations
 
 import ctypes
-import os
 import dataclasses
+import os
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 from fmpy import extract, read_model_description
-from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 MODEL_IDENTIFIER = "OrthotropicContact"
-FMU_ENV = "ORTHOCONTACT_FMU"
+FMU_ENV = {2: "ORTHOCONTACT_FMU", 3: "ORTHOCONTACT_FMU3"}
+FMI_VERSIONS = (2, 3)
 
 RULES = {"associated": 1, "coupled": 2, "eq20": 3}
 
@@ -25,20 +26,34 @@ class FMUError(RuntimeError):
     """An FMI call returned an error; the message carries what the FMU logged."""
 
 
-def find_fmu(path: str | os.PathLike | None = None) -> Path:
-    """The FMU to use: `path`, else $ORTHOCONTACT_FMU, else the one installed
-    with the package."""
-    for given, where in ((path, "given path"), (os.environ.get(FMU_ENV), f"${FMU_ENV}")):
+def _build_candidates(fmi_version: int):
+    """FMUs an editable install or a source checkout has built (newest first)."""
+    repo = Path(__file__).resolve().parents[2]
+    found = [p for p in repo.glob(f"build/*/fmi{fmi_version}/{MODEL_IDENTIFIER}.fmu") if p.is_file()]
+    return sorted(found, key=lambda p: p.stat().st_mtime, reverse=True)
+
+
+def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2) -> Path:
+    """The FMU to use: `path`, else $ORTHOCONTACT_FMU ($ORTHOCONTACT_FMU3 for
+    FMI 3.0), else the one installed with the package, else one built in the
+    source tree (editable installs).  fmi_version: 2 (default) or 3."""
+    if fmi_version not in FMI_VERSIONS:
+        raise ValueError(f"fmi_version must be 2 or 3, got {fmi_version!r}")
+    env = FMU_ENV[fmi_version]
+    for given, where in ((path, "given path"), (os.environ.get(env), f"${env}")):
         if given:
             if not Path(given).is_file():
                 raise FileNotFoundError(f"FMU not found: {given} ({where})")
             return Path(given)
-    packaged = Path(__file__).with_name(MODEL_IDENTIFIER + ".fmu")
+    packaged = Path(__file__).parent / f"fmi{fmi_version}" / (MODEL_IDENTIFIER + ".fmu")
     if packaged.is_file():
         return packaged
+    built = _build_candidates(fmi_version)
+    if built:
+        return built[0]
     raise FileNotFoundError(
-        f"{MODEL_IDENTIFIER}.fmu is not installed with the package; run `pip install .` "
-        f"from the repository or set {FMU_ENV}")
+        f"the FMI {fmi_version}.0 {MODEL_IDENTIFIER}.fmu is not installed with the package and "
+        f"none is built in the source tree; run `pip install .` from the repository or set {env}")
 
 
 @dataclass(frozen=True)
@@ -74,8 +89,14 @@ def _unzipped(path: Path) -> str:
     return _extracted[key]
 
 
+def fmi_version_of(path) -> int:
+    """2 or 3: the FMI version of the FMU at `path`."""
+    return int(read_model_description(str(path)).fmiVersion.split(".")[0])
+
+
 class ContactFMU:
-    """One instance of the contact element.
+    """One instance of the contact element, FMI 2.0 or 3.0 (read from the
+    FMU's model description); both run the same calls on the hot path.
 
     The FMU's step semantics: after `set_inputs`, `outputs()` / `force()`
     return the return-mapped result for those inputs from the committed
@@ -85,53 +106,95 @@ class ContactFMU:
 
     OUT_NAMES = ("T1", "T2", "s1", "s2", "dissipatedEnergy")
 
-    def __init__(self, fmu_path=None, instance_name: str = "contact", logging_on: bool = False):
-        path = find_fmu(fmu_path)
+    def __init__(self, fmu_path=None, instance_name: str = "contact", logging_on: bool = False,
+                 fmi_version: int | None = None):
+        path = find_fmu(fmu_path, fmi_version or 2) if fmu_path is None else find_fmu(fmu_path)
         self.path = path
         self.model_description = read_model_description(str(path))
+        self.fmi_version = int(self.model_description.fmiVersion.split(".")[0])
+        if fmi_version is not None and fmi_version != self.fmi_version:
+            raise ValueError(f"{path} is an FMI {self.fmi_version}.0 FMU, not {fmi_version}.0")
         self.vr = {v.name: v.valueReference for v in self.model_description.modelVariables}
         self.messages: list[tuple[int, str, str]] = []
-        self._callbacks = self._make_callbacks()
-        self._slave = FMU2Slave(guid=self.model_description.guid, unzipDirectory=_unzipped(path),
-                                modelIdentifier=MODEL_IDENTIFIER, instanceName=instance_name)
-        self._slave.instantiate(callbacks=self._callbacks, loggingOn=logging_on)
-        self._c = self._slave.component
         self.time = 0.0
         self.initialized = False
-        # Preallocated ctypes arrays for the hot path (one FMI call each).
         vr = self.vr
-        self._in_vr = (ctypes.c_uint * 3)(vr["u1"], vr["u2"], vr["N"])
+        c_uint = ctypes.c_uint
+        self._in_vr = (c_uint * 3)(vr["u1"], vr["u2"], vr["N"])
         self._in_val = (ctypes.c_double * 3)()
-        self._T_vr = (ctypes.c_uint * 2)(vr["T1"], vr["T2"])
+        self._T_vr = (c_uint * 2)(vr["T1"], vr["T2"])
         self._T_val = (ctypes.c_double * 2)()
-        self._out_vr = (ctypes.c_uint * 5)(*(vr[n] for n in self.OUT_NAMES))
+        self._out_vr = (c_uint * 5)(*(vr[n] for n in self.OUT_NAMES))
         self._out_val = (ctypes.c_double * 5)()
-        self._state_vr = (ctypes.c_uint * 1)(vr["contactState"])
-        self._state_val = (ctypes.c_int * 1)()
+        self._state_vr = (c_uint * 1)(vr["contactState"])
+        self._state_val = (ctypes.c_int32 * 1)()
         self._dT_val = (ctypes.c_double * 2)()
-        self._known_vr = [(ctypes.c_uint * 1)(vr[n]) for n in ("u1", "u2", "N")]
+        self._known_vr = [(c_uint * 1)(vr[n]) for n in ("u1", "u2", "N")]
         self._one = (ctypes.c_double * 1)(1.0)
-        f = self._slave._functions  # raw ctypes functions: no status exceptions, no per-call allocation
-        self._fSetReal = f["fmi2SetReal"]
-        self._fGetReal = f["fmi2GetReal"]
-        self._fGetInteger = f["fmi2GetInteger"]
-        self._fDoStep = f["fmi2DoStep"]
-        self._fDirDer = f["fmi2GetDirectionalDerivative"]
+        if self.fmi_version == 2:
+            self._open_fmi2(path, instance_name, logging_on)
+        else:
+            self._open_fmi3(path, instance_name, logging_on)
 
-    # -- logging -----------------------------------------------------------
-    def _make_callbacks(self):
-        def log(env, instance, status, category, message):
-            self.messages.append((status, category.decode(), message.decode(errors="replace")))
+    # -- the two standards' calls, bound once ----------------------------------
+    def _log(self, status, category, message):
+        self.messages.append((status, category.decode(), message.decode(errors="replace")))
 
-        from fmpy.fmi2 import calloc, free
+    def _open_fmi2(self, path, name, logging_on):
+        from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE,
+                               fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
+                               fmi2CallbackLoggerTYPE, free)
         from fmpy.logging import addLoggerProxy
+
+        def log(env, instance, status, category, message):
+            self._log(status, category, message)
         cb = fmi2CallbackFunctions()
         cb.logger = fmi2CallbackLoggerTYPE(log)
         cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         addLoggerProxy(ctypes.byref(cb))  # formats the printf-style message in C
-        self._log_fn = log
-        return cb
+        self._callbacks = (cb, log)
+        s = FMU2Slave(guid=self.model_description.guid, unzipDirectory=_unzipped(path),
+                      modelIdentifier=MODEL_IDENTIFIER, instanceName=name)
+        s.instantiate(callbacks=cb, loggingOn=logging_on)
+        self._slave, c, f = s, s.component, s._functions  # raw ctypes: no exceptions, no allocation
+        self._c = c
+        self._set_in = partial(f["fmi2SetReal"], c, self._in_vr, 3, self._in_val)
+        self._get_T = partial(f["fmi2GetReal"], c, self._T_vr, 2, self._T_val)
+        self._get_out = partial(f["fmi2GetReal"], c, self._out_vr, 5, self._out_val)
+        self._get_state_int = partial(f["fmi2GetInteger"], c, self._state_vr, 1, self._state_val)
+        self._fDoStep = partial(f["fmi2DoStep"], c)
+        self._dir = [partial(f["fmi2GetDirectionalDerivative"], c, self._T_vr, 2, k, 1, self._one,
+                             self._dT_val) for k in self._known_vr]
+        self._set_reals = lambda vr, val, n: f["fmi2SetReal"](c, vr, n, val)
+        self._set_rule = lambda vr, val: f["fmi2SetInteger"](c, vr, 1, (ctypes.c_int32 * 1)(val))
+        self._get_state_fn = partial(f["fmi2GetFMUstate"], c)
+
+    def _open_fmi3(self, path, name, logging_on):
+        from fmpy.fmi3 import FMU3Slave
+
+        def log(env, status, category, message):
+            self._log(status, category, message)
+        self._callbacks = (log,)
+        s = FMU3Slave(guid=self.model_description.guid, unzipDirectory=_unzipped(path),
+                      modelIdentifier=MODEL_IDENTIFIER, instanceName=name)
+        s.instantiate(loggingOn=logging_on, logMessage=log)
+        self._slave, c, f = s, s.component, s._functions
+        self._c = c
+        self._set_in = partial(f["fmi3SetFloat64"], c, self._in_vr, 3, self._in_val, 3)
+        self._get_T = partial(f["fmi3GetFloat64"], c, self._T_vr, 2, self._T_val, 2)
+        self._get_out = partial(f["fmi3GetFloat64"], c, self._out_vr, 5, self._out_val, 5)
+        self._get_state_int = partial(f["fmi3GetInt32"], c, self._state_vr, 1, self._state_val, 1)
+        flags = [ctypes.c_bool() for _ in range(3)]
+        self._last_time = ctypes.c_double()
+        do_step = f["fmi3DoStep"]
+        self._fDoStep = lambda t, h, no_set: do_step(c, t, h, no_set, *map(ctypes.byref, flags),
+                                                     ctypes.byref(self._last_time))
+        self._dir = [partial(f["fmi3GetDirectionalDerivative"], c, self._T_vr, 2, k, 1, self._one,
+                             1, self._dT_val, 2) for k in self._known_vr]
+        self._set_reals = lambda vr, val, n: f["fmi3SetFloat64"](c, vr, n, val, n)
+        self._set_rule = lambda vr, val: f["fmi3SetInt64"](c, vr, 1, (ctypes.c_int64 * 1)(val), 1)
+        self._get_state_fn = partial(f["fmi3GetFMUState"], c)
 
     def _check(self, status: int, what: str):
         if status > 1:
@@ -139,8 +202,8 @@ class ContactFMU:
             raise FMUError(f"{what} failed (status {status}): {last}")
 
     @property
-    def slave(self) -> FMU2Slave:
-        """The underlying fmpy FMU2Slave, for calls not wrapped here."""
+    def slave(self):
+        """The underlying fmpy FMU2Slave or FMU3Slave, for calls not wrapped here."""
         return self._slave
 
     # -- set-up --------------------------------------------------------------
@@ -151,11 +214,14 @@ class ContactFMU:
         names = ["mu1", "mu2", "eps1", "eps2", "alpha", "beta"]
         vr = (ctypes.c_uint * 6)(*(self.vr[n] for n in names))
         val = (ctypes.c_double * 6)(*(float(getattr(params, n)) for n in names))
-        self._check(self._fSetReal(self._c, vr, 6, val), "setting parameters")
-        self._check(self._slave.fmi2SetInteger(self._c, (ctypes.c_uint * 1)(self.vr["slidingRule"]), 1,
-                                               (ctypes.c_int * 1)(RULES[params.rule])), "setting slidingRule")
-        self._slave.setupExperiment(startTime=start_time)
-        self._slave.enterInitializationMode()
+        self._check(self._set_reals(vr, val, 6), "setting parameters")
+        self._check(self._set_rule((ctypes.c_uint * 1)(self.vr["slidingRule"]), RULES[params.rule]),
+                    "setting slidingRule")
+        if self.fmi_version == 2:
+            self._slave.setupExperiment(startTime=start_time)
+            self._slave.enterInitializationMode()
+        else:
+            self._slave.enterInitializationMode(startTime=start_time)
         self._slave.exitInitializationMode()
         self.time = start_time
         self.initialized = True
@@ -175,38 +241,37 @@ class ContactFMU:
         v[0] = u1
         v[1] = u2
         v[2] = N
-        st = self._fSetReal(self._c, self._in_vr, 3, v)
+        st = self._set_in()
         if st > 1:
-            self._check(st, f"fmi2SetReal(u1={u1}, u2={u2}, N={N})")
+            self._check(st, f"setting inputs (u1={u1}, u2={u2}, N={N})")
 
     def force(self) -> tuple[float, float]:
         """(T1, T2) [N]: force of the surface on the body for the current inputs."""
-        st = self._fGetReal(self._c, self._T_vr, 2, self._T_val)
+        st = self._get_T()
         if st > 1:
-            self._check(st, "fmi2GetReal(T1, T2)")
+            self._check(st, "getting T1, T2")
         return self._T_val[0], self._T_val[1]
 
     def outputs(self) -> dict:
         """All outputs: T1, T2 [N], s1, s2 [m], dissipatedEnergy [J], contactState."""
-        self._check(self._fGetReal(self._c, self._out_vr, 5, self._out_val), "fmi2GetReal")
-        self._check(self._fGetInteger(self._c, self._state_vr, 1, self._state_val), "fmi2GetInteger")
+        self._check(self._get_out(), "getting outputs")
+        self._check(self._get_state_int(), "getting contactState")
         d = dict(zip(self.OUT_NAMES, self._out_val))
         d["contactState"] = self._state_val[0]
         return d
 
     def do_step(self, h: float):
         """Commits the pending step; h [s] is the communication step size."""
-        st = self._fDoStep(self._c, self.time, h, 1)
+        st = self._fDoStep(self.time, h, 1)
         if st > 1:
-            self._check(st, f"fmi2DoStep(t={self.time}, h={h})")
+            self._check(st, f"doStep(t={self.time}, h={h})")
         self.time += h
 
     def tangent_column(self, known: str) -> tuple[float, float]:
         """d(T1, T2)/d(known) for known in u1 [N/m], u2 [N/m], N [-]."""
-        k = ("u1", "u2", "N").index(known)
-        st = self._fDirDer(self._c, self._T_vr, 2, self._known_vr[k], 1, self._one, self._dT_val)
+        st = self._dir[("u1", "u2", "N").index(known)]()
         if st > 1:
-            self._check(st, "fmi2GetDirectionalDerivative")
+            self._check(st, "getting the directional derivative")
         return self._dT_val[0], self._dT_val[1]
 
     def tangent(self):
@@ -216,19 +281,36 @@ class ContactFMU:
 
     # -- state -------------------------------------------------------------------
     def get_state(self):
-        return self._slave.getFMUstate()
+        """A new FMU state holding the instance as it is now."""
+        return self._slave.getFMUstate() if self.fmi_version == 2 else self._slave.getFMUState()
+
+    def refresh_state(self, state):
+        """Overwrites a state from get_state in place with the current one (no
+        allocation: for a master that saves every step)."""
+        self._check(self._get_state_fn(ctypes.byref(state)), "getting the FMU state")
+        return state
 
     def set_state(self, state):
-        self._slave.setFMUstate(state)
+        if self.fmi_version == 2:
+            self._slave.setFMUstate(state)
+        else:
+            self._slave.setFMUState(state)
 
     def free_state(self, state):
-        self._slave.freeFMUstate(state)
+        if self.fmi_version == 2:
+            self._slave.freeFMUstate(state)
+        else:
+            self._slave.freeFMUState(state)
 
     def serialize(self, state) -> bytes:
-        return bytes(self._slave.serializeFMUstate(state))
+        if self.fmi_version == 2:
+            return bytes(self._slave.serializeFMUstate(state))
+        return bytes(self._slave.serializeFMUState(state))
 
     def deserialize(self, data: bytes):
-        return self._slave.deSerializeFMUstate(data)
+        if self.fmi_version == 2:
+            return self._slave.deSerializeFMUstate(data)
+        return self._slave.deserializeFMUState(data)
 
     def close(self):
         if self._slave is not None:

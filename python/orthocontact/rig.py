@@ -203,7 +203,7 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
         else:
             # The strip holds the block while |T2| <= mu_s P; beyond that the
             # block moves until T2 falls to the strip's limit.
-            snapshot = fmu.get_state() if snapshot is None else _refresh(fmu, snapshot)
+            snapshot = fmu.get_state() if snapshot is None else fmu.refresh_state(snapshot)
             set_inputs(x1, x2, N)
             T1, T2 = force()
             if abs(T2) > mu_s * max(-T1, 0.0):
@@ -229,9 +229,3 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
     return RigResult(**cols, phi_deg=fit.angle_deg(), drive_mean_N=fit.mean_drive(),
                      newton_iterations=newton)
 
-
-def _refresh(fmu: ContactFMU, state):
-    """Overwrites a saved FMU state in place with the current one (no new
-    allocation per step)."""
-    fmu.slave.fmi2GetFMUstate(fmu.slave.component, state)
-    return state

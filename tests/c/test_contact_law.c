@@ -5,6 +5,8 @@
 
 #include "check.h"
 #include "contact_law.h"
+#include "fmu_bytes.h"
+#include "fmu_model.h"
 #include "model_variables.h"
 #include "oc_model.h"
 
@@ -57,7 +59,7 @@ static void test_stick_and_open(void) {
     oc_params p = params(2, 0.4, 0.6, 2e4, 5e3, 0.7, 0.2);
     oc_law L;
     oc_law_init(&L, &p);
-    oc_state s0 = {{1e-4, -2e-4}, 0.5};
+    oc_state s0 = oc_state_unloaded(1e-4, -2e-4, 0.5);
     const double u[2] = {1.3e-4, -1.8e-4};
     oc_step st;
     oc_law_step(&L, &s0, u, 10.0, &st);
@@ -92,7 +94,7 @@ static void test_return_onto_yield_surface(void) {
             const double th = 2 * PI * k / 36;
             const double mag = 1e-3 * (1 + k);
             const double u[2] = {mag * cos(th), mag * sin(th)};
-            oc_state s0 = {{0, 0}, 0};
+            oc_state s0 = oc_state_unloaded(0, 0, 0);
             oc_step st;
             const double N = 7.5;
             oc_law_step(&L, &s0, u, N, &st);
@@ -137,7 +139,7 @@ static void test_isotropic_radial_return(void) {
     oc_params p = params(2, 0.3, 0.3, 5e3, 5e3, 0.2, 1.0);
     oc_law L;
     oc_law_init(&L, &p);
-    oc_state s0 = {{0, 0}, 0};
+    oc_state s0 = oc_state_unloaded(0, 0, 0);
     const double u[2] = {0.01, -0.004};
     oc_step st;
     oc_law_step(&L, &s0, u, 20.0, &st);
@@ -156,7 +158,7 @@ static void steady_force(int rule, double du, const double d[2], double q[2], in
     oc_params p = params(rule, 0.1, 0.5, 1e4, 1e3, 0.4, 0.4 + PI / 2);
     oc_law L;
     oc_law_init(&L, &p);
-    oc_state s = {{0, 0}, 0};
+    oc_state s = oc_state_unloaded(0, 0, 0);
     oc_step st;
     const double travel = 0.05;
     const int n = (int)(travel / du + 0.5);
@@ -201,7 +203,7 @@ static void test_energy_balance(void) {
         oc_params p = params(rule, 0.2, 0.6, 8e3, 2e3, 0.9, -0.3);
         oc_law L;
         oc_law_init(&L, &p);
-        oc_state s = {{0, 0}, 0};
+        oc_state s = oc_state_unloaded(0, 0, 0);
         double u_prev[2] = {0, 0}, e_prev[2] = {0, 0};
         double work = 0, algo = 0;
         oc_step st;
@@ -232,7 +234,7 @@ static void test_held_inputs_stick(void) {
         oc_params p = params(rule, 0.408, 0.625, 1.251e4, 1e4, 2.0, 0.43);
         oc_law L;
         oc_law_init(&L, &p);
-        oc_state s = {{0.3, -0.2}, 1.0};
+        oc_state s = oc_state_unloaded(0.3, -0.2, 1.0);
         const double u[2] = {0.47, -0.13};
         oc_step a, b;
         oc_law_step(&L, &s, u, 18.4, &a);
@@ -277,7 +279,7 @@ static void check_jacobian(int rule, const oc_state *s0, const double u[2], doub
 }
 
 static void test_jacobian(void) {
-    oc_state s0 = {{1e-3, 2e-3}, 0.25};
+    oc_state s0 = oc_state_unloaded(1e-3, 2e-3, 0.25);
     const double u_stick[2] = {1.05e-3, 2.02e-3}, u_slip[2] = {4e-3, -2e-3};
     for (int rule = 1; rule <= 3; ++rule) {
         check_jacobian(rule, &s0, u_stick, 12.0, OC_STICK);
@@ -296,7 +298,7 @@ static void test_finite_everywhere(void) {
         CHECK(oc_law_init(&L, &p) == 0, "extreme params rejected");
         for (size_t i = 0; i < sizeof Ns / sizeof Ns[0]; ++i)
             for (size_t j = 0; j < sizeof us / sizeof us[0]; ++j) {
-                oc_state s0 = {{0, 0}, 0};
+                oc_state s0 = oc_state_unloaded(0, 0, 0);
                 const double u[2] = {us[j], -0.5 * us[j]};
                 oc_step st;
                 oc_law_step(&L, &s0, u, Ns[i], &st);
@@ -306,85 +308,191 @@ static void test_finite_everywhere(void) {
     }
 }
 
-/* ---- oc_model: the instance layer --------------------------------------- */
+/* Strongly anisotropic stiffness and friction: after a slip step, held
+ * inputs stick with exactly the committed force, and repeat forever. */
+static void test_held_inputs_anisotropic(void) {
+    const double ratios[] = {1e-10, 1e-8, 1e8, 1e10};
+    for (int rule = 1; rule <= 3; ++rule)
+        for (size_t r = 0; r < 4; ++r)
+            for (int fr = 0; fr < 2; ++fr) {
+                const double mu2 = fr ? 0.3 * 1e5 : 0.5, mu1 = fr ? 0.3 * 1e-5 : 0.3;
+                oc_params p = params(rule, mu1, mu2, 1e4, 1e4 * ratios[r], 0.37, 1.21);
+                oc_law L;
+                CHECK(oc_law_init(&L, &p) == 0, "init ratio %g", ratios[r]);
+                oc_state s = oc_state_unloaded(0.0, 0.0, 0.0);
+                oc_step a, b;
+                for (int k = 1; k <= 40; ++k) {
+                    const double u[2] = {0.0123 * k, -0.0071 * k};
+                    oc_law_step(&L, &s, u, 18.4, &a);
+                    s = a.next;
+                    for (int rep = 0; rep < 3; ++rep) {
+                        oc_law_step(&L, &s, u, 18.4, &b);
+                        CHECK(b.contact == OC_STICK, "rule %d ratio %g fr %d k %d: held inputs "
+                              "slipped again", rule, ratios[r], fr, k);
+                        CHECK(b.q[0] == a.q[0] && b.q[1] == a.q[1], "rule %d ratio %g: held "
+                              "force changed by %g", rule, ratios[r], fabs(b.q[0] - a.q[0]));
+                        CHECK(b.next.energy == a.next.energy, "held inputs dissipated");
+                        s = b.next;
+                    }
+                }
+            }
+}
+
+/* A trial force 1e200 times the yield force: finite, on the yield surface. */
+static void test_far_trial(void) {
+    for (int rule = 1; rule <= 2; ++rule) {
+        oc_params p = params(rule, 0.1, 0.5, 1e4, 1e3, 0.46, 1.9);
+        oc_law L;
+        oc_law_init(&L, &p);
+        oc_state s0 = oc_state_unloaded(0, 0, 0);
+        const double rhos[] = {1e-50, 1e-155, 1e-200};
+        for (int k = 0; k < 3; ++k) {
+            const double N = 1.0 * rhos[k], u[2] = {1e-4, 3e-5};
+            oc_step st;
+            oc_law_step(&L, &s0, u, N, &st);
+            CHECK(oc_step_is_finite(&st), "rule %d N %g: not finite", rule, N);
+            CHECK(st.contact == OC_SLIP, "rule %d N %g: did not slip", rule, N);
+            CHECK_CLOSE(oc_norm2(st.next.a[0], st.next.a[1]), N, 1e-14 * N, "|a| = N");
+            CHECK(oc_state_check(&L, &st.next) == NULL, "committed state refused");
+        }
+    }
+}
+
+/* oc_norm2 is hypot without the libm symbol: exact at the extremes. */
+static void test_norm2(void) {
+    CHECK(oc_norm2(3e300, 4e300) == 5e300, "norm2 overflow");
+    CHECK(oc_norm2(3e-300, 4e-300) == 5e-300, "norm2 underflow");
+    CHECK(oc_norm2(0, 0) == 0, "norm2 zero");
+    CHECK(oc_norm2(-3, 4) == 5, "norm2 plain");
+    CHECK(isinf(oc_norm2(INFINITY, 1)), "norm2 inf");
+}
+
+/* ---- oc_model: the contact as a model of the shared FMI glue -------------- */
 
 static void test_model_table_and_errors(void) {
     oc_model m;
-    oc_model_init(&m);
-    oc_msg msg;
+    fmu_model_init(&m);
+    fmu_msg msg;
     /* Every table entry is readable through its own type, nothing else is. */
     int n_real = 0, n_int = 0;
     for (unsigned vr = 0; vr < 40; ++vr) {
         double d;
-        int i;
-        const int ok_r = oc_model_get_real(&m, &vr, 1, &d, &msg) == OC_OK;
-        const int ok_i = oc_model_get_integer(&m, &vr, 1, &i, &msg) == OC_OK;
+        int32_t i;
+        const int ok_r = fmu_model_get_float64(&m, &vr, 1, &d, &msg) == FMU_OK;
+        const int ok_i = fmu_model_get_int(&m, &vr, 1, &i, 4, FMU_INT32 | FMU_ENUM, &msg) == FMU_OK;
         CHECK(!(ok_r && ok_i), "vr %u readable as both types", vr);
-        CHECK((ok_r || ok_i) == (oc_variable_name(vr) != NULL), "vr %u table/accessor mismatch", vr);
+        CHECK((ok_r || ok_i) == (fmu_model_variable_name(vr) != NULL), "vr %u table/accessor mismatch", vr);
         n_real += ok_r;
         n_int += ok_i;
     }
-    CHECK(n_real == 14 && n_int == 2, "found %d Real and %d Integer variables", n_real, n_int);
+    CHECK(n_real == 15 && n_int == 2, "found %d Float64 and %d integer variables", n_real, n_int);
+    /* Enumeration and Int32 are told apart (FMI 3.0 reads them differently). */
+    const unsigned vr_rule = OC_VR_slidingRule, vr_state = OC_VR_contactState;
+    int64_t i64;
+    CHECK(fmu_model_get_int(&m, &vr_rule, 1, &i64, 8, FMU_ENUM, &msg) == FMU_OK && i64 == 2, "rule");
+    CHECK(fmu_model_get_int(&m, &vr_rule, 1, &i64, 8, FMU_INT32, &msg) == FMU_ERR, "rule as Int32");
+    CHECK(fmu_model_get_int(&m, &vr_state, 1, &i64, 8, FMU_ENUM, &msg) == FMU_ERR, "state as enum");
 
-    const unsigned vr_mu1 = OC_VR_mu1, vr_T1 = OC_VR_T1, vr_u1 = OC_VR_u1, bad = 99;
+    const unsigned vr_mu1 = OC_VR_mu1, vr_T1 = OC_VR_T1, vr_u1 = OC_VR_u1, vr_alpha = OC_VR_alpha,
+                   vr_time = OC_VR_time, bad = 99;
     double v = -1;
-    CHECK(oc_model_set_real(&m, &vr_mu1, 1, &v, OC_ALLOW_PARAMETERS, &msg) == OC_ERR, "mu1<0");
+    CHECK(fmu_model_set_float64(&m, &vr_mu1, 1, &v, FMU_ALLOW_PARAMETERS, &msg) == FMU_ERR, "mu1<0");
     CHECK(strstr(msg.text, "mu1") != NULL, "message does not name mu1: %s", msg.text);
     CHECK(m.params.mu1 == 0.408, "rejected call changed mu1");
+    v = 1e-151;
+    CHECK(fmu_model_set_float64(&m, &vr_mu1, 1, &v, 3, &msg) == FMU_ERR, "mu1 below its min");
+    v = 13.0;
+    CHECK(fmu_model_set_float64(&m, &vr_alpha, 1, &v, 3, &msg) == FMU_ERR, "alpha above its max");
     v = 1;
-    CHECK(oc_model_set_real(&m, &vr_T1, 1, &v, 3, &msg) == OC_ERR, "output set");
-    CHECK(oc_model_set_real(&m, &bad, 1, &v, 3, &msg) == OC_ERR, "unknown vr set");
-    CHECK(oc_model_set_real(&m, &vr_mu1, 1, &v, OC_ALLOW_INPUTS, &msg) == OC_ERR,
+    CHECK(fmu_model_set_float64(&m, &vr_time, 1, &v, 3, &msg) == FMU_ERR, "time set");
+    CHECK(fmu_model_set_float64(&m, &vr_T1, 1, &v, 3, &msg) == FMU_ERR, "output set");
+    CHECK(fmu_model_set_float64(&m, &bad, 1, &v, 3, &msg) == FMU_ERR, "unknown vr set");
+    CHECK(fmu_model_set_float64(&m, &vr_mu1, 1, &v, FMU_ALLOW_INPUTS, &msg) == FMU_ERR,
           "fixed parameter set after initialization");
     v = NAN;
-    CHECK(oc_model_set_real(&m, &vr_u1, 1, &v, 3, &msg) == OC_ERR, "NaN input accepted");
-    v = 1e308;
+    CHECK(fmu_model_set_float64(&m, &vr_u1, 1, &v, 3, &msg) == FMU_ERR, "NaN input accepted");
     const unsigned vrs[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
     const double big[3] = {1e308, -1e308, 1e308};
-    CHECK(oc_model_set_real(&m, vrs, 3, big, 3, &msg) == OC_ERR, "overflowing inputs accepted");
+    CHECK(fmu_model_set_float64(&m, vrs, 3, big, 3, &msg) == FMU_ERR, "overflowing inputs accepted");
     CHECK(m.u[0] == 0 && m.N == 0, "rejected inputs were kept");
     /* Absurd but finite inputs: rejected or finite, never NaN. */
     const double absurd[][3] = {{1e3, -1e3, 1e-300}, {1e-300, 1e-300, 1e-300}, {1e200, 0, 1e200}};
     for (int k = 0; k < 3; ++k) {
-        const oc_status st = oc_model_set_real(&m, vrs, 3, absurd[k], 3, &msg);
+        const fmu_status st = fmu_model_set_float64(&m, vrs, 3, absurd[k], 3, &msg);
         const unsigned outs[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2, OC_VR_dissipatedEnergy};
         double y[5];
-        oc_model_get_real(&m, outs, 5, y, &msg);
+        fmu_model_get_float64(&m, outs, 5, y, &msg);
         for (int i = 0; i < 5; ++i)
             CHECK(isfinite(y[i]), "absurd inputs %d (status %d): output %d = %g", k, st, i, y[i]);
     }
-    oc_model_init(&m);
+    fmu_model_init(&m);
     /* Atomic: one bad value in a batch sets none of it. */
     const unsigned mixed[2] = {OC_VR_mu2, OC_VR_eps1};
     const double mv[2] = {0.9, -5};
-    CHECK(oc_model_set_real(&m, mixed, 2, mv, 3, &msg) == OC_ERR, "eps1 < 0 accepted");
+    CHECK(fmu_model_set_float64(&m, mixed, 2, mv, 3, &msg) == FMU_ERR, "eps1 < 0 accepted");
     CHECK(m.params.mu2 == 0.625, "partial batch applied");
-    const unsigned vr_rule = OC_VR_slidingRule;
-    int r = 7;
-    CHECK(oc_model_set_integer(&m, &vr_rule, 1, &r, 3, &msg) == OC_ERR, "rule 7 accepted");
-    CHECK(oc_model_do_step(&m, 0.0, 0.0, &msg) == OC_ERR, "h = 0 accepted");
-    CHECK(oc_model_do_step(&m, 5.0, 0.1, &msg) == OC_ERR, "wrong communication point accepted");
+    int32_t r = 7;
+    CHECK(fmu_model_set_int(&m, &vr_rule, 1, &r, 4, FMU_ENUM, 3, &msg) == FMU_ERR, "rule 7 accepted");
+    r = 1;
+    CHECK(fmu_model_set_int(&m, &vr_state, 1, &r, 4, FMU_INT32, 3, &msg) == FMU_ERR, "output set");
 }
 
-static void test_model_image(void) {
-    oc_model a, b;
-    oc_model_init(&a);
-    oc_model_init(&b);
-    oc_msg msg;
+/* Drives a model over a path with sliding, opening and re-contact. */
+static void drive(oc_model *m, int steps) {
+    fmu_msg msg;
     const unsigned vrs[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
-    for (int k = 1; k <= 50; ++k) {
-        const double v[3] = {1e-4 * k, 3e-5 * k, 18.0};
-        oc_model_set_real(&a, vrs, 3, v, OC_ALLOW_INPUTS, &msg);
-        oc_model_do_step(&a, a.time, 1e-3, &msg);
+    for (int k = 1; k <= steps; ++k) {
+        const double v[3] = {1e-4 * k, 3e-5 * k * sin(0.1 * k), k % 17 == 0 ? 0.0 : 18.0};
+        fmu_model_set_float64(m, vrs, 3, v, FMU_ALLOW_INPUTS, &msg);
+        fmu_model_do_step(m, 1e-3, &msg);
     }
-    unsigned char buf[4096];
-    CHECK(oc_model_image_size() <= sizeof buf, "image larger than expected");
-    oc_model_write_image(&a, buf);
-    CHECK(oc_model_read_image(&b, buf, oc_model_image_size(), &msg) == OC_OK, "%s", msg.text);
-    CHECK(memcmp(&a, &b, sizeof a) == 0, "image round trip not bit-exact");
-    buf[0] = 'X';
-    CHECK(oc_model_read_image(&b, buf, oc_model_image_size(), &msg) == OC_ERR, "bad magic read");
-    CHECK(oc_model_read_image(&b, buf, 10, &msg) == OC_ERR, "short image read");
+}
+
+static void test_model_state(void) {
+    oc_model a, b;
+    fmu_model_init(&a);
+    fmu_model_init(&b);
+    fmu_msg msg;
+    drive(&a, 50);
+    unsigned char buf[512], again[512];
+    const size_t n = fmu_model_state_size();
+    CHECK(n <= sizeof buf, "state larger than expected");
+    memset(buf, 0xAA, sizeof buf);
+    memset(again, 0x55, sizeof again);
+    fmu_model_state_write(&a, buf);
+    CHECK(fmu_model_state_read(&b, buf, &msg) == FMU_OK, "%s", msg.text);
+    fmu_model_state_write(&b, again);
+    CHECK(memcmp(buf, again, n) == 0, "equal states serialize to different bytes");
+    /* The restored model continues exactly as the original. */
+    drive(&a, 20);
+    drive(&b, 20);
+    double ya[5], yb[5];
+    const unsigned outs[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2, OC_VR_dissipatedEnergy};
+    fmu_model_get_float64(&a, outs, 5, ya, &msg);
+    fmu_model_get_float64(&b, outs, 5, yb, &msg);
+    CHECK(memcmp(ya, yb, sizeof ya) == 0, "restored model diverged");
+
+    /* Forged fields are refused and change nothing. */
+    struct { size_t at; double value; const char *what; } forged[] = {
+        {0, -1.0, "mu1 < 0"}, {32, 100.0, "alpha out of range"},
+        {6 * 8 + 4 + 3 * 8 + 7 * 8, -1e37, "negative energy"},
+        {6 * 8 + 4 + 3 * 8 + 2 * 8, 0.0, "open contact with a force"},
+        {6 * 8 + 4 + 3 * 8 + 3 * 8, 1e6, "force outside the yield surface"},
+        {6 * 8 + 4, NAN, "NaN input"}};
+    for (size_t k = 0; k < sizeof forged / sizeof forged[0]; ++k) {
+        memcpy(again, buf, n);
+        fmu_put_f64(again + forged[k].at, forged[k].value);
+        oc_model c = b;
+        CHECK(fmu_model_state_read(&b, again, &msg) == FMU_ERR, "forged state accepted: %s",
+              forged[k].what);
+        CHECK(memcmp(&c, &b, sizeof b) == 0, "refused state changed the model: %s", forged[k].what);
+    }
+    memcpy(again, buf, n);
+    fmu_put_u32(again + 6 * 8, 7);
+    CHECK(fmu_model_state_read(&b, again, &msg) == FMU_ERR, "rule 7 accepted");
+    memcpy(again, buf, n);
+    fmu_put_u32(again + n - 4, 2);
+    CHECK(fmu_model_state_read(&b, again, &msg) == FMU_ERR, "commit flag 2 accepted");
 }
 
 int main(void) {
@@ -398,7 +506,10 @@ int main(void) {
     test_held_inputs_stick();
     test_jacobian();
     test_finite_everywhere();
+    test_held_inputs_anisotropic();
+    test_far_trial();
+    test_norm2();
     test_model_table_and_errors();
-    test_model_image();
+    test_model_state();
     return oc_report();
 }

@@ -1,5 +1,6 @@
 /* The FMI 2.0 glue called directly: state machine, logging categories,
  * instance independence and state handling. */
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,7 +28,7 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
 static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
 
 static fmi2Component make(const char *name) {
-    fmi2Component c = fmi2Instantiate(name, fmi2CoSimulation, OC_GUID, "", &CB, fmi2False, fmi2False);
+    fmi2Component c = fmi2Instantiate(name, fmi2CoSimulation, FMU_GUID, "", &CB, fmi2False, fmi2False);
     CHECK(c != NULL, "instantiate %s failed", name);
     return c;
 }
@@ -40,12 +41,12 @@ static void start(fmi2Component c) {
 
 static void test_instantiate_rejects(void) {
     n_logged = 0;
-    CHECK(fmi2Instantiate("x", fmi2ModelExchange, OC_GUID, "", &CB, 0, 0) == NULL, "ME accepted");
+    CHECK(fmi2Instantiate("x", fmi2ModelExchange, FMU_GUID, "", &CB, 0, 0) == NULL, "ME accepted");
     CHECK(n_logged == 1 && strstr(last_message, "Co-Simulation"), "no reason logged");
     CHECK(fmi2Instantiate("x", fmi2CoSimulation, "{bad}", "", &CB, 0, 0) == NULL, "GUID accepted");
     CHECK(strstr(last_message, "GUID") != NULL, "GUID reason not logged: %s", last_message);
-    CHECK(fmi2Instantiate("", fmi2CoSimulation, OC_GUID, "", &CB, 0, 0) == NULL, "empty name");
-    CHECK(fmi2Instantiate("x", fmi2CoSimulation, OC_GUID, "", NULL, 0, 0) == NULL, "NULL callbacks");
+    CHECK(fmi2Instantiate("", fmi2CoSimulation, FMU_GUID, "", &CB, 0, 0) == NULL, "empty name");
+    CHECK(fmi2Instantiate("x", fmi2CoSimulation, FMU_GUID, "", NULL, 0, 0) == NULL, "NULL callbacks");
 }
 
 static void test_state_machine(void) {
@@ -66,6 +67,9 @@ static void test_state_machine(void) {
     CHECK(fmi2DoStep(c, 0, 1e-3, fmi2True) == fmi2OK, "doStep");
     CHECK(fmi2DoStep(c, 0.5, 1e-3, fmi2True) == fmi2Error, "doStep at the wrong time");
     CHECK(fmi2DoStep(c, 1e-3, -1, fmi2True) == fmi2Error, "negative step");
+    CHECK(fmi2DoStep(c, 1e-3, INFINITY, fmi2True) == fmi2Error, "infinite step");
+    CHECK(fmi2DoStep(c, 1e-3, 1.7e308, fmi2True) == fmi2OK, "a huge but finite step");
+    CHECK(fmi2DoStep(c, 1e-3 + 1.7e308, 1.7e308, fmi2True) == fmi2Error, "step to t = inf");
     CHECK(fmi2GetReal(c, &vr_T1, 1, NULL) == fmi2Error, "NULL value array");
     CHECK(fmi2Terminate(c) == fmi2OK, "terminate");
     CHECK(fmi2DoStep(c, 1e-3, 1e-3, fmi2True) == fmi2Error, "doStep after terminate");
@@ -151,6 +155,64 @@ static void test_instances_and_state(void) {
     CHECK(fmi2DeSerializeFMUstate(b, bytes, n, &st3) == fmi2Error && st3 == NULL,
           "corrupt image accepted");
     CHECK(fmi2DeSerializeFMUstate(b, bytes, n - 1, &st3) == fmi2Error, "short image accepted");
+    bytes[0] ^= 0xff;
+
+    /* Restored into a freshly instantiated instance, the next step continues
+     * exactly as the original (the state carries the FMI mode and time). */
+    fmi2Component fresh = make("fresh");
+    fmi2FMUstate st4 = NULL;
+    CHECK(fmi2DeSerializeFMUstate(fresh, bytes, n, &st4) == fmi2OK, "deserialize into fresh");
+    CHECK(fmi2SetFMUstate(fresh, st4) == fmi2OK, "set state into fresh: %s", last_message);
+    double tf = ta - 50e-3;
+    for (int k = 101; k <= 150; ++k) drive(fresh, 1e-4 * k, -1e-5 * k, 18.0, &tf);
+    double cont[4];
+    CHECK(fmi2GetReal(fresh, out, 4, cont) == fmi2OK, "read after restore");
+    CHECK(memcmp(cont, later, sizeof later) == 0, "fresh instance did not continue bit-exactly");
+    /* Equal states give equal bytes. */
+    fmi2FMUstate s5 = NULL, s6 = NULL;
+    fmi2GetFMUstate(fresh, &s5);
+    fmi2GetFMUstate(b, &s6);
+    fmi2Byte *b5 = malloc(n), *b6 = malloc(n);
+    fmi2SerializeFMUstate(fresh, s5, b5, n);
+    fmi2SerializeFMUstate(b, s6, b6, n);
+    CHECK(memcmp(b5, b6, n) == 0, "equal states serialize differently");
+    /* Every single-bit flip is refused or gives a state that restores to
+     * finite outputs; truncated and random bytes are refused. */
+    int refused = 0;
+    for (size_t i = 0; i < n; ++i)
+        for (int bit = 0; bit < 8; ++bit) {
+            memcpy(b6, b5, n);
+            b6[i] ^= (fmi2Byte)(1 << bit);
+            fmi2FMUstate s7 = NULL;
+            if (fmi2DeSerializeFMUstate(fresh, b6, n, &s7) != fmi2OK) {
+                ++refused;
+                continue;
+            }
+            CHECK(fmi2SetFMUstate(fresh, s7) == fmi2OK, "accepted state not settable");
+            double y[4] = {0};
+            fmi2GetReal(fresh, out, 4, y);
+            CHECK(isfinite(y[0]) && isfinite(y[1]) && isfinite(y[2]) && isfinite(y[3]),
+                  "flipped state gives non-finite outputs");
+            fmi2FreeFMUstate(fresh, &s7);
+        }
+    CHECK(refused > 0, "no flipped state refused");
+    for (size_t len = 0; len < n; ++len) {
+        fmi2FMUstate s8 = NULL;
+        CHECK(fmi2DeSerializeFMUstate(fresh, b5, len, &s8) == fmi2Error, "truncated to %zu", len);
+    }
+    unsigned seed = 12345;
+    for (int k = 0; k < 2000; ++k) {
+        for (size_t i = 0; i < n; ++i) b6[i] = (fmi2Byte)((seed = seed * 1103515245u + 12345u) >> 16);
+        if (k % 2) memcpy(b6, b5, 24); /* a valid header: the fields must be checked too */
+        fmi2FMUstate s9 = NULL;
+        CHECK(fmi2DeSerializeFMUstate(fresh, b6, n, &s9) == fmi2Error, "random bytes accepted");
+    }
+    free(b5);
+    free(b6);
+    fmi2FreeFMUstate(fresh, &s5);
+    fmi2FreeFMUstate(b, &s6);
+    fmi2FreeFMUstate(fresh, &st4);
+    fmi2FreeInstance(fresh);
     free(bytes);
     fmi2FreeFMUstate(a, &st);
     fmi2FreeFMUstate(b, &st2);

@@ -42,7 +42,7 @@ int main(void) {
     const fmi2ValueReference outs[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2, OC_VR_dissipatedEnergy};
     long ok_reads = 0, calls = 0, bad_status = 0, non_finite = 0;
     for (int episode = 0; episode < 200; ++episode) {
-        fmi2Component c = fmi2Instantiate("fuzz", fmi2CoSimulation, OC_GUID, "", &cb, 0, 0);
+        fmi2Component c = fmi2Instantiate("fuzz", fmi2CoSimulation, FMU_GUID, "", &cb, 0, 0);
         fmi2FMUstate st = NULL;
         double t = 0.0;
         for (int k = 0; k < 300; ++k, ++calls) {

@@ -1,0 +1,590 @@
+/*
+ * FMI 3.0 Co-Simulation: the standard's signatures translated onto the shared,
+ * version-independent instance (fmu_instance.c) and the model (fmu_model.h).
+ * No mechanics and no model variables live here.  Float64 variables, Int32
+ * variables and Enumerations (through the Int64 functions, as FMI 3.0 asks)
+ * are served; every other type has no variables.
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi3Functions.h"
+#include "fmu_instance.h"
+
+#define INST(c) ((fmu_instance *)(c))
+
+typedef struct {
+    fmi3InstanceEnvironment env;
+    fmi3LogMessageCallback log;
+} glue3;
+
+static void log_fmi3(fmu_instance *I, int status, const char *category, const char *text) {
+    const glue3 *g = I->glue;
+    if (g->log) g->log(g->env, (fmi3Status)status, category, text);
+}
+
+static fmi3Status status3(int s) { return (fmi3Status)s; }
+static void *calloc3(size_t n, size_t size) { return calloc(n, size); }
+
+/* Scalar variables only: one value per value reference. */
+static int arrays_ok(fmu_instance *I, const char *fn, size_t nvr, const void *vr,
+                     const void *values, size_t nValues) {
+    if (nvr > 0 && (!vr || !values)) {
+        FMU_ERROR(I, "%s: NULL array with nValueReferences = %zu", fn, nvr);
+        return 0;
+    }
+    if (nValues != nvr) {
+        FMU_ERROR(I, "%s: nValues = %zu but nValueReferences = %zu (every variable is a scalar)",
+                  fn, nValues, nvr);
+        return 0;
+    }
+    return 1;
+}
+
+/* ---- Inquiry, instantiation, logging ---------------------------------- */
+
+const char *fmi3GetVersion(void) { return fmi3Version; }
+
+fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken,
+                                         fmi3String resourcePath, fmi3Boolean visible,
+                                         fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
+                                         fmi3Boolean earlyReturnAllowed,
+                                         const fmi3ValueReference requiredIntermediateVariables[],
+                                         size_t nRequiredIntermediateVariables,
+                                         fmi3InstanceEnvironment instanceEnvironment,
+                                         fmi3LogMessageCallback logMessage,
+                                         fmi3IntermediateUpdateCallback intermediateUpdate) {
+    (void)resourcePath; (void)visible; (void)earlyReturnAllowed;
+    (void)requiredIntermediateVariables; (void)intermediateUpdate;
+    const char *why = NULL;
+    if (!instanceName || !*instanceName) why = "fmi3InstantiateCoSimulation: instanceName is empty";
+    else if (!instantiationToken || strcmp(instantiationToken, FMU_MODEL_INFO.token) != 0)
+        why = "fmi3InstantiateCoSimulation: instantiationToken does not match this FMU's "
+              "modelDescription.xml";
+    else if (eventModeUsed)
+        why = "fmi3InstantiateCoSimulation: this FMU has no event mode (hasEventMode = false)";
+    else if (nRequiredIntermediateVariables > 0)
+        why = "fmi3InstantiateCoSimulation: this FMU provides no intermediate variables";
+    if (why) {
+        if (logMessage) logMessage(instanceEnvironment, fmi3Error, "logStatusError", why);
+        return NULL;
+    }
+    glue3 *g = calloc(1, sizeof *g);
+    if (!g) return NULL;
+    g->env = instanceEnvironment;
+    g->log = logMessage;
+    fmu_instance *I = fmu_instance_new(instanceName, calloc3, free, log_fmi3, g, loggingOn);
+    if (!I) {
+        if (logMessage)
+            logMessage(instanceEnvironment, fmi3Error, "logStatusError",
+                       "fmi3InstantiateCoSimulation: out of memory");
+        free(g);
+        return NULL;
+    }
+    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi3InstantiateCoSimulation");
+    return I;
+}
+
+static fmi3Instance refuse_interface(fmi3InstanceEnvironment env, fmi3LogMessageCallback log,
+                                     const char *fn) {
+    if (log) log(env, fmi3Error, "logStatusError", fn);
+    return NULL;
+}
+
+fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String instantiationToken,
+                                          fmi3String resourcePath, fmi3Boolean visible,
+                                          fmi3Boolean loggingOn,
+                                          fmi3InstanceEnvironment instanceEnvironment,
+                                          fmi3LogMessageCallback logMessage) {
+    (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
+    return refuse_interface(instanceEnvironment, logMessage,
+                            "fmi3InstantiateModelExchange: this is a Co-Simulation FMU only");
+}
+
+fmi3Instance fmi3InstantiateScheduledExecution(
+    fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
+    fmi3Boolean visible, fmi3Boolean loggingOn, fmi3InstanceEnvironment instanceEnvironment,
+    fmi3LogMessageCallback logMessage, fmi3ClockUpdateCallback clockUpdate,
+    fmi3LockPreemptionCallback lockPreemption, fmi3UnlockPreemptionCallback unlockPreemption) {
+    (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
+    (void)clockUpdate; (void)lockPreemption; (void)unlockPreemption;
+    return refuse_interface(instanceEnvironment, logMessage,
+                            "fmi3InstantiateScheduledExecution: this is a Co-Simulation FMU only");
+}
+
+void fmi3FreeInstance(fmi3Instance c) {
+    fmu_instance *I = INST(c);
+    if (!I) return;
+    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi3FreeInstance");
+    void *g = I->glue;
+    fmu_instance_free(I);
+    free(g);
+}
+
+fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCategories,
+                               const fmi3String categories[]) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3SetDebugLogging", FMU_ALIVE)) return fmi3Error;
+    return fmu_set_debug_logging(I, "fmi3SetDebugLogging", loggingOn, nCategories, categories)
+               ? fmi3Error : fmi3OK;
+}
+
+/* ---- Initialization, termination, reset -------------------------------- */
+
+fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefined,
+                                       fmi3Float64 tolerance, fmi3Float64 startTime,
+                                       fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
+    fmu_instance *I = INST(c);
+    (void)toleranceDefined;
+    (void)tolerance; /* the law is solved to machine precision */
+    if (!fmu_allowed(I, "fmi3EnterInitializationMode", FMU_INSTANTIATED)) return fmi3Error;
+    if (!isfinite(startTime) || (stopTimeDefined && !(stopTime >= startTime))) {
+        FMU_ERROR(I, "fmi3EnterInitializationMode: startTime = %g, stopTime = %g are not a valid "
+                     "interval", startTime, stopTime);
+        return fmi3Error;
+    }
+    fmu_set_start_time(I, startTime);
+    I->phase = FMU_INIT;
+    return fmi3OK;
+}
+
+fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3ExitInitializationMode", FMU_INIT)) return fmi3Error;
+    I->phase = FMU_STEP;
+    return fmi3OK;
+}
+
+fmi3Status fmi3Terminate(fmi3Instance c) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3Terminate", FMU_INIT | FMU_STEP)) return fmi3Error;
+    I->phase = FMU_TERMINATED;
+    return fmi3OK;
+}
+
+fmi3Status fmi3Reset(fmi3Instance c) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3Reset", FMU_ALIVE)) return fmi3Error;
+    fmu_model_init(I->model);
+    I->phase = FMU_INSTANTIATED;
+    return fmi3OK;
+}
+
+/* ---- Getting and setting values ----------------------------------------- */
+
+#define SETTABLE (FMU_INSTANTIATED | FMU_INIT | FMU_STEP)
+
+fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                          fmi3Float64 values[], size_t nValues) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3GetFloat64", FMU_READABLE) ||
+        !arrays_ok(I, "fmi3GetFloat64", nvr, vr, values, nValues))
+        return fmi3Error;
+    fmu_msg msg;
+    return status3(fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, values, &msg), &msg,
+                              "fmi3GetFloat64"));
+}
+
+fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                          const fmi3Float64 values[], size_t nValues) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3SetFloat64", SETTABLE) ||
+        !arrays_ok(I, "fmi3SetFloat64", nvr, vr, values, nValues))
+        return fmi3Error;
+    fmu_msg msg;
+    return status3(fmu_result(
+        I, fmu_model_set_float64(I->model, vr, nvr, values, fmu_settable(I), &msg), &msg,
+        "fmi3SetFloat64"));
+}
+
+/* Int32 variables through the Int32 functions, Enumerations through Int64. */
+#define INT_ACCESS(TYPE, CTYPE, KIND)                                                          \
+    fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
+                             CTYPE values[], size_t nValues) {                                   \
+        fmu_instance *I = INST(c);                                                               \
+        if (!fmu_allowed(I, "fmi3Get" #TYPE, FMU_READABLE) ||                                   \
+            !arrays_ok(I, "fmi3Get" #TYPE, nvr, vr, values, nValues))                            \
+            return fmi3Error;                                                                    \
+        fmu_msg msg;                                                                             \
+        return status3(fmu_result(                                                               \
+            I, fmu_model_get_int(I->model, vr, nvr, values, sizeof(CTYPE), KIND, &msg), &msg,   \
+            "fmi3Get" #TYPE));                                                                   \
+    }                                                                                            \
+    fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
+                             const CTYPE values[], size_t nValues) {                             \
+        fmu_instance *I = INST(c);                                                               \
+        if (!fmu_allowed(I, "fmi3Set" #TYPE, SETTABLE) ||                                       \
+            !arrays_ok(I, "fmi3Set" #TYPE, nvr, vr, values, nValues))                            \
+            return fmi3Error;                                                                    \
+        fmu_msg msg;                                                                             \
+        return status3(fmu_result(I,                                                             \
+                                  fmu_model_set_int(I->model, vr, nvr, values, sizeof(CTYPE),   \
+                                                    KIND, fmu_settable(I), &msg),                \
+                                  &msg, "fmi3Set" #TYPE));                                       \
+    }
+INT_ACCESS(Int32, fmi3Int32, FMU_INT32)
+INT_ACCESS(Int64, fmi3Int64, FMU_ENUM)
+
+/* Types of which this FMU has no variables: any value reference is unknown. */
+static fmi3Status no_such_variables(fmu_instance *I, const char *fn, int phases, size_t nvr,
+                                    const fmi3ValueReference vr[]) {
+    if (!fmu_allowed(I, fn, phases)) return fmi3Error;
+    if (nvr == 0) return fmi3OK;
+    FMU_ERROR(I, "%s: unknown value reference %u (this FMU has no variables of that type)", fn,
+              vr ? vr[0] : 0u);
+    return fmi3Error;
+}
+
+#define NO_VARIABLES(TYPE, CTYPE)                                                              \
+    fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
+                             CTYPE values[], size_t nValues) {                                   \
+        (void)values; (void)nValues;                                                             \
+        return no_such_variables(INST(c), "fmi3Get" #TYPE, FMU_READABLE, nvr, vr);              \
+    }                                                                                            \
+    fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
+                             const CTYPE values[], size_t nValues) {                             \
+        (void)values; (void)nValues;                                                             \
+        return no_such_variables(INST(c), "fmi3Set" #TYPE, SETTABLE, nvr, vr);                  \
+    }
+NO_VARIABLES(Float32, fmi3Float32)
+NO_VARIABLES(Int8, fmi3Int8)
+NO_VARIABLES(UInt8, fmi3UInt8)
+NO_VARIABLES(Int16, fmi3Int16)
+NO_VARIABLES(UInt16, fmi3UInt16)
+NO_VARIABLES(UInt32, fmi3UInt32)
+NO_VARIABLES(UInt64, fmi3UInt64)
+NO_VARIABLES(Boolean, fmi3Boolean)
+NO_VARIABLES(String, fmi3String)
+
+fmi3Status fmi3GetBinary(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                         size_t valueSizes[], fmi3Binary values[], size_t nValues) {
+    (void)valueSizes; (void)values; (void)nValues;
+    return no_such_variables(INST(c), "fmi3GetBinary", FMU_READABLE, nvr, vr);
+}
+
+fmi3Status fmi3SetBinary(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                         const size_t valueSizes[], const fmi3Binary values[], size_t nValues) {
+    (void)valueSizes; (void)values; (void)nValues;
+    return no_such_variables(INST(c), "fmi3SetBinary", SETTABLE, nvr, vr);
+}
+
+fmi3Status fmi3GetClock(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                        fmi3Clock values[]) {
+    (void)values;
+    return no_such_variables(INST(c), "fmi3GetClock", FMU_ALIVE, nvr, vr);
+}
+
+fmi3Status fmi3SetClock(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                        const fmi3Clock values[]) {
+    (void)values;
+    return no_such_variables(INST(c), "fmi3SetClock", FMU_ALIVE, nvr, vr);
+}
+
+/* ---- What this FMU does not provide ----------------------------------------- */
+
+static fmi3Status unsupported(fmi3Instance c, const char *why) {
+    fmu_instance *I = INST(c);
+    if (I) FMU_ERROR(I, "%s", why);
+    return fmi3Error;
+}
+
+fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance c, fmi3ValueReference valueReference,
+                                               size_t *nDependencies) {
+    (void)valueReference; (void)nDependencies;
+    return unsupported(c, "fmi3GetNumberOfVariableDependencies: dependencies are given in the "
+                          "model description's ModelStructure only");
+}
+
+fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference dependent,
+                                       size_t elementIndicesOfDependent[],
+                                       fmi3ValueReference independents[],
+                                       size_t elementIndicesOfIndependents[],
+                                       fmi3DependencyKind dependencyKinds[], size_t nDependencies) {
+    (void)dependent; (void)elementIndicesOfDependent; (void)independents;
+    (void)elementIndicesOfIndependents; (void)dependencyKinds; (void)nDependencies;
+    return unsupported(c, "fmi3GetVariableDependencies: dependencies are given in the model "
+                          "description's ModelStructure only");
+}
+
+fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) {
+    return unsupported(c, "fmi3EnterConfigurationMode: this FMU has no structural parameters");
+}
+fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) {
+    return unsupported(c, "fmi3ExitConfigurationMode: this FMU has no structural parameters");
+}
+
+#define NO_CLOCKS "this FMU has no clocks"
+fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                  fmi3Float64 intervals[], fmi3IntervalQualifier q[]) {
+    (void)vr; (void)n; (void)intervals; (void)q;
+    return unsupported(c, "fmi3GetIntervalDecimal: " NO_CLOCKS);
+}
+fmi3Status fmi3GetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                   fmi3UInt64 counters[], fmi3UInt64 resolutions[],
+                                   fmi3IntervalQualifier q[]) {
+    (void)vr; (void)n; (void)counters; (void)resolutions; (void)q;
+    return unsupported(c, "fmi3GetIntervalFraction: " NO_CLOCKS);
+}
+fmi3Status fmi3GetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                               fmi3Float64 shifts[]) {
+    (void)vr; (void)n; (void)shifts;
+    return unsupported(c, "fmi3GetShiftDecimal: " NO_CLOCKS);
+}
+fmi3Status fmi3GetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                fmi3UInt64 counters[], fmi3UInt64 resolutions[]) {
+    (void)vr; (void)n; (void)counters; (void)resolutions;
+    return unsupported(c, "fmi3GetShiftFraction: " NO_CLOCKS);
+}
+fmi3Status fmi3SetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                  const fmi3Float64 intervals[]) {
+    (void)vr; (void)n; (void)intervals;
+    return unsupported(c, "fmi3SetIntervalDecimal: " NO_CLOCKS);
+}
+fmi3Status fmi3SetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                   const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
+    (void)vr; (void)n; (void)counters; (void)resolutions;
+    return unsupported(c, "fmi3SetIntervalFraction: " NO_CLOCKS);
+}
+fmi3Status fmi3SetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                               const fmi3Float64 shifts[]) {
+    (void)vr; (void)n; (void)shifts;
+    return unsupported(c, "fmi3SetShiftDecimal: " NO_CLOCKS);
+}
+fmi3Status fmi3SetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
+                                const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
+    (void)vr; (void)n; (void)counters; (void)resolutions;
+    return unsupported(c, "fmi3SetShiftFraction: " NO_CLOCKS);
+}
+fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference clockReference,
+                                      fmi3Float64 activationTime) {
+    (void)clockReference; (void)activationTime;
+    return unsupported(c, "fmi3ActivateModelPartition: this is a Co-Simulation FMU only");
+}
+
+#define NO_EVENTS "this FMU has no event mode (hasEventMode = false)"
+fmi3Status fmi3EnterEventMode(fmi3Instance c) {
+    return unsupported(c, "fmi3EnterEventMode: " NO_EVENTS);
+}
+fmi3Status fmi3EnterStepMode(fmi3Instance c) {
+    return unsupported(c, "fmi3EnterStepMode: " NO_EVENTS);
+}
+fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance c) {
+    return unsupported(c, "fmi3EvaluateDiscreteStates: " NO_EVENTS);
+}
+fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *discreteStatesNeedUpdate,
+                                    fmi3Boolean *terminateSimulation,
+                                    fmi3Boolean *nominalsOfContinuousStatesChanged,
+                                    fmi3Boolean *valuesOfContinuousStatesChanged,
+                                    fmi3Boolean *nextEventTimeDefined, fmi3Float64 *nextEventTime) {
+    (void)discreteStatesNeedUpdate; (void)terminateSimulation;
+    (void)nominalsOfContinuousStatesChanged; (void)valuesOfContinuousStatesChanged;
+    (void)nextEventTimeDefined; (void)nextEventTime;
+    return unsupported(c, "fmi3UpdateDiscreteStates: " NO_EVENTS);
+}
+
+#define NO_ME "this is a Co-Simulation FMU only"
+fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c) {
+    return unsupported(c, "fmi3EnterContinuousTimeMode: " NO_ME);
+}
+fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet, fmi3Boolean *enter,
+                                       fmi3Boolean *term) {
+    (void)noSet; (void)enter; (void)term;
+    return unsupported(c, "fmi3CompletedIntegratorStep: " NO_ME);
+}
+fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 time) {
+    (void)time;
+    return unsupported(c, "fmi3SetTime: " NO_ME);
+}
+fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64 x[], size_t n) {
+    (void)x; (void)n;
+    return unsupported(c, "fmi3SetContinuousStates: " NO_ME);
+}
+fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], size_t n) {
+    (void)dx; (void)n;
+    return unsupported(c, "fmi3GetContinuousStateDerivatives: " NO_ME);
+}
+fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 ei[], size_t n) {
+    (void)ei; (void)n;
+    return unsupported(c, "fmi3GetEventIndicators: " NO_ME);
+}
+fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t n) {
+    (void)x; (void)n;
+    return unsupported(c, "fmi3GetContinuousStates: " NO_ME);
+}
+fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance c, fmi3Float64 nominals[], size_t n) {
+    (void)nominals; (void)n;
+    return unsupported(c, "fmi3GetNominalsOfContinuousStates: " NO_ME);
+}
+fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n) {
+    (void)n;
+    return unsupported(c, "fmi3GetNumberOfEventIndicators: " NO_ME);
+}
+fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
+    (void)n;
+    return unsupported(c, "fmi3GetNumberOfContinuousStates: " NO_ME);
+}
+
+/* ---- FMU state ------------------------------------------------------------ */
+
+/* An fmi3FMUState is a buffer holding the serialized state itself. */
+
+fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3GetFMUState", FMU_ALIVE)) return fmi3Error;
+    if (!FMUState) {
+        FMU_ERROR(I, "fmi3GetFMUState: FMUState is NULL");
+        return fmi3Error;
+    }
+    unsigned char *buf = *FMUState;
+    if (!buf && !(buf = calloc(1, fmu_state_size()))) {
+        FMU_ERROR(I, "fmi3GetFMUState: out of memory");
+        return fmi3Error;
+    }
+    fmu_state_write(I, buf);
+    *FMUState = buf;
+    return fmi3OK;
+}
+
+fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState FMUState) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3SetFMUState", FMU_ALIVE)) return fmi3Error;
+    fmu_msg msg;
+    return status3(fmu_result(I, fmu_state_read(I, FMUState, fmu_state_size(), &msg), &msg,
+                              "fmi3SetFMUState"));
+}
+
+fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3FreeFMUState", FMU_ALIVE)) return fmi3Error;
+    if (FMUState && *FMUState) {
+        free(*FMUState);
+        *FMUState = NULL;
+    }
+    return fmi3OK;
+}
+
+fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState FMUState, size_t *size) {
+    fmu_instance *I = INST(c);
+    (void)FMUState;
+    if (!fmu_allowed(I, "fmi3SerializedFMUStateSize", FMU_ALIVE)) return fmi3Error;
+    if (!size) {
+        FMU_ERROR(I, "fmi3SerializedFMUStateSize: size is NULL");
+        return fmi3Error;
+    }
+    *size = fmu_state_size();
+    return fmi3OK;
+}
+
+fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState FMUState, fmi3Byte serializedState[],
+                                 size_t size) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3SerializeFMUState", FMU_ALIVE)) return fmi3Error;
+    if (!FMUState || !serializedState || size < fmu_state_size()) {
+        FMU_ERROR(I, "fmi3SerializeFMUState: needs a state and a buffer of %zu bytes (got %zu)",
+                  fmu_state_size(), size);
+        return fmi3Error;
+    }
+    memcpy(serializedState, FMUState, fmu_state_size());
+    return fmi3OK;
+}
+
+fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedState[], size_t size,
+                                   fmi3FMUState *FMUState) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, "fmi3DeserializeFMUState", FMU_ALIVE)) return fmi3Error;
+    if (!FMUState) {
+        FMU_ERROR(I, "fmi3DeserializeFMUState: FMUState is NULL");
+        return fmi3Error;
+    }
+    fmu_instance scratch = *I;
+    scratch.model = calloc(1, fmu_model_size());
+    if (!scratch.model) {
+        FMU_ERROR(I, "fmi3DeserializeFMUState: out of memory");
+        return fmi3Error;
+    }
+    fmu_model_init(scratch.model);
+    fmu_msg msg;
+    const fmu_status st = fmu_state_read(&scratch, serializedState, size, &msg);
+    free(scratch.model);
+    if (st != FMU_OK) return status3(fmu_result(I, st, &msg, "fmi3DeserializeFMUState"));
+    unsigned char *buf = *FMUState;
+    if (!buf && !(buf = calloc(1, size))) {
+        FMU_ERROR(I, "fmi3DeserializeFMUState: out of memory");
+        return fmi3Error;
+    }
+    memcpy(buf, serializedState, size);
+    *FMUState = buf;
+    return fmi3OK;
+}
+
+/* ---- Derivatives ------------------------------------------------------------ */
+
+static fmi3Status derivative(fmi3Instance c, const char *fn, const fmi3ValueReference unknowns[],
+                             size_t nUnknowns, const fmi3ValueReference knowns[], size_t nKnowns,
+                             const fmi3Float64 seed[], size_t nSeed, fmi3Float64 sensitivity[],
+                             size_t nSensitivity, int adjoint) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, fn, FMU_READABLE)) return fmi3Error;
+    const size_t want_seed = adjoint ? nUnknowns : nKnowns, want_out = adjoint ? nKnowns : nUnknowns;
+    if (nSeed != want_seed || nSensitivity != want_out ||
+        (nUnknowns > 0 && !unknowns) || (nKnowns > 0 && !knowns) || (nSeed > 0 && !seed) ||
+        (nSensitivity > 0 && !sensitivity)) {
+        FMU_ERROR(I, "%s: needs %zu seeds and %zu sensitivities for %zu unknowns and %zu knowns "
+                     "(got %zu, %zu, or a NULL array)",
+                  fn, want_seed, want_out, nUnknowns, nKnowns, nSeed, nSensitivity);
+        return fmi3Error;
+    }
+    fmu_msg msg;
+    return status3(fmu_result(I,
+                              fmu_model_derivative(I->model, unknowns, nUnknowns, knowns, nKnowns,
+                                                   seed, sensitivity, adjoint, &msg),
+                              &msg, fn));
+}
+
+fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference unknowns[],
+                                        size_t nUnknowns, const fmi3ValueReference knowns[],
+                                        size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
+                                        fmi3Float64 sensitivity[], size_t nSensitivity) {
+    return derivative(c, "fmi3GetDirectionalDerivative", unknowns, nUnknowns, knowns, nKnowns,
+                      seed, nSeed, sensitivity, nSensitivity, 0);
+}
+
+fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference unknowns[],
+                                    size_t nUnknowns, const fmi3ValueReference knowns[],
+                                    size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
+                                    fmi3Float64 sensitivity[], size_t nSensitivity) {
+    return derivative(c, "fmi3GetAdjointDerivative", unknowns, nUnknowns, knowns, nKnowns, seed,
+                      nSeed, sensitivity, nSensitivity, 1);
+}
+
+/* ---- Co-Simulation ---------------------------------------------------------- */
+
+fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                                    const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues) {
+    fmu_instance *I = INST(c);
+    (void)vr; (void)orders; (void)values; (void)nValues;
+    if (!fmu_allowed(I, "fmi3GetOutputDerivatives", FMU_READABLE)) return fmi3Error;
+    if (nvr == 0) return fmi3OK;
+    FMU_ERROR(I, "fmi3GetOutputDerivatives: maxOutputDerivativeOrder is 0");
+    return fmi3Error;
+}
+
+fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint,
+                      fmi3Float64 communicationStepSize, fmi3Boolean noSetFMUStatePriorToCurrentPoint,
+                      fmi3Boolean *eventHandlingNeeded, fmi3Boolean *terminateSimulation,
+                      fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime) {
+    fmu_instance *I = INST(c);
+    (void)noSetFMUStatePriorToCurrentPoint;
+    if (!fmu_allowed(I, "fmi3DoStep", FMU_STEP)) return fmi3Error;
+    fmu_msg msg;
+    const int st = fmu_result(
+        I, fmu_do_step(I, currentCommunicationPoint, communicationStepSize, &msg), &msg,
+        "fmi3DoStep");
+    if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
+    if (terminateSimulation) *terminateSimulation = fmi3False;
+    if (earlyReturn) *earlyReturn = fmi3False;
+    if (lastSuccessfulTime) *lastSuccessfulTime = *fmu_model_time(I->model);
+    return status3(st);
+}

@@ -1,0 +1,80 @@
+/*
+ * One FMU instance, independent of the FMI version: the life-cycle phase,
+ * logging categories, the time, the serialized state (phase and time
+ * included, so that a state restores into a freshly instantiated instance)
+ * and the checks every entry point makes.  fmi2_glue.c and fmi3_glue.c are
+ * thin translations of their standard's signatures onto this.
+ */
+#ifndef FMU_INSTANCE_H
+#define FMU_INSTANCE_H
+
+#include <stddef.h>
+
+#include "fmu_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Life-cycle phases, as bits so that a call names the phases it allows. */
+enum { FMU_INSTANTIATED = 1, FMU_INIT = 2, FMU_STEP = 4, FMU_TERMINATED = 8 };
+#define FMU_ALIVE (FMU_INSTANTIATED | FMU_INIT | FMU_STEP | FMU_TERMINATED)
+#define FMU_READABLE (FMU_INIT | FMU_STEP | FMU_TERMINATED)
+
+enum { FMU_LOG_ERROR = 0, FMU_LOG_WARNING = 1, FMU_LOG_CALLS = 2, FMU_LOG_N = 3 };
+extern const char *const FMU_LOG_NAMES[FMU_LOG_N];
+
+/* Status levels; both standards number OK..Error the same way. */
+enum { FMU_S_OK = 0, FMU_S_WARNING = 1, FMU_S_DISCARD = 2, FMU_S_ERROR = 3 };
+
+typedef struct fmu_instance fmu_instance;
+/* The version's way to hand a finished message to the importer. */
+typedef void (*fmu_log_fn)(fmu_instance *I, int status, const char *category, const char *text);
+
+struct fmu_instance {
+    fmu_model *model;
+    int phase;
+    int log_on[FMU_LOG_N];
+    char *name;
+    fmu_log_fn log;
+    void *(*alloc)(size_t n, size_t size);
+    void (*release)(void *p);
+    void *glue; /* the version's own data (callbacks, environment) */
+};
+
+/* NULL if out of memory.  Errors and warnings are logged unless switched
+ * off with SetDebugLogging; logging_on adds the call trace. */
+fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
+                               void (*release)(void *), fmu_log_fn log, void *glue,
+                               int logging_on);
+void fmu_instance_free(fmu_instance *I);
+
+void fmu_log(fmu_instance *I, int status, int category, const char *fmt, ...);
+#define FMU_ERROR(I, ...) fmu_log((I), FMU_S_ERROR, FMU_LOG_ERROR, __VA_ARGS__)
+
+/* 1 if `fn` may be called in the current phase (logs the call), else logs
+ * why not and returns 0. */
+int fmu_allowed(fmu_instance *I, const char *fn, int phases);
+/* FMU_ALLOW_* for the current phase. */
+int fmu_settable(const fmu_instance *I);
+/* Logs msg under `fn` and returns FMU_S_ERROR, or FMU_S_OK. */
+int fmu_result(fmu_instance *I, fmu_status st, const fmu_msg *msg, const char *fn);
+
+/* 0, or -1 (logged) for an unknown category. */
+int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
+                          const char *const categories[]);
+
+void fmu_set_start_time(fmu_instance *I, double t);
+/* Checks and commits a communication step [t, t + h]. */
+fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg);
+
+/* Serialized state: tag, format version, length, phase, time, the model's
+ * fields.  Reading validates everything and changes I only on success. */
+size_t fmu_state_size(void);
+void fmu_state_write(const fmu_instance *I, unsigned char *buf);
+fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size, fmu_msg *msg);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,164 @@
+/* The FMI 3.0 glue called directly: state machine, variable types, the
+ * derivatives, and a state restored into a fresh instance. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "fmi3Functions.h"
+#include "model_variables.h"
+
+static int n_logged;
+static char last_message[512];
+
+static void logger(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
+                   fmi3String message) {
+    (void)env; (void)status; (void)category;
+    ++n_logged;
+    snprintf(last_message, sizeof last_message, "%s", message);
+}
+
+static fmi3Instance make(const char *name) {
+    fmi3Instance c = fmi3InstantiateCoSimulation(name, FMU_GUID, "", fmi3False, fmi3False,
+                                                 fmi3False, fmi3False, NULL, 0, NULL, logger, NULL);
+    CHECK(c != NULL, "instantiate %s failed", name);
+    return c;
+}
+
+static void start(fmi3Instance c) {
+    CHECK(fmi3EnterInitializationMode(c, fmi3False, 0, 0, fmi3False, 0) == fmi3OK, "enter init");
+    CHECK(fmi3ExitInitializationMode(c) == fmi3OK, "exit init");
+}
+
+static double t_now;
+static void drive(fmi3Instance c, double u1, double u2, double N, double *t) {
+    const fmi3ValueReference vrs[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+    const double v[3] = {u1, u2, N};
+    fmi3Boolean ev, term, early;
+    CHECK(fmi3SetFloat64(c, vrs, 3, v, 3) == fmi3OK, "set inputs: %s", last_message);
+    CHECK(fmi3DoStep(c, *t, 1e-3, fmi3True, &ev, &term, &early, &t_now) == fmi3OK, "doStep: %s",
+          last_message);
+    CHECK(!ev && !term && !early && fabs(t_now - (*t + 1e-3)) < 1e-15, "doStep flags");
+    *t += 1e-3;
+}
+
+static void test_rejects(void) {
+    n_logged = 0;
+    CHECK(fmi3InstantiateCoSimulation("x", "{bad}", "", 0, 0, 0, 0, NULL, 0, NULL, logger, NULL) ==
+              NULL, "bad token accepted");
+    CHECK(strstr(last_message, "instantiationToken"), "reason: %s", last_message);
+    CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 1, 0, NULL, 0, NULL, logger, NULL) ==
+              NULL, "event mode accepted");
+    CHECK(fmi3InstantiateModelExchange("x", FMU_GUID, "", 0, 0, NULL, logger) == NULL, "ME");
+}
+
+static void test_types_and_states(void) {
+    fmi3Instance c = make("types");
+    const fmi3ValueReference vr_rule = OC_VR_slidingRule, vr_state = OC_VR_contactState,
+                             vr_T1 = OC_VR_T1, vr_mu1 = OC_VR_mu1;
+    fmi3Int64 rule = 1;
+    fmi3Int32 i32 = 0;
+    double v;
+    CHECK(fmi3GetFloat64(c, &vr_T1, 1, &v, 1) == fmi3Error, "get while instantiated");
+    CHECK(fmi3SetInt64(c, &vr_rule, 1, &rule, 1) == fmi3OK, "rule through Int64 (Enumeration)");
+    CHECK(fmi3SetInt32(c, &vr_rule, 1, &i32, 1) == fmi3Error, "enumeration set as Int32");
+    rule = 4;
+    CHECK(fmi3SetInt64(c, &vr_rule, 1, &rule, 1) == fmi3Error, "rule 4 accepted");
+    v = 0.3;
+    CHECK(fmi3SetFloat64(c, &vr_mu1, 1, &v, 2) == fmi3Error, "nValues mismatch accepted");
+    start(c);
+    CHECK(fmi3GetInt64(c, &vr_rule, 1, &rule, 1) == fmi3OK && rule == 1, "rule read back");
+    CHECK(fmi3GetInt32(c, &vr_state, 1, &i32, 1) == fmi3OK, "contactState as Int32");
+    CHECK(fmi3GetInt64(c, &vr_state, 1, &rule, 1) == fmi3Error, "Int32 read as Int64");
+    CHECK(fmi3SetFloat64(c, &vr_mu1, 1, &v, 1) == fmi3Error, "fixed parameter in step mode");
+    fmi3Boolean b;
+    CHECK(fmi3GetBoolean(c, &vr_T1, 1, &b, 1) == fmi3Error, "Boolean of a Float64");
+    CHECK(fmi3EnterEventMode(c) == fmi3Error, "event mode");
+    CHECK(fmi3EnterConfigurationMode(c) == fmi3Error, "configuration mode");
+    double t = 0;
+    drive(c, 1e-3, 2e-4, 18.0, &t);
+    fmi3Boolean ev, term, early;
+    double last;
+    CHECK(fmi3DoStep(c, t, 1.7e308, 0, &ev, &term, &early, &last) == fmi3OK, "huge finite step");
+    CHECK(fmi3DoStep(c, last, 1.7e308, 0, &ev, &term, &early, &last) == fmi3Error, "step to inf");
+    CHECK(fmi3DoStep(c, t, INFINITY, 0, &ev, &term, &early, &last) == fmi3Error, "inf step");
+    CHECK(fmi3Terminate(c) == fmi3OK, "terminate");
+    CHECK(fmi3Reset(c) == fmi3OK, "reset");
+    v = 0.3;
+    CHECK(fmi3SetFloat64(c, &vr_mu1, 1, &v, 1) == fmi3OK, "parameter after reset");
+    fmi3FreeInstance(c);
+}
+
+static void test_derivatives(void) {
+    fmi3Instance c = make("der");
+    start(c);
+    double t = 0;
+    for (int k = 1; k <= 30; ++k) drive(c, 2e-4 * k, 5e-5 * k, 18.0, &t);
+    const fmi3ValueReference unk[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2,
+                                       OC_VR_dissipatedEnergy};
+    const fmi3ValueReference kn[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+    double J[5][3], JT[3][5];
+    for (int j = 0; j < 3; ++j) {
+        double seed[3] = {0, 0, 0}, col[5];
+        seed[j] = 1;
+        CHECK(fmi3GetDirectionalDerivative(c, unk, 5, kn, 3, seed, 3, col, 5) == fmi3OK, "dir");
+        for (int i = 0; i < 5; ++i) J[i][j] = col[i];
+    }
+    for (int i = 0; i < 5; ++i) {
+        double seed[5] = {0, 0, 0, 0, 0}, row[3];
+        seed[i] = 1;
+        CHECK(fmi3GetAdjointDerivative(c, unk, 5, kn, 3, seed, 5, row, 3) == fmi3OK, "adjoint");
+        for (int j = 0; j < 3; ++j) JT[j][i] = row[j];
+    }
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 3; ++j)
+            CHECK(J[i][j] == JT[j][i], "adjoint is not the transpose at %d %d", i, j);
+    double seed[3] = {1, 0, 0}, out[5];
+    CHECK(fmi3GetDirectionalDerivative(c, unk, 5, kn, 3, seed, 2, out, 5) == fmi3Error,
+          "nSeed mismatch accepted");
+    fmi3FreeInstance(c);
+}
+
+static void test_state_into_fresh_instance(void) {
+    fmi3Instance a = make("a");
+    start(a);
+    double ta = 0;
+    for (int k = 1; k <= 80; ++k) drive(a, 1e-4 * k, 3e-5 * k, k % 23 ? 18.0 : 0.0, &ta);
+    fmi3FMUState st = NULL;
+    CHECK(fmi3GetFMUState(a, &st) == fmi3OK, "get state");
+    size_t n = 0;
+    CHECK(fmi3SerializedFMUStateSize(a, st, &n) == fmi3OK, "size");
+    fmi3Byte *bytes = malloc(n);
+    CHECK(fmi3SerializeFMUState(a, st, bytes, n) == fmi3OK, "serialize");
+    const fmi3ValueReference out[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2,
+                                       OC_VR_dissipatedEnergy};
+    double ya[5], yb[5];
+    double tb = ta;
+    for (int k = 81; k <= 120; ++k) drive(a, 1e-4 * k, -2e-5 * k, 18.0, &ta);
+    fmi3GetFloat64(a, out, 5, ya, 5);
+    fmi3Instance b = make("b"); /* never initialized: the state carries the mode */
+    fmi3FMUState sb = NULL;
+    CHECK(fmi3DeserializeFMUState(b, bytes, n, &sb) == fmi3OK, "deserialize");
+    CHECK(fmi3SetFMUState(b, sb) == fmi3OK, "set into a fresh instance");
+    for (int k = 81; k <= 120; ++k) drive(b, 1e-4 * k, -2e-5 * k, 18.0, &tb);
+    CHECK(fmi3GetFloat64(b, out, 5, yb, 5) == fmi3OK, "read");
+    CHECK(memcmp(ya, yb, sizeof ya) == 0, "fresh instance did not continue bit-exactly");
+    bytes[n / 2] ^= 0x40;
+    bytes[3] ^= 1;
+    fmi3FMUState bad = NULL;
+    CHECK(fmi3DeserializeFMUState(b, bytes, n, &bad) == fmi3Error && bad == NULL, "corrupt accepted");
+    free(bytes);
+    fmi3FreeFMUState(a, &st);
+    fmi3FreeFMUState(b, &sb);
+    fmi3FreeInstance(a);
+    fmi3FreeInstance(b);
+}
+
+int main(void) {
+    CHECK(strcmp(fmi3GetVersion(), "3.0") == 0, "version");
+    test_rejects();
+    test_types_and_states();
+    test_derivatives();
+    test_state_into_fresh_instance();
+    return oc_report();
+}
