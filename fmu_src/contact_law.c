@@ -11,6 +11,8 @@
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 /* Q(t) diag(d1, d2) Q(t)^T */
 static void rotated_diag(double t, double d1, double d2, double R[2][2]) {
@@ -36,22 +38,60 @@ static void matvec(const double A[2][2], const double x[2], double y[2]) {
     y[1] = y1;
 }
 
+/* q = Minv a in its factored form (see oc_law.R): a rotation, then
+ * G = Q(beta) diag(mu), whose entries never mix mu1 with mu2. */
+static inline void force_of(const oc_law *L, const double a[2], double q[2]) {
+    const double r0 = L->R[0][0] * a[0] + L->R[0][1] * a[1];
+    const double r1 = L->R[1][0] * a[0] + L->R[1][1] * a[1];
+    q[0] = L->G[0][0] * r0 + L->G[0][1] * r1;
+    q[1] = L->G[1][0] * r0 + L->G[1][1] * r1;
+}
+
 static int all_finite(const double *v, size_t n) {
     for (size_t i = 0; i < n; ++i)
         if (!isfinite(v[i])) return 0;
     return 1;
 }
 
-double oc_norm2(double x, double y) {
-    const double sq = x * x + y * y;
-    /* The common case: the squares neither overflow nor lose digits. */
-    if (sq >= 0x1p-900 && sq <= 0x1p900) return sqrt(sq);
-    const double ax = fabs(x), ay = fabs(y);
-    const double big = ax > ay ? ax : ay, small = ax > ay ? ay : ax;
-    if (!(big > 0) || !isfinite(big)) return big + small; /* 0, inf or NaN */
-    const double r = small / big;
-    return big * sqrt(1.0 + r * r);
+/* 2^-e and 2^e for the binary exponent e of |x| (x finite, normal and
+ * nonzero), from the bits.  Scaling by them is exact, and exact power-of-two
+ * scaling commutes with rounding: whatever is computed on scaled values is
+ * the same, bit for bit, in any power-of-two units. */
+static double pow2_of(double x, double *inverse) {
+    uint64_t b;
+    memcpy(&b, &x, 8);
+    const uint64_t e = (b >> 52) & 0x7ff; /* biased exponent, 1..2046 */
+    const uint64_t p = e << 52, r = (2046 - e) << 52;
+    double out, inv;
+    memcpy(&out, &p, 8);
+    memcpy(&inv, &r, 8);
+    *inverse = inv;
+    return out;
 }
+
+/* The general case of oc_norm2: no square may under- or overflow. */
+static double norm2_scaled(double x, double y) {
+    const double ax = fabs(x), ay = fabs(y);
+    const double big = ax > ay ? ax : ay;
+    if (!(big >= DBL_MIN) || !isfinite(big)) {
+        /* 0, subnormal, inf or NaN */
+        if (!(big > 0) || !isfinite(big)) return big + (ax > ay ? ay : ax);
+        const double r = (ax > ay ? ay : ax) / big;
+        return big * sqrt(1.0 + r * r);
+    }
+    double inv;
+    const double p = pow2_of(big, &inv), xs = x * inv, ys = y * inv;
+    return sqrt(xs * xs + ys * ys) * p;
+}
+
+/* No square under- or overflows in the first branch, so it gives what the
+ * scaled form gives, bit for bit (a square too small to matter is absorbed). */
+static inline double norm2(double x, double y) {
+    const double sq = x * x + y * y;
+    return sq >= 0x1p-900 && sq <= 0x1p1000 ? sqrt(sq) : norm2_scaled(x, y);
+}
+
+double oc_norm2(double x, double y) { return norm2(x, y); }
 
 oc_state oc_state_unloaded(double s1, double s2, double energy) {
     oc_state st = {{s1, s2}, 0.0, {0.0, 0.0}, {s1, s2}, energy};
@@ -113,15 +153,39 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     L.sig_hat[1 - big] = L.sigma[1 - big] / sb;
     L.kappa = sb / L.sigma[1 - big];
 
+    const double cb = cos(p->beta), sb_ = sin(p->beta);
+    const double Qbt[2][2] = {{cb, sb_}, {-sb_, cb}};
+    L.G[0][0] = cb * p->mu1;
+    L.G[0][1] = -sb_ * p->mu2;
+    L.G[1][0] = sb_ * p->mu1;
+    L.G[1][1] = cb * p->mu2;
+    matmul(Qbt, V, L.R);
     matmul(Vt, Fh, L.Y);
     matmul(L.Y, L.B, L.P);
     matmul(Fhinv, V, L.Minv);
-    matmul(L.B, L.F, L.BF);
+    /* eq. (20) needs only the direction of B F q: B F / max|B F|, formed
+     * from normalized factors so that it cannot overflow or underflow. */
+    {
+        double Bn[2][2], Fn[2][2];
+        const double bm = fmax(fmax(fabs(L.B[0][0]), fabs(L.B[1][1])), fabs(L.B[0][1]));
+        const double fm = fmax(fmax(fabs(L.F[0][0]), fabs(L.F[1][1])), fabs(L.F[0][1]));
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j) {
+                Bn[i][j] = L.B[i][j] / bm;
+                Fn[i][j] = L.F[i][j] / fm;
+            }
+        matmul(Bn, Fn, L.BFn);
+        const double m = fmax(fmax(fabs(L.BFn[0][0]), fabs(L.BFn[1][1])),
+                              fmax(fabs(L.BFn[0][1]), fabs(L.BFn[1][0])));
+        for (int i = 0; i < 2; ++i)
+            for (int j = 0; j < 2; ++j) L.BFn[i][j] /= m;
+    }
 
     if (!all_finite(&L.B[0][0], 4) || !all_finite(&L.Binv[0][0], 4) ||
         !all_finite(&L.F[0][0], 4) || !all_finite(&L.P[0][0], 4) ||
         !all_finite(&L.Minv[0][0], 4) || !all_finite(&L.Y[0][0], 4) || !all_finite(L.sigma, 2) ||
-        !all_finite(&L.BF[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
+        !all_finite(&L.R[0][0], 4) || !all_finite(&L.G[0][0], 4) ||
+        !all_finite(&L.BFn[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
         !(L.sig_hat[1 - big] > 0) || !isfinite(L.kappa) || !isfinite(L.inv_sigma_ref))
         return -1;
     *out = L;
@@ -145,7 +209,7 @@ int oc_law_init(oc_law *out, const oc_params *p) {
  * that an evaluation costs one square root and one division; its products
  * (up to W^7) stay finite while W < 1e40, which the caller guarantees
  * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest. */
-static double solve_dgamma(const double a_raw[2], double sq, double n_tr, double N,
+static inline double solve_dgamma(const double a_raw[2], double sq, double n_tr, double N,
                            const double sh[2], double p[2], double *inv_norm) {
     /* The divisions depend only on the trial, not on its square root:
      * they run beside it.  Moments are taken over a_i^2 / |a|^2. */
@@ -260,39 +324,49 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
     matvec(L->P, du, a);
     a[0] += start->a[0];
     a[1] += start->a[1];
-    const double n_tr = oc_norm2(a[0], a[1]);
+    const double n_tr = norm2(a[0], a[1]);
 
     /* A committed force lies on or inside the yield surface to a few
      * rounding errors of N; such a trial sticks, so held inputs stick. */
     if (n_tr <= N * (1.0 + 8 * DBL_EPSILON)) {
         out->contact = OC_STICK;
-        matvec(L->Minv, a, out->q);
+        force_of(L, a, out->q);
         out->next.a[0] = a[0];
         out->next.a[1] = a[1];
         return;
     }
 
     out->contact = OC_SLIP;
-    double ap[2];
+    double ap[2], qtr20[2] = {0.0, 0.0};
     if (L->p.rule == OC_RULE_EQ20) {
         /* q = N y / |y|_F, y = B F q_tr; y is scaled to unit size first so
          * that its F-norm cannot overflow (q is homogeneous of degree 0 in y). */
-        double qtr[2], y[2], Fy[2];
-        matvec(L->Minv, a, qtr);
-        matvec(L->BF, qtr, y);
-        const double ym = fmax(fabs(y[0]), fabs(y[1]));
-        y[0] /= ym;
-        y[1] /= ym;
+        double qn[2], y[2], Fy[2];
+        force_of(L, a, qtr20);
+        const double iqm = 1.0 / fmax(fabs(qtr20[0]), fabs(qtr20[1]));
+        qn[0] = qtr20[0] * iqm;
+        qn[1] = qtr20[1] * iqm;
+        matvec(L->BFn, qn, y);
+        const double iym = 1.0 / fmax(fabs(y[0]), fabs(y[1]));
+        y[0] *= iym;
+        y[1] *= iym;
         matvec(L->F, y, Fy);
-        const double ny = sqrt(y[0] * Fy[0] + y[1] * Fy[1]);
-        const double q[2] = {N * (y[0] / ny), N * (y[1] / ny)};
+        const double Nny = N / sqrt(y[0] * Fy[0] + y[1] * Fy[1]);
+        const double q[2] = {Nny * y[0], Nny * y[1]};
         matvec(L->Y, q, ap);
     } else {
-        /* The fast solve needs W <= kappa / rho^2 < 1e40 and |a|^2 finite. */
-        const double sq = a[0] * a[0] + a[1] * a[1];
+        /* The fast solve needs W <= kappa / rho^2 < 1e40 and |a|^2 in range;
+         * outside that range it runs on the trial scaled by a power of two,
+         * which gives the same bits as the unscaled one would without
+         * overflow: the result does not depend on the units. */
         double inv_np, y;
-        if (L->kappa <= 1e20 && n_tr <= 1e10 * N && sq >= 0x1p-900 && sq <= 0x1p900) {
-            y = solve_dgamma(a, sq, n_tr, N, L->sig_hat, ap, &inv_np);
+        if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
+            const double sq = a[0] * a[0] + a[1] * a[1];
+            double sc = 1.0;
+            if (!(sq >= 0x1p-900 && sq <= 0x1p900)) pow2_of(n_tr, &sc);
+            const double as[2] = {a[0] * sc, a[1] * sc};
+            y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc, L->sig_hat,
+                             ap, &inv_np);
         } else {
             const double an[2] = {a[0] / n_tr, a[1] / n_tr};
             y = solve_dgamma_far(an, L->sig_hat, N / n_tr, ap, &inv_np);
@@ -326,16 +400,21 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
     }
     out->next.a[0] = ap[0];
     out->next.a[1] = ap[1];
-    matvec(L->Minv, ap, out->q);
+    force_of(L, ap, out->q);
     double e_new[2];
     matvec(L->Binv, out->q, e_new);
     out->next.s[0] = u[0] - e_new[0];
     out->next.s[1] = u[1] - e_new[1];
     if (L->p.rule == OC_RULE_EQ20) {
         /* The explicit rule is not derived from a dissipation potential:
-         * its q . ds can come out negative; dissipated energy never does. */
-        const double dE = out->q[0] * (out->next.s[0] - start->s[0]) +
-                          out->q[1] * (out->next.s[1] - start->s[1]);
+         * its q . ds can come out negative; dissipated energy never does.
+         * ds = B^-1 (q_tr - q), formed from forces rather than as a
+         * difference of slips, which may be large and nearly equal. */
+        double dq[2], ds[2];
+        dq[0] = qtr20[0] - out->q[0];
+        dq[1] = qtr20[1] - out->q[1];
+        matvec(L->Binv, dq, ds);
+        const double dE = out->q[0] * ds[0] + out->q[1] * ds[1];
         out->next.energy = start->energy + (dE > 0 ? dE : 0.0);
     }
 }
@@ -356,28 +435,32 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
     } else {
         if (L->p.rule == OC_RULE_EQ20) {
             /* q = N y / |y|_F with y = B F q_tr, dq_tr/du = B.  The
-             * derivative of y/|y|_F is homogeneous of degree -1 in y: taken
-             * at y / max|y_i| and divided by that scale. */
+             * derivative of y/|y|_F is homogeneous of degree -1 in y: taken at
+             * the normalized y'' = BFn (q_tr / qm) / ym, and divided by the
+             * scales qm ym (the scale of BFn cancels). */
             const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
             double a[2], qtr[2], y[2], Fy[2];
             matvec(L->P, du, a);
             a[0] += start->a[0];
             a[1] += start->a[1];
-            matvec(L->Minv, a, qtr);
-            matvec(L->BF, qtr, y);
+            force_of(L, a, qtr);
+            const double qm = fmax(fabs(qtr[0]), fabs(qtr[1]));
+            qtr[0] /= qm;
+            qtr[1] /= qm;
+            matvec(L->BFn, qtr, y);
             const double ym = fmax(fabs(y[0]), fabs(y[1]));
             y[0] /= ym;
             y[1] /= ym;
             matvec(L->F, y, Fy);
             const double ny = sqrt(y[0] * Fy[0] + y[1] * Fy[1]);
-            double D[2][2], BFs[2][2];
+            double D[2][2], M[2][2];
             for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 2; ++j) {
+                for (int j = 0; j < 2; ++j)
                     D[i][j] = N * ((i == j ? 1.0 : 0.0) - y[i] * Fy[j] / (ny * ny)) / ny;
-                    BFs[i][j] = L->BF[i][j] / ym;
-                }
-            matmul(D, BFs, D);
-            matmul(D, L->B, dq_du);
+            matmul(L->BFn, L->B, M);
+            for (int i = 0; i < 2; ++i)
+                for (int j = 0; j < 2; ++j) M[i][j] = M[i][j] / qm / ym;
+            matmul(D, M, dq_du);
             dq_dN[0] = y[0] / ny;
             dq_dN[1] = y[1] / ny;
             const double dE = st->q[0] * (st->next.s[0] - start->s[0]) +

@@ -43,8 +43,13 @@ typedef struct {
     double P[2][2];
     double Minv[2][2]; /* q = Minv a */
     double sigma[2];   /* eigenvalues of S */
-    double BF[2][2];   /* for eq. (20) */
+    double BFn[2][2];  /* B F / max|B F|: the direction of eq. (20) */
     double Y[2][2];    /* a = Y q: yield coordinates of a force */
+    /* q = Minv a, factored as G R a with the rotation R = Q(beta)^T V and
+     * G = Q(beta) diag(mu1, mu2): each friction-axis component of q is then
+     * exact to rounding, however different mu1 and mu2 are (the product Minv
+     * forms the smaller one by cancelling terms of the size of the larger). */
+    double R[2][2], G[2][2];
     double sigma_ref;  /* the larger sigma: the slip solve works in dgamma sigma_ref */
     double inv_sigma_ref;
     double sig_hat[2]; /* sigma_i / sigma_ref, in (0, 1] */

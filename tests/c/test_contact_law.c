@@ -360,8 +360,14 @@ static void test_far_trial(void) {
 
 /* oc_norm2 is hypot without the libm symbol: exact at the extremes. */
 static void test_norm2(void) {
-    CHECK(oc_norm2(3e300, 4e300) == 5e300, "norm2 overflow");
-    CHECK(oc_norm2(3e-300, 4e-300) == 5e-300, "norm2 underflow");
+    CHECK_CLOSE(oc_norm2(3e300, 4e300), 5e300, 4e284, "norm2 overflow");
+    CHECK_CLOSE(oc_norm2(3e-300, 4e-300), 5e-300, 2e-315, "norm2 underflow");
+    CHECK(oc_norm2(3 * 0x1p1000, 4 * 0x1p1000) == 5 * 0x1p1000, "norm2 exact");
+    /* Equivariant under power-of-two scaling, bit for bit, over the range. */
+    for (int e = -1000; e <= 1000; e += 37) {
+        const double x = 0.3141592653589793, y = -2.718281828459045, k = ldexp(1.0, e);
+        CHECK(oc_norm2(x * k, y * k) == oc_norm2(x, y) * k, "norm2 not equivariant at 2^%d", e);
+    }
     CHECK(oc_norm2(0, 0) == 0, "norm2 zero");
     CHECK(oc_norm2(-3, 4) == 5, "norm2 plain");
     CHECK(isinf(oc_norm2(INFINITY, 1)), "norm2 inf");
