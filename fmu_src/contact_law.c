@@ -160,6 +160,8 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     L.G[1][0] = sb_ * p->mu1;
     L.G[1][1] = cb * p->mu2;
     matmul(Qbt, V, L.R);
+    matmul(L.Binv, L.G, L.K);
+    matmul(L.K, L.R, L.K);
     matmul(Vt, Fh, L.Y);
     matmul(L.Y, L.B, L.P);
     matmul(Fhinv, V, L.Minv);
@@ -184,7 +186,7 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     if (!all_finite(&L.B[0][0], 4) || !all_finite(&L.Binv[0][0], 4) ||
         !all_finite(&L.F[0][0], 4) || !all_finite(&L.P[0][0], 4) ||
         !all_finite(&L.Minv[0][0], 4) || !all_finite(&L.Y[0][0], 4) || !all_finite(L.sigma, 2) ||
-        !all_finite(&L.R[0][0], 4) || !all_finite(&L.G[0][0], 4) ||
+        !all_finite(&L.R[0][0], 4) || !all_finite(&L.G[0][0], 4) || !all_finite(&L.K[0][0], 4) ||
         !all_finite(&L.BFn[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
         !(L.sig_hat[1 - big] > 0) || !isfinite(L.kappa) || !isfinite(L.inv_sigma_ref))
         return -1;
@@ -337,48 +339,63 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
     }
 
     out->contact = OC_SLIP;
-    double ap[2], qtr20[2] = {0.0, 0.0};
+    /* Both rules end in a direction p in yield coordinates and the radial
+     * scale that puts it on the yield surface; the elastic displacement is
+     * formed from p while the scale is being computed. */
+    double p[2], scale, qtr20[2] = {0.0, 0.0}, y = 0.0;
     if (L->p.rule == OC_RULE_EQ20) {
         /* q = N y / |y|_F, y = B F q_tr; y is scaled to unit size first so
          * that its F-norm cannot overflow (q is homogeneous of degree 0 in y). */
-        double qn[2], y[2], Fy[2];
+        double qn[2], yv[2], Fy[2];
         force_of(L, a, qtr20);
         const double iqm = 1.0 / fmax(fabs(qtr20[0]), fabs(qtr20[1]));
         qn[0] = qtr20[0] * iqm;
         qn[1] = qtr20[1] * iqm;
-        matvec(L->BFn, qn, y);
-        const double iym = 1.0 / fmax(fabs(y[0]), fabs(y[1]));
-        y[0] *= iym;
-        y[1] *= iym;
-        matvec(L->F, y, Fy);
-        const double Nny = N / sqrt(y[0] * Fy[0] + y[1] * Fy[1]);
-        const double q[2] = {Nny * y[0], Nny * y[1]};
-        matvec(L->Y, q, ap);
+        matvec(L->BFn, qn, yv);
+        const double iym = 1.0 / fmax(fabs(yv[0]), fabs(yv[1]));
+        yv[0] *= iym;
+        yv[1] *= iym;
+        matvec(L->F, yv, Fy);
+        const double Nny = N / sqrt(yv[0] * Fy[0] + yv[1] * Fy[1]);
+        const double q[2] = {Nny * yv[0], Nny * yv[1]};
+        matvec(L->Y, q, p);
+        /* on the yield surface exactly, like the implicit rules' states */
+        scale = N / oc_norm2(p[0], p[1]);
     } else {
         /* The fast solve needs W <= kappa / rho^2 < 1e40 and |a|^2 in range;
          * outside that range it runs on the trial scaled by a power of two,
          * which gives the same bits as the unscaled one would without
          * overflow: the result does not depend on the units. */
-        double inv_np, y;
+        double inv_np;
         if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
             const double sq = a[0] * a[0] + a[1] * a[1];
             double sc = 1.0;
             if (!(sq >= 0x1p-900 && sq <= 0x1p900)) pow2_of(n_tr, &sc);
             const double as[2] = {a[0] * sc, a[1] * sc};
             y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc, L->sig_hat,
-                             ap, &inv_np);
+                             p, &inv_np);
         } else {
             const double an[2] = {a[0] / n_tr, a[1] / n_tr};
-            y = solve_dgamma_far(an, L->sig_hat, N / n_tr, ap, &inv_np);
+            y = solve_dgamma_far(an, L->sig_hat, N / n_tr, p, &inv_np);
         }
         out->dgamma = y * L->inv_sigma_ref;
         out->w[0] = 1.0 + y * L->sig_hat[0];
         out->w[1] = 1.0 + y * L->sig_hat[1];
         /* The solve stops within an ulp or two of the yield surface; the
          * radial scaling puts the force on it to rounding. */
-        const double scale = N * inv_np;
-        ap[0] *= scale;
-        ap[1] *= scale;
+        scale = N * inv_np;
+    }
+    double ge[2];
+    matvec(L->K, p, ge);
+    const double ap[2] = {p[0] * scale, p[1] * scale};
+    out->next.a[0] = ap[0];
+    out->next.a[1] = ap[1];
+    /* The force exactly as a stick step from this committed state forms it,
+     * so that held inputs reproduce it bit for bit. */
+    force_of(L, ap, out->q);
+    out->next.s[0] = u[0] - ge[0] * scale;
+    out->next.s[1] = u[1] - ge[1] * scale;
+    if (L->p.rule != OC_RULE_EQ20) {
         /* Dissipation dgamma q.Gq = sum_i dgamma c_i a_i^2 with c_i = 1
          * (associated) or sigma_i^2 (coupled): a sum of products of equal
          * signs, so it is >= 0 by construction, in an order that does not
@@ -390,22 +407,7 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
             dE = ((y * L->sig_hat[0]) * ap[0]) * (L->sigma[0] * ap[0]) +
                  ((y * L->sig_hat[1]) * ap[1]) * (L->sigma[1] * ap[1]);
         out->next.energy = start->energy + dE;
-    }
-    if (L->p.rule == OC_RULE_EQ20) {
-        /* Put the eq. (20) force exactly on the yield surface too, so that
-         * the committed state is one the implicit rules would accept. */
-        const double scale = N / oc_norm2(ap[0], ap[1]);
-        ap[0] *= scale;
-        ap[1] *= scale;
-    }
-    out->next.a[0] = ap[0];
-    out->next.a[1] = ap[1];
-    force_of(L, ap, out->q);
-    double e_new[2];
-    matvec(L->Binv, out->q, e_new);
-    out->next.s[0] = u[0] - e_new[0];
-    out->next.s[1] = u[1] - e_new[1];
-    if (L->p.rule == OC_RULE_EQ20) {
+    } else {
         /* The explicit rule is not derived from a dissipation potential:
          * its q . ds can come out negative; dissipated energy never does.
          * ds = B^-1 (q_tr - q), formed from forces rather than as a

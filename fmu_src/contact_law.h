@@ -50,6 +50,7 @@ typedef struct {
      * exact to rounding, however different mu1 and mu2 are (the product Minv
      * forms the smaller one by cancelling terms of the size of the larger). */
     double R[2][2], G[2][2];
+    double K[2][2];    /* B^-1 G R: the elastic displacement of yield coordinates */
     double sigma_ref;  /* the larger sigma: the slip solve works in dgamma sigma_ref */
     double inv_sigma_ref;
     double sig_hat[2]; /* sigma_i / sigma_ref, in (0, 1] */

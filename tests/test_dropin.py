@@ -266,3 +266,22 @@ def test_libcosim_runs_the_fmu_like_fmpy(version):
             rows.append([o[k] for k in ("T1", "T2", "s1", "s2", "dissipatedEnergy", "contactState")])
     assert np.array_equal(cosim, np.array(rows))
     assert set(cosim[:, 5]) == {0, 1, 2}  # the path opened, stuck and slid
+
+
+def test_cli_runs_the_harness_on_either_fmi_version(tmp_path):
+    """The real command, in a subprocess: --fmi 3 gives the FMI 2.0 results bit for bit."""
+    import json
+    sc = tmp_path / "quick.toml"
+    sc.write_text((ROOT / "scenarios" / "case5.toml").read_text()
+                  .replace("step_deg = 1.0", "step_deg = 15.0").replace("travel_m = 0.2", "travel_m = 0.03"))
+    summaries = {}
+    for v in (2, 3):
+        out = tmp_path / f"out{v}"
+        proc = subprocess.run([sys.executable, "-m", "orthocontact.cli", "run", str(sc), "--out", str(out),
+                               "--fmi", str(v), "--workers", "1"], capture_output=True, text=True, timeout=300)
+        assert proc.returncode == 0, proc.stderr
+        summaries[v] = json.loads((out / "summary.json").read_text())
+        assert summaries[v].pop("fmi_version") == v
+        summaries[v].pop("seconds")
+    assert summaries[2] == summaries[3]
+    assert (tmp_path / "out2" / "sweep.csv").read_text() == (tmp_path / "out3" / "sweep.csv").read_text()

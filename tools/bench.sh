@@ -5,8 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 FMI_DIR=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
 cmake -S . -B build/ctest-release -DOC_BUILD_TESTS=ON -DFMI_HEADERS_DIR="$FMI_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/ctest-release -j2 --target bench_fmi2 >/dev/null
-echo "== C: one step through the FMI calls =="
+cmake --build build/ctest-release -j2 --target bench_fmi2 bench_fmi3 >/dev/null
+echo "== C: one step through the FMI calls (target: slip <= 2x stick) =="
 build/ctest-release/bench_fmi2
+build/ctest-release/bench_fmi3
 echo "== Python: harness vs bare fmpy, sweep scaling =="
 .venv/bin/python benchmarks/bench_harness.py

@@ -48,11 +48,24 @@ def staged_output(out: Path):
     shutil.rmtree(stage, ignore_errors=True)
 
 
-def _run_scenario(sc, out: Path, workers, progress=True) -> dict:
+def _fmu_for(sc, args) -> str:
+    """The scenario's own FMU if it names one, else the installed FMU of the
+    FMI version asked for with --fmi."""
+    from .fmu import find_fmu
+    return sc.fmu or str(find_fmu(fmi_version=args.fmi))
+
+
+def _run_scenario(sc, out: Path, workers, fmu_path, progress=True) -> dict:
     from . import report, sweep
+    from .fmu import fmi_version_of
     if sc.kind == "sweep":
-        return report.sweep_outputs(sc, sweep.run_sweep(sc, workers, progress), out)
-    return report.step_study_outputs(sc, sweep.run_step_study(sc, workers, progress), out)
+        summary = report.sweep_outputs(sc, sweep.run_sweep(sc, workers, progress, fmu_path), out)
+    else:
+        summary = report.step_study_outputs(sc, sweep.run_step_study(sc, workers, progress, fmu_path),
+                                            out)
+    summary["fmi_version"] = fmi_version_of(fmu_path)
+    report.write_json(out / "summary.json", summary)
+    return summary
 
 
 def packaged_scenarios() -> Path:
@@ -66,7 +79,7 @@ def packaged_scenarios() -> Path:
 def cmd_run(args) -> int:
     sc = load(args.scenario)
     with staged_output(args.out) as stage:
-        summary = _run_scenario(sc, stage, args.workers)
+        summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args))
     print(json.dumps({k: summary[k] for k in summary if k in ("scenario", "extremum", "max_deviation_deg",
                                                              "drive_mean_N", "rules")}, indent=1))
     print(f"wrote {args.out}/summary.json")
@@ -85,7 +98,7 @@ def cmd_reproduce(args) -> int:
     with staged_output(args.out) as stage:
         for sc in scenarios:
             (stage / sc.name).mkdir()
-            summary = _run_scenario(sc, stage / sc.name, args.workers)
+            summary = _run_scenario(sc, stage / sc.name, args.workers, _fmu_for(sc, args))
             runs.append((sc, summary))
             rows += report.paper_rows(sc, summary)
         rows += report.calibration_rows()
@@ -100,7 +113,9 @@ def cmd_identify(args) -> int:
     from . import identify
     data = identify.load_data(args.data)
     with staged_output(args.out) as stage:
-        result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers)
+        from .fmu import find_fmu
+        result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
+                              fmu_path=str(find_fmu(fmi_version=args.fmi)))
     print(identify.summary_text(result))
     print(f"wrote {args.out}/identified.json")
     return 0
@@ -113,17 +128,26 @@ def main(argv=None) -> int:
     r.add_argument("scenario")
     r.add_argument("--out", required=True, type=Path)
     r.add_argument("--workers", type=int, default=None, help="worker processes (default: cores)")
+    r.add_argument("--fmi", type=int, choices=(2, 3), default=2,
+                   help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
+                        "both give the same results bit for bit")
     r.set_defaults(func=cmd_run)
     p = sub.add_parser("reproduce", help="run every paper scenario and write report.md")
     p.add_argument("--out", required=True, type=Path)
     p.add_argument("--workers", type=int, default=None)
     p.add_argument("--scenarios", default=None, help="folder of scenario files (default: the packaged ones)")
+    p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
+                   help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
+                        "both give the same results bit for bit")
     p.set_defaults(func=cmd_reproduce)
     i = sub.add_parser("identify", help="identify mu1, mu2, eps ratio and stiffness from measurements")
     i.add_argument("data", type=Path)
     i.add_argument("--out", required=True, type=Path)
     i.add_argument("--workers", type=int, default=None)
     i.add_argument("--no-validate", action="store_true", help="skip the FMU validation runs")
+    i.add_argument("--fmi", type=int, choices=(2, 3), default=2,
+                   help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
+                        "both give the same results bit for bit")
     i.set_defaults(func=cmd_identify)
     args = ap.parse_args(argv)
     if getattr(args, "workers", None) is not None and args.workers < 1:

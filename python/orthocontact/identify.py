@@ -514,7 +514,7 @@ def _start_values(data: MeasurementSet) -> dict:
 
 # -- validation with the FMU ------------------------------------------------------------
 
-def validate_with_fmu(data: MeasurementSet, values: dict, workers=None) -> dict:
+def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path=None) -> dict:
     """Simulates the identified parameters in the rig harness with the FMU at
     the data's orientations (and the ramp) and returns the residuals
     data - simulation."""
@@ -529,7 +529,7 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None) -> dict:
     law = ContactParams(mu1, mu2, ratio * eps2, eps2)
     h = rig.harness()
     angles = sorted(set(np.concatenate([d[:, 0] for d in (data.forces, data.angles) if d is not None])))
-    sims = run_many([(rig.params_at(law, a), h) for a in angles], workers or default_workers(), None,
+    sims = run_many([(rig.params_at(law, a), h) for a in angles], workers or default_workers(), fmu_path,
                     "validation", progress=False)
     sim = dict(zip(angles, sims))
     out = {"rig_mode": rig.mode, "eps_used": {"eps1": ratio * eps2, "eps2": eps2,
@@ -610,20 +610,22 @@ class Identification:
         return out
 
 
-def identify(data: MeasurementSet, validate: bool = True, workers=None) -> Identification:
+def identify(data: MeasurementSet, validate: bool = True, workers=None,
+             fmu_path=None) -> Identification:
     start = _start_values(data)
     fit = joint_fit(data, start)
     mu1, mu2 = fit.values.get("mu1"), fit.values.get("mu2")
     mr = max_rule(data, mu1, mu2)
     e40 = eq40_fit(data, mu1, mu2)
-    val = validate_with_fmu(data, fit.values, workers) if validate else None
+    val = validate_with_fmu(data, fit.values, workers, fmu_path) if validate else None
     return Identification(data, fit, eq1(data), mr, e40, val, start)
 
 
-def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None) -> Identification:
+def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
+        fmu_path=None) -> Identification:
     """identify() and write identified.json, fit.png, identified.md into out."""
     from .report import write_json
-    res = identify(data, validate, workers)
+    res = identify(data, validate, workers, fmu_path)
     write_json(out / "identified.json", res.as_json())
     _figure(res, out / "fit.png")
     (out / "identified.md").write_text(_markdown(res))
