@@ -5,8 +5,10 @@
   orthocontact identify DATA_DIR --out DIR   parameter identification
 
 Exit status: 0 success, 1 a result that does not match the paper, 2 bad
-input (one line on stderr naming the file, the key or row, and what was
-expected).  Output folders are written all at once or not at all.
+input (one line on stderr naming the file, option, key or row, and what was
+expected), 130 interrupted (Ctrl-C, SIGINT or SIGTERM).  Arguments and the
+output folder are checked before any work; the output folder is written all at
+once or not at all.
 """
 from __future__ import annotations
 
@@ -15,31 +17,59 @@ import contextlib
 import json
 import os
 import shutil
+import signal
 import sys
 import tempfile
 import time
 from pathlib import Path
 
+from .errors import InputError
 from .scenarios import ScenarioError, load
 
+__all__ = ["main", "InputError"]
 
-class InputError(Exception):
-    """Bad user input: str(e) is the one-line message."""
+
+def check_output_folder(out: Path, option: str = "--out") -> None:
+    """Raises InputError, naming the user's path, unless `out` is (or can be
+    created as) a writable folder.  Leaves nothing behind."""
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"{option} {out}: is a file; expected a folder to write the results into")
+    probe = out
+    while not probe.exists():
+        if probe.parent == probe:
+            break
+        probe = probe.parent
+    if probe != out and not probe.is_dir():
+        raise InputError(f"{option} {out}: {probe} is a file, so no folder can be made under it")
+    # access() says yes to root everywhere, /proc included: try instead.
+    try:
+        tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=probe).cleanup()
+    except OSError as e:
+        raise InputError(f"{option} {out}: {probe} is not writable ({e.strerror})") from None
 
 
 @contextlib.contextmanager
 def staged_output(out: Path):
     """A scratch folder beside `out`; its files move into `out` only if the
-    block completes, so a failure leaves nothing half-written in `out`."""
+    block completes, so a failure or an interrupt leaves nothing behind: not
+    the scratch folder, nor parent folders made for it, nor a half-written `out`."""
     out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
+    made = []
+    for parent in reversed(out.parents):
+        if not parent.exists():
+            parent.mkdir()
+            made.append(parent)
     stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out.parent))
     try:
         yield stage
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
+        for parent in reversed(made):
+            with contextlib.suppress(OSError):
+                parent.rmdir()
         raise
-    out.mkdir(parents=True, exist_ok=True)
+    out.mkdir(exist_ok=True)
     for item in stage.iterdir():
         target = out / item.name
         if target.is_dir() and not target.is_symlink():
@@ -121,39 +151,110 @@ def cmd_identify(args) -> int:
     return 0
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="orthocontact", description=__doc__.split("\n\n")[0])
-    sub = ap.add_subparsers(dest="cmd", required=True)
-    r = sub.add_parser("run", help="run one scenario file")
-    r.add_argument("scenario")
-    r.add_argument("--out", required=True, type=Path)
-    r.add_argument("--workers", type=int, default=None, help="worker processes (default: cores)")
-    r.add_argument("--fmi", type=int, choices=(2, 3), default=2,
-                   help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
-                        "both give the same results bit for bit")
-    r.set_defaults(func=cmd_run)
-    p = sub.add_parser("reproduce", help="run every paper scenario and write report.md")
-    p.add_argument("--out", required=True, type=Path)
-    p.add_argument("--workers", type=int, default=None)
-    p.add_argument("--scenarios", default=None, help="folder of scenario files (default: the packaged ones)")
-    p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
-                   help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
-                        "both give the same results bit for bit")
-    p.set_defaults(func=cmd_reproduce)
-    i = sub.add_parser("identify", help="identify mu1, mu2, eps ratio and stiffness from measurements")
-    i.add_argument("data", type=Path)
-    i.add_argument("--out", required=True, type=Path)
-    i.add_argument("--workers", type=int, default=None)
-    i.add_argument("--no-validate", action="store_true", help="skip the FMU validation runs")
-    i.add_argument("--fmi", type=int, choices=(2, 3), default=2,
-                   help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
-                        "both give the same results bit for bit")
-    i.set_defaults(func=cmd_identify)
-    args = ap.parse_args(argv)
-    if getattr(args, "workers", None) is not None and args.workers < 1:
-        ap.error("--workers must be >= 1")
+def _workers(text: str) -> int:
     try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number of worker processes >= 1, got {text!r}")
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number of worker processes >= 1, got {n}")
+    return n
+
+
+def _version_text() -> str:
+    from . import __version__
+    from .fmu import find_fmu, fmi_version_of
+    lines = [f"orthocontact {__version__}"]
+    for v in (2, 3):
+        try:
+            path = find_fmu(fmi_version=v)
+            lines.append(f"  FMI {fmi_version_of(path)}.0 FMU: {path}")
+        except (FileNotFoundError, OSError, ValueError) as e:
+            lines.append(f"  FMI {v}.0 FMU: not found ({e})")
+    return "\n".join(lines)
+
+
+class _Version(argparse.Action):
+    def __init__(self, option_strings, dest, **kw):
+        super().__init__(option_strings, dest, nargs=0, help=kw.get("help"))
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(_version_text())
+        parser.exit(0)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="orthocontact",
+        description="The coupled orthotropic adhesion-friction contact law (Konyukhov & "
+                    "Schweizerhof 2007) as FMI 2.0/3.0 FMUs: run the paper's carriage/block rig "
+                    "on scenario files, reproduce the paper, identify parameters from "
+                    "measurements.",
+        epilog="Exit status: 0 success, 1 a result that does not match the paper, 2 bad input "
+               "(one line naming the file or option), 130 interrupted.  Angles in scenario and "
+               "data files are in degrees, counterclockwise from the driving axis X1.")
+    ap.add_argument("--version", action=_Version, help="print the package version and the "
+                    "installed FMUs (FMI 2.0 and 3.0), then exit")
+    sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
+
+    def common(p, out_help):
+        p.add_argument("--out", required=True, type=Path, metavar="DIR", help=out_help)
+        p.add_argument("--workers", type=_workers, default=None, metavar="N",
+                       help="worker processes for sweeps (default: the number of cores, at most 8)")
+        p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
+                       help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
+                            "both give the same results bit for bit")
+
+    r = sub.add_parser("run", help="run one scenario file (a sweep over the mat/axis angle in "
+                                   "degrees, or a step-size study)",
+                       description="Run one scenario file and write summary.json, CSV tables, "
+                                   "PNG figures into DIR.")
+    r.add_argument("scenario", metavar="SCENARIO", help="scenario file (TOML; format in "
+                   "scenarios/README.md); angles in degrees, forces in N, lengths in m")
+    common(r, "output folder: created if missing, files replaced; written only when the run "
+              "completes")
+    r.set_defaults(func=cmd_run)
+    p = sub.add_parser("reproduce", help="run every paper scenario and write report.md",
+                       description="Run every scenario of the paper and write report.md beside "
+                                   "one folder per scenario into DIR.")
+    common(p, "output folder for report.md, summary.json and one folder per scenario; written "
+              "only when everything completes")
+    p.add_argument("--scenarios", default=None, metavar="FOLDER",
+                   help="folder of scenario files (*.toml; default: the packaged ones)")
+    p.set_defaults(func=cmd_reproduce)
+    i = sub.add_parser("identify", help="identify mu1, mu2, the stiffness ratio and the absolute "
+                                        "stiffness [N/m] from measurements",
+                       description="Identify the law's parameters from a measurement folder (mu1, "
+                                   "mu2 [-], eps1/eps2 [-], eps1, eps2 [N/m]) and write "
+                                   "identified.json, identified.md, fit.png into DIR.")
+    i.add_argument("data", type=Path, metavar="DATA_DIR",
+                   help="measurement folder: rig.toml and any of forces.csv (alpha_deg,force_N), "
+                        "angles.csv (alpha_deg,phi_deg), ramp.csv (x1_m,force_N); angles in "
+                        "degrees, forces in N, travel in m")
+    common(i, "output folder: created if missing; written only when the fit completes")
+    i.add_argument("--no-validate", action="store_true",
+                   help="skip the validation runs of the identified parameters on the FMU")
+    i.set_defaults(func=cmd_identify)
+    return ap
+
+
+def _interrupt(signum, frame):
+    raise KeyboardInterrupt
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    # SIGTERM (a job runner, an IDE's stop button) ends a run like Ctrl-C.
+    with contextlib.suppress(ValueError):  # not in the main thread: leave it
+        signal.signal(signal.SIGTERM, _interrupt)
+    out = getattr(args, "out", None)
+    try:
+        if out is not None:
+            check_output_folder(out)
         return args.func(args)
+    except KeyboardInterrupt:
+        print(f"orthocontact: interrupted; nothing written to {out}", file=sys.stderr)
+        return 130
     except (ScenarioError, InputError) as e:
         print(f"orthocontact: error: {e}", file=sys.stderr)
         return 2

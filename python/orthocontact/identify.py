@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from . import closed_forms as cf
-from .cli import InputError
+from .errors import InputError
 from .fmu import RULES, ContactParams
 
 if sys.version_info >= (3, 11):

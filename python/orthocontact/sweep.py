@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+import signal
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -58,7 +59,26 @@ _worker_fmu: ContactFMU | None = None
 
 def _init_worker(fmu_path):
     global _worker_fmu
+    # The main process decides about interrupts: Ctrl-C reaches the whole
+    # process group, and a worker must not die with its own traceback.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     _worker_fmu = ContactFMU(fmu_path, instance_name=f"worker{os.getpid()}")
+
+
+def _stop_pool(ex: ProcessPoolExecutor) -> None:
+    """Ends the pool now: queued tasks are cancelled and the worker processes
+    terminated (shutdown(wait=True) would first run every queued task)."""
+    procs = list((getattr(ex, "_processes", None) or {}).values())
+    ex.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        if p.is_alive():
+            p.terminate()
+    for p in procs:
+        p.join(timeout=5)
+        if p.is_alive():
+            p.kill()
+            p.join(timeout=5)
 
 
 def _run_one(task, fmu: ContactFMU | None = None):
@@ -118,13 +138,18 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
     # fork starts workers in milliseconds; each creates its own FMU instance
     # after the fork, so no FMU state is shared.  spawn where fork is absent.
     method = "fork" if sys.platform.startswith("linux") else "spawn"
-    with ProcessPoolExecutor(max_workers=workers, mp_context=get_context(method),
-                             initializer=_init_worker, initargs=(fmu_path,)) as ex:
+    ex = ProcessPoolExecutor(max_workers=workers, mp_context=get_context(method),
+                             initializer=_init_worker, initargs=(fmu_path,))
+    try:
         futures = [ex.submit(_run_one, t) for t in indexed]
         for fut in as_completed(futures):
             i, phi, drive = fut.result()
             out[i] = (phi, drive)
             bar.update()
+    except BaseException:
+        _stop_pool(ex)
+        raise
+    ex.shutdown()
     return out
 
 
