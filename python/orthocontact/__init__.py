@@ -1,6 +1,17 @@
 """orthocontact: the coupled orthotropic adhesion-friction contact law of
-Konyukhov & Schweizerhof as an FMI co-simulation FMU, a rig harness that
-reproduces the paper's analyses, and parameter identification.
+Konyukhov & Schweizerhof as FMI 2.0 and 3.0 co-simulation FMUs, a rig harness
+that reproduces the paper's analyses, and parameter identification.
+
+The public API (see README, "Python API"):
+
+    ContactFMU            one instance of the contact FMU (FMI 2.0 or 3.0)
+    ContactParams         the law's parameters; angles in rad, or
+                          ContactParams.from_degrees(...)
+    find_fmu              the installed FMU of an FMI version
+    Rig, run_rig          the carriage/block rig and one run of it (RigResult)
+    load_scenario         read and validate a scenario file (degrees, N, m)
+    load_measurements     read and validate a measurement folder
+    identify_parameters   identification from a measurement folder or set
 
 Modules, one job each:
     fmu           -- access to the OrthotropicContact FMU through fmpy
@@ -10,7 +21,36 @@ Modules, one job each:
     sweep         -- orientation sweeps over worker processes
     report        -- CSV/JSON tables, PNG figures, Markdown reports
     identify      -- parameter identification with casadi
+    errors        -- the one-line errors the command reports
     cli           -- the `orthocontact` command
 """
 
 __version__ = "0.2.0"
+
+from .fmu import ContactFMU, ContactParams, find_fmu  # noqa: E402
+from .rig import Rig, RigResult  # noqa: E402
+from .rig import run as run_rig  # noqa: E402
+from .scenarios import load as load_scenario  # noqa: E402
+
+
+def load_measurements(folder):
+    """Reads and validates a measurement folder (rig.toml and any of
+    forces.csv, angles.csv, ramp.csv; angles in degrees, forces in N, travel in
+    m).  Raises orthocontact.errors.InputError with a one-line message."""
+    from .identify import load_data
+    return load_data(folder)
+
+
+def identify_parameters(data, validate: bool = True, workers=None, fmi_version: int = 2):
+    """Identifies mu1, mu2, the stiffness ratio and (with a ramp) the absolute
+    stiffness [N/m] from a measurement folder or a set from load_measurements.
+    Returns an Identification; .as_json() gives the values, standard errors and
+    95 % intervals (what the command writes to identified.json)."""
+    from .identify import MeasurementSet, identify
+    if not isinstance(data, MeasurementSet):
+        data = load_measurements(data)
+    return identify(data, validate, workers, str(find_fmu(fmi_version=fmi_version)))
+
+
+__all__ = ["ContactFMU", "ContactParams", "find_fmu", "Rig", "RigResult", "run_rig",
+           "load_scenario", "load_measurements", "identify_parameters", "__version__"]

@@ -216,7 +216,7 @@ def eps_ratio_from_r(r: float, mu1: float, mu2: float) -> float:
 
 def isotropic_eps_ratio(mu1: float, mu2: float) -> float:
     """eps1/eps2 that makes the mat's motion geometrically isotropic (r = 1):
-    mu2/mu1 (erratum 1 of the model notes: not mu1/mu2 as sec. 4.5 says)."""
+    mu2/mu1 (docs/model-notes.md, erratum 1: not mu1/mu2 as sec. 4.5 says)."""
     return mu2 / mu1
 
 
@@ -233,7 +233,7 @@ def eq40_objective(r2: float, tan_alpha, tan_phi) -> float:
 def eq41_r2(tan_alpha, tan_phi) -> float:
     """The paper's published closed form eq. (41) for r^2 (its tan beta_k is
     tan_alpha here, as in eq. 40).  It is not the minimiser of eq. (40)
-    (model notes, erratum 3); kept to show the difference."""
+    (docs/model-notes.md, erratum 4); kept to show the difference."""
     tb = np.asarray(tan_alpha, dtype=float)
     tphi = np.asarray(tan_phi, dtype=float)
     num = np.sum(tb * (1 + tb**2) * (tb - tphi))

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import ctypes
 import dataclasses
+import math
 import os
 from dataclasses import dataclass
 from functools import partial
@@ -65,6 +66,9 @@ class ContactParams:
     alpha      angle of adhesion axis 1 from X1, counterclockwise [rad]
     beta       angle of friction axis 1 from X1, counterclockwise [rad]
     rule       "associated", "coupled" or "eq20"
+
+    The angles are in radians, as the FMU takes them; ContactParams.from_degrees
+    takes degrees, as scenario files do.  Invalid values raise ValueError.
     """
     mu1: float
     mu2: float
@@ -73,6 +77,37 @@ class ContactParams:
     alpha: float = 0.0
     beta: float = 0.0
     rule: str = "coupled"
+
+    def __post_init__(self):
+        if self.rule not in RULES:
+            raise ValueError(f"ContactParams: rule must be one of {', '.join(map(repr, RULES))}, "
+                             f"got {self.rule!r}")
+        for name in ("mu1", "mu2", "eps1", "eps2"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                raise ValueError(f"ContactParams: {name} must be a finite number > 0, got {v!r}")
+        for name in ("alpha", "beta"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise ValueError(f"ContactParams: {name} [rad] must be a finite number, got {v!r}")
+
+    @classmethod
+    def from_degrees(cls, mu1: float, mu2: float, eps1: float, eps2: float,
+                     alpha_deg: float = 0.0, beta_deg: float = 0.0,
+                     rule: str = "coupled") -> "ContactParams":
+        """The same parameters with the axis angles in degrees (as scenario
+        files give them): alpha_deg, beta_deg counterclockwise from X1."""
+        return cls(mu1, mu2, eps1, eps2, math.radians(alpha_deg), math.radians(beta_deg), rule)
+
+    @property
+    def alpha_deg(self) -> float:
+        """alpha in degrees."""
+        return math.degrees(self.alpha)
+
+    @property
+    def beta_deg(self) -> float:
+        """beta in degrees."""
+        return math.degrees(self.beta)
 
     def replace(self, **kw) -> "ContactParams":
         return dataclasses.replace(self, **kw)

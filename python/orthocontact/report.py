@@ -23,14 +23,46 @@ def _plt():
     return plt
 
 
-def _finish(fig, ax, path: Path, title: str, legend_title: str | None = None) -> None:
-    """The common end of every figure: title, grid, legend, file, close."""
+def _finish(fig, ax, path: Path, title: str, legend_title: str | None = None,
+            outside: bool = False) -> None:
+    """The common end of every figure: title, grid, legend, file, close.
+    outside: the legend goes right of the axes, where it cannot cover data."""
     ax.set_title(title, fontsize=10)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, title=legend_title)
+    if outside:
+        ax.legend(fontsize=8, title=legend_title, title_fontsize=8, loc="upper left",
+                  bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    else:
+        ax.legend(fontsize=8, title=legend_title, title_fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     _plt().close(fig)
+
+
+# Lines that lie on top of each other stay distinguishable: each curve gets its
+# own marker and dash pattern besides its colour.
+_MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*", "<", ">")
+_DASHES = ("-", "--", "-.", ":")
+
+
+def _style(i: int, n_points: int, n_lines: int = 8) -> dict:
+    """Curve i of n_lines: colour, marker, dash pattern, and markers staggered
+    along the curve so that identical curves show every one of them."""
+    every = max(1, n_points // 8)
+    return {"marker": _MARKERS[i % len(_MARKERS)], "linestyle": _DASHES[i % len(_DASHES)],
+            "markevery": ((i * every) // max(n_lines, 1) % every, every), "ms": 4,
+            "color": f"C{i % 10}"}
+
+
+def _swept_label(sc: Scenario) -> str:
+    """What the swept angle a is, in terms of the law's axes."""
+    def rel(off):
+        d = math.degrees(off)
+        return "a" if abs(d) < 1e-12 else f"a {d:+g}°"
+    return f"swept angle a: α = {rel(sc.alpha_offset)}, β = {rel(sc.beta_offset)}"
+
+
+FLAT_DEG = 1e-9  # a closed form below this everywhere is flat: no extremum
 
 
 def write_csv(path: Path, header: list[str], rows) -> None:
@@ -69,38 +101,49 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path) -> dict:
             label=f"closed form ({sc.closed_form})")
     ax.plot(res.angles_deg, res.phi_deg, "o", ms=3.5, color="C0", label=f"rig + FMU ({sc.rig.mode})")
     e = res.extremum
-    ax.plot([e["angle_deg"]], [e["phi_deg"]], "*", ms=12, color="C3",
-            label=f"extremum {e['phi_deg']:.2f}° at {e['angle_deg']:.2f}°")
-    ax.set_xlabel(f"swept angle [deg]   (α = angle {math.degrees(sc.alpha_offset):+g}°, "
-                  f"β = angle {math.degrees(sc.beta_offset):+g}°)")
+    closed_ext = _closed_extremum(sc, res)
+    # Flat when the paper's closed form is: then there is no extremum to show,
+    # however far a short dynamic run has settled.
+    flat = abs(closed_ext["phi_deg"]) < FLAT_DEG
+    if not flat:
+        ax.plot([e["angle_deg"]], [e["phi_deg"]], "*", ms=12, color="C3",
+                label=f"extremum {e['phi_deg']:.2f}° at {e['angle_deg']:.2f}°")
+    ax.set_xlabel(f"{_swept_label(sc)} [deg]")
     ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
     _finish(fig, ax, out / "phi_vs_angle.png", sc.title)
 
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for a, r in res.trajectories.items():
-        ax.plot(r.x1 * 1e3, r.x2 * 1e3, label=f"{a:g}°")
+    legend_title = _swept_label(sc).replace("swept angle a: ", "a, with ")
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for i, (a, r) in enumerate(res.trajectories.items()):
+        ax.plot(r.x1 * 1e3, r.x2 * 1e3, label=f"a = {a:g}°",
+                **_style(i, len(r.x1), len(res.trajectories)))
     ax.set_xlabel("x1 [mm] (driving direction)")
     ax.set_ylabel("x2 [mm]")
     ax.set_aspect("equal", adjustable="datalim")
-    _finish(fig, ax, out / "trajectories.png", f"{sc.title}: block trajectories", "angle")
+    _finish(fig, ax, out / "trajectories.png", f"{sc.title}: block trajectories", legend_title,
+            outside=True)
 
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for a, r in res.trajectories.items():
-        ax.plot(r.x1 * 1e3, r.drive, label=f"{a:g}°")
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for i, (a, r) in enumerate(res.trajectories.items()):
+        ax.plot(r.x1 * 1e3, r.drive, label=f"a = {a:g}°",
+                **_style(i, len(r.x1), len(res.trajectories)))
     ax.set_xlabel("travel x1 [mm]")
     ax.set_ylabel("driving force (sensor) [N]")
-    _finish(fig, ax, out / "force_vs_travel.png", f"{sc.title}: driving force", "angle")
+    _finish(fig, ax, out / "force_vs_travel.png", f"{sc.title}: driving force", legend_title,
+            outside=True)
 
     summary = {
         "scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
         "rule": sc.law.rule, "n_angles": int(len(res.angles_deg)), "workers": res.workers,
         "seconds": round(res.seconds, 3),
-        "extremum": {"angle_deg": e["angle_deg"], "phi_deg": e["phi_deg"]},
-        "extremum_refined": bool(e.get("refined", False)),
+        # a flat curve (the closed form is zero everywhere) has no extremum to report
+        "extremum": None if flat else {"angle_deg": e["angle_deg"], "phi_deg": e["phi_deg"]},
+        "flat": flat,
+        "extremum_refined": bool(e.get("refined", False)) and not flat,
         "grid_extremum": res.grid_extremum,
         "max_abs_phi_deg": float(np.max(np.abs(res.phi_deg))),
         "closed_form": sc.closed_form,
-        "closed_form_extremum": _closed_extremum(sc, res),
+        "closed_form_extremum": closed_ext,
         "max_deviation_deg": res.max_deviation_deg,
         "angle_convention": "counterclockwise from X1; phi = atan(dx2/dx1) of the fitted path",
     }
@@ -138,12 +181,15 @@ def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path) -> dict:
     rules = list(dict.fromkeys(r["rule"] for r in res.rows))
     for i, rule in enumerate(rules):
         rs = [r for r in res.rows if r["rule"] == rule]
-        ax.plot([r["step_s"] for r in rs], [r["phi_deg"] for r in rs], "o-", color=f"C{i}", label=rule)
-        ax.axhline(rs[0]["phi_closed_deg"], color=f"C{i}", ls=":", lw=1)
+        st = _style(i, len(rs))
+        ax.plot([r["step_s"] for r in rs], [r["phi_deg"] for r in rs], color=st["color"],
+                marker=st["marker"], ls="-", label=f"{rule}: FMU in the rig")
+        ax.axhline(rs[0]["phi_closed_deg"], color=st["color"], ls=":", lw=1.2,
+                   label=f"{rule}: closed form")
     ax.set_xscale("log")
     ax.set_xlabel("communication step [s]")
-    ax.set_ylabel("steady trajectory angle φ [deg]")
-    _finish(fig, ax, out / "step_study.png", f"{sc.title} (dotted: closed form)")
+    ax.set_ylabel("steady trajectory angle φ [deg] (counterclockwise)")
+    _finish(fig, ax, out / "step_study.png", sc.title, "rule (colour)", outside=True)
     per_rule = {}
     for rule in rules:
         rs = [r for r in res.rows if r["rule"] == rule]
@@ -233,7 +279,9 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
     lines = ["# orthocontact: reproduction of Konyukhov & Schweizerhof (2007)", "",
              f"Every scenario of the paper run through the OrthotropicContact FMU in the rig "
              f"harness ({seconds:.0f} s). Angles are counterclockwise from the driving axis X1; "
-             "where the paper counts φ the other way the magnitudes are compared.", "",
+             "where the paper counts φ the other way the magnitudes are compared. Conventions and "
+             "the paper's errata these results depend on: docs/model-notes.md in the repository.",
+             "",
              "| scenario | quantity | paper | here | difference | tolerance | match |",
              "|---|---|---|---|---|---|---|"]
     for r in rows:
@@ -250,11 +298,15 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
             lines += [sc.description, ""]
         if sc.kind == "sweep":
             e = s["extremum"]
-            lines.append(f"- mode {s['mode']}, rule {s['rule']}, {s['n_angles']} angles; extremum "
-                         f"φ = {e['phi_deg']:.3f}° at {e['angle_deg']:.3f}°; closed form "
+            if e is None:  # a flat curve has no extremum
+                shape = (f"flat: |φ| ≤ {s['max_abs_phi_deg']:.1e}° over the sweep (closed form "
+                         f"({s['closed_form']}) likewise)")
+            else:
+                shape = (f"extremum φ = {e['phi_deg']:.3f}° at {e['angle_deg']:.3f}°; closed form "
                          f"({s['closed_form']}) {s['closed_form_extremum']['phi_deg']:.3f}° at "
-                         f"{s['closed_form_extremum']['angle_deg']:.3f}°; largest deviation from "
-                         f"the closed form {s['max_deviation_deg']:.2e}°.")
+                         f"{s['closed_form_extremum']['angle_deg']:.3f}°")
+            lines.append(f"- mode {s['mode']}, rule {s['rule']}, {s['n_angles']} angles; {shape}; "
+                         f"largest deviation from the closed form {s['max_deviation_deg']:.2e}°.")
             lines.append(f"- figures: [φ vs angle]({sc.name}/phi_vs_angle.png), "
                          f"[trajectories]({sc.name}/trajectories.png), "
                          f"[driving force]({sc.name}/force_vs_travel.png); "

@@ -29,9 +29,15 @@ from .closed_forms import G_STANDARD
 from .fmu import ContactFMU, ContactParams
 
 
+MODES = ("dynamic", "quasistatic")
+
+
 @dataclass(frozen=True)
 class Rig:
-    """The test rig.  Units: kg, m/s^2, N, m/s, m, s."""
+    """The test rig.  Units: kg, m/s^2, N, m/s, m, s.
+
+    mode: "dynamic" (the block's lateral inertia integrated) or "quasistatic"
+    (lateral equilibrium every step); anything else raises ValueError."""
     mass_kg: float = 1.875
     g: float = G_STANDARD
     f_int_N: float = 5.0
@@ -41,6 +47,21 @@ class Rig:
     mode: str = "dynamic"          # or "quasistatic"
     step_s: float = 2e-4           # communication step
     fit_from: float = 0.5          # fit phi over the travel after this fraction
+
+    def __post_init__(self):
+        if self.mode not in MODES:
+            raise ValueError(f"Rig: mode must be one of {', '.join(map(repr, MODES))}, "
+                             f"got {self.mode!r}")
+        for name in ("mass_kg", "g", "velocity_m_s", "travel_m", "step_s"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                raise ValueError(f"Rig: {name} must be a finite number > 0, got {v!r}")
+        for name in ("f_int_N", "mu_strip"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
+                raise ValueError(f"Rig: {name} must be a finite number >= 0, got {v!r}")
+        if not 0 <= self.fit_from < 1:
+            raise ValueError(f"Rig: fit_from must be in [0, 1), got {self.fit_from!r}")
 
     @property
     def normal_force(self) -> float:

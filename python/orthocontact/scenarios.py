@@ -20,10 +20,9 @@ else:  # pragma: no cover
 
 from .closed_forms import G_STANDARD, isotropic_eps_ratio
 from .fmu import RULES, ContactParams
-from .rig import Rig
+from .rig import MODES, Rig
 
 KINDS = ("sweep", "step_study")
-MODES = ("dynamic", "quasistatic")
 CLOSED_FORMS = ("general", "eq11", "eq25", "eq31", "eq33", "mat")
 
 
