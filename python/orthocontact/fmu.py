@@ -10,6 +10,7 @@ import ctypes
 import dataclasses
 import math
 import os
+import sys
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
@@ -27,17 +28,26 @@ class FMUError(RuntimeError):
     """An FMI call returned an error; the message carries what the FMU logged."""
 
 
-def _build_candidates(fmi_version: int):
-    """FMUs an editable install or a source checkout has built (newest first)."""
-    repo = Path(__file__).resolve().parents[2]
-    found = [p for p in repo.glob(f"build/*/fmi{fmi_version}/{MODEL_IDENTIFIER}.fmu") if p.is_file()]
-    return sorted(found, key=lambda p: p.stat().st_mtime, reverse=True)
+def _installed(fmi_version: int):
+    """The FMU installed with the package: beside this module, or (an editable
+    install, whose code stays in the source tree) under `orthocontact/` in a
+    site-packages folder on sys.path."""
+    rel = Path(f"fmi{fmi_version}") / (MODEL_IDENTIFIER + ".fmu")
+    here = Path(__file__).parent / rel
+    if here.is_file():
+        return here
+    for entry in sys.path:
+        candidate = Path(entry or ".") / "orthocontact" / rel
+        if candidate.is_file():
+            return candidate
+    return None
 
 
 def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2) -> Path:
     """The FMU to use: `path`, else $ORTHOCONTACT_FMU ($ORTHOCONTACT_FMU3 for
-    FMI 3.0), else the one installed with the package, else one built in the
-    source tree (editable installs).  fmi_version: 2 (default) or 3."""
+    FMI 3.0), else the one installed with the package (regular or editable
+    install).  fmi_version: 2 (default) or 3.  Raises FileNotFoundError with a
+    one-line message saying what to do."""
     if fmi_version not in FMI_VERSIONS:
         raise ValueError(f"fmi_version must be 2 or 3, got {fmi_version!r}")
     env = FMU_ENV[fmi_version]
@@ -46,15 +56,12 @@ def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2) -> Pat
             if not Path(given).is_file():
                 raise FileNotFoundError(f"FMU not found: {given} ({where})")
             return Path(given)
-    packaged = Path(__file__).parent / f"fmi{fmi_version}" / (MODEL_IDENTIFIER + ".fmu")
-    if packaged.is_file():
-        return packaged
-    built = _build_candidates(fmi_version)
-    if built:
-        return built[0]
+    installed = _installed(fmi_version)
+    if installed is not None:
+        return installed
     raise FileNotFoundError(
-        f"the FMI {fmi_version}.0 {MODEL_IDENTIFIER}.fmu is not installed with the package and "
-        f"none is built in the source tree; run `pip install .` from the repository or set {env}")
+        f"the FMI {fmi_version}.0 {MODEL_IDENTIFIER}.fmu is not installed with the package; run "
+        f"`pip install .` (or `pip install -e .`) from the repository, which builds it, or set {env}")
 
 
 @dataclass(frozen=True)
