@@ -3,16 +3,11 @@
  * steps of each sliding rule.  Prints one line per case. */
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "fmi2Functions.h"
+#include "bench_common.h"
 #include "model_variables.h"
 
-static double now(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts); /* not the time others take the core */
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 
 static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                   fmi2String m, ...) {
@@ -20,8 +15,6 @@ static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2St
     fprintf(stderr, "%s\n", m);
 }
 
-/* slip = 0: the body oscillates inside the sticking ellipse;
- * slip = 1: the body is pushed steadily, every step slips. */
 static double run(int rule, int slip, long steps) {
     const fmi2CallbackFunctions cb = {quiet, calloc, free, NULL, NULL};
     fmi2Component c = fmi2Instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, 0, 0);
@@ -37,14 +30,7 @@ static double run(int rule, int slip, long steps) {
     const double t0 = now();
     for (long k = 0; k < steps; ++k) {
         double u[3];
-        if (slip) {
-            u[0] = 2.44e-5 * k;
-            u[1] = 0.3 * u[0];
-        } else {
-            u[0] = 1e-4 * ((k & 7) - 3.5) / 3.5;
-            u[1] = 5e-5 * ((k & 3) - 1.5) / 1.5;
-        }
-        u[2] = 18.39;
+        bench_inputs(k, slip, u);
         fmi2SetReal(c, in, 3, u);
         fmi2DoStep(c, t, h, fmi2True);
         t += h;

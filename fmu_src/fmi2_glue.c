@@ -234,98 +234,47 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 /* ---- FMU state ------------------------------------------------------------ */
 
-/* An fmi2FMUstate is a buffer holding the serialized state itself: getting
- * a state serializes, setting one validates and restores. */
+/* The state objects and their checks are the shared instance layer's. */
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2GetFMUstate", FMU_ALIVE)) return fmi2Error;
-    if (!FMUstate) {
-        FMU_ERROR(I, "fmi2GetFMUstate: FMUstate is NULL");
-        return fmi2Error;
-    }
-    unsigned char *buf = *FMUstate;
-    if (!buf && !(buf = I->alloc(1, fmu_state_size()))) {
-        FMU_ERROR(I, "fmi2GetFMUstate: out of memory");
-        return fmi2Error;
-    }
-    fmu_state_write(I, buf);
-    *FMUstate = buf;
-    return fmi2OK;
+    return status2(fmu_state_get(I, "fmi2GetFMUstate", FMUstate));
 }
 
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2SetFMUstate", FMU_ALIVE)) return fmi2Error;
-    fmu_msg msg;
-    return status2(fmu_result(I, fmu_state_read(I, FMUstate, fmu_state_size(), &msg), &msg,
-                              "fmi2SetFMUstate"));
+    return status2(fmu_state_set(I, "fmi2SetFMUstate", FMUstate));
 }
 
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2FreeFMUstate", FMU_ALIVE)) return fmi2Error;
-    if (FMUstate && *FMUstate) {
-        I->release(*FMUstate);
-        *FMUstate = NULL;
-    }
-    return fmi2OK;
+    return status2(fmu_state_free(I, FMUstate));
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t *size) {
     fmu_instance *I = INST(c);
     (void)FMUstate;
     if (!fmu_allowed(I, "fmi2SerializedFMUstateSize", FMU_ALIVE)) return fmi2Error;
-    if (!size) {
-        FMU_ERROR(I, "fmi2SerializedFMUstateSize: size is NULL");
-        return fmi2Error;
-    }
-    *size = fmu_state_size();
-    return fmi2OK;
+    return status2(fmu_state_size_of(I, "fmi2SerializedFMUstateSize", size));
 }
 
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byte serializedState[],
                                  size_t size) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2SerializeFMUstate", FMU_ALIVE)) return fmi2Error;
-    if (!FMUstate || !serializedState || size < fmu_state_size()) {
-        FMU_ERROR(I, "fmi2SerializeFMUstate: needs a state and a buffer of %zu bytes (got %zu)",
-                  fmu_state_size(), size);
-        return fmi2Error;
-    }
-    memcpy(serializedState, FMUstate, fmu_state_size());
-    return fmi2OK;
+    return status2(fmu_state_serialize(I, "fmi2SerializeFMUstate", FMUstate,
+                                       (unsigned char *)serializedState, size));
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2DeSerializeFMUstate", FMU_ALIVE)) return fmi2Error;
-    if (!FMUstate) {
-        FMU_ERROR(I, "fmi2DeSerializeFMUstate: FMUstate is NULL");
-        return fmi2Error;
-    }
-    /* Validate on a scratch instance: bad bytes are refused before any
-     * state buffer is touched. */
-    fmu_instance scratch = *I;
-    scratch.model = I->alloc(1, fmu_model_size());
-    if (!scratch.model) {
-        FMU_ERROR(I, "fmi2DeSerializeFMUstate: out of memory");
-        return fmi2Error;
-    }
-    fmu_model_init(scratch.model);
-    fmu_msg msg;
-    const fmu_status st = fmu_state_read(&scratch, (const unsigned char *)serializedState, size, &msg);
-    I->release(scratch.model);
-    if (st != FMU_OK) return status2(fmu_result(I, st, &msg, "fmi2DeSerializeFMUstate"));
-    unsigned char *buf = *FMUstate;
-    if (!buf && !(buf = I->alloc(1, size))) {
-        FMU_ERROR(I, "fmi2DeSerializeFMUstate: out of memory");
-        return fmi2Error;
-    }
-    memcpy(buf, serializedState, size);
-    *FMUstate = buf;
-    return fmi2OK;
+    return status2(fmu_state_deserialize(I, "fmi2DeSerializeFMUstate",
+                                         (const unsigned char *)serializedState, size, FMUstate));
 }
 
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[],

@@ -428,95 +428,46 @@ fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
 
 /* ---- FMU state ------------------------------------------------------------ */
 
-/* An fmi3FMUState is a buffer holding the serialized state itself. */
+/* The state objects and their checks are the shared instance layer's. */
 
 fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3GetFMUState", FMU_ALIVE)) return fmi3Error;
-    if (!FMUState) {
-        FMU_ERROR(I, "fmi3GetFMUState: FMUState is NULL");
-        return fmi3Error;
-    }
-    unsigned char *buf = *FMUState;
-    if (!buf && !(buf = calloc(1, fmu_state_size()))) {
-        FMU_ERROR(I, "fmi3GetFMUState: out of memory");
-        return fmi3Error;
-    }
-    fmu_state_write(I, buf);
-    *FMUState = buf;
-    return fmi3OK;
+    return status3(fmu_state_get(I, "fmi3GetFMUState", FMUState));
 }
 
 fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState FMUState) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3SetFMUState", FMU_ALIVE)) return fmi3Error;
-    fmu_msg msg;
-    return status3(fmu_result(I, fmu_state_read(I, FMUState, fmu_state_size(), &msg), &msg,
-                              "fmi3SetFMUState"));
+    return status3(fmu_state_set(I, "fmi3SetFMUState", FMUState));
 }
 
 fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3FreeFMUState", FMU_ALIVE)) return fmi3Error;
-    if (FMUState && *FMUState) {
-        free(*FMUState);
-        *FMUState = NULL;
-    }
-    return fmi3OK;
+    return status3(fmu_state_free(I, FMUState));
 }
 
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState FMUState, size_t *size) {
     fmu_instance *I = INST(c);
     (void)FMUState;
     if (!fmu_allowed(I, "fmi3SerializedFMUStateSize", FMU_ALIVE)) return fmi3Error;
-    if (!size) {
-        FMU_ERROR(I, "fmi3SerializedFMUStateSize: size is NULL");
-        return fmi3Error;
-    }
-    *size = fmu_state_size();
-    return fmi3OK;
+    return status3(fmu_state_size_of(I, "fmi3SerializedFMUStateSize", size));
 }
 
 fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState FMUState, fmi3Byte serializedState[],
                                  size_t size) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3SerializeFMUState", FMU_ALIVE)) return fmi3Error;
-    if (!FMUState || !serializedState || size < fmu_state_size()) {
-        FMU_ERROR(I, "fmi3SerializeFMUState: needs a state and a buffer of %zu bytes (got %zu)",
-                  fmu_state_size(), size);
-        return fmi3Error;
-    }
-    memcpy(serializedState, FMUState, fmu_state_size());
-    return fmi3OK;
+    return status3(fmu_state_serialize(I, "fmi3SerializeFMUState", FMUState, serializedState, size));
 }
 
 fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedState[], size_t size,
                                    fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3DeserializeFMUState", FMU_ALIVE)) return fmi3Error;
-    if (!FMUState) {
-        FMU_ERROR(I, "fmi3DeserializeFMUState: FMUState is NULL");
-        return fmi3Error;
-    }
-    fmu_instance scratch = *I;
-    scratch.model = calloc(1, fmu_model_size());
-    if (!scratch.model) {
-        FMU_ERROR(I, "fmi3DeserializeFMUState: out of memory");
-        return fmi3Error;
-    }
-    fmu_model_init(scratch.model);
-    fmu_msg msg;
-    const fmu_status st = fmu_state_read(&scratch, serializedState, size, &msg);
-    free(scratch.model);
-    if (st != FMU_OK) return status3(fmu_result(I, st, &msg, "fmi3DeserializeFMUState"));
-    unsigned char *buf = *FMUState;
-    if (!buf && !(buf = calloc(1, size))) {
-        FMU_ERROR(I, "fmi3DeserializeFMUState: out of memory");
-        return fmi3Error;
-    }
-    memcpy(buf, serializedState, size);
-    *FMUState = buf;
-    return fmi3OK;
+    return status3(fmu_state_deserialize(I, "fmi3DeserializeFMUState", serializedState, size,
+                                         FMUState));
 }
 
 /* ---- Derivatives ------------------------------------------------------------ */

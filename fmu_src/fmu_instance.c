@@ -180,3 +180,80 @@ fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size
     *fmu_model_time(I->model) = time;
     return FMU_OK;
 }
+
+int fmu_state_get(fmu_instance *I, const char *fn, void **state) {
+    if (!state) {
+        FMU_ERROR(I, "%s: the state pointer is NULL", fn);
+        return FMU_S_ERROR;
+    }
+    unsigned char *buf = *state;
+    if (!buf && !(buf = I->alloc(1, fmu_state_size()))) {
+        FMU_ERROR(I, "%s: out of memory", fn);
+        return FMU_S_ERROR;
+    }
+    fmu_state_write(I, buf);
+    *state = buf;
+    return FMU_S_OK;
+}
+
+int fmu_state_set(fmu_instance *I, const char *fn, const void *state) {
+    fmu_msg msg;
+    return fmu_result(I, fmu_state_read(I, state, fmu_state_size(), &msg), &msg, fn);
+}
+
+int fmu_state_free(fmu_instance *I, void **state) {
+    if (state && *state) {
+        I->release(*state);
+        *state = NULL;
+    }
+    return FMU_S_OK;
+}
+
+int fmu_state_size_of(fmu_instance *I, const char *fn, size_t *size) {
+    if (!size) {
+        FMU_ERROR(I, "%s: size is NULL", fn);
+        return FMU_S_ERROR;
+    }
+    *size = fmu_state_size();
+    return FMU_S_OK;
+}
+
+int fmu_state_serialize(fmu_instance *I, const char *fn, const void *state, unsigned char *bytes,
+                        size_t size) {
+    if (!state || !bytes || size < fmu_state_size()) {
+        FMU_ERROR(I, "%s: needs a state and a buffer of %zu bytes (got %zu)", fn, fmu_state_size(),
+                  size);
+        return FMU_S_ERROR;
+    }
+    memcpy(bytes, state, fmu_state_size());
+    return FMU_S_OK;
+}
+
+int fmu_state_deserialize(fmu_instance *I, const char *fn, const unsigned char *bytes, size_t size,
+                          void **state) {
+    if (!state) {
+        FMU_ERROR(I, "%s: the state pointer is NULL", fn);
+        return FMU_S_ERROR;
+    }
+    /* Validate on a scratch instance: bad bytes are refused before any state
+     * buffer is touched. */
+    fmu_instance scratch = *I;
+    scratch.model = I->alloc(1, fmu_model_size());
+    if (!scratch.model) {
+        FMU_ERROR(I, "%s: out of memory", fn);
+        return FMU_S_ERROR;
+    }
+    fmu_model_init(scratch.model);
+    fmu_msg msg;
+    const fmu_status st = fmu_state_read(&scratch, bytes, size, &msg);
+    I->release(scratch.model);
+    if (st != FMU_OK) return fmu_result(I, st, &msg, fn);
+    unsigned char *buf = *state;
+    if (!buf && !(buf = I->alloc(1, size))) {
+        FMU_ERROR(I, "%s: out of memory", fn);
+        return FMU_S_ERROR;
+    }
+    memcpy(buf, bytes, size);
+    *state = buf;
+    return FMU_S_OK;
+}

@@ -74,6 +74,20 @@ size_t fmu_state_size(void);
 void fmu_state_write(const fmu_instance *I, unsigned char *buf);
 fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size, fmu_msg *msg);
 
+/* The FMU-state entry points of both standards.  A state object is a buffer
+ * holding the serialized state itself, from the instance's allocator: getting
+ * serializes (into *state, allocated if NULL), setting validates and restores,
+ * deserializing validates on a scratch model before any buffer is touched.
+ * `fn` names the calling FMI function in messages.  Return FMU_S_*. */
+int fmu_state_get(fmu_instance *I, const char *fn, void **state);
+int fmu_state_set(fmu_instance *I, const char *fn, const void *state);
+int fmu_state_free(fmu_instance *I, void **state);
+int fmu_state_size_of(fmu_instance *I, const char *fn, size_t *size);
+int fmu_state_serialize(fmu_instance *I, const char *fn, const void *state, unsigned char *bytes,
+                        size_t size);
+int fmu_state_deserialize(fmu_instance *I, const char *fn, const unsigned char *bytes, size_t size,
+                          void **state);
+
 #ifdef __cplusplus
 }
 #endif
