@@ -263,8 +263,8 @@ static void build(FILE *f) {
 
 static void html(FILE *f) {
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\">"
-               "<title>%s</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:2em auto}"
-               "table{border-collapse:collapse}td,th{border:1px solid #999;padding:2px 6px;"
+               "<title>%s</title>\n<style>body{font-family:sans-serif;max-width:80em;margin:2em auto}"
+               "table{border-collapse:collapse;font-size:90%%}td,th{border:1px solid #999;padding:2px 6px;"
                "text-align:left;vertical-align:top}code{background:#eee}</style></head>\n<body>\n"
                "<!-- Generated from the variable table by gen_model_description. -->\n"
                "<h1>%s %s</h1>\n<p>", FMU_MODEL_NAME, FMU_MODEL_NAME, FMU_VERSION);
