@@ -20,6 +20,11 @@ typedef struct {
     double start, min, max;
 } row;
 
+#ifndef FMU_PROVIDES_DERIVATIVES
+#define FMU_PROVIDES_DERIVATIVES 1
+#endif
+#define TF(x) ((x) ? "true" : "false")
+
 #define ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc) \
     {#name, #type, #caus, #var, #init, unit, disp, desc, vr, start, lo, hi},
 static const row ROWS[] = {FMU_VARIABLES(ROW)};
@@ -148,10 +153,40 @@ static void common_attrs(FILE *f, const char *license_path) {
             FMU_VERSION, license_path);
 }
 
-static void inputs_of(FILE *f, int by_index) {
+/* Which inputs an output depends on: every input, unless the table says
+ * otherwise with FMU_DEPENDENCIES(D), D(output, "input names"). */
+typedef struct {
+    const char *output, *inputs;
+} dep;
+#ifdef FMU_DEPENDENCIES
+#define DEP(out, ins) {#out, ins},
+static const dep DEPS[] = {FMU_DEPENDENCIES(DEP)};
+#undef DEP
+enum { NDEPS = sizeof DEPS / sizeof DEPS[0] };
+#else
+static const dep DEPS[1];
+enum { NDEPS = 0 };
+#endif
+
+static int depends(const char *output, const char *input) {
+    for (int k = 0; k < NDEPS; ++k)
+        if (is(DEPS[k].output, output)) {
+            const char *p = DEPS[k].inputs;
+            const size_t n = strlen(input);
+            while ((p = strstr(p, input)) != NULL) {
+                if ((p == DEPS[k].inputs || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
+                    return 1;
+                p += n;
+            }
+            return 0;
+        }
+    return 1;
+}
+
+static void inputs_of(FILE *f, const char *output, int by_index) {
     int first = 1;
     for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "input")) {
+        if (is(ROWS[i].causality, "input") && depends(output, ROWS[i].name)) {
             fprintf(f, first ? "%u" : " %u", by_index ? (unsigned)(i + 1) : ROWS[i].vr);
             first = 0;
         }
@@ -165,8 +200,8 @@ static void fmi2(FILE *f) {
                "  <CoSimulation\n    modelIdentifier=\"%s\"\n"
                "    canHandleVariableCommunicationStepSize=\"true\"\n"
                "    canGetAndSetFMUstate=\"true\"\n    canSerializeFMUstate=\"true\"\n"
-               "    providesDirectionalDerivative=\"true\">\n    <SourceFiles>\n",
-            FMU_MODEL_IDENTIFIER);
+               "    providesDirectionalDerivative=\"%s\">\n    <SourceFiles>\n",
+            FMU_MODEL_IDENTIFIER, TF(FMU_PROVIDES_DERIVATIVES));
     for (int i = 0; i < NSOURCES; ++i) fprintf(f, "      <File name=\"%s\"/>\n", SOURCES[i]);
     fputs("      <File name=\"fmi2_glue.c\"/>\n    </SourceFiles>\n  </CoSimulation>\n\n", f);
     unit_definitions(f);
@@ -188,7 +223,7 @@ static void fmi2(FILE *f) {
     for (int i = 0; i < NROWS; ++i)
         if (is(ROWS[i].causality, "output")) {
             fprintf(f, "      <Unknown index=\"%d\" dependencies=\"", i + 1);
-            inputs_of(f, 1);
+            inputs_of(f, ROWS[i].name, 1);
             fputs("\"/>\n", f);
         }
     /* In initialization mode the outputs depend on the parameters too; no
@@ -206,9 +241,9 @@ static void fmi3(FILE *f) {
     fprintf(f, ">\n\n  <CoSimulation\n    modelIdentifier=\"%s\"\n"
                "    canHandleVariableCommunicationStepSize=\"true\"\n"
                "    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"\n"
-               "    providesDirectionalDerivatives=\"true\"\n"
-               "    providesAdjointDerivatives=\"true\"\n    hasEventMode=\"false\"/>\n\n",
-            FMU_MODEL_IDENTIFIER);
+               "    providesDirectionalDerivatives=\"%s\"\n"
+               "    providesAdjointDerivatives=\"%s\"\n    hasEventMode=\"false\"/>\n\n",
+            FMU_MODEL_IDENTIFIER, TF(FMU_PROVIDES_DERIVATIVES), TF(FMU_PROVIDES_DERIVATIVES));
     unit_definitions(f);
     if (NITEMS > 0) {
         fprintf(f, "  <TypeDefinitions>\n    <EnumerationType name=\"%s\">\n", ENUM_NAME);
@@ -239,7 +274,7 @@ static void fmi3(FILE *f) {
     for (int i = 0; i < NROWS; ++i)
         if (is(ROWS[i].causality, "output")) {
             fprintf(f, "    <Output valueReference=\"%u\" dependencies=\"", ROWS[i].vr);
-            inputs_of(f, 0);
+            inputs_of(f, ROWS[i].name, 0);
             fputs("\"/>\n", f);
         }
     for (int i = 0; i < NROWS; ++i)

@@ -28,11 +28,14 @@ class FMUError(RuntimeError):
     """An FMI call returned an error; the message carries what the FMU logged."""
 
 
-def _installed(fmi_version: int):
+RIG_MODEL_IDENTIFIER = "CarriageBlock"
+
+
+def _installed(fmi_version: int, model: str = MODEL_IDENTIFIER):
     """The FMU installed with the package: beside this module, or (an editable
     install, whose code stays in the source tree) under `orthocontact/` in a
     site-packages folder on sys.path."""
-    rel = Path(f"fmi{fmi_version}") / (MODEL_IDENTIFIER + ".fmu")
+    rel = Path(f"fmi{fmi_version}") / (model + ".fmu")
     here = Path(__file__).parent / rel
     if here.is_file():
         return here
@@ -43,25 +46,28 @@ def _installed(fmi_version: int):
     return None
 
 
-def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2) -> Path:
+def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
+             model: str = MODEL_IDENTIFIER) -> Path:
     """The FMU to use: `path`, else $ORTHOCONTACT_FMU ($ORTHOCONTACT_FMU3 for
     FMI 3.0), else the one installed with the package (regular or editable
-    install).  fmi_version: 2 (default) or 3.  Raises FileNotFoundError with a
-    one-line message saying what to do."""
+    install).  fmi_version: 2 (default) or 3; model: "OrthotropicContact" (the
+    contact, default) or "CarriageBlock" (the rig of the experiment).  Raises
+    FileNotFoundError with a one-line message saying what to do."""
     if fmi_version not in FMI_VERSIONS:
         raise ValueError(f"fmi_version must be 2 or 3, got {fmi_version!r}")
-    env = FMU_ENV[fmi_version]
-    for given, where in ((path, "given path"), (os.environ.get(env), f"${env}")):
+    env = FMU_ENV[fmi_version] if model == MODEL_IDENTIFIER else None
+    for given, where in ((path, "given path"), (os.environ.get(env) if env else None, f"${env}")):
         if given:
             if not Path(given).is_file():
                 raise FileNotFoundError(f"FMU not found: {given} ({where})")
             return Path(given)
-    installed = _installed(fmi_version)
+    installed = _installed(fmi_version, model)
     if installed is not None:
         return installed
     raise FileNotFoundError(
-        f"the FMI {fmi_version}.0 {MODEL_IDENTIFIER}.fmu is not installed with the package; run "
-        f"`pip install .` (or `pip install -e .`) from the repository, which builds it, or set {env}")
+        f"the FMI {fmi_version}.0 {model}.fmu is not installed with the package; run "
+        f"`pip install .` (or `pip install -e .`) from the repository, which builds it"
+        + (f", or set {env}" if env else ""))
 
 
 @dataclass(frozen=True)
