@@ -49,6 +49,20 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
         raise InputError(f"{option} {out}: {probe} is not writable ({e.strerror})") from None
 
 
+def check_output_file(out: Path, option: str = "--out") -> None:
+    """Raises InputError, naming the user's path, unless a file can be written
+    at `out` (in an existing, writable folder)."""
+    out = Path(out)
+    if out.is_dir():
+        raise InputError(f"{option} {out}: is a folder; expected a file name")
+    if not out.parent.is_dir():
+        raise InputError(f"{option} {out}: the folder {out.parent} does not exist")
+    try:
+        tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=out.parent).cleanup()
+    except OSError as e:
+        raise InputError(f"{option} {out}: {out.parent} is not writable ({e.strerror})") from None
+
+
 @contextlib.contextmanager
 def staged_output(out: Path):
     """A scratch folder beside `out`; its files move into `out` only if the
@@ -151,6 +165,17 @@ def cmd_identify(args) -> int:
     return 0
 
 
+def cmd_ssp(args) -> int:
+    from .ssp import write_ssp
+    sc = load(args.scenario)
+    if sc.kind != "sweep":
+        raise InputError(f"{args.scenario}: kind: expected a sweep scenario for an SSP, got {sc.kind!r}")
+    path = write_ssp(sc, args.angle, args.out)
+    print(f"wrote {path}: rig + contact at {args.angle:g} deg "
+          f"(run it with libcosim: CosimExecution.from_ssp_file)")
+    return 0
+
+
 def _workers(text: str) -> int:
     try:
         n = int(text)
@@ -235,6 +260,17 @@ def build_parser() -> argparse.ArgumentParser:
     i.add_argument("--no-validate", action="store_true",
                    help="skip the validation runs of the identified parameters on the FMU")
     i.set_defaults(func=cmd_identify)
+    s = sub.add_parser("ssp", help="write the experiment at one angle as an SSP 1.0 package "
+                                   "(rig FMU + contact FMU) for any SSP-capable simulator",
+                       description="Write SystemStructure.ssd and both FMI 2.0 FMUs (CarriageBlock, "
+                                   "OrthotropicContact) with the scenario's parameters as an .ssp.")
+    s.add_argument("scenario", metavar="SCENARIO", help="sweep scenario file (TOML); angles in "
+                   "degrees, forces in N, lengths in m")
+    s.add_argument("--angle", type=float, required=True, metavar="DEG",
+                   help="the swept angle [deg] (the mat angle for the experiment's scenarios)")
+    s.add_argument("--out", type=Path, required=True, metavar="FILE.ssp",
+                   help="the package to write (replaced if it exists)")
+    s.set_defaults(func=cmd_ssp)
     return ap
 
 
@@ -249,7 +285,9 @@ def main(argv=None) -> int:
         signal.signal(signal.SIGTERM, _interrupt)
     out = getattr(args, "out", None)
     try:
-        if out is not None:
+        if out is not None and args.cmd == "ssp":
+            check_output_file(out)
+        elif out is not None:
             check_output_folder(out)
         return args.func(args)
     except KeyboardInterrupt:

@@ -1,0 +1,105 @@
+"""The experiment as a system of FMUs: an SSP 1.0 package (System Structure &
+Parameterization) coupling the CarriageBlock rig FMU with the
+OrthotropicContact FMU at one mat/axis angle of a scenario.
+
+The package holds SystemStructure.ssd and both FMUs (FMI 2.0) under
+resources/; the scenario's values are bound as inline parameter sets.  The step
+size is given both as the SSP default experiment's OSP annotation (libcosim's
+fixed-step algorithm) and as the scenario's communication step.
+
+Units: angles in degrees at this interface (as in scenario files), the FMUs'
+own units inside (rad, N/m, kg, m/s, N)."""
+from __future__ import annotations
+
+import math
+import zipfile
+from pathlib import Path
+from xml.sax.saxutils import quoteattr
+
+from .fmu import RULES, RIG_MODEL_IDENTIFIER, MODEL_IDENTIFIER, find_fmu
+from .scenarios import Scenario
+
+NS = ('xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
+      'xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" '
+      'xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues" '
+      'xmlns:osp="http://opensimulationplatform.com/SSP/OSPAnnotations"')
+
+RIG_CONNECTORS = (("T1", "input"), ("T2", "input"), ("u1", "output"), ("u2", "output"),
+                  ("N", "output"), ("x1", "output"), ("x2", "output"), ("driveForce", "output"))
+CONTACT_CONNECTORS = (("u1", "input"), ("u2", "input"), ("N", "input"), ("T1", "output"),
+                      ("T2", "output"), ("s1", "output"), ("s2", "output"),
+                      ("dissipatedEnergy", "output"))
+CONNECTIONS = (("rig", "u1", "contact", "u1"), ("rig", "u2", "contact", "u2"),
+               ("rig", "N", "contact", "N"), ("contact", "T1", "rig", "T1"),
+               ("contact", "T2", "rig", "T2"))
+
+
+def _fmt(x: float) -> str:
+    return repr(float(x))
+
+
+def _component(name, source, connectors, reals, integers=()):
+    lines = [f'      <ssd:Component name="{name}" source="{source}" '
+             f'type="application/x-fmu-sharedlibrary">', "        <ssd:Connectors>"]
+    for c, kind in connectors:
+        lines.append(f'          <ssd:Connector name="{c}" kind="{kind}"><ssc:Real/></ssd:Connector>')
+    lines += ["        </ssd:Connectors>", "        <ssd:ParameterBindings>",
+              "          <ssd:ParameterBinding>", "            <ssd:ParameterValues>",
+              f'              <ssv:ParameterSet version="1.0" name="{name}_parameters">',
+              "                <ssv:Parameters>"]
+    for k, v in reals:
+        lines.append(f'                  <ssv:Parameter name="{k}"><ssv:Real value="{_fmt(v)}"/></ssv:Parameter>')
+    for k, v in integers:
+        lines.append(f'                  <ssv:Parameter name="{k}"><ssv:Integer value="{int(v)}"/></ssv:Parameter>')
+    lines += ["                </ssv:Parameters>", "              </ssv:ParameterSet>",
+              "            </ssd:ParameterValues>", "          </ssd:ParameterBinding>",
+              "        </ssd:ParameterBindings>", "      </ssd:Component>"]
+    return lines
+
+
+def system_structure(sc: Scenario, angle_deg: float) -> str:
+    """SystemStructure.ssd for the scenario at the swept angle [deg]."""
+    p, rig = sc.params_at(angle_deg), sc.rig
+    stop = rig.travel_m / rig.velocity_m_s
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
+             f'<ssd:SystemStructureDescription {NS} version="1.0" '
+             f'name={quoteattr(f"{sc.name} at {angle_deg:g} deg")}>',
+             f'  <ssd:System name="experiment" description={quoteattr(sc.title)}>',
+             "    <ssd:Elements>"]
+    lines += _component("rig", f"resources/{RIG_MODEL_IDENTIFIER}.fmu", RIG_CONNECTORS,
+                        [("mass", rig.mass_kg), ("g", rig.g), ("fInt", rig.f_int_N),
+                         ("velocity", rig.velocity_m_s), ("muStrip", rig.mu_strip),
+                         ("cStrip", 0.0)])
+    lines += _component("contact", f"resources/{MODEL_IDENTIFIER}.fmu", CONTACT_CONNECTORS,
+                        [("mu1", p.mu1), ("mu2", p.mu2), ("eps1", p.eps1), ("eps2", p.eps2),
+                         ("alpha", p.alpha), ("beta", p.beta)],
+                        [("slidingRule", RULES[p.rule])])
+    lines += ["    </ssd:Elements>", "    <ssd:Connections>"]
+    for a, ca, b, cb in CONNECTIONS:
+        lines.append(f'      <ssd:Connection startElement="{a}" startConnector="{ca}" '
+                     f'endElement="{b}" endConnector="{cb}"/>')
+    lines += ["    </ssd:Connections>", "  </ssd:System>",
+              f'  <ssd:DefaultExperiment startTime="0" stopTime="{_fmt(stop)}">',
+              "    <ssd:Annotations>",
+              '      <ssc:Annotation type="com.opensimulationplatform">',
+              f'        <osp:Algorithm><osp:FixedStepAlgorithm baseStepSize="{_fmt(rig.step_s)}"/>'
+              "</osp:Algorithm>",
+              "      </ssc:Annotation>", "    </ssd:Annotations>", "  </ssd:DefaultExperiment>",
+              "</ssd:SystemStructureDescription>", ""]
+    return "\n".join(lines)
+
+
+def write_ssp(sc: Scenario, angle_deg: float, out: Path) -> Path:
+    """Writes the .ssp (a zip) with both FMI 2.0 FMUs under resources/."""
+    if not math.isfinite(angle_deg):
+        raise ValueError(f"angle must be finite, got {angle_deg!r}")
+    out = Path(out)
+    contact = Path(sc.fmu) if sc.fmu else find_fmu(fmi_version=2)
+    rig = find_fmu(fmi_version=2, model=RIG_MODEL_IDENTIFIER)
+    tmp = out.with_name(f".{out.name}.partial")
+    with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("SystemStructure.ssd", system_structure(sc, angle_deg))
+        z.write(contact, f"resources/{MODEL_IDENTIFIER}.fmu")
+        z.write(rig, f"resources/{RIG_MODEL_IDENTIFIER}.fmu")
+    tmp.replace(out)
+    return out
