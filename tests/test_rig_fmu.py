@@ -30,6 +30,16 @@ def _rig_slave(version, name="rig"):
     return s, vr, md, set_real, get_real
 
 
+def _start(s, version):
+    """Into step mode at t = 0, as each FMI version spells it."""
+    if version == 2:
+        s.setupExperiment(startTime=0.0)
+        s.enterInitializationMode()
+    else:
+        s.enterInitializationMode(startTime=0.0)
+    s.exitInitializationMode()
+
+
 @pytest.mark.parametrize("version", [2, 3])
 def test_rig_fmu_validates_and_declares_no_feedthrough_of_the_positions(version):
     path = find_fmu(fmi_version=version, model="CarriageBlock")
@@ -46,12 +56,7 @@ def cosimulate(version, params, rig: Rig, n_steps):
     s, vr, _, set_real, get_real = _rig_slave(version)
     set_real([vr[k] for k in ("mass", "g", "fInt", "velocity", "muStrip", "cStrip")],
              [rig.mass_kg, rig.g, rig.f_int_N, rig.velocity_m_s, rig.mu_strip, 0.0])
-    if version == 2:
-        s.setupExperiment(startTime=0.0)
-        s.enterInitializationMode()
-    else:
-        s.enterInitializationMode(startTime=0.0)
-    s.exitInitializationMode()
+    _start(s, version)
     c = ContactFMU(fmi_version=version, instance_name="contact")
     c.initialize(params)
     h, T1, T2, t = rig.step_s, 0.0, 0.0, 0.0
@@ -92,12 +97,7 @@ def test_rig_fmu_with_the_contact_fmu_gives_the_harness(version, mu_strip):
 def test_rig_fmu_state_restores_into_a_fresh_instance(version):
     a, vr, _, set_real, get_real = _rig_slave(version, "a")
     set_real([vr["muStrip"], vr["cStrip"]], [0.05, 3.0])
-    if version == 2:
-        a.setupExperiment(startTime=0.0)
-        a.enterInitializationMode()
-    else:
-        a.enterInitializationMode(startTime=0.0)
-    a.exitInitializationMode()
+    _start(a, version)
     t = 0.0
     for k in range(50):
         set_real([vr["T1"], vr["T2"]], [-7.0, 2.0 * math.sin(0.1 * k)])
