@@ -11,3 +11,5 @@ build/ctest-release/bench_fmi2
 build/ctest-release/bench_fmi3
 echo "== Python: harness vs bare fmpy, sweep scaling =="
 .venv/bin/python benchmarks/bench_harness.py
+echo "== Masters: rig runs/s, compiled vs fmpy (target: >= 20x) =="
+.venv/bin/python benchmarks/bench_masters.py

@@ -119,13 +119,77 @@ def default_workers() -> int:
     return max(1, min(os.cpu_count() or 1, 8))
 
 
+MASTERS = ("auto", "c", "fmpy")
+
+
+def resolve_master(master: str, fmu_path) -> str:
+    """"c" or "fmpy": auto takes the compiled master for an FMI 2.0 FMU."""
+    if master not in MASTERS:
+        raise ValueError(f"master must be one of {', '.join(map(repr, MASTERS))}, got {master!r}")
+    from .fmu import find_fmu, fmi_version_of
+    version = fmi_version_of(find_fmu(fmu_path))
+    if master == "c" and version != 2:
+        # checked here, in the main process, not in a worker's initializer
+        raise ValueError(f"the compiled master runs FMI 2.0 FMUs, this one is FMI {version}.0; "
+                         "use master='fmpy'")
+    if master != "auto":
+        return master
+    return "c" if version == 2 else "fmpy"
+
+
+_worker_cmaster = None
+
+
+def _init_cworker(fmu_path):
+    global _worker_cmaster
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    from .cmaster import CMaster
+    from .fmu import find_fmu
+    _worker_cmaster = CMaster(find_fmu(fmu_path))
+
+
+def _run_chunk(chunk):
+    """[(index, params, rig)] -> [(index, phi_deg, drive_mean_N)] on the
+    worker's compiled master."""
+    res = _worker_cmaster.run([(p, r) for _, p, r in chunk])
+    return [(i, phi, drive) for (i, _, _), (phi, drive) in zip(chunk, res)]
+
+
+def _pool(workers, initializer, fmu_path):
+    # fork starts workers in milliseconds; each creates its own FMU instance
+    # after the fork, so no FMU state is shared.  spawn where fork is absent.
+    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    return ProcessPoolExecutor(max_workers=workers, mp_context=get_context(method),
+                               initializer=initializer, initargs=(fmu_path,))
+
+
 def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, label: str,
-             progress: bool = True) -> list[tuple[float, float]]:
-    """(phi_deg, drive_mean_N) of each (params, rig), in order."""
+             progress: bool = True, master: str = "auto") -> list[tuple[float, float]]:
+    """(phi_deg, drive_mean_N) of each (params, rig), in order.  master: "c"
+    (the compiled master, FMI 2.0 FMUs), "fmpy" (the Python harness), or
+    "auto" (c where it applies); both give the same angles."""
     out: list = [None] * len(tasks)
     bar = Progress(len(tasks), label, progress)
     indexed = [(i, p, r) for i, (p, r) in enumerate(tasks)]
+    use_c = resolve_master(master, fmu_path) == "c"
+    if use_c:
+        # chunks small enough to show progress and balance two workers
+        size = max(1, min(256, -(-len(indexed) // (4 * max(workers, 1)))))
+        chunks = [indexed[k:k + size] for k in range(0, len(indexed), size)]
     if workers <= 1:
+        if use_c:
+            from .cmaster import CMaster
+            from .fmu import find_fmu
+            cm = CMaster(find_fmu(fmu_path))
+            try:
+                for chunk in chunks:
+                    for (i, _, _), res in zip(chunk, cm.run([(p, r) for _, p, r in chunk])):
+                        out[i] = res
+                    bar.update(len(chunk))
+            finally:
+                cm.close()
+            return out
         fmu = ContactFMU(fmu_path, instance_name="serial")
         try:
             for t in indexed:
@@ -135,17 +199,21 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
         finally:
             fmu.close()
         return out
-    # fork starts workers in milliseconds; each creates its own FMU instance
-    # after the fork, so no FMU state is shared.  spawn where fork is absent.
-    method = "fork" if sys.platform.startswith("linux") else "spawn"
-    ex = ProcessPoolExecutor(max_workers=workers, mp_context=get_context(method),
-                             initializer=_init_worker, initargs=(fmu_path,))
+    ex = _pool(workers, _init_cworker if use_c else _init_worker, fmu_path)
     try:
-        futures = [ex.submit(_run_one, t) for t in indexed]
-        for fut in as_completed(futures):
-            i, phi, drive = fut.result()
-            out[i] = (phi, drive)
-            bar.update()
+        if use_c:
+            futures = [ex.submit(_run_chunk, c) for c in chunks]
+            for fut in as_completed(futures):
+                done = fut.result()
+                for i, phi, drive in done:
+                    out[i] = (phi, drive)
+                bar.update(len(done))
+        else:
+            futures = [ex.submit(_run_one, t) for t in indexed]
+            for fut in as_completed(futures):
+                i, phi, drive = fut.result()
+                out[i] = (phi, drive)
+                bar.update()
     except BaseException:
         _stop_pool(ex)
         raise
@@ -191,7 +259,7 @@ def _golden_extremum(f, a: float, b: float, tol: float = 1e-3) -> tuple[float, f
 
 
 def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
-              fmu_path=None) -> SweepResult:
+              fmu_path=None, master: str = "auto") -> SweepResult:
     """phi(angle) over the scenario's grid, the extremum (refined by a
     golden-section search on the rig itself when asked), and recorded runs
     at the trajectory angles."""
@@ -199,7 +267,8 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     fmu_path = fmu_path or sc.fmu
     t0 = time.time()
     angles = sc.sweep_angles()
-    res = run_many([(sc.params_at(a), sc.rig) for a in angles], workers, fmu_path, sc.name, progress)
+    res = run_many([(sc.params_at(a), sc.rig) for a in angles], workers, fmu_path, sc.name, progress,
+                   master)
     phi = np.array([r[0] for r in res])
     drive = np.array([r[1] for r in res])
     closed = np.array([closed_form_phi_deg(sc, a) for a in angles])
@@ -214,9 +283,19 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
             lo, hi = max(angles[0], angles[k] - step), min(angles[-1], angles[k] + step)
             cache = {}
 
+            cm = None
+            if resolve_master(master, fmu_path) == "c":
+                from .cmaster import CMaster
+                from .fmu import find_fmu
+                cm = CMaster(find_fmu(fmu_path))
+
             def f(a):
                 if a not in cache:
-                    cache[a] = sign * run(sc.params_at(a), sc.rig, fmu=fmu, record_every=1 << 30).phi_deg
+                    if cm is not None:
+                        cache[a] = sign * cm.run([(sc.params_at(a), sc.rig)])[0][0]
+                    else:
+                        cache[a] = sign * run(sc.params_at(a), sc.rig, fmu=fmu,
+                                              record_every=1 << 30).phi_deg
                 return cache[a]
             a_ext, v = _golden_extremum(f, lo, hi)
             if v >= sign * phi[k]:
@@ -240,7 +319,7 @@ class StepStudyResult:
 
 
 def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = True,
-                   fmu_path=None) -> StepStudyResult:
+                   fmu_path=None, master: str = "auto") -> StepStudyResult:
     """The steady angle of each sliding rule at each communication step."""
     from dataclasses import replace
     workers = workers or default_workers()
@@ -248,7 +327,7 @@ def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = Tr
     a = sc.study["angle_deg"]
     combos = [(rule, h) for rule in sc.study["rules"] for h in sc.study["steps_s"]]
     tasks = [(sc.params_at(a, rule), replace(sc.rig, step_s=h)) for rule, h in combos]
-    res = run_many(tasks, workers, fmu_path or sc.fmu, sc.name, progress)
+    res = run_many(tasks, workers, fmu_path or sc.fmu, sc.name, progress, master)
     rows = []
     for (rule, h), (phi, drive) in zip(combos, res):
         closed = closed_form_phi_deg(sc, a, rule)

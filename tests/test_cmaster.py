@@ -1,0 +1,61 @@
+"""The compiled master gives the fmpy master's angles on every scenario, and
+refuses what it cannot run with a clear message."""
+import math
+import subprocess
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from orthocontact.cmaster import CMaster
+from orthocontact.fmu import ContactFMU, find_fmu
+from orthocontact.rig import run
+from orthocontact.scenarios import load
+from orthocontact.sweep import run_many
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENARIOS = sorted(p.stem for p in (ROOT / "scenarios").glob("*.toml"))
+
+
+@pytest.mark.parametrize("name", SCENARIOS)
+def test_c_master_gives_the_fmpy_masters_angles(name):
+    sc = load(ROOT / "scenarios" / f"{name}.toml")
+    rig = replace(sc.rig, travel_m=min(sc.rig.travel_m, 0.08))
+    if sc.kind == "sweep":
+        tasks = [(sc.params_at(a), rig) for a in (0.0, 11.3, 26.6, 39.2, 78.7, 90.0)]
+        tasks.append((sc.params_at(39.2), replace(rig, mu_strip=0.1)))
+    else:  # the step study: every rule at two steps
+        tasks = [(sc.params_at(sc.study["angle_deg"], r), replace(rig, step_s=h))
+                 for r in sc.study["rules"] for h in sc.study["steps_s"][:2]]
+    cm = CMaster(find_fmu())
+    c = cm.run(tasks)
+    cm.close()
+    with ContactFMU(instance_name="ref") as f:
+        py = [run(p, r, fmu=f) for p, r in tasks]
+    for (phi, drive), ref in zip(c, py):
+        if math.isnan(ref.phi_deg):
+            assert math.isnan(phi)
+            continue
+        assert abs(phi - ref.phi_deg) <= 1e-9  # measured: bit for bit
+        assert drive == pytest.approx(ref.drive_mean_N, rel=1e-12, abs=1e-12)
+
+
+def test_run_many_same_with_either_master_and_any_workers():
+    sc = load(ROOT / "scenarios/mat_aged.toml")
+    tasks = [(sc.params_at(a), replace(sc.rig, travel_m=0.05)) for a in range(0, 91, 10)]
+    ref = run_many(tasks, 1, None, "t", progress=False, master="fmpy")
+    assert run_many(tasks, 1, None, "t", progress=False, master="c") == ref
+    assert run_many(tasks, 2, None, "t", progress=False, master="c") == ref
+
+
+def test_c_master_refuses_an_fmi3_fmu_clearly(tmp_path):
+    with pytest.raises(ValueError, match="FMI 2.0"):
+        CMaster(find_fmu(fmi_version=3))
+    p = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(ROOT / "scenarios/case4.toml"),
+                        "--out", str(tmp_path / "o"), "--fmi", "3", "--master", "c"],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 2 and "--master c runs FMI 2.0 FMUs" in p.stderr
+    assert "Traceback" not in p.stderr and not (tmp_path / "o").exists()
+    with pytest.raises(ValueError, match="FMI 2.0"):
+        run_many([], 2, find_fmu(fmi_version=3), "t", progress=False, master="c")
