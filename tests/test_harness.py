@@ -232,3 +232,17 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
         assert (out / name / "summary.json").exists()
     assert {r["scenario"] for r in rows} >= {"case1", "case2", "case3", "case4", "case5", "mat_aged",
                                             "mat_new", "calibration"}
+
+
+def test_vectorized_closed_forms_equal_the_scalar_ones():
+    """The report's 90,001-point scans use the array form: same numbers."""
+    import numpy as np
+    from orthocontact.sweep import closed_form_phi_deg, closed_form_phi_deg_array
+    from pathlib import Path as _P
+    a = np.linspace(-30, 120, 301)
+    for f in sorted((_P(__file__).resolve().parents[1] / "scenarios").glob("*.toml")):
+        sc = load(f)
+        for rule in (None, "associated", "coupled", "eq20"):
+            v = closed_form_phi_deg_array(sc, a, rule)
+            s = np.array([closed_form_phi_deg(sc, x, rule) for x in a])
+            np.testing.assert_allclose(v, s, rtol=0, atol=1e-12)

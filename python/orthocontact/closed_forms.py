@@ -38,8 +38,8 @@ def friction_tensor(mu1: float, mu2: float, beta: float) -> np.ndarray:
 
 def _sym2(d1, d2, t):
     """Entries (r11, r12, r22) of Q(t) diag(d1, d2) Q(t)^T.  Plain arithmetic
-    on d1, d2 (t is a number), so that d1, d2 may be casadi symbols."""
-    c, s = math.cos(t), math.sin(t)
+    on d1, d2, so that d1, d2 may be casadi symbols; t a number or an array."""
+    c, s = (np.cos(t), np.sin(t)) if isinstance(t, np.ndarray) else (math.cos(t), math.sin(t))
     return d1 * c * c + d2 * s * s, (d1 - d2) * s * c, d1 * s * s + d2 * c * c
 
 

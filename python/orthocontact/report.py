@@ -13,7 +13,7 @@ import numpy as np
 
 from . import closed_forms as cf
 from .scenarios import Scenario
-from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg
+from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg, closed_form_phi_deg_array
 
 
 def _plt():
@@ -97,7 +97,7 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path) -> dict:
     plt = _plt()
     fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 721)
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    ax.plot(fine, [closed_form_phi_deg(sc, a) for a in fine], "-", color="0.3",
+    ax.plot(fine, closed_form_phi_deg_array(sc, fine), "-", color="0.3",
             label=f"closed form ({sc.closed_form})")
     ax.plot(res.angles_deg, res.phi_deg, "o", ms=3.5, color="C0", label=f"rig + FMU ({sc.rig.mode})")
     e = res.extremum
@@ -166,7 +166,7 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path) -> dict:
 
 def _closed_extremum(sc: Scenario, res: SweepResult) -> dict:
     fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 90001)
-    vals = np.array([closed_form_phi_deg(sc, a) for a in fine])
+    vals = closed_form_phi_deg_array(sc, fine)
     k = int(np.argmax(np.abs(vals)))
     return {"angle_deg": float(fine[k]), "phi_deg": float(vals[k])}
 

@@ -52,6 +52,42 @@ def closed_form_phi_deg(sc: Scenario, angle_deg: float, rule: str | None = None)
     raise ValueError(form)
 
 
+def closed_form_phi_deg_array(sc: Scenario, angles_deg, rule: str | None = None) -> np.ndarray:
+    """closed_form_phi_deg over an array of swept angles [deg] at once (the
+    fine scans of the report: tens of thousands of points)."""
+    a = np.radians(np.asarray(angles_deg, dtype=float))
+    law, form = sc.law, sc.closed_form
+    alpha, beta = a + sc.alpha_offset, a + sc.beta_offset
+    if form == "general" or rule not in (None, law.rule):
+        t = cf.steady_tan_phi(law.mu1, law.mu2, law.eps1, law.eps2, alpha, beta, rule or law.rule)
+    elif form == "eq11":
+        t = cf.eq11_tan_phi(law.mu1, law.mu2, beta)
+    elif form == "eq31":
+        t = cf.eq31_tan_phi(law.mu1, law.mu2, beta)
+    elif form == "eq33":
+        t = cf.eq33_tan_phi(law.eps1, law.eps2, alpha)
+    elif form == "eq25":
+        return _eq25_array(sc, alpha)
+    elif form == "mat":
+        t = cf.mat_tan_phi(cf.mat_ratio(law.eps1 / law.eps2, law.mu1, law.mu2), a)
+    else:
+        raise ValueError(form)
+    return np.degrees(np.arctan(t))
+
+
+def _eq25_array(sc: Scenario, alpha: np.ndarray) -> np.ndarray:
+    law = sc.law
+    shift = math.degrees(sc.beta_offset - sc.alpha_offset) % 180.0
+    if abs(shift) < 1e-9 or abs(shift - 180.0) < 1e-9:
+        l1, l2 = cf.eigen_ratio_case4(law.mu1, law.mu2, law.eps1, law.eps2)
+    elif abs(shift - 90.0) < 1e-9:
+        l1, l2 = cf.eigen_ratio_case5(law.mu1, law.mu2, law.eps1, law.eps2)
+    else:
+        raise ScenarioError(sc.path, "geometry.closed_form",
+                            "eq25 only with beta_offset - alpha_offset = 0 or 90 deg")
+    return np.degrees(np.arctan(cf.eq25_tan_phi(l1, l2, alpha)))
+
+
 # -- workers ----------------------------------------------------------------------
 
 _worker_fmu: ContactFMU | None = None
