@@ -7,7 +7,7 @@ The public API (see README, "Python API"):
     ContactFMU            one instance of the contact FMU (FMI 2.0 or 3.0)
     ContactParams         the law's parameters; angles in rad, or
                           ContactParams.from_degrees(...)
-    find_fmu              the installed FMU of an FMI version
+    find_fmu              the installed FMU of an FMI version (contact or rig)
     Rig, run_rig          the carriage/block rig and one run of it (RigResult)
     load_scenario         read and validate a scenario file (degrees, N, m)
     load_measurements     read and validate a measurement folder
@@ -17,10 +17,12 @@ Modules, one job each:
     fmu           -- access to the OrthotropicContact FMU through fmpy
     closed_forms  -- the paper's closed-form results (eq. 1, 11, 25-29, 31, 33, 37-41)
     rig           -- the carriage/block test rig coupled with the FMU
+    cmaster       -- the compiled master: the rig loop in C, batches of runs
     scenarios     -- scenario files (TOML): parsing and validation
     sweep         -- orientation sweeps over worker processes
     report        -- CSV/JSON tables, PNG figures, Markdown reports
     identify      -- parameter identification with casadi
+    ssp           -- the experiment as an SSP 1.0 package (rig FMU + contact FMU)
     errors        -- the one-line errors the command reports
     cli           -- the `orthocontact` command
 """
