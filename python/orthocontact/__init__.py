@@ -20,7 +20,8 @@ Modules, one job each:
     cmaster       -- the compiled master: the rig loop in C, batches of runs
     scenarios     -- scenario files (TOML): parsing and validation
     sweep         -- orientation sweeps over worker processes
-    report        -- CSV/JSON tables, PNG figures, Markdown reports
+    tables        -- CSV and JSON files (a leaf: every layer may write results)
+    report        -- PNG figures and Markdown reports
     identify      -- parameter identification with casadi
     ssp           -- the experiment as an SSP 1.0 package (rig FMU + contact FMU)
     errors        -- the one-line errors the command reports

@@ -624,7 +624,7 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
 def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
         fmu_path=None) -> Identification:
     """identify() and write identified.json, fit.png, identified.md into out."""
-    from .report import write_json
+    from .tables import write_json
     res = identify(data, validate, workers, fmu_path)
     write_json(out / "identified.json", res.as_json())
     _figure(res, out / "fit.png")

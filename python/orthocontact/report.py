@@ -4,8 +4,6 @@ Every writer takes the folder to write into; the CLI hands it a staging
 folder and moves the files into place only when all of them are written."""
 from __future__ import annotations
 
-import csv
-import json
 import math
 from pathlib import Path
 
@@ -13,6 +11,7 @@ import numpy as np
 
 from . import closed_forms as cf
 from .scenarios import Scenario
+from .tables import write_csv, write_json  # noqa: F401  (re-exported: report.write_json)
 from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg, closed_form_phi_deg_array
 
 
@@ -63,18 +62,6 @@ def _swept_label(sc: Scenario) -> str:
 
 
 FLAT_DEG = 1e-9  # a closed form below this everywhere is flat: no extremum
-
-
-def write_csv(path: Path, header: list[str], rows) -> None:
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(header)
-        for r in rows:
-            w.writerow([f"{x:.12g}" if isinstance(x, float) else x for x in r])
-
-
-def write_json(path: Path, data) -> None:
-    path.write_text(json.dumps(data, indent=2, sort_keys=False) + "\n")
 
 
 def sweep_outputs(sc: Scenario, res: SweepResult, out: Path) -> dict:
