@@ -14,7 +14,7 @@ import pytest
 
 from conftest import CASE5, G_N
 from orthocontact import closed_forms as cf
-from orthocontact.fmu import ContactFMU, ContactParams, FMUError, find_fmu, fmi_version_of
+from orthocontact.fmu import ContactFMU, ContactParams, find_fmu, fmi_version_of
 from orthocontact.rig import Rig, run
 
 ROOT = Path(__file__).resolve().parents[1]

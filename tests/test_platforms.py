@@ -2,7 +2,6 @@
 format and architecture, every FMI function exported, Linux ones needing no
 glibc newer than 2.17, and the aarch64 Linux one run under qemu-user."""
 import math
-import os
 import re
 import shutil
 import subprocess

@@ -1,7 +1,6 @@
 """The README's Python examples run as written (doctests, from the repository
 root), and its fmpy example too."""
 import doctest
-import os
 import re
 from pathlib import Path
 

@@ -3,7 +3,6 @@ with the contact FMU by a plain co-simulation master it gives the Python
 harness's dynamic rig; its state restores into a fresh instance."""
 import math
 
-import numpy as np
 import pytest
 from fmpy import extract, read_model_description
 from fmpy.validation import validate_fmu

@@ -8,7 +8,6 @@ Units as in orthocontact.rig: kg, m/s^2, N, m/s, m, s; angles in rad."""
 from __future__ import annotations
 
 import ctypes
-import math
 import sys
 from pathlib import Path
 

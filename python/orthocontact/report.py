@@ -12,7 +12,7 @@ import numpy as np
 from . import closed_forms as cf
 from .scenarios import Scenario
 from .tables import write_csv, write_json  # noqa: F401  (re-exported: report.write_json)
-from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg, closed_form_phi_deg_array
+from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg_array
 
 
 def _plt():
