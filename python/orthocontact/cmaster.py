@@ -13,7 +13,8 @@ from pathlib import Path
 
 from fmpy import read_model_description
 
-from .fmu import MODEL_IDENTIFIER, ContactParams, FMUError, RULES, _unzipped, fmi_version_of
+from .fmu import (MODEL_IDENTIFIER, RULES, ContactParams, FMUError, _unzipped, fmi_version_of,
+                  installed_file)
 from .rig import Rig
 
 
@@ -29,11 +30,11 @@ class _Rig(ctypes.Structure):
 
 def _library_path() -> Path:
     name = "_orthocontact_master" + (".dylib" if sys.platform == "darwin" else ".so")
-    for folder in [Path(__file__).parent] + [Path(p) / "orthocontact" for p in sys.path if p]:
-        if (folder / name).is_file():
-            return folder / name
-    raise FileNotFoundError(f"the compiled master {name} is not installed with the package; run "
-                            "`pip install .` from the repository, or use --master fmpy")
+    path = installed_file(name)
+    if path is None:
+        raise FileNotFoundError(f"the compiled master {name} is not installed with the package; "
+                                "run `pip install .` from the repository, or use --master fmpy")
+    return path
 
 
 _lib = None

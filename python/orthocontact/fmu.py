@@ -31,11 +31,10 @@ class FMUError(RuntimeError):
 RIG_MODEL_IDENTIFIER = "CarriageBlock"
 
 
-def _installed(fmi_version: int, model: str = MODEL_IDENTIFIER):
-    """The FMU installed with the package: beside this module, or (an editable
-    install, whose code stays in the source tree) under `orthocontact/` in a
-    site-packages folder on sys.path."""
-    rel = Path(f"fmi{fmi_version}") / (model + ".fmu")
+def installed_file(rel) -> Path | None:
+    """A file installed with the package, `rel` relative to it: beside this
+    module, or (an editable install, whose code stays in the source tree)
+    under `orthocontact/` in a site-packages folder on sys.path."""
     here = Path(__file__).parent / rel
     if here.is_file():
         return here
@@ -44,6 +43,11 @@ def _installed(fmi_version: int, model: str = MODEL_IDENTIFIER):
         if candidate.is_file():
             return candidate
     return None
+
+
+def _installed(fmi_version: int, model: str = MODEL_IDENTIFIER):
+    """The FMU of `model` installed with the package, or None."""
+    return installed_file(Path(f"fmi{fmi_version}") / (model + ".fmu"))
 
 
 def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,

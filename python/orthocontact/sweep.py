@@ -37,14 +37,7 @@ def closed_form_phi_deg(sc: Scenario, angle_deg: float, rule: str | None = None)
     if form == "eq33":
         return math.degrees(math.atan(cf.eq33_tan_phi(p.eps1, p.eps2, p.alpha)))
     if form == "eq25":
-        shift = math.degrees(sc.beta_offset - sc.alpha_offset) % 180.0
-        if abs(shift) < 1e-9 or abs(shift - 180.0) < 1e-9:
-            l1, l2 = cf.eigen_ratio_case4(p.mu1, p.mu2, p.eps1, p.eps2)
-        elif abs(shift - 90.0) < 1e-9:
-            l1, l2 = cf.eigen_ratio_case5(p.mu1, p.mu2, p.eps1, p.eps2)
-        else:
-            raise ScenarioError(sc.path, "geometry.closed_form",
-                                "eq25 only with beta_offset - alpha_offset = 0 or 90 deg")
+        l1, l2 = _eq25_eigenvalues(sc)
         return math.degrees(math.atan(cf.eq25_tan_phi(l1, l2, p.alpha)))
     if form == "mat":
         r = cf.mat_ratio(p.eps1 / p.eps2, p.mu1, p.mu2)
@@ -67,7 +60,7 @@ def closed_form_phi_deg_array(sc: Scenario, angles_deg, rule: str | None = None)
     elif form == "eq33":
         t = cf.eq33_tan_phi(law.eps1, law.eps2, alpha)
     elif form == "eq25":
-        return _eq25_array(sc, alpha)
+        t = cf.eq25_tan_phi(*_eq25_eigenvalues(sc), alpha)
     elif form == "mat":
         t = cf.mat_tan_phi(cf.mat_ratio(law.eps1 / law.eps2, law.mu1, law.mu2), a)
     else:
@@ -75,17 +68,17 @@ def closed_form_phi_deg_array(sc: Scenario, angles_deg, rule: str | None = None)
     return np.degrees(np.arctan(t))
 
 
-def _eq25_array(sc: Scenario, alpha: np.ndarray) -> np.ndarray:
+def _eq25_eigenvalues(sc: Scenario) -> tuple[float, float]:
+    """(lambda1, lambda2) of eq. (25) for the scenario's axis geometry: Case 4
+    (beta = alpha) or Case 5 (beta = alpha + 90 deg)."""
     law = sc.law
     shift = math.degrees(sc.beta_offset - sc.alpha_offset) % 180.0
     if abs(shift) < 1e-9 or abs(shift - 180.0) < 1e-9:
-        l1, l2 = cf.eigen_ratio_case4(law.mu1, law.mu2, law.eps1, law.eps2)
-    elif abs(shift - 90.0) < 1e-9:
-        l1, l2 = cf.eigen_ratio_case5(law.mu1, law.mu2, law.eps1, law.eps2)
-    else:
-        raise ScenarioError(sc.path, "geometry.closed_form",
-                            "eq25 only with beta_offset - alpha_offset = 0 or 90 deg")
-    return np.degrees(np.arctan(cf.eq25_tan_phi(l1, l2, alpha)))
+        return cf.eigen_ratio_case4(law.mu1, law.mu2, law.eps1, law.eps2)
+    if abs(shift - 90.0) < 1e-9:
+        return cf.eigen_ratio_case5(law.mu1, law.mu2, law.eps1, law.eps2)
+    raise ScenarioError(sc.path, "geometry.closed_form",
+                        "eq25 only with beta_offset - alpha_offset = 0 or 90 deg")
 
 
 # -- workers ----------------------------------------------------------------------
@@ -93,12 +86,16 @@ def _eq25_array(sc: Scenario, alpha: np.ndarray) -> np.ndarray:
 _worker_fmu: ContactFMU | None = None
 
 
-def _init_worker(fmu_path):
-    global _worker_fmu
+def _worker_signals():
     # The main process decides about interrupts: Ctrl-C reaches the whole
     # process group, and a worker must not die with its own traceback.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _init_worker(fmu_path):
+    global _worker_fmu
+    _worker_signals()
     _worker_fmu = ContactFMU(fmu_path, instance_name=f"worker{os.getpid()}")
 
 
@@ -178,8 +175,7 @@ _worker_cmaster = None
 
 def _init_cworker(fmu_path):
     global _worker_cmaster
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    _worker_signals()
     from .cmaster import CMaster
     from .fmu import find_fmu
     _worker_cmaster = CMaster(find_fmu(fmu_path))
