@@ -237,11 +237,12 @@ class ContactFMU:
         self._get_T = partial(f["fmi3GetFloat64"], c, self._T_vr, 2, self._T_val, 2)
         self._get_out = partial(f["fmi3GetFloat64"], c, self._out_vr, 5, self._out_val, 5)
         self._get_state_int = partial(f["fmi3GetInt32"], c, self._state_vr, 1, self._state_val, 1)
-        flags = [ctypes.c_bool() for _ in range(3)]
+        # the out-arguments of fmi3DoStep, referenced once rather than every step
+        self._flags = [ctypes.c_bool() for _ in range(3)]
         self._last_time = ctypes.c_double()
+        refs = [ctypes.byref(x) for x in self._flags] + [ctypes.byref(self._last_time)]
         do_step = f["fmi3DoStep"]
-        self._fDoStep = lambda t, h, no_set: do_step(c, t, h, no_set, *map(ctypes.byref, flags),
-                                                     ctypes.byref(self._last_time))
+        self._fDoStep = lambda t, h, no_set: do_step(c, t, h, no_set, *refs)
         self._dir = [partial(f["fmi3GetDirectionalDerivative"], c, self._T_vr, 2, k, 1, self._one,
                              1, self._dT_val, 2) for k in self._known_vr]
         self._set_reals = lambda vr, val, n: f["fmi3SetFloat64"](c, vr, n, val, n)
