@@ -120,3 +120,30 @@ def test_every_command_and_argument_has_help():
     texts = {name: p.format_help() for name, p in sub.choices.items()}
     assert all("degrees" in texts[n] for n in ("run", "identify"))  # units are said
     assert "N/m" in texts["identify"] and "[m]" in texts["identify"] or "x1_m" in texts["identify"]
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")  # the swallowing, expected
+def test_an_interrupt_swallowed_by_a_finalizer_still_stops_and_writes_nothing(tmp_path):
+    """Python reports a KeyboardInterrupt raised inside __del__ as "Exception
+    ignored" and runs on (this happened to the CLI, in ContactFMU.__del__);
+    the run must still end as interrupted, with nothing committed."""
+    from orthocontact import cli
+
+    class SignalledDuringFinalization:
+        def __del__(self):
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)  # the handler runs here, inside __del__
+
+    old = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    try:
+        cli._install_signal_handlers()
+        with pytest.raises(KeyboardInterrupt):
+            with cli.staged_output(tmp_path / "results") as stage:
+                (stage / "summary.json").write_text("{}")
+                SignalledDuringFinalization()  # dropped at once: __del__ runs
+                # reaching here means the interrupt was swallowed
+    finally:
+        signal.signal(signal.SIGINT, old[0])
+        signal.signal(signal.SIGTERM, old[1])
+        cli._interrupted = False
+    assert leftovers(tmp_path) == []

@@ -1,6 +1,4 @@
 """`python -m orthocontact`: the same as the `orthocontact` command."""
-import sys
+from .cli import entry
 
-from .cli import main
-
-sys.exit(main())
+entry()

@@ -26,7 +26,7 @@ from pathlib import Path
 from .errors import InputError
 from .scenarios import ScenarioError, load
 
-__all__ = ["main", "InputError"]
+__all__ = ["main", "entry", "InputError"]
 
 
 def check_output_folder(out: Path, option: str = "--out") -> None:
@@ -77,6 +77,10 @@ def staged_output(out: Path):
     stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out.parent))
     try:
         yield stage
+        # An interrupt that a finalizer swallowed ("Exception ignored in
+        # __del__") still means the user asked to stop: commit nothing.
+        if _interrupted:
+            raise KeyboardInterrupt
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
         for parent in reversed(made):
@@ -280,15 +284,39 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
+_interrupted = False
+_fork_hook_installed = False
+
+
 def _interrupt(signum, frame):
+    # Remembered as well as raised: Python turns a KeyboardInterrupt raised
+    # inside a finalizer into a warning and runs on, and the run must still
+    # end as interrupted.
+    global _interrupted
+    _interrupted = True
     raise KeyboardInterrupt
 
 
-def main(argv=None) -> int:
-    args = build_parser().parse_args(argv)
-    # SIGTERM (a job runner, an IDE's stop button) ends a run like Ctrl-C.
-    with contextlib.suppress(ValueError):  # not in the main thread: leave it
+def _install_signal_handlers():
+    global _interrupted, _fork_hook_installed
+    _interrupted = False
+    with contextlib.suppress(ValueError):  # not in the main thread: leave them
+        # SIGTERM (a job runner, an IDE's stop button) ends a run like Ctrl-C.
+        signal.signal(signal.SIGINT, _interrupt)
         signal.signal(signal.SIGTERM, _interrupt)
+    if not _fork_hook_installed and hasattr(os, "register_at_fork"):
+        # A forked worker must not run this process's handler (and with it
+        # this process's unwinding and messages) if a signal reaches it
+        # before its pool initializer has run.
+        from .sweep import _worker_signals
+        os.register_at_fork(after_in_child=_worker_signals)
+        _fork_hook_installed = True
+
+
+def main(argv=None) -> int:
+    """Runs the command line `argv` (default: sys.argv[1:]); returns the exit status."""
+    args = build_parser().parse_args(argv)
+    _install_signal_handlers()
     out = getattr(args, "out", None)
     try:
         if getattr(args, "master", None) == "c" and getattr(args, "fmi", 2) == 3:
@@ -298,7 +326,10 @@ def main(argv=None) -> int:
             check_output_file(out)
         elif out is not None:
             check_output_folder(out)
-        return args.func(args)
+        status = args.func(args)
+        if _interrupted:
+            raise KeyboardInterrupt
+        return status
     except KeyboardInterrupt:
         print(f"orthocontact: interrupted; nothing written to {out}", file=sys.stderr)
         return 130
@@ -310,5 +341,19 @@ def main(argv=None) -> int:
         return 2
 
 
+def entry() -> None:
+    """The console command: main(), then the exit.  An interrupted run leaves
+    at once with 130: its workers are already stopped and its output removed,
+    and the interpreter's shutdown would restore the default signal handlers,
+    so that a second Ctrl-C during it would end the process by the signal
+    instead of with the status documented above."""
+    status = main()
+    if status == 130:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(130)
+    sys.exit(status)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    entry()
