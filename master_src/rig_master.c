@@ -37,6 +37,7 @@ typedef struct {
     fmi2SetRealTYPE *set_real;
     fmi2GetRealTYPE *get_real;
     fmi2SetIntegerTYPE *set_integer;
+    fmi2GetIntegerTYPE *get_integer;
     fmi2DoStepTYPE *do_step;
     fmi2GetDirectionalDerivativeTYPE *dir_der;
     fmi2GetFMUstateTYPE *get_state;
@@ -46,7 +47,8 @@ typedef struct {
 } rm_master;
 
 /* Value references of OrthotropicContact (its variable table). */
-enum { VR_MU1 = 1, VR_RULE = 7, VR_U1 = 8, VR_U2 = 9, VR_N = 10, VR_T1 = 11, VR_T2 = 12 };
+enum { VR_MU1 = 1, VR_RULE = 7, VR_U1 = 8, VR_U2 = 9, VR_N = 10, VR_T1 = 11, VR_T2 = 12, VR_S1 = 13,
+       VR_S2 = 14, VR_STATE = 15, VR_ENERGY = 16 };
 
 static void set_err(char *err, size_t n, const char *fmt, ...) {
     if (!err || n == 0) return;
@@ -99,6 +101,7 @@ void *rm_open(const char *binary, const char *guid, const char *resources, char 
     LOAD(set_real, "fmi2SetReal")
     LOAD(get_real, "fmi2GetReal")
     LOAD(set_integer, "fmi2SetInteger")
+    LOAD(get_integer, "fmi2GetInteger")
     LOAD(do_step, "fmi2DoStep")
     LOAD(dir_der, "fmi2GetDirectionalDerivative")
     LOAD(get_state, "fmi2GetFMUstate")
@@ -160,13 +163,16 @@ static int force(fmu_t *F, double *T1, double *T2) {
 static double pymax(double a, double b) { return b > a ? b : a; }
 static double pymin(double a, double b) { return b < a ? b : a; }
 
-/* rig.solve_lateral: u2 with T2 - strip * max(-T1, 0) = 0.  0 on failure. */
-static int solve_lateral(fmu_t *F, double u1, double *u2p, double N, double strip, double scale) {
+/* rig.solve_lateral: u2 with T2 - strip * max(-T1, 0) = 0; *iters as the
+ * harness counts them.  0 on failure. */
+static int solve_lateral(fmu_t *F, double u1, double *u2p, double N, double strip, double scale,
+                         long *iters) {
     const double tol = 1e-12;
     double u2 = *u2p, lo = 0, hi = 0, grow = scale;
     int have_lo = 0, have_hi = 0;
     for (int it = 1; it <= 200; ++it) {
         double T1, T2;
+        *iters = it;
         if (!set_inputs(F, u1, u2, N) || !force(F, &T1, &T2)) return 0;
         const double r = T2 - strip * pymax(-T1, 0.0);
         if (fabs(r) <= tol * pymax(fabs(N), 1e-300)) {
@@ -200,9 +206,33 @@ static int solve_lateral(fmu_t *F, double u1, double *u2p, double N, double stri
     return 0;
 }
 
-/* One run of rig._simulate on an initialized instance. */
+/* What a recorded run keeps every `every` steps (and at the last), as
+ * rig.RigResult's columns: t, x1, x2, T1, T2, s1, s2, state, energy, drive. */
+enum { REC_COLUMNS = 10 };
+typedef struct {
+    long every, capacity, rows, newton;
+    double *data; /* capacity x REC_COLUMNS, row-major */
+} recording;
+
+static int record_row(fmu_t *F, recording *rec, double t, double x1, double x2, double T1, double T2,
+                      double drive) {
+    if (rec->rows >= rec->capacity) return 0;
+    const fmi2ValueReference vr[3] = {VR_S1, VR_S2, VR_ENERGY}, vr_state = VR_STATE;
+    double o[3];
+    fmi2Integer state;
+    if (F->m->get_real(F->c, vr, 3, o) > fmi2Warning ||
+        F->m->get_integer(F->c, &vr_state, 1, &state) > fmi2Warning)
+        return 0;
+    double *row = rec->data + rec->rows * REC_COLUMNS;
+    row[0] = t, row[1] = x1, row[2] = x2, row[3] = T1, row[4] = T2;
+    row[5] = o[0], row[6] = o[1], row[7] = (double)state, row[8] = o[2], row[9] = drive;
+    rec->rows += 1;
+    return 1;
+}
+
+/* One run of rig._simulate on an initialized instance; rec may be NULL. */
 static int simulate(fmu_t *F, const rm_contact *p, const rm_rig *r, double *phi, double *drive_mean,
-                    char *err, size_t n) {
+                    recording *rec, char *err, size_t n) {
     const double h = r->step, v = r->velocity, m = r->mass, N = r->mass * r->g;
     const long n_steps = (long)ceil(r->travel / (v * h) - 1e-9);
     const double scale = pymin(p->mu1, p->mu2) * N / pymax(p->eps1, p->eps2);
@@ -232,7 +262,10 @@ static int simulate(fmu_t *F, const rm_contact *p, const rm_rig *r, double *phi,
             if (!set_inputs(F, x1, x2, N) || !force(F, &T1, &T2)) goto fail;
             if (fabs(T2) > mu_s * pymax(-T1, 0.0)) {
                 if (F->m->set_state(F->c, snapshot) > fmi2Warning) goto fail;
-                if (!solve_lateral(F, x1, &x2, N, copysign(mu_s, T2), scale)) {
+                long it = 0;
+                const int ok = solve_lateral(F, x1, &x2, N, copysign(mu_s, T2), scale, &it);
+                if (rec) rec->newton += it;
+                if (!ok) {
                     set_err(err, n, "lateral equilibrium not reached at x1 = %g m", x1);
                     goto fail_quiet;
                 }
@@ -242,6 +275,14 @@ static int simulate(fmu_t *F, const rm_contact *p, const rm_rig *r, double *phi,
         if (F->m->do_step(F->c, F->time, h, fmi2True) > fmi2Warning) goto fail;
         F->time += h;
         if (x1 >= x1_fit) fit_add(&fit, x1, x2, r->f_int - T1);
+        if (rec && (k % rec->every == 0 || k == n_steps) &&
+            !record_row(F, rec, t, x1, x2, T1, T2, r->f_int - T1)) {
+            if (rec->rows >= rec->capacity) {
+                set_err(err, n, "recording buffer of %ld rows is full", rec->capacity);
+                goto fail_quiet;
+            }
+            goto fail;
+        }
     }
     if (snapshot) F->m->free_state(F->c, &snapshot);
     *phi = fit_angle_deg(&fit);
@@ -255,9 +296,10 @@ fail_quiet:
 }
 
 /* Runs n parameter sets on one instance (reset between runs, as the harness's
- * workers do).  phi [deg], drive [N] per set.  0, or -1 with err. */
-int rm_run(void *h, int count, const rm_contact *p, const rm_rig *r, double *phi, double *drive,
-           char *err, size_t n) {
+ * workers do).  phi [deg], drive [N] per set; the first set recorded into rec
+ * if rec is not NULL.  0, or -1 with err. */
+static int run_sets(void *h, int count, const rm_contact *p, const rm_rig *r, double *phi,
+                    double *drive, recording *rec, char *err, size_t n) {
     rm_master *m = h;
     const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, m};
     fmu_t F = {m, NULL, 0.0, {VR_U1, VR_U2, VR_N}, {VR_T1, VR_T2}, VR_U2};
@@ -282,8 +324,30 @@ int rm_run(void *h, int count, const rm_contact *p, const rm_rig *r, double *phi
             break;
         }
         F.time = 0.0;
-        if (!simulate(&F, &p[i], &r[i], &phi[i], &drive[i], err, n)) status = -1;
+        if (!simulate(&F, &p[i], &r[i], &phi[i], &drive[i], i == 0 ? rec : NULL, err, n))
+            status = -1;
     }
     m->free_instance(F.c);
+    return status;
+}
+
+int rm_run(void *h, int count, const rm_contact *p, const rm_rig *r, double *phi, double *drive,
+           char *err, size_t n) {
+    return run_sets(h, count, p, r, phi, drive, NULL, err, n);
+}
+
+/* One run, recorded every `every` steps into rows (capacity x 10, the
+ * columns of rig.RigResult); *n_rows rows written, *newton lateral Newton
+ * iterations.  0, or -1 with err. */
+int rm_record(void *h, const rm_contact *p, const rm_rig *r, long every, double *rows, long capacity,
+              long *n_rows, double *phi, double *drive, long *newton, char *err, size_t n) {
+    if (every < 1) {
+        set_err(err, n, "record every %ld steps: expected >= 1", every);
+        return -1;
+    }
+    recording rec = {every, capacity, 0, 0, rows};
+    const int status = run_sets(h, 1, p, r, phi, drive, &rec, err, n);
+    *n_rows = rec.rows;
+    *newton = rec.newton;
     return status;
 }

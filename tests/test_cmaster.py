@@ -41,6 +41,36 @@ def test_c_master_gives_the_fmpy_masters_angles(name):
         assert drive == pytest.approx(ref.drive_mean_N, rel=1e-12, abs=1e-12)
 
 
+@pytest.mark.parametrize("mode,mu_strip", [("dynamic", 0.0), ("dynamic", 0.1), ("quasistatic", 0.0),
+                                           ("quasistatic", 0.1)])
+def test_c_master_records_the_fmpy_masters_trajectory_bit_for_bit(mode, mu_strip):
+    sc = load(ROOT / "scenarios/case5.toml")
+    rig = replace(sc.rig, travel_m=0.05, mode=mode, mu_strip=mu_strip)
+    p = sc.params_at(26.565)
+    cm = CMaster(find_fmu())
+    try:
+        got = cm.record(p, rig, record_every=7)
+    finally:
+        cm.close()
+    with ContactFMU(instance_name="ref") as f:
+        ref = run(p, rig, fmu=f, record_every=7)
+    assert len(ref.t) > 10
+    for col in ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive"):
+        assert getattr(got, col).tolist() == getattr(ref, col).tolist(), col
+    assert got.phi_deg == ref.phi_deg and got.drive_mean_N == ref.drive_mean_N
+    assert got.newton_iterations == ref.newton_iterations
+    assert (ref.newton_iterations > 0) == (mode == "quasistatic")
+
+
+def test_c_master_record_refuses_a_bad_interval():
+    cm = CMaster(find_fmu())
+    try:
+        with pytest.raises(ValueError, match="whole number >= 1"):
+            cm.record(load(ROOT / "scenarios/case5.toml").params_at(0.0), load(ROOT / "scenarios/case5.toml").rig, 0)
+    finally:
+        cm.close()
+
+
 def test_run_many_same_with_either_master_and_any_workers():
     sc = load(ROOT / "scenarios/mat_aged.toml")
     tasks = [(sc.params_at(a), replace(sc.rig, travel_m=0.05)) for a in range(0, 91, 10)]

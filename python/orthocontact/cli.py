@@ -103,15 +103,15 @@ def _fmu_for(sc, args) -> str:
     return sc.fmu or str(find_fmu(fmi_version=args.fmi))
 
 
-def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True) -> dict:
+def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True, draw=None) -> dict:
     from . import report, sweep
     from .fmu import fmi_version_of
     if sc.kind == "sweep":
         summary = report.sweep_outputs(sc, sweep.run_sweep(sc, workers, progress, fmu_path, master),
-                                       out)
+                                       out, draw)
     else:
         summary = report.step_study_outputs(
-            sc, sweep.run_step_study(sc, workers, progress, fmu_path, master), out)
+            sc, sweep.run_step_study(sc, workers, progress, fmu_path, master), out, draw)
     summary["fmi_version"] = fmi_version_of(fmu_path)
     report.write_json(out / "summary.json", summary)
     return summary
@@ -126,9 +126,11 @@ def packaged_scenarios() -> Path:
 
 
 def cmd_run(args) -> int:
+    from .report import FigureDrawer
+    from .sweep import default_workers
     sc = load(args.scenario)
-    with staged_output(args.out) as stage:
-        summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master)
+    with staged_output(args.out) as stage, FigureDrawer(args.workers or default_workers()) as draw:
+        summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw)
     print(json.dumps({k: summary[k] for k in summary if k in ("scenario", "extremum", "max_deviation_deg",
                                                              "drive_mean_N", "rules")}, indent=1))
     print(f"wrote {args.out}/summary.json")
@@ -142,20 +144,23 @@ def cmd_reproduce(args) -> int:
     if not files:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
     scenarios = [load(f) for f in files]  # all validated before anything runs
+    from .sweep import default_workers
     t0 = time.time()
     runs, rows = [], []
     with staged_output(args.out) as stage:
-        for sc in scenarios:
-            (stage / sc.name).mkdir()
-            summary = _run_scenario(sc, stage / sc.name, args.workers, _fmu_for(sc, args),
-                                    args.master)
-            runs.append((sc, summary))
-            rows += report.paper_rows(sc, summary)
+        # The figures are drawn in worker processes while the rig runs on.
+        with report.FigureDrawer(args.workers or default_workers()) as draw:
+            for sc in scenarios:
+                (stage / sc.name).mkdir()
+                summary = _run_scenario(sc, stage / sc.name, args.workers, _fmu_for(sc, args),
+                                        args.master, draw=draw)
+                runs.append((sc, summary))
+                rows += report.paper_rows(sc, summary)
         rows += report.calibration_rows()
         report.write_json(stage / "summary.json", {"rows": rows, "scenarios": {sc.name: s for sc, s in runs}})
         text = report.reproduction_report(stage, runs, rows, time.time() - t0)
     print(text.split("## Scenarios")[0].rstrip())
-    print(f"\nwrote {args.out}/report.md")
+    print(f"\nwrote {args.out}/report.md in {time.time() - t0:.1f} s")
     return 0 if all(r["match"] for r in rows) else 1
 
 

@@ -8,14 +8,15 @@ Units as in orthocontact.rig: kg, m/s^2, N, m/s, m, s; angles in rad."""
 from __future__ import annotations
 
 import ctypes
+import math
 import sys
 from pathlib import Path
 
-from fmpy import read_model_description
+import numpy as np
 
 from .fmu import (MODEL_IDENTIFIER, RULES, ContactParams, FMUError, _unzipped, fmi_version_of,
-                  installed_file)
-from .rig import Rig
+                  installed_file, model_description)
+from .rig import Rig, RigResult
 
 
 class _Contact(ctypes.Structure):
@@ -51,9 +52,21 @@ def _load():
         lib.rm_run.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.POINTER(_Contact),
                                ctypes.POINTER(_Rig), ctypes.POINTER(ctypes.c_double),
                                ctypes.POINTER(ctypes.c_double), ctypes.c_char_p, ctypes.c_size_t]
+        lib.rm_record.restype = ctypes.c_int
+        lib.rm_record.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Contact), ctypes.POINTER(_Rig),
+                                  ctypes.c_long, ctypes.POINTER(ctypes.c_double), ctypes.c_long,
+                                  ctypes.POINTER(ctypes.c_long), ctypes.POINTER(ctypes.c_double),
+                                  ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_long),
+                                  ctypes.c_char_p, ctypes.c_size_t]
         lib.rm_close.argtypes = [ctypes.c_void_p]
         _lib = lib
     return _lib
+
+
+def _structs(p: ContactParams, r: Rig) -> tuple[_Contact, _Rig]:
+    return (_Contact(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, RULES[p.rule]),
+            _Rig(r.mass_kg, r.g, r.f_int_N, r.velocity_m_s, r.travel_m, r.mu_strip, r.step_s,
+                 r.fit_from, 1 if r.mode == "quasistatic" else 0))
 
 
 class CMaster:
@@ -64,7 +77,7 @@ class CMaster:
         if fmi_version_of(path) != 2:
             raise ValueError(f"{path}: the compiled master runs FMI 2.0 FMUs; use --master fmpy "
                              "for FMI 3.0")
-        md = read_model_description(str(path))
+        md = model_description(path)
         folder = Path(_unzipped(path))
         binary = folder / "binaries" / "linux64" / (MODEL_IDENTIFIER + ".so")
         if sys.platform == "darwin":
@@ -84,15 +97,34 @@ class CMaster:
         cs = (_Contact * n)()
         rs = (_Rig * n)()
         for i, (p, r) in enumerate(tasks):
-            cs[i] = _Contact(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, RULES[p.rule])
-            rs[i] = _Rig(r.mass_kg, r.g, r.f_int_N, r.velocity_m_s, r.travel_m, r.mu_strip, r.step_s,
-                         r.fit_from, 1 if r.mode == "quasistatic" else 0)
+            cs[i], rs[i] = _structs(p, r)
         phi = (ctypes.c_double * n)()
         drive = (ctypes.c_double * n)()
         err = ctypes.create_string_buffer(512)
         if self._lib.rm_run(self._h, n, cs, rs, phi, drive, err, 512) != 0:
             raise FMUError(err.value.decode(errors="replace"))
         return [(phi[i], drive[i]) for i in range(n)]
+
+    def record(self, params: ContactParams, rig: Rig, record_every: int = 1) -> RigResult:
+        """One run with its time series kept every `record_every` steps (and
+        at the last): the RigResult of rig.run, from the compiled loop."""
+        if isinstance(record_every, bool) or not isinstance(record_every, int) or record_every < 1:
+            raise ValueError(f"record_every must be a whole number >= 1, got {record_every!r}")
+        n_steps = math.ceil(rig.travel_m / (rig.velocity_m_s * rig.step_s) - 1e-9)
+        capacity = n_steps // record_every + 1
+        rows = np.empty((capacity, 10))
+        c, r = _structs(params, rig)
+        n_rows, newton = ctypes.c_long(), ctypes.c_long()
+        phi, drive = ctypes.c_double(), ctypes.c_double()
+        err = ctypes.create_string_buffer(512)
+        if self._lib.rm_record(self._h, ctypes.byref(c), ctypes.byref(r), record_every,
+                               rows.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), capacity,
+                               ctypes.byref(n_rows), ctypes.byref(phi), ctypes.byref(drive),
+                               ctypes.byref(newton), err, 512) != 0:
+            raise FMUError(err.value.decode(errors="replace"))
+        cols = rows[:n_rows.value].T.copy()
+        return RigResult(*cols, phi_deg=phi.value, drive_mean_N=drive.value,
+                         newton_iterations=newton.value)
 
     def close(self):
         if getattr(self, "_h", None):

@@ -141,9 +141,23 @@ def _unzipped(path: Path) -> str:
     return _extracted[key]
 
 
+_descriptions: dict = {}
+
+
+def model_description(path):
+    """fmpy's reading of the FMU's modelDescription.xml, parsed once per
+    file version and process (a reproduction asks for it dozens of times)."""
+    p = Path(path).resolve()
+    st = p.stat()
+    key = (p, st.st_mtime_ns, st.st_size)
+    if key not in _descriptions:
+        _descriptions[key] = read_model_description(str(p))
+    return _descriptions[key]
+
+
 def fmi_version_of(path) -> int:
     """2 or 3: the FMI version of the FMU at `path`."""
-    return int(read_model_description(str(path)).fmiVersion.split(".")[0])
+    return int(model_description(path).fmiVersion.split(".")[0])
 
 
 class ContactFMU:
@@ -162,7 +176,7 @@ class ContactFMU:
                  fmi_version: int | None = None):
         path = find_fmu(fmu_path, fmi_version or 2) if fmu_path is None else find_fmu(fmu_path)
         self.path = path
-        self.model_description = read_model_description(str(path))
+        self.model_description = model_description(path)
         self.fmi_version = int(self.model_description.fmiVersion.split(".")[0])
         if fmi_version is not None and fmi_version != self.fmi_version:
             raise ValueError(f"{path} is an FMI {self.fmi_version}.0 FMU, not {fmi_version}.0")

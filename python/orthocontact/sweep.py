@@ -99,7 +99,7 @@ def _init_worker(fmu_path):
     _worker_fmu = ContactFMU(fmu_path, instance_name=f"worker{os.getpid()}")
 
 
-def _stop_pool(ex: ProcessPoolExecutor) -> None:
+def stop_pool(ex: ProcessPoolExecutor) -> None:
     """Ends the pool now: queued tasks are cancelled and the worker processes
     terminated (shutdown(wait=True) would first run every queued task)."""
     procs = list((getattr(ex, "_processes", None) or {}).values())
@@ -188,12 +188,13 @@ def _run_chunk(chunk):
     return [(i, phi, drive) for (i, _, _), (phi, drive) in zip(chunk, res)]
 
 
-def _pool(workers, initializer, fmu_path):
-    # fork starts workers in milliseconds; each creates its own FMU instance
-    # after the fork, so no FMU state is shared.  spawn where fork is absent.
+def process_pool(workers: int, initializer, *initargs) -> ProcessPoolExecutor:
+    """Worker processes: forked where that exists (they start in
+    milliseconds; each creates its own FMU instance after the fork, so no FMU
+    state is shared), spawned elsewhere."""
     method = "fork" if sys.platform.startswith("linux") else "spawn"
     return ProcessPoolExecutor(max_workers=workers, mp_context=get_context(method),
-                               initializer=initializer, initargs=(fmu_path,))
+                               initializer=initializer, initargs=initargs)
 
 
 def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, label: str,
@@ -231,7 +232,7 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
         finally:
             fmu.close()
         return out
-    ex = _pool(workers, _init_cworker if use_c else _init_worker, fmu_path)
+    ex = process_pool(workers, _init_cworker if use_c else _init_worker, fmu_path)
     try:
         if use_c:
             futures = [ex.submit(_run_chunk, c) for c in chunks]
@@ -247,7 +248,7 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
                 out[i] = (phi, drive)
                 bar.update()
     except BaseException:
-        _stop_pool(ex)
+        stop_pool(ex)
         raise
     ex.shutdown()
     return out
@@ -303,11 +304,20 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
                    master)
     phi = np.array([r[0] for r in res])
     drive = np.array([r[1] for r in res])
-    closed = np.array([closed_form_phi_deg(sc, a) for a in angles])
+    closed = closed_form_phi_deg_array(sc, np.asarray(angles, dtype=float))
     k = int(np.argmax(np.abs(phi)))
     grid_ext = {"angle_deg": float(angles[k]), "phi_deg": float(phi[k])}
     extremum = dict(grid_ext, refined=False)
-    fmu = ContactFMU(fmu_path, instance_name="main")
+    if resolve_master(master, fmu_path) == "c":
+        from .cmaster import CMaster
+        from .fmu import find_fmu
+        engine = CMaster(find_fmu(fmu_path))
+        one = lambda a: engine.run([(sc.params_at(a), sc.rig)])[0][0]
+        record = lambda a, every: engine.record(sc.params_at(a), sc.rig, every)
+    else:
+        engine = ContactFMU(fmu_path, instance_name="main")
+        one = lambda a: run(sc.params_at(a), sc.rig, fmu=engine, record_every=1 << 30).phi_deg
+        record = lambda a, every: run(sc.params_at(a), sc.rig, fmu=engine, record_every=every)
     try:
         if sc.sweep["refine_extremum"] and len(angles) >= 3 and abs(phi[k]) > 1e-6:
             sign = 1.0 if phi[k] > 0 else -1.0
@@ -315,30 +325,18 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
             lo, hi = max(angles[0], angles[k] - step), min(angles[-1], angles[k] + step)
             cache = {}
 
-            cm = None
-            if resolve_master(master, fmu_path) == "c":
-                from .cmaster import CMaster
-                from .fmu import find_fmu
-                cm = CMaster(find_fmu(fmu_path))
-
             def f(a):
                 if a not in cache:
-                    if cm is not None:
-                        cache[a] = sign * cm.run([(sc.params_at(a), sc.rig)])[0][0]
-                    else:
-                        cache[a] = sign * run(sc.params_at(a), sc.rig, fmu=fmu,
-                                              record_every=1 << 30).phi_deg
+                    cache[a] = sign * one(a)
                 return cache[a]
             a_ext, v = _golden_extremum(f, lo, hi)
             if v >= sign * phi[k]:
                 extremum = {"angle_deg": a_ext, "phi_deg": sign * v, "refined": True,
                             "evaluations": len(cache)}
-        traj = {}
         n_rec = max(1, int(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) / 400))
-        for a in sc.sweep["trajectory_angles_deg"]:
-            traj[float(a)] = run(sc.params_at(a), sc.rig, fmu=fmu, record_every=n_rec)
+        traj = {float(a): record(a, n_rec) for a in sc.sweep["trajectory_angles_deg"]}
     finally:
-        fmu.close()
+        engine.close()
     return SweepResult(np.array(angles, dtype=float), phi, closed, drive, extremum, grid_ext, workers,
                        time.time() - t0, traj)
 
