@@ -13,3 +13,7 @@ echo "== Python: harness vs bare fmpy, sweep scaling =="
 .venv/bin/python benchmarks/bench_harness.py
 echo "== Masters: rig runs/s, compiled vs fmpy (target: >= 20x) =="
 .venv/bin/python benchmarks/bench_masters.py
+echo "== make reproduce's command, wall time (target: <= 5 s) =="
+.venv/bin/python benchmarks/bench_reproduce.py
+echo "== uncertainty propagation, 10^6 rig runs on Dask (target: <= 10 min) =="
+.venv/bin/python benchmarks/bench_uq.py

@@ -31,6 +31,6 @@ fi
 # binaries for Linux, Windows and macOS.
 .venv/bin/python -m pip install -q --disable-pip-version-check \
   "scikit-build-core>=0.9" "fmpy>=0.3.20" "ziglang>=0.13" "numpy>=1.22" "casadi>=3.6" \
-  "matplotlib>=3.5" "pytest>=7"
+  "matplotlib>=3.5" "dask>=2024.1" "distributed>=2024.1" "pytest>=7"
 echo "bootstrap: building and installing orthocontact (both FMUs, all platforms, via CMake)"
 .venv/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation .

@@ -103,15 +103,16 @@ def _fmu_for(sc, args) -> str:
     return sc.fmu or str(find_fmu(fmi_version=args.fmi))
 
 
-def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True, draw=None) -> dict:
+def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True, draw=None,
+                  dask=None) -> dict:
     from . import report, sweep
     from .fmu import fmi_version_of
     if sc.kind == "sweep":
-        summary = report.sweep_outputs(sc, sweep.run_sweep(sc, workers, progress, fmu_path, master),
-                                       out, draw)
+        summary = report.sweep_outputs(
+            sc, sweep.run_sweep(sc, workers, progress, fmu_path, master, dask), out, draw)
     else:
         summary = report.step_study_outputs(
-            sc, sweep.run_step_study(sc, workers, progress, fmu_path, master), out, draw)
+            sc, sweep.run_step_study(sc, workers, progress, fmu_path, master, dask), out, draw)
     summary["fmi_version"] = fmi_version_of(fmu_path)
     report.write_json(out / "summary.json", summary)
     return summary
@@ -129,8 +130,10 @@ def cmd_run(args) -> int:
     from .report import FigureDrawer
     from .sweep import default_workers
     sc = load(args.scenario)
-    with staged_output(args.out) as stage, FigureDrawer(args.workers or default_workers()) as draw:
-        summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw)
+    with staged_output(args.out) as stage, _dask_for(args) as dask, \
+            FigureDrawer(args.workers or default_workers()) as draw:
+        summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
+                                dask=dask)
     print(json.dumps({k: summary[k] for k in summary if k in ("scenario", "extremum", "max_deviation_deg",
                                                              "drive_mean_N", "rules")}, indent=1))
     print(f"wrote {args.out}/summary.json")
@@ -149,11 +152,11 @@ def cmd_reproduce(args) -> int:
     runs, rows = [], []
     with staged_output(args.out) as stage:
         # The figures are drawn in worker processes while the rig runs on.
-        with report.FigureDrawer(args.workers or default_workers()) as draw:
+        with _dask_for(args) as dask, report.FigureDrawer(args.workers or default_workers()) as draw:
             for sc in scenarios:
                 (stage / sc.name).mkdir()
                 summary = _run_scenario(sc, stage / sc.name, args.workers, _fmu_for(sc, args),
-                                        args.master, draw=draw)
+                                        args.master, draw=draw, dask=dask)
                 runs.append((sc, summary))
                 rows += report.paper_rows(sc, summary)
         rows += report.calibration_rows()
@@ -174,6 +177,69 @@ def cmd_identify(args) -> int:
     print(identify.summary_text(result))
     print(f"wrote {args.out}/identified.json")
     return 0
+
+
+def cmd_uq(args) -> int:
+    from . import uq
+    est = uq.load_estimates(args.identification)
+    sc = load(args.scenario)
+    uq.check_geometry(sc, est)  # before any work
+    with staged_output(args.out) as stage:
+        res = uq.propagate(est, sc, args.samples, args.seed, None,
+                           scheduler=None if args.scheduler == "none" else args.scheduler,
+                           workers=args.workers or _default_workers(), step_s=args.step_s,
+                           chunk_runs=args.chunk_runs)
+        summary = uq.write_outputs(res, est, sc, args.seed, stage)
+    chk = summary["step_check"]
+    if not chk["max_abs_difference_deg"] <= uq.STEP_CHECK_WARN_DEG:
+        print(f"orthocontact: warning: at the estimates, phi at the uq step {chk['uq_step_s']:g} s "
+              f"differs from the scenario's step {chk['scenario_step_s']:g} s by "
+              f"{chk['max_abs_difference_deg']:.3g} deg; choose --step-s", file=sys.stderr)
+    w = summary["widest_band"]
+    print(f"{summary['runs']} rig runs ({summary['samples']} parameter sets x "
+          f"{len(summary['bands'])} angles) in {summary['seconds']:.1f} s on {summary['engine']}")
+    print(f"widest 95 % band of phi: {w['width_deg']:.3f} deg at {w['angle_deg']:g} deg; "
+          f"{100 * summary['accepted_fraction']:.1f} % of the draws physical")
+    print(f"wrote {args.out}/uq.json, uq_bands.csv, samples.csv, uq.png")
+    return 0
+
+
+def _dask_for(args):
+    """The Dask cluster the command's sweeps run on (--scheduler), or None."""
+    if getattr(args, "scheduler", None) in (None, "none"):
+        return contextlib.nullcontext(None)
+    if args.master == "fmpy" or getattr(args, "fmi", 2) == 3:
+        raise InputError("--scheduler runs the compiled master on the workers: it takes FMI 2.0 "
+                         "FMUs and --master auto or c")
+    from .cluster import DaskRunner
+    return DaskRunner(args.scheduler, args.workers or _default_workers())
+
+
+def _default_workers() -> int:
+    from .sweep import default_workers
+    return default_workers()
+
+
+def _positive_int(what):
+    def parse(text):
+        try:
+            n = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number of {what} >= 1, got {text!r}")
+        if n < 1:
+            raise argparse.ArgumentTypeError(f"expected a whole number of {what} >= 1, got {n}")
+        return n
+    return parse
+
+
+def _positive_float(text):
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number > 0, got {text!r}")
+    if not (x > 0 and x < float("inf")):
+        raise argparse.ArgumentTypeError(f"expected a finite number > 0, got {text}")
+    return x
 
 
 def cmd_ssp(args) -> int:
@@ -233,7 +299,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "installed FMUs (FMI 2.0 and 3.0), then exit")
     sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
 
-    def common(p, out_help):
+    def common(p, out_help, scheduler=True):
         p.add_argument("--out", required=True, type=Path, metavar="DIR", help=out_help)
         p.add_argument("--workers", type=_workers, default=None, metavar="N",
                        help="worker processes for sweeps (default: the number of cores, at most 8)")
@@ -244,6 +310,11 @@ def build_parser() -> argparse.ArgumentParser:
                        help="who runs the rig loop: c, the compiled master (FMI 2.0 FMUs, about "
                             "25-55x faster), fmpy, the Python harness, or auto (default: c where "
                             "it applies); both give the same angles")
+        if scheduler:
+            p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                           help="run the sweeps on Dask: local (a LocalCluster of --workers "
+                                "processes) or tcp://HOST:PORT (an existing scheduler); default: "
+                                "local processes, which start faster for sweeps of this size")
 
     r = sub.add_parser("run", help="run one scenario file (a sweep over the mat/axis angle in "
                                    "degrees, or a step-size study)",
@@ -271,7 +342,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="measurement folder: rig.toml and any of forces.csv (alpha_deg,force_N), "
                         "angles.csv (alpha_deg,phi_deg), ramp.csv (x1_m,force_N); angles in "
                         "degrees, forces in N, travel in m")
-    common(i, "output folder: created if missing; written only when the fit completes")
+    common(i, "output folder: created if missing; written only when the fit completes", scheduler=False)
     i.add_argument("--no-validate", action="store_true",
                    help="skip the validation runs of the identified parameters on the FMU")
     i.set_defaults(func=cmd_identify)
@@ -286,6 +357,40 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", type=Path, required=True, metavar="FILE.ssp",
                    help="the package to write (replaced if it exists)")
     s.set_defaults(func=cmd_ssp)
+    u = sub.add_parser("uq", help="propagate an identification's uncertainty to the predicted "
+                                  "trajectory angle over a scenario's angles (Dask)",
+                       description="Draw parameter sets from identified.json's estimates and "
+                                   "covariance (only mu, eps > 0), run the rig over the scenario's "
+                                   "angles for each (compiled master, on Dask), and write the "
+                                   "predictive bands of phi [deg] and of the driving force [N] "
+                                   "(median, 2.5 and 97.5 %) as uq_bands.csv, uq.json, uq.png, "
+                                   "and the drawn sets as samples.csv.")
+    u.add_argument("identification", type=Path, metavar="IDENTIFICATION.json",
+                   help="identified.json written by `orthocontact identify`")
+    u.add_argument("--scenario", required=True, type=Path, metavar="SCENARIO",
+                   help="sweep scenario file (TOML) giving the rig and the angles [deg]; its rule "
+                        "must be the identification's")
+    u.add_argument("--samples", required=True, type=_positive_int("parameter sets"), metavar="N",
+                   help="parameter sets to draw; rig runs = N x the scenario's angles")
+    u.add_argument("--out", required=True, type=Path, metavar="DIR",
+                   help="output folder: created if missing; written only when all runs complete")
+    u.add_argument("--seed", type=int, default=0, metavar="S",
+                   help="seed of the draws (default 0): the same seed gives the same files, "
+                        "serial or on any cluster")
+    u.add_argument("--scheduler", default="local", metavar="ADDRESS",
+                   help="where the runs go: local (default: a Dask LocalCluster, --workers "
+                        "processes), tcp://HOST:PORT (an existing Dask scheduler), or none (this "
+                        "process, no Dask)")
+    u.add_argument("--workers", type=_workers, default=None, metavar="N",
+                   help="worker processes of the local cluster (default: the number of cores, at "
+                        "most 8)")
+    u.add_argument("--step-s", type=_positive_float, default=None, metavar="SECONDS",
+                   help="communication step of the rig [s] (default: 0.004 for the implicit rules, "
+                        "step-size independent; the scenario's for eq20); checked against the "
+                        "scenario's step at the estimates")
+    u.add_argument("--chunk-runs", type=_positive_int("runs"), default=1000, metavar="RUNS",
+                   help="rig runs per task sent to a worker (default 1000)")
+    u.set_defaults(func=cmd_uq)
     return ap
 
 
@@ -327,6 +432,9 @@ def main(argv=None) -> int:
         if getattr(args, "master", None) == "c" and getattr(args, "fmi", 2) == 3:
             raise InputError("--master c runs FMI 2.0 FMUs; with --fmi 3 use --master fmpy "
                              "(or auto)")
+        if getattr(args, "scheduler", None) not in (None, "none"):
+            from .cluster import check_address
+            check_address(args.scheduler)
         if out is not None and args.cmd == "ssp":
             check_output_file(out)
         elif out is not None:

@@ -593,6 +593,16 @@ class Identification:
             out["noise_assumed"] = [unit[g] for g in f.sigma_assumed]
         out["fit_residuals"] = {g: _res_stats(r) for g, r in f.residuals.items()}
         out["dof"] = f.dof
+        # What uncertainty propagation (orthocontact uq) draws from: the
+        # joint Gauss-Newton covariance of the fitted parameters, and the
+        # measured angles to show beside the predictions.
+        out["covariance"] = {"parameters": list(f.free),
+                             "values": [f.values[n] for n in f.free],
+                             "matrix": [[float(c) for c in row] for row in 0.5 * (f.cov + f.cov.T)]}
+        out["points"] = {"angles": None if d.angles is None else
+                         [[float(a), float(p)] for a, p in d.angles],
+                         "forces": None if d.forces is None else
+                         [[float(a), float(F)] for a, F in d.forces]}
         out["ramp_stick_points"] = f.stick_points
         out["validation_fmu"] = self.validation
         out["data"] = {"folder": str(d.folder),

@@ -198,14 +198,26 @@ def process_pool(workers: int, initializer, *initargs) -> ProcessPoolExecutor:
 
 
 def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, label: str,
-             progress: bool = True, master: str = "auto") -> list[tuple[float, float]]:
+             progress: bool = True, master: str = "auto", dask=None) -> list[tuple[float, float]]:
     """(phi_deg, drive_mean_N) of each (params, rig), in order.  master: "c"
     (the compiled master, FMI 2.0 FMUs), "fmpy" (the Python harness), or
-    "auto" (c where it applies); both give the same angles."""
+    "auto" (c where it applies); both give the same angles.  dask: a
+    cluster.DaskRunner to run the compiled master's chunks on (else local
+    processes)."""
     out: list = [None] * len(tasks)
     bar = Progress(len(tasks), label, progress)
     indexed = [(i, p, r) for i, (p, r) in enumerate(tasks)]
     use_c = resolve_master(master, fmu_path) == "c"
+    if dask is not None:
+        if not use_c:
+            raise ValueError("a Dask cluster runs the compiled master: use master 'c' or 'auto' "
+                             "with an FMI 2.0 FMU")
+        from .cluster import run_tasks
+        from .fmu import find_fmu
+        size = max(1, min(1000, -(-len(tasks) // 8)))
+        chunks = [tasks[k:k + size] for k in range(0, len(tasks), size)]
+        res = dask.map(run_tasks, chunks, find_fmu(fmu_path), lambda i, r: bar.update(len(r)))
+        return [tuple(x) for part in res for x in part]
     if use_c:
         # chunks small enough to show progress and balance two workers
         size = max(1, min(256, -(-len(indexed) // (4 * max(workers, 1)))))
@@ -292,7 +304,7 @@ def _golden_extremum(f, a: float, b: float, tol: float = 1e-3) -> tuple[float, f
 
 
 def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
-              fmu_path=None, master: str = "auto") -> SweepResult:
+              fmu_path=None, master: str = "auto", dask=None) -> SweepResult:
     """phi(angle) over the scenario's grid, the extremum (refined by a
     golden-section search on the rig itself when asked), and recorded runs
     at the trajectory angles."""
@@ -301,7 +313,7 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     t0 = time.time()
     angles = sc.sweep_angles()
     res = run_many([(sc.params_at(a), sc.rig) for a in angles], workers, fmu_path, sc.name, progress,
-                   master)
+                   master, dask)
     phi = np.array([r[0] for r in res])
     drive = np.array([r[1] for r in res])
     closed = closed_form_phi_deg_array(sc, np.asarray(angles, dtype=float))
@@ -349,7 +361,7 @@ class StepStudyResult:
 
 
 def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = True,
-                   fmu_path=None, master: str = "auto") -> StepStudyResult:
+                   fmu_path=None, master: str = "auto", dask=None) -> StepStudyResult:
     """The steady angle of each sliding rule at each communication step."""
     from dataclasses import replace
     workers = workers or default_workers()
@@ -357,7 +369,7 @@ def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = Tr
     a = sc.study["angle_deg"]
     combos = [(rule, h) for rule in sc.study["rules"] for h in sc.study["steps_s"]]
     tasks = [(sc.params_at(a, rule), replace(sc.rig, step_s=h)) for rule, h in combos]
-    res = run_many(tasks, workers, fmu_path or sc.fmu, sc.name, progress, master)
+    res = run_many(tasks, workers, fmu_path or sc.fmu, sc.name, progress, master, dask)
     rows = []
     for (rule, h), (phi, drive) in zip(combos, res):
         closed = closed_form_phi_deg(sc, a, rule)

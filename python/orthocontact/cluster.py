@@ -1,0 +1,145 @@
+"""Batches of rig runs on a Dask cluster (dask.distributed).
+
+A `DaskRunner` either starts a `distributed.LocalCluster` with one
+single-threaded worker process per core, or connects to an existing
+scheduler (`tcp://HOST:PORT`).  The contact FMU travels to the workers as
+bytes (scattered to every worker once; no shared file system is assumed);
+each worker process unpacks it once into its own temporary folder and runs
+its chunks on the compiled master.  A chunk's result depends on nothing but
+its inputs, so the scheduler may run a chunk again (a lost worker's chunks
+are recomputed on the others) and the results stay identical to a serial
+run.
+
+The workers need this package installed (the compiled master ships with it).
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import tempfile
+from pathlib import Path
+
+from .errors import InputError
+
+# -- the worker's side ------------------------------------------------------------
+
+_masters: dict = {}  # FMU digest -> CMaster, per worker process
+
+
+def _master_for(fmu):
+    """The compiled master on the FMU `fmu` = (digest, file name, bytes),
+    unpacked once per worker process."""
+    digest, name, blob = fmu
+    if digest not in _masters:
+        from .cmaster import CMaster
+        folder = Path(tempfile.gettempdir()) / f"orthocontact-fmu-{digest[:16]}-{os.getpid()}"
+        folder.mkdir(exist_ok=True)
+        path = folder / name
+        if not path.exists():
+            tmp = path.with_suffix(".partial")
+            tmp.write_bytes(blob)
+            os.replace(tmp, path)
+        _masters[digest] = CMaster(path)
+    return _masters[digest]
+
+
+def release(fmu) -> None:
+    """Closes the master on `fmu` in this process, if there is one."""
+    m = _masters.pop(fmu[0], None)
+    if m is not None:
+        m.close()
+
+
+def fmu_payload(fmu_path) -> tuple:
+    """(digest, file name, bytes): the FMU as it travels to the workers."""
+    path = Path(fmu_path)
+    blob = path.read_bytes()
+    return hashlib.sha256(blob).hexdigest(), path.name, blob
+
+
+def run_tasks(fmu, tasks):
+    """[(ContactParams, Rig)] -> [(phi_deg, drive_mean_N)] on the worker."""
+    return _master_for(fmu).run(tasks)
+
+
+# -- the client's side ------------------------------------------------------------
+
+def check_address(scheduler: str) -> None:
+    """InputError unless `scheduler` is 'local' or a Dask address."""
+    if scheduler != "local" and not scheduler.startswith(("tcp://", "tls://", "inproc://", "ucx://")):
+        raise InputError(f"--scheduler {scheduler}: expected 'local' or a scheduler address "
+                         "such as tcp://HOST:PORT")
+
+
+class DaskRunner:
+    """Runs chunks of rig work on Dask.  scheduler: "local" (a LocalCluster
+    of `workers` processes, one thread each) or an address tcp://HOST:PORT.
+
+        with DaskRunner("local", 2) as dr:
+            results = dr.map(fn, chunks, fmu_path, on_done)
+
+    fn(fmu, chunk) runs on a worker, where fmu is what _master_for takes."""
+
+    def __init__(self, scheduler: str, workers: int):
+        check_address(scheduler)
+        self.scheduler, self.workers = scheduler, workers
+        self._client = self._cluster = None
+        self._scattered = {}  # FMU path -> future of its payload
+
+    @property
+    def description(self) -> str:
+        if self._cluster is not None:
+            return f"Dask LocalCluster, {self.workers} worker processes"
+        return f"Dask cluster at {self.scheduler}"
+
+    def __enter__(self):
+        try:
+            from distributed import Client, LocalCluster
+        except ImportError:
+            raise InputError("--scheduler: Dask is not installed; pip install 'dask[distributed]'") \
+                from None
+        if self.scheduler == "local":
+            self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
+                                         dashboard_address=None, silence_logs=40)
+            self._client = Client(self._cluster)
+        else:
+            try:
+                self._client = Client(self.scheduler, timeout=15)
+            except OSError as e:
+                raise InputError(f"--scheduler {self.scheduler}: cannot reach the scheduler ({e})") \
+                    from None
+        return self
+
+    def _fmu(self, fmu_path):
+        key = str(Path(fmu_path).resolve())
+        if key not in self._scattered:
+            # On every worker: a worker that dies takes only its own copy.
+            self._scattered[key] = self._client.scatter(fmu_payload(fmu_path), broadcast=True,
+                                                        hash=True)
+        return self._scattered[key]
+
+    def map(self, fn, chunks: list, fmu_path, on_done=None) -> list:
+        """fn(fmu, chunk) for every chunk, on the cluster; the results in the
+        order of `chunks`.  on_done(i, result) as each one arrives."""
+        from distributed import as_completed
+        fmu = self._fmu(fmu_path)
+        futures = [self._client.submit(fn, fmu, c, pure=False) for c in chunks]
+        index = {f.key: i for i, f in enumerate(futures)}
+        out = [None] * len(chunks)
+        try:
+            for fut in as_completed(futures):
+                i = index[fut.key]
+                out[i] = fut.result()
+                if on_done:
+                    on_done(i, out[i])
+        except BaseException:
+            self._client.cancel(futures)
+            raise
+        return out
+
+    def __exit__(self, kind, value, tb):
+        if self._client is not None:
+            self._client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+        return False
