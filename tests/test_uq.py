@@ -9,6 +9,7 @@ import signal
 import socket
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -233,3 +234,47 @@ def test_sweeps_on_dask_give_the_local_results(tmp_path):
     assert a.returncode == 0 and b.returncode == 0, b.stderr
     for name in ("sweep.csv", "trajectories.csv"):
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
+
+
+def test_ctrl_c_stops_the_local_cluster_and_writes_nothing(identified, tmp_path):
+    run = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(ROOT / "scenarios/mat_aged.toml"),
+                                  "--samples", "3000", "--out", str(tmp_path / "o")],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    for line in run.stderr:
+        if line.startswith("uq mat_aged:") and "(0%" not in line:
+            break
+    kids = _descendants(run.pid)
+    assert kids, "the cluster's processes were not found"
+    run.send_signal(signal.SIGINT)
+    out, err = run.communicate(timeout=60)
+    assert run.returncode == 130, err
+    assert err.strip().splitlines()[-1] == f"orthocontact: interrupted; nothing written to {tmp_path / 'o'}"
+    assert not (tmp_path / "o").exists() and list(tmp_path.iterdir()) == []
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline and [k for k in kids if _alive(k)]:
+        time.sleep(0.2)
+    assert [k for k in kids if _alive(k)] == []
+
+
+def _descendants(pid):
+    parent = {}
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                parent[int(d.name)] = int((d / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except OSError:
+                continue
+    out, todo = [], [pid]
+    while todo:
+        p = todo.pop()
+        kids = [k for k, v in parent.items() if v == p]
+        out += kids
+        todo += kids
+    return out
+
+
+def _alive(pid):
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False

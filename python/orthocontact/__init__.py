@@ -28,7 +28,7 @@ Modules, one job each:
     cli           -- the `orthocontact` command
 """
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 from .fmu import ContactFMU, ContactParams, find_fmu  # noqa: E402
 from .rig import Rig, RigResult  # noqa: E402
