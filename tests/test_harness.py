@@ -155,6 +155,8 @@ BAD = [
     ("out of range", "mu2 = -0.5\n", "[law]", "law.mu2"),
     ("bad mode", 'mode = "fast"\n', "[rig]", "rig.mode"),
     ("missing fmu", 'fmu = "nowhere/OrthotropicContact.fmu"\n', None, "fmu"),
+    ("bad evidence", 'evidence = "hearsay"\n', "[paper]", "paper.evidence"),
+    ("unknown calibration input", 'calibrated_on = ["phi_deg"]\n', "[paper]", "paper.calibrated_on"),
 ]
 
 
@@ -173,6 +175,8 @@ def test_bad_scenario_one_line_exit_2_nothing_written(tmp_path, capsys, what, li
                 else:
                     lines.insert(i, line)
                 break
+        else:  # the table is the file's last
+            lines.append(line)
         text = "".join(lines)
     else:
         text = line + text
@@ -226,8 +230,37 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
     assert main(["reproduce", "--out", str(out), "--scenarios", str(folder), "--workers", "2"]) == 0
     report = (out / "report.md").read_text()
     rows = json.loads((out / "summary.json").read_text())["rows"]
-    assert len(rows) == 21 and all(r["match"] for r in rows)
-    assert "21 of 21 published numbers matched" in report
+    assert len(rows) == 19 and all(r["match"] for r in rows)
+    rep = json.loads((out / "report.json").read_text())
+    assert [{k: r[k] for k in ("scenario", "quantity", "kind")} for r in rep["rows"]] == \
+        [{k: r[k] for k in ("scenario", "quantity", "kind")} for r in rows]
+    assert all(set(r) >= {"scenario", "quantity", "paper", "here", "tolerance", "match", "kind"}
+               for r in rep["rows"])
+    kinds = {}
+    for r in rows:
+        kinds.setdefault(r["kind"], []).append((r["scenario"], r["quantity"]))
+    # every number the aged mat was calibrated on comes back as a round trip
+    assert sorted(s for s, _ in kinds["round-trip"]) == ["mat_aged"] * 5 + ["mat_new"]
+    assert {s for s, _ in kinds["closed-form"]} == {"case1", "case2", "case3", "case4", "case5",
+                                                    "calibration"}
+    assert "prediction" not in kinds
+    assert "closed-form: 13 of 13 matched; round-trip: 6 of 6 matched; prediction: none" in report
+    # the new mat's forces are not in the paper: no row claims them
+    assert not [r for r in rows if r["scenario"] == "mat_new" and "force" in r["quantity"]]
+    # signed, in the paper's convention, with the other rule beside
+    aged = next(r for r in rows if r["scenario"] == "mat_aged" and r["quantity"].startswith("extremal"))
+    assert aged["here"] == pytest.approx(11.53, abs=0.05) and aged["other_rule"]["rule"] == "associated"
+    assert aged["other_rule"]["here"] < -15  # the associated rule turns the block the other way
+    c2 = next(r for r in rows if r["scenario"] == "case2" and r["quantity"].startswith("extremal"))
+    assert c2["paper"] < 0 and c2["here"] == pytest.approx(-67.38, abs=0.01)
+    # the calibration chain from the forces, unrounded (eq. 1, 29, 39 by hand)
+    mu1, mu2 = (12.5 - 5.0) / (1.875 * 9.806), (16.5 - 5.0) / (1.875 * 9.806)
+    t = math.tan(math.radians(11.5))
+    l = -t + math.sqrt(t * t + 1)  # eq. (29) with the paper's phi_max = +11.5 deg: 0.817
+    chain = {c["step"]: c["value"] for c in rep["calibration_chain"]}
+    assert chain["ε1/ε2 by eq. (39)"] == pytest.approx(l * mu2 / mu1, rel=1e-9)
+    assert chain["ε1/ε2 by eq. (39), paper"] == pytest.approx(l * 0.625 / 0.408, rel=1e-9)
+    assert "1.2528" in report
     for name in ("case1", "case5", "mat_aged", "step_study"):
         assert (out / name / "summary.json").exists()
     assert {r["scenario"] for r in rows} >= {"case1", "case2", "case3", "case4", "case5", "mat_aged",

@@ -87,6 +87,15 @@ def _eps_ratio(v):
     return None if why is None else 'a number > 0 or "isotropic"'
 
 
+# What a comparison with a published number is evidence of (report.md):
+# closed-form: the FMU through the harness against the paper's own formula;
+# prediction: the model computes it from inputs that do not contain it.
+# A number listed in calibrated_on is a round trip: the scenario's parameters
+# were derived from it.
+EVIDENCE = ("closed-form", "prediction")
+PAPER_NUMBERS = ("extremum_angle_deg", "extremum_phi_deg", "max_abs_phi_deg", "drive_0_N",
+                 "drive_90_N", "mu1", "mu2", "phi_max_deg")
+
 POS = _num(0, lo_open=True)
 NONNEG = _num(0)
 ANGLE = _num(-360, 360)
@@ -111,7 +120,8 @@ SCHEMA = {
               "phi_sign_differs": (_bool, False), "max_abs_phi_deg": (NONNEG, None),
               "drive_0_N": (POS, None), "drive_90_N": (POS, None), "mu1": (POS, None),
               "mu2": (POS, None), "phi_max_deg": (NONNEG, None), "eps_ratio": (POS, None),
-              "source": (_str, "")},
+              "source": (_str, ""), "evidence": (_choice(EVIDENCE), "prediction"),
+              "calibrated_on": (_list(_choice(PAPER_NUMBERS), min_len=0), [])},
 }
 SECTION_FOR_KIND = {"sweep": {"sweep"}, "step_study": {"study"}}
 

@@ -324,11 +324,12 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
         from .cmaster import CMaster
         from .fmu import find_fmu
         engine = CMaster(find_fmu(fmu_path))
-        one = lambda a: engine.run([(sc.params_at(a), sc.rig)])[0][0]
+        one = lambda a, rule=None: engine.run([(sc.params_at(a, rule), sc.rig)])[0][0]
         record = lambda a, every: engine.record(sc.params_at(a), sc.rig, every)
     else:
         engine = ContactFMU(fmu_path, instance_name="main")
-        one = lambda a: run(sc.params_at(a), sc.rig, fmu=engine, record_every=1 << 30).phi_deg
+        one = lambda a, rule=None: run(sc.params_at(a, rule), sc.rig, fmu=engine,
+                                       record_every=1 << 30).phi_deg
         record = lambda a, every: run(sc.params_at(a), sc.rig, fmu=engine, record_every=every)
     try:
         if sc.sweep["refine_extremum"] and len(angles) >= 3 and abs(phi[k]) > 1e-6:
@@ -345,6 +346,11 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
             if v >= sign * phi[k]:
                 extremum = {"angle_deg": a_ext, "phi_deg": sign * v, "refined": True,
                             "evaluations": len(cache)}
+        # The other implicit rule at the same angle: the sign of phi is what
+        # tells the rules apart (report.md).
+        other = {"coupled": "associated", "associated": "coupled"}.get(sc.law.rule)
+        if other:
+            extremum["other_rule"] = {"rule": other, "phi_deg": one(extremum["angle_deg"], other)}
         n_rec = max(1, int(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) / 400))
         traj = {float(a): record(a, n_rec) for a in sc.sweep["trajectory_angles_deg"]}
     finally:
