@@ -21,7 +21,7 @@ typedef struct {
 } rm_contact;
 
 typedef struct {
-    double mass, g, f_int, velocity, travel, mu_strip, step, fit_from;
+    double mass, g, f_int, velocity, travel, mu_strip, step, fit_from, c_strip;
     int quasistatic;
 } rm_rig;
 
@@ -163,18 +163,18 @@ static int force(fmu_t *F, double *T1, double *T2) {
 static double pymax(double a, double b) { return b > a ? b : a; }
 static double pymin(double a, double b) { return b < a ? b : a; }
 
-/* rig.solve_lateral: u2 with T2 - strip * max(-T1, 0) = 0; *iters as the
- * harness counts them.  0 on failure. */
+/* rig.solve_lateral: u2 with T2 - strip * max(-T1, 0) - visc * (u2 - u2_ref)
+ * = 0, from u2_ref = *u2p; *iters as the harness counts them.  0 on failure. */
 static int solve_lateral(fmu_t *F, double u1, double *u2p, double N, double strip, double scale,
-                         long *iters) {
-    const double tol = 1e-12;
+                         double visc, long *iters) {
+    const double tol = 1e-12, u2_ref = *u2p;
     double u2 = *u2p, lo = 0, hi = 0, grow = scale;
     int have_lo = 0, have_hi = 0;
     for (int it = 1; it <= 200; ++it) {
         double T1, T2;
         *iters = it;
         if (!set_inputs(F, u1, u2, N) || !force(F, &T1, &T2)) return 0;
-        const double r = T2 - strip * pymax(-T1, 0.0);
+        const double r = T2 - strip * pymax(-T1, 0.0) - visc * (u2 - u2_ref);
         if (fabs(r) <= tol * pymax(fabs(N), 1e-300)) {
             *u2p = u2;
             return 1;
@@ -189,7 +189,7 @@ static int solve_lateral(fmu_t *F, double u1, double *u2p, double N, double stri
         const double one = 1.0;
         double dT[2];
         if (F->m->dir_der(F->c, F->T_vr, 2, &F->known_u2, 1, &one, dT) > fmi2Warning) return 0;
-        const double d = dT[1] + (T1 < 0 ? strip * dT[0] : 0.0);
+        const double d = dT[1] + (T1 < 0 ? strip * dT[0] : 0.0) - visc;
         double cand = d < 0 ? u2 - r / d : NAN;
         if (have_lo && have_hi) {
             if (!(pymin(lo, hi) < cand && cand < pymax(lo, hi))) cand = 0.5 * (lo + hi);
@@ -237,6 +237,9 @@ static int simulate(fmu_t *F, const rm_contact *p, const rm_rig *r, double *phi,
     const long n_steps = (long)ceil(r->travel / (v * h) - 1e-9);
     const double scale = pymin(p->mu1, p->mu2) * N / pymax(p->eps1, p->eps2);
     const double mu_s = r->mu_strip;
+    /* the strip's viscous term: implicit in the dynamic rig (damp is exactly 1
+     * without it), a residual term in the quasi-static one */
+    const double damp = 1.0 + h * r->c_strip / m, visc = r->c_strip / h;
     double x2 = 0.0, v2 = 0.0, T1 = 0.0, T2 = 0.0;
     line_fit fit = {0};
     const double x1_fit = r->fit_from * v * n_steps * h;
@@ -247,13 +250,13 @@ static int simulate(fmu_t *F, const rm_contact *p, const rm_rig *r, double *phi,
         if (!r->quasistatic) {
             const double f_max = mu_s * P, a_free = T2 / m;
             if (f_max > 0.0) {
-                const double v_free = v2 + h * a_free;
+                const double v_free = (v2 + h * a_free) / damp;
                 const double f = v_free != 0.0
                                      ? -copysign(pymin(f_max, fabs(m * v_free / h)), v_free)
                                      : -copysign(pymin(f_max, fabs(T2)), T2);
                 v2 = v_free + h * f / m;
             } else {
-                v2 += h * a_free;
+                v2 = (v2 + h * a_free) / damp;
             }
             x2 += h * v2;
             if (!set_inputs(F, x1, x2, N) || !force(F, &T1, &T2)) goto fail;
@@ -263,7 +266,7 @@ static int simulate(fmu_t *F, const rm_contact *p, const rm_rig *r, double *phi,
             if (fabs(T2) > mu_s * pymax(-T1, 0.0)) {
                 if (F->m->set_state(F->c, snapshot) > fmi2Warning) goto fail;
                 long it = 0;
-                const int ok = solve_lateral(F, x1, &x2, N, copysign(mu_s, T2), scale, &it);
+                const int ok = solve_lateral(F, x1, &x2, N, copysign(mu_s, T2), scale, visc, &it);
                 if (rec) rec->newton += it;
                 if (!ok) {
                     set_err(err, n, "lateral equilibrium not reached at x1 = %g m", x1);

@@ -41,11 +41,12 @@ def test_c_master_gives_the_fmpy_masters_angles(name):
         assert drive == pytest.approx(ref.drive_mean_N, rel=1e-12, abs=1e-12)
 
 
-@pytest.mark.parametrize("mode,mu_strip", [("dynamic", 0.0), ("dynamic", 0.1), ("quasistatic", 0.0),
-                                           ("quasistatic", 0.1)])
-def test_c_master_records_the_fmpy_masters_trajectory_bit_for_bit(mode, mu_strip):
+@pytest.mark.parametrize("mode,mu_strip,c_strip", [
+    ("dynamic", 0.0, 0.0), ("dynamic", 0.1, 0.0), ("dynamic", 0.05, 20.0),
+    ("quasistatic", 0.0, 0.0), ("quasistatic", 0.1, 0.0), ("quasistatic", 0.05, 20.0)])
+def test_c_master_records_the_fmpy_masters_trajectory_bit_for_bit(mode, mu_strip, c_strip):
     sc = load(ROOT / "scenarios/case5.toml")
-    rig = replace(sc.rig, travel_m=0.05, mode=mode, mu_strip=mu_strip)
+    rig = replace(sc.rig, travel_m=0.05, mode=mode, mu_strip=mu_strip, c_strip=c_strip)
     p = sc.params_at(26.565)
     cm = CMaster(find_fmu())
     try:

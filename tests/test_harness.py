@@ -261,6 +261,9 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
     assert chain["ε1/ε2 by eq. (39)"] == pytest.approx(l * mu2 / mu1, rel=1e-9)
     assert chain["ε1/ε2 by eq. (39), paper"] == pytest.approx(l * 0.625 / 0.408, rel=1e-9)
     assert "1.2528" in report
+    # the rig's assumptions: the strip's sensitivity, in the report and its JSON
+    assert rep["sensitivity"]["scenario"] == "mat_aged" and "## The rig's assumptions" in report
+    assert (out / "sensitivity" / "sensitivity_strip.png").stat().st_size > 0
     for name in ("case1", "case5", "mat_aged", "step_study"):
         assert (out / name / "summary.json").exists()
     assert {r["scenario"] for r in rows} >= {"case1", "case2", "case3", "case4", "case5", "mat_aged",

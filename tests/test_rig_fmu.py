@@ -54,7 +54,7 @@ def cosimulate(version, params, rig: Rig, n_steps):
     previous point, then the contact takes the rig's new position."""
     s, vr, _, set_real, get_real = _rig_slave(version)
     set_real([vr[k] for k in ("mass", "g", "fInt", "velocity", "muStrip", "cStrip")],
-             [rig.mass_kg, rig.g, rig.f_int_N, rig.velocity_m_s, rig.mu_strip, 0.0])
+             [rig.mass_kg, rig.g, rig.f_int_N, rig.velocity_m_s, rig.mu_strip, rig.c_strip])
     _start(s, version)
     c = ContactFMU(fmi_version=version, instance_name="contact")
     c.initialize(params)
@@ -79,9 +79,11 @@ def cosimulate(version, params, rig: Rig, n_steps):
 
 
 @pytest.mark.parametrize("version", [2, 3])
-@pytest.mark.parametrize("mu_strip", [0.0, 0.1])
-def test_rig_fmu_with_the_contact_fmu_gives_the_harness(version, mu_strip):
-    rig = Rig(mode="dynamic", travel_m=0.1, step_s=2e-4, mu_strip=mu_strip)
+@pytest.mark.parametrize("mu_strip,c_strip", [(0.0, 0.0), (0.1, 0.0), (0.0, 20.0), (0.05, 20.0)])
+def test_rig_fmu_with_the_contact_fmu_gives_the_harness(version, mu_strip, c_strip):
+    """The rig FMU's C and the harness's Python are two implementations of the
+    same rig, strip terms included."""
+    rig = Rig(mode="dynamic", travel_m=0.1, step_s=2e-4, mu_strip=mu_strip, c_strip=c_strip)
     n = int(math.ceil(rig.travel_m / (rig.velocity_m_s * rig.step_s) - 1e-9))
     phi, drive = cosimulate(version, AGED, rig, n)
     ref = run(AGED, rig)

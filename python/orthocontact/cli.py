@@ -159,9 +159,18 @@ def cmd_reproduce(args) -> int:
                                         args.master, draw=draw, dask=dask)
                 runs.append((sc, summary))
                 rows += report.paper_rows(sc, summary)
+            sens = None
+            for sc in scenarios:  # the rig's hidden assumptions, on the calibrated experiment
+                if sc.kind == "sweep" and sc.closed_form == "mat" and "extremum_phi_deg" in sc.paper:
+                    from . import sensitivity
+                    (stage / "sensitivity").mkdir()
+                    res = sensitivity.run(sc, args.workers or default_workers(), _fmu_for(sc, args),
+                                          args.master, dask=dask)
+                    sens = sensitivity.write_outputs(res, sc, stage / "sensitivity", draw)
+                    break
         rows += report.calibration_rows()
         report.write_json(stage / "summary.json", {"rows": rows, "scenarios": {sc.name: s for sc, s in runs}})
-        text = report.reproduction_report(stage, runs, rows, time.time() - t0)
+        text = report.reproduction_report(stage, runs, rows, time.time() - t0, sens)
     print(text.split("## Scenarios")[0].rstrip())
     print(f"\nwrote {args.out}/report.md in {time.time() - t0:.1f} s")
     return 0 if all(r["match"] for r in rows) else 1
@@ -176,6 +185,27 @@ def cmd_identify(args) -> int:
                               fmu_path=str(find_fmu(fmi_version=args.fmi)))
     print(identify.summary_text(result))
     print(f"wrote {args.out}/identified.json")
+    return 0
+
+
+def cmd_sensitivity(args) -> int:
+    from . import sensitivity
+    from .report import FigureDrawer
+    sc = load(args.scenario)
+    with staged_output(args.out) as stage, _dask_for(args) as dask, \
+            FigureDrawer(1) as draw:
+        res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
+                              dask=dask)
+        summary = sensitivity.write_outputs(res, sc, stage, draw)
+    for r in summary["strip"]:
+        if r["velocity_m_s"] == sensitivity.VELOCITIES[-1]:
+            ratio = r["eps_ratio_for_measured_peak"]
+            print(f"mu_strip {r['mu_strip']:<6g} peak |phi| {abs(r['peak_phi_rig_deg']):6.2f} deg (rig), "
+                  f"{abs(r['peak_phi_closed_deg']):6.2f} deg (closed form); eps1/eps2 for the measured "
+                  f"{summary['measured_peak_deg']:g} deg: "
+                  + ("not reachable" if ratio is None else f"{ratio:.4f}"))
+    print(f"wrote {args.out}/sensitivity.json, sensitivity_strip.csv, sensitivity_velocity.csv, "
+          "sensitivity_strip.png, sensitivity_velocity.png")
     return 0
 
 
@@ -357,6 +387,18 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", type=Path, required=True, metavar="FILE.ssp",
                    help="the package to write (replaced if it exists)")
     s.set_defaults(func=cmd_ssp)
+    v = sub.add_parser("sensitivity", help="how the rig's unmeasured strip friction and viscosity, "
+                                           "and the velocity, move the peak angle and the identified "
+                                           "eps1/eps2",
+                       description="For a mat scenario: the peak |phi| [deg] against the Teflon "
+                                   "strip's friction mu_strip (0-0.2) at 0.125 and 0.244 m/s (rig and "
+                                   "closed form), the eps1/eps2 the paper's calibration would return "
+                                   "for each, and for a viscous strip c_strip [N s/m] the peak at "
+                                   "0.244 m/s after calibrating at 0.125 m/s; CSV, JSON, PNG into DIR.")
+    v.add_argument("scenario", metavar="SCENARIO", help="a sweep scenario with the experiment's "
+                   "geometry (closed_form = \"mat\"), e.g. scenarios/mat_aged.toml")
+    common(v, "output folder: created if missing; written only when everything completes")
+    v.set_defaults(func=cmd_sensitivity)
     u = sub.add_parser("uq", help="propagate an identification's uncertainty to the predicted "
                                   "trajectory angle over a scenario's angles (Dask)",
                        description="Draw parameter sets from identified.json's estimates and "

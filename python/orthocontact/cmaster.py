@@ -26,7 +26,8 @@ class _Contact(ctypes.Structure):
 
 class _Rig(ctypes.Structure):
     _fields_ = [(n, ctypes.c_double) for n in ("mass", "g", "f_int", "velocity", "travel", "mu_strip",
-                                               "step", "fit_from")] + [("quasistatic", ctypes.c_int)]
+                                               "step", "fit_from", "c_strip")] + \
+               [("quasistatic", ctypes.c_int)]
 
 
 def _library_path() -> Path:
@@ -66,7 +67,7 @@ def _load():
 def _structs(p: ContactParams, r: Rig) -> tuple[_Contact, _Rig]:
     return (_Contact(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, RULES[p.rule]),
             _Rig(r.mass_kg, r.g, r.f_int_N, r.velocity_m_s, r.travel_m, r.mu_strip, r.step_s,
-                 r.fit_from, 1 if r.mode == "quasistatic" else 0))
+                 r.fit_from, r.c_strip, 1 if r.mode == "quasistatic" else 0))
 
 
 class CMaster:

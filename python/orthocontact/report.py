@@ -398,6 +398,42 @@ def headline(rows: list[dict]) -> str:
     return text
 
 
+def _sensitivity_section(sens: dict) -> list[str]:
+    m = sens["measured_peak_deg"]
+    last_v = max(r["velocity_m_s"] for r in sens["strip"])
+    lines = ["## The rig's assumptions", "",
+             f"The paper assumes a frictionless Teflon strip between carriage and block and measures "
+             f"neither its friction μ_strip nor any viscous resistance c_strip. Peak |φ| of "
+             f"{sens['scenario']} (rig over the 0.5 m travel, {sens['rig_step_s'] * 1e3:g} ms steps; "
+             f"steady closed form beside), and the ε1/ε2 the paper's calibration would return from "
+             f"the measured {m:g}° if the strip had that friction:", "",
+             "| μ_strip | peak \\|φ\\| rig [deg] | closed form [deg] | ε1/ε2 for the measured peak |",
+             "|---|---|---|---|"]
+    for r in sens["strip"]:
+        if r["velocity_m_s"] == last_v:
+            ratio = r["eps_ratio_for_measured_peak"]
+            lines.append(f"| {r['mu_strip']:g} | {abs(r['peak_phi_rig_deg']):.2f} | "
+                         f"{abs(r['peak_phi_closed_deg']):.2f} | "
+                         + ("not reachable" if ratio is None else f"{ratio:.4f}") + " |")
+    lines += ["", "The identified ratio is conditional on the strip: with μ_strip = 0.1 the same "
+              "measurement means ε1/ε2 ≈ "
+              f"{next(r['eps_ratio_for_measured_peak'] for r in sens['strip'] if r['mu_strip'] == 0.1):.3f} "
+              "instead of 1.25. The law is rate-independent, so without a rate-dependent rig term "
+              "the two velocities give the same angle; with a viscous strip (ε1/ε2 calibrated on "
+              f"{m:g}° at {sens['calibration_velocity_m_s']:g} m/s each time):", "",
+              "| c_strip [N s/m] | ε1/ε2 | peak \\|φ\\| at 0.125 m/s | at 0.244 m/s (rig) |", "|---|---|---|---|"]
+    for r in sens["viscous"]:
+        if r["eps_ratio"] is None:
+            continue
+        lines.append(f"| {r['c_strip_N_s_m']:g} | {r['eps_ratio']:.4f} | "
+                     f"{abs(r['peak_phi_rig_deg_at_0.125']):.2f} | {abs(r['peak_phi_rig_deg_at_0.244']):.2f} |")
+    lines += ["", "The paper prints no peak angle at 0.244 m/s (its Fig. 4 is a plot), so it does "
+              "not determine c_strip. Figures: [strip friction](sensitivity/sensitivity_strip.png), "
+              "[velocity](sensitivity/sensitivity_velocity.png); data: "
+              "[sensitivity.json](sensitivity/sensitivity.json).", ""]
+    return lines
+
+
 def _rules_at_experiment(runs) -> dict | None:
     for sc, s in runs:
         e = s.get("extremum") if sc.kind == "sweep" else None
@@ -419,7 +455,7 @@ def _fmt(x):
 
 
 def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list[dict],
-                        seconds: float) -> str:
+                        seconds: float, sensitivity: dict | None = None) -> str:
     """report.md and report.json (the rows with their kinds, the counts, the
     calibration chain, the two rules at the experiment) into out."""
     chain = calibration_chain()
@@ -429,7 +465,8 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
                                                                   "convention", "other_rule") if k in r}
                                               for r in rows],
                                      "counts": counts(rows), "kinds": KIND_MEANING,
-                                     "calibration_chain": chain, "rules_at_experiment": rules})
+                                     "calibration_chain": chain, "rules_at_experiment": rules,
+                                     "sensitivity": sensitivity})
     lines = ["# orthocontact: reproduction of Konyukhov & Schweizerhof (2007)", "",
              f"Every scenario of the paper run through the OrthotropicContact FMU in the rig "
              f"harness ({seconds:.0f} s). Each row says what kind of evidence it is:", ""]
@@ -467,7 +504,10 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
     lines += [f"| {c['step']} | {c['value']:.4f} | {c['from']} |" for c in chain]
     lines += ["", "Unrounded, the chain gives ε1/ε2 = "
               f"{chain[3]['value']:.4f}; the paper's 1.251 is what its rounded μ give. The "
-              "scenarios use the paper's 1.251.", "", "## Scenarios", ""]
+              "scenarios use the paper's 1.251.", ""]
+    if sensitivity:
+        lines += _sensitivity_section(sensitivity)
+    lines += ["## Scenarios", ""]
     for sc, s in runs:
         lines.append(f"### {sc.title}")
         lines.append("")

@@ -4,17 +4,21 @@ OrthotropicContact FMU.
 A block of mass m [kg] lies on the mat.  A carriage driven at constant
 velocity v [m/s] along X1 pushes it through a Teflon strip, so the block's
 X1 position follows the carriage, x1 = v t, while it is free to drift along
-X2, resisted only by the strip's friction (coefficient mu_strip on the
-carriage-block contact force P).  The FMU's inputs are the block's
+X2, resisted only by the strip: Coulomb friction (coefficient mu_strip on the
+carriage-block contact force P) and a viscous term c_strip [N s/m] on the
+lateral velocity, both 0 by default (the paper assumes a frictionless strip
+and measures neither).  The FMU's inputs are the block's
 displacement (u1, u2) = (x1, x2) and N = m g; its force T acts on the block.
 The force sensor reads F = F_int + P with P = -T1 (the carriage moves at
 constant velocity, so the block's X1 inertia does not load it).
 
 Modes:
-  dynamic      the block's X2 motion m x2'' = T2 + f_strip, integrated by the
-               harness between communication points (symplectic Euler with the
-               force held over the step).
-  quasistatic  massless lateral equilibrium T2 + f_strip = 0 at every step,
+  dynamic      the block's X2 motion m x2'' = T2 + f_strip - c_strip x2',
+               integrated by the harness between communication points
+               (symplectic Euler with the force held over the step, the
+               viscous term implicit: stable at any step).
+  quasistatic  massless lateral equilibrium T2 + f_strip - c_strip x2' = 0 at
+               every step (x2' the step's lateral displacement over h),
                solved by a safeguarded Newton on u2 with the FMU's directional
                derivative, iterating on a saved FMU state before committing.
 """
@@ -47,6 +51,7 @@ class Rig:
     mode: str = "dynamic"          # or "quasistatic"
     step_s: float = 2e-4           # communication step
     fit_from: float = 0.5          # fit phi over the travel after this fraction
+    c_strip: float = 0.0           # N s/m: the strip's lateral viscous resistance
 
     def __post_init__(self):
         if self.mode not in MODES:
@@ -56,7 +61,7 @@ class Rig:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
                 raise ValueError(f"Rig: {name} must be a finite number > 0, got {v!r}")
-        for name in ("f_int_N", "mu_strip"):
+        for name in ("f_int_N", "mu_strip", "c_strip"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
                 raise ValueError(f"Rig: {name} must be a finite number >= 0, got {v!r}")
@@ -128,11 +133,13 @@ class LateralSolveError(RuntimeError):
 
 
 def solve_lateral(fmu: ContactFMU, u1: float, u2: float, N: float, strip: float = 0.0,
-                  scale: float = 1e-4, tol: float = 1e-12, max_iter: int = 200):
-    """u2 [m] with lateral equilibrium r(u2) = T2 - strip * P = 0, where
-    P = max(-T1, 0) [N] is the push and `strip` = mu_strip sgn(v2) the strip's
-    signed friction coefficient (0: free block, T2 = 0).  Leaves the FMU's
-    pending step at the solution (not committed).
+                  scale: float = 1e-4, tol: float = 1e-12, max_iter: int = 200,
+                  visc: float = 0.0, u2_ref: float = 0.0):
+    """u2 [m] with lateral equilibrium r(u2) = T2 - strip * P - visc (u2 - u2_ref)
+    = 0, where P = max(-T1, 0) [N] is the push, `strip` = mu_strip sgn(v2)
+    the strip's signed friction coefficient (0: free block, T2 = 0), and
+    visc = c_strip / h [N/m] the viscous term over a step from u2_ref [m].
+    Leaves the FMU's pending step at the solution (not committed).
 
     r falls with u2 (the return map is monotone), so every evaluation
     tightens a bracket; Newton steps with the consistent tangent are taken
@@ -145,7 +152,7 @@ def solve_lateral(fmu: ContactFMU, u1: float, u2: float, N: float, strip: float 
     for it in range(1, max_iter + 1):
         fmu.set_inputs(u1, u2, N)
         T1, T2 = fmu.force()
-        r = T2 - strip * max(-T1, 0.0)
+        r = T2 - strip * max(-T1, 0.0) - visc * (u2 - u2_ref)
         if abs(r) <= tol * max(abs(N), 1e-300):
             return u2, it
         if r > 0:
@@ -153,7 +160,7 @@ def solve_lateral(fmu: ContactFMU, u1: float, u2: float, N: float, strip: float 
         else:
             hi = u2
         dT1, dT2 = fmu.tangent_column("u2")
-        d = dT2 + (strip * dT1 if T1 < 0 else 0.0)
+        d = dT2 + (strip * dT1 if T1 < 0 else 0.0) - visc
         cand = u2 - r / d if d < 0 else math.nan
         if lo is not None and hi is not None:
             if not (min(lo, hi) < cand < max(lo, hi)):
@@ -197,6 +204,8 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
     newton = 0
     dynamic = rig.mode == "dynamic"
     mu_s = rig.mu_strip
+    damp = 1.0 + h * rig.c_strip / m  # the viscous term, implicit (1.0 without it: exact)
+    visc = rig.c_strip / h
     rec = 0
     fit = LineFit()
     x1_fit = rig.fit_from * v * n_steps * h
@@ -212,12 +221,12 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
             f_max = mu_s * P
             a_free = T2 / m
             if f_max > 0.0:
-                v_free = v2 + h * a_free
+                v_free = (v2 + h * a_free) / damp
                 f = -math.copysign(min(f_max, abs(m * v_free / h)), v_free) if v_free != 0.0 \
                     else -math.copysign(min(f_max, abs(T2)), T2)
                 v2 = v_free + h * f / m
             else:
-                v2 += h * a_free
+                v2 = (v2 + h * a_free) / damp
             x2 += h * v2
             set_inputs(x1, x2, N)
             T1, T2 = force()
@@ -229,7 +238,8 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
             T1, T2 = force()
             if abs(T2) > mu_s * max(-T1, 0.0):
                 fmu.set_state(snapshot)  # iterate from the committed state
-                x2, it = solve_lateral(fmu, x1, x2, N, math.copysign(mu_s, T2), scale)
+                x2, it = solve_lateral(fmu, x1, x2, N, math.copysign(mu_s, T2), scale,
+                                       visc=visc, u2_ref=x2)
                 newton += it
                 T1, T2 = force()
         do_step(h)

@@ -114,7 +114,8 @@ SCHEMA = {
               "steps_s": (_list(POS), _REQ)},
     "rig": {"mode": (_choice(MODES), "dynamic"), "mass_kg": (POS, 1.875), "g": (POS, G_STANDARD),
             "f_int_N": (NONNEG, 5.0), "velocity_m_s": (POS, 0.244), "travel_m": (POS, 0.5),
-            "mu_strip": (NONNEG, 0.0), "step_s": (_num(0, 0.1, lo_open=True), 2e-4),
+            "mu_strip": (NONNEG, 0.0), "c_strip": (NONNEG, 0.0),
+            "step_s": (_num(0, 0.1, lo_open=True), 2e-4),
             "fit_from": (_num(0, 0.95), 0.5)},
     "paper": {"extremum_angle_deg": (ANGLE, None), "extremum_phi_deg": (ANGLE, None),
               "phi_sign_differs": (_bool, False), "max_abs_phi_deg": (NONNEG, None),
@@ -238,5 +239,6 @@ def load(path) -> Scenario:
         beta_offset=math.radians(geo["beta_offset_deg"]), closed_form=geo["closed_form"],
         rig=Rig(mass_kg=rig["mass_kg"], g=rig["g"], f_int_N=rig["f_int_N"],
                 velocity_m_s=rig["velocity_m_s"], travel_m=rig["travel_m"], mu_strip=rig["mu_strip"],
+                c_strip=rig["c_strip"],
                 mode=rig["mode"], step_s=rig["step_s"], fit_from=rig["fit_from"]),
         sweep=sweep, study=study, paper=paper, fmu=fmu)

@@ -69,7 +69,7 @@ def system_structure(sc: Scenario, angle_deg: float) -> str:
     lines += _component("rig", f"resources/{RIG_MODEL_IDENTIFIER}.fmu", RIG_CONNECTORS,
                         [("mass", rig.mass_kg), ("g", rig.g), ("fInt", rig.f_int_N),
                          ("velocity", rig.velocity_m_s), ("muStrip", rig.mu_strip),
-                         ("cStrip", 0.0)])
+                         ("cStrip", rig.c_strip)])
     lines += _component("contact", f"resources/{MODEL_IDENTIFIER}.fmu", CONTACT_CONNECTORS,
                         [("mu1", p.mu1), ("mu2", p.mu2), ("eps1", p.eps1), ("eps2", p.eps2),
                          ("alpha", p.alpha), ("beta", p.beta)],
