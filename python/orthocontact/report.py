@@ -79,6 +79,14 @@ def _init_drawer():
     _plt()  # matplotlib's import, once per worker, while the rig still runs
 
 
+class _Done:
+    def __init__(self, value):
+        self._value = value
+
+    def result(self):
+        return self._value
+
+
 class FigureDrawer:
     """Draws figures in `workers` processes while the caller goes on:
     drawer(fn, *args) hands over one figure; leaving the `with` block waits
@@ -93,7 +101,6 @@ class FigureDrawer:
     def __enter__(self):
         if self.workers > 1:
             from .sweep import process_pool
-            _plt()  # imported once here; forked workers inherit it
             self._ex = process_pool(self.workers, _init_drawer)
             # Start the workers now, so that matplotlib's import in them
             # overlaps the first rig runs instead of delaying the first figure.
@@ -105,6 +112,15 @@ class FigureDrawer:
             fn(*args)
         else:
             self._futures.append(self._ex.submit(fn, *args))
+
+    def submit(self, fn, *args):
+        """fn(*args) in a worker (here if there is none); something with
+        .result() that gives its value."""
+        if self._ex is None:
+            return _Done(fn(*args))
+        f = self._ex.submit(fn, *args)
+        self._futures.append(f)
+        return f
 
     def __exit__(self, kind, value, tb):
         if self._ex is None:

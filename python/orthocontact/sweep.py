@@ -285,6 +285,30 @@ class SweepResult:
         return float(np.max(np.abs(self.phi_deg - self.phi_closed_deg)))
 
 
+def _parabolic_extremum(f, xs, fs, tol: float = 1e-4, max_evals: int = 12):
+    """Maximiser of a smooth f from three points about its maximum
+    (successive parabolic interpolation through the three best points so
+    far); None when a parabola opens upwards or its vertex leaves the
+    points' span (the caller falls back to golden section)."""
+    pts = list(zip(xs, fs))
+    lo, hi = min(xs), max(xs)
+    last = None
+    for _ in range(max_evals):
+        (x0, y0), (x1, y1), (x2, y2) = sorted(sorted(pts, key=lambda p: -p[1])[:3])
+        s01, s12 = (y1 - y0) / (x1 - x0), (y2 - y1) / (x2 - x1)
+        curvature = (s12 - s01) / (x2 - x0)
+        if not curvature < 0:
+            return None
+        x = 0.5 * (x0 + x1) - s01 / (2 * curvature)  # where the parabola's slope vanishes
+        if not lo < x < hi:
+            return None
+        if last is not None and abs(x - last) < tol or min(abs(x - p[0]) for p in pts) < 1e-12:
+            break
+        pts.append((x, f(x)))
+        last = x
+    return max(pts, key=lambda p: p[1])
+
+
 def _golden_extremum(f, a: float, b: float, tol: float = 1e-3) -> tuple[float, float]:
     """Maximiser of f on [a, b] by golden-section search."""
     g = (math.sqrt(5) - 1) / 2
@@ -336,16 +360,26 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
             sign = 1.0 if phi[k] > 0 else -1.0
             step = sc.sweep["step_deg"]
             lo, hi = max(angles[0], angles[k] - step), min(angles[-1], angles[k] + step)
-            cache = {}
+            cache, runs = {}, [0]
 
             def f(a):
                 if a not in cache:
                     cache[a] = sign * one(a)
+                    runs[0] += 1
                 return cache[a]
-            a_ext, v = _golden_extremum(f, lo, hi)
+            # phi is smooth about its extremum: parabolas through the grid's
+            # three best points converge in a few runs; golden section if not.
+            idx = [j for j in (k - 1, k, k + 1) if 0 <= j < len(angles)]
+            found = None
+            if len(idx) == 3:
+                for j in idx:
+                    cache[float(angles[j])] = sign * float(phi[j])
+                found = _parabolic_extremum(f, [float(angles[j]) for j in idx],
+                                            [sign * float(phi[j]) for j in idx])
+            a_ext, v = found if found is not None else _golden_extremum(f, lo, hi)
             if v >= sign * phi[k]:
                 extremum = {"angle_deg": a_ext, "phi_deg": sign * v, "refined": True,
-                            "evaluations": len(cache)}
+                            "evaluations": runs[0]}
         # The other implicit rule at the same angle: the sign of phi is what
         # tells the rules apart (report.md).
         other = {"coupled": "associated", "associated": "coupled"}.get(sc.law.rule)
