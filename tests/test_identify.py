@@ -139,7 +139,8 @@ def test_cli_identify_on_the_bundled_example(tmp_path, capsys):
     j = json.loads((out / "identified.json").read_text())
     for name, truth in TV.items():
         e = j[name]
-        assert set(e) == {"value", "stderr", "ci95"}
+        assert set(e) == {"value", "stderr", "ci95", "dof"}
+        assert e["dof"] == "inf" or e["dof"] >= 3  # each parameter its own degrees of freedom
         assert abs(e["value"] - truth) < 4 * e["stderr"], name  # fixed seed: deterministic
     assert j["max_rule"]["l1_l2_ratio"] > 0 and j["eq41"]["note"]
     assert j["validation_fmu"]["angles_deg"]["rms"] < 1.0

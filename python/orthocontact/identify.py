@@ -310,11 +310,13 @@ class JointFit:
     not_identifiable: dict = field(default_factory=dict)   # name -> reason
     stick_points: int = 0
     sigma_assumed: list = field(default_factory=list)      # groups whose noise is the prior
+    param_dof: dict = field(default_factory=dict)  # name -> Welch-Satterthwaite dof of its interval
 
 
-def _t975(dof: int) -> float:
-    """97.5% quantile of Student's t (Hill's approximation, better than 1e-4
-    for dof >= 3); 1.96 in the limit."""
+def _t975(dof: float) -> float:
+    """97.5% quantile of Student's t for dof degrees of freedom (not
+    necessarily whole; Cornish-Fisher expansion, better than 1e-4 for
+    dof >= 3); 1.96 in the limit."""
     if dof <= 0:
         return float("nan")
     z = 1.959963984540054
@@ -462,19 +464,35 @@ def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
     cov = S @ cov_scaled @ S
     values = {n: float(x0[i] * scale[n]) for i, n in enumerate(free)}
     dof = len(r) - len(free)
-    # Each noise level is estimated from its own group; a parameter resting on
-    # a small group (eps2 on the ramp's stick points) inherits that group's
-    # uncertainty in sigma, so the t quantile takes the smallest group's dof.
-    dofs = [n - groups[g][1] for g, n in zip(names, sizes) if g not in assumed]
-    t = _t975(min(dofs)) if dofs else 1.959963984540054
-    stderr = {n: float(math.sqrt(max(cov[i, i], 0.0))) for i, n in enumerate(free)}
+    # Each group's noise is estimated from its own residuals, with its own
+    # degrees of freedom; a parameter's variance is a sum of the groups'
+    # contributions (cov J_g' W_g J_g cov), so its interval takes the
+    # Welch-Satterthwaite degrees of freedom of that sum: the forces' for
+    # mu1, mu2, mostly the ramp's for eps2, a blend for the ratio.  A group
+    # whose noise is the prior contributes with infinite dof.
+    group_dof = {g: (math.inf if g in assumed else n - groups[g][1]) for g, n in zip(names, sizes)}
+    rows = np.split(np.arange(len(r)), np.cumsum(sizes)[:-1])
+    contrib = {}
+    for g, idx in zip(names, rows):
+        Jg = J[idx] / sigma[g]
+        contrib[g] = S @ cov_scaled @ (Jg.T @ Jg) @ cov_scaled @ S
+    grads = {n: np.eye(len(free))[i] for i, n in enumerate(free)}
     if "eps2" in free and "eps_ratio" in free:
         i, j = free.index("eps_ratio"), free.index("eps2")
         values["eps1"] = values["eps_ratio"] * values["eps2"]
         grad = np.zeros(len(free))
         grad[i], grad[j] = values["eps2"], values["eps_ratio"]
-        stderr["eps1"] = float(math.sqrt(max(grad @ cov @ grad, 0.0)))
-    ci = {n: [values[n] - t * stderr[n], values[n] + t * stderr[n]] for n in stderr}
+        grads["eps1"] = grad
+    stderr, param_dof, ci = {}, {}, {}
+    for n, gvec in grads.items():
+        shares = {g: max(float(gvec @ C @ gvec), 0.0) for g, C in contrib.items()}
+        var = max(float(gvec @ cov @ gvec), 0.0)
+        stderr[n] = math.sqrt(var)
+        den = sum(v * v / group_dof[g] for g, v in shares.items() if math.isfinite(group_dof[g]))
+        nu = (sum(shares.values()) ** 2 / den) if den > 0 else math.inf
+        param_dof[n] = nu
+        t = 1.959963984540054 if not math.isfinite(nu) else _t975(nu)
+        ci[n] = [values[n] - t * stderr[n], values[n] + t * stderr[n]]
     # Identifiability is about the shape of the information, not its scale:
     # judge the correlation form, which weights and units do not distort.
     dscale = np.sqrt(np.maximum(np.diag(info), 1e-300))
@@ -484,7 +502,7 @@ def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
                          f"(information matrix singular, condition {cond:.1e})")
     parts = np.split(r, np.cumsum(sizes)[:-1])
     return JointFit(free, values, cov, stderr, ci, dof, {g: sigma[g] for g in names},
-                    dict(zip(names, parts)), why, int(stick.sum()), assumed)
+                    dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof)
 
 
 def _start_values(data: MeasurementSet) -> dict:
@@ -575,7 +593,8 @@ class Identification:
         out = {}
         for n in REPORTED:
             if n in f.values:
-                out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n]}
+                out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n],
+                          "dof": _json_dof(f.param_dof.get(n))}
             else:
                 out[n] = {"identifiable": False, "reason": f.not_identifiable.get(n, "not determined")}
         if "l1_l2_ratio" in f.values:
@@ -615,9 +634,14 @@ class Identification:
                               "f_int_N": r.f_int_N, "ramp_angle_deg": r.ramp_angle_deg,
                               "phi_convention": "counterclockwise (data converted)" if r.phi_convention == "paper"
                               else "counterclockwise",
-                              "ci": "95%, Student t on the residual degrees of freedom, "
+                              "ci": "95%, Student t with each parameter's Welch-Satterthwaite "
+                                    "degrees of freedom over the data groups' noise estimates, "
                                     "Gauss-Newton covariance with per-group noise estimates"}
         return out
+
+
+def _json_dof(nu):
+    return None if nu is None else ("inf" if not math.isfinite(nu) else round(float(nu), 2))
 
 
 def identify(data: MeasurementSet, validate: bool = True, workers=None,
