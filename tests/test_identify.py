@@ -1,7 +1,9 @@
-"""Identification against the paper's calibration numbers and against
-synthetic data made by the FMU harness (not by the closed forms the fit
-uses): exact recovery, honest intervals, clear non-identifiability."""
+"""Identification against the paper's calibration numbers, against synthetic
+data made by the FMU harness (not by the closed forms the fit uses) and by an
+independent simulator of the rig (tests/rig_reference.py, none of the
+package's code): exact recovery, honest intervals, clear non-identifiability."""
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +17,7 @@ from orthocontact.identify import (MeasurementSet, RigSetup, _start_values, eq40
                                    write_measurements)
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "scenarios" / "example_identification"
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # rig_reference
 TRUTH = ContactParams(0.408, 0.625, 12510.0, 10000.0)
 TV = {"mu1": 0.408, "mu2": 0.625, "eps_ratio": 1.251, "eps2": 1e4, "eps1": 12510.0}
 RIG = RigSetup(mass_kg=1.875, f_int_N=5.0)
@@ -83,26 +86,50 @@ def test_fmu_validation_of_noise_free_fit(fmu_data):
     assert v["ramp_N"]["rms"] < 1e-3  # linear interpolation of the simulation across the kink
 
 
-def test_intervals_are_honest_coverage_over_200_replicates(fmu_data):
-    """Simulate once, add noise per replicate: the 95% intervals must contain
-    the truth in 90-99% of the replicates for every parameter."""
-    fmap = dict(map(tuple, fmu_data["forces"]))
-    amap = dict(map(tuple, fmu_data["angles"]))
-    F = np.array([[a, fmap[a]] for a in FA * 3])
-    A = np.array([[a, amap[a]] for a in AA * 2])
-    R = fmu_data["ramp"][::8]
-    hits = dict.fromkeys(TV, 0)
+@pytest.fixture(scope="module")
+def reference_data():
+    """Noise-free data of the issue's truth (mu 0.30 / 0.55, eps1/eps2 0.8,
+    eps2 3e4 N/m) from the independent simulator (tests/rig_reference.py)."""
+    import math
+    import rig_reference as ref
+    t = {"mu1": 0.30, "mu2": 0.55, "eps_ratio": 0.8, "eps2": 3.0e4}
+    N = RIG.mass_kg * RIG.g
+    al, be = math.radians(RIG.alpha_offset_deg), math.radians(RIG.beta_offset_deg)
+    m = ref.measure(t["mu1"], t["mu2"], 0.8 * 3e4, 3e4, RIG.rule, al, be, sorted(set(FA) | set(AA)), N,
+                    RIG.f_int_N)
+    r = ref.ramp(t["mu1"], t["mu2"], 0.8 * 3e4, 3e4, RIG.rule, al, be, RIG.ramp_angle_deg, N, RIG.f_int_N,
+                 2e-3)
+    return dict(t, eps1=0.8 * 3e4), {"forces": np.array([[a, m[a][1]] for a in FA * 3]),
+                                     "angles": np.array([[a, m[a][0]] for a in AA * 2]),
+                                     "ramp": np.array(r)[::8]}
+
+
+def test_independent_simulators_noise_free_data_give_the_truth(reference_data):
+    truth, d = reference_data
+    fit = joint_fit(MeasurementSet(Path("ref"), RIG, d["forces"], d["angles"], d["ramp"]),
+                    _start_values(MeasurementSet(Path("ref"), RIG, d["forces"], d["angles"], d["ramp"])))
+    for k, v in truth.items():
+        assert fit.values[k] == pytest.approx(v, rel=1e-6), k
+
+
+def test_intervals_are_honest_coverage_over_200_replicates(reference_data):
+    """The fast version of benchmarks/bench_coverage.py (400 replicates x 3
+    truths, 92-98 %): one truth, 200 replicates, a wider band (90-99 %) for
+    the smaller sample; noise added per replicate to the independent
+    simulator's data."""
+    truth, d = reference_data
+    hits = dict.fromkeys(truth, 0)
     n = 200
     for i in range(n):
         rng = np.random.default_rng(1000 + i)
         noisy = MeasurementSet(Path("mc"), RIG,
-                               F + np.c_[np.zeros(len(F)), rng.normal(0, 0.05, len(F))],
-                               A + np.c_[np.zeros(len(A)), rng.normal(0, 0.3, len(A))],
-                               R + np.c_[np.zeros(len(R)), rng.normal(0, 0.02, len(R))])
+                               d["forces"] + np.c_[np.zeros(len(d["forces"])), rng.normal(0, 0.05, len(d["forces"]))],
+                               d["angles"] + np.c_[np.zeros(len(d["angles"])), rng.normal(0, 0.3, len(d["angles"]))],
+                               d["ramp"] + np.c_[np.zeros(len(d["ramp"])), rng.normal(0, 0.02, len(d["ramp"]))])
         fit = joint_fit(noisy, _start_values(noisy))
-        for k in TV:
+        for k in truth:
             lo, hi = fit.ci95[k]
-            hits[k] += lo <= TV[k] <= hi
+            hits[k] += lo <= truth[k] <= hi
     coverage = {k: v / n for k, v in hits.items()}
     for k, c in coverage.items():
         assert 0.90 <= c <= 0.99, coverage

@@ -50,3 +50,38 @@ def test_the_cycle_finder_finds_cycles():
     assert find_cycles({"a": {"b"}, "b": {"a"}}) == [["a", "b", "a"]]
     assert find_cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": set()}) == [["a", "b", "c", "a"]]
     assert find_cycles({"a": {"b", "c"}, "b": {"c"}, "c": set()}) == []
+
+
+# The layers, lowest first: a module may import only from layers below its own.
+LAYERS = [
+    {"errors", "tables"},
+    {"fmu", "closed_forms"},
+    {"rig"},
+    {"cmaster", "scenarios"},
+    {"cluster", "ssp"},
+    {"sweep"},
+    {"figures", "measurements", "uncertainty"},
+    {"estimators"},
+    {"identify_report"},
+    {"identify"},
+    {"uq", "sensitivity"},
+    {"report"},
+    {"cli"},
+    {"__init__", "__main__"},
+]
+
+
+def test_the_layers_read_one_way():
+    """fmu -> closed forms / rig -> scenarios -> sweep -> identification ->
+    report -> cli, as the package's design says: every import goes down."""
+    graph = import_graph()
+    rank = {m: i for i, layer in enumerate(LAYERS) for m in layer}
+    assert set(graph) == set(rank), "a module without a layer: add it to LAYERS"
+    upward = [(m, d) for m, deps in graph.items() for d in deps if rank[d] >= rank[m]]
+    assert upward == [], upward
+
+
+def test_identification_is_split_by_job():
+    sizes = {m: len((PKG / f"{m}.py").read_text().splitlines())
+             for m in ("measurements", "estimators", "uncertainty", "identify", "identify_report")}
+    assert max(sizes.values()) < 400, sizes

@@ -17,3 +17,5 @@ echo "== make reproduce's command, wall time (target: <= 5 s) =="
 .venv/bin/python benchmarks/bench_reproduce.py
 echo "== uncertainty propagation, 10^6 rig runs on Dask (target: <= 10 min) =="
 .venv/bin/python benchmarks/bench_uq.py
+echo "== identification intervals: coverage on independent data (target: 92-98 %) =="
+.venv/bin/python benchmarks/bench_coverage.py --out docs

@@ -127,7 +127,7 @@ def packaged_scenarios() -> Path:
 
 
 def cmd_run(args) -> int:
-    from .report import FigureDrawer
+    from .figures import FigureDrawer
     from .sweep import default_workers
     sc = load(args.scenario)
     with staged_output(args.out) as stage, _dask_for(args) as dask, \
@@ -142,6 +142,7 @@ def cmd_run(args) -> int:
 
 def cmd_reproduce(args) -> int:
     from . import report
+    from .figures import FigureDrawer
     folder = Path(args.scenarios) if args.scenarios else packaged_scenarios()
     files = sorted(folder.glob("*.toml"))
     if not files:
@@ -152,7 +153,7 @@ def cmd_reproduce(args) -> int:
     runs, rows = [], []
     with staged_output(args.out) as stage:
         # The figures are drawn in worker processes while the rig runs on.
-        with _dask_for(args) as dask, report.FigureDrawer(args.workers or default_workers()) as draw:
+        with _dask_for(args) as dask, FigureDrawer(args.workers or default_workers()) as draw:
             # The rig's hidden assumptions, on the calibrated experiment: a
             # job of its own beside the sweeps.
             sens = None
@@ -198,7 +199,7 @@ def _sensitivity_job(sc, fmu_path, master, out) -> dict:
 
 def cmd_sensitivity(args) -> int:
     from . import sensitivity
-    from .report import FigureDrawer
+    from .figures import FigureDrawer
     sc = load(args.scenario)
     with staged_output(args.out) as stage, _dask_for(args) as dask, \
             FigureDrawer(1) as draw:

@@ -12,131 +12,11 @@ import numpy as np
 from . import closed_forms as cf
 from .scenarios import Scenario
 from .tables import write_csv, write_json  # noqa: F401  (re-exported: report.write_json)
+from .figures import _draw_here, _finish, _plt, _style, _swept_label
 from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg_array
 
 
-def _plt():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
-
-
-def _finish(fig, ax, path: Path, title: str, legend_title: str | None = None,
-            outside: bool = False) -> None:
-    """The common end of every figure: title, grid, legend, file, close.
-    outside: the legend goes right of the axes, where it cannot cover data."""
-    ax.set_title(title, fontsize=10, y=1.0)  # an explicit y skips a costly auto placement
-    ax.grid(alpha=0.3)
-    if outside:
-        ax.legend(fontsize=8, title=legend_title, title_fontsize=8, loc="upper left",
-                  bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-    else:
-        ax.legend(fontsize=8, title=legend_title, title_fontsize=8)
-    # Fixed margins, sized for these labels, instead of tight_layout: its
-    # extra layout pass was a third of each figure's time, and make
-    # reproduce draws 22 of them.
-    width = fig.get_size_inches()[0]
-    fig.subplots_adjust(left=0.75 / width, bottom=0.12, top=0.93,
-                        right=1 - (2.0 if outside else 0.2) / width)
-    fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
-    _plt().close(fig)
-
-
-# Lines that lie on top of each other stay distinguishable: each curve gets its
-# own marker and dash pattern besides its colour.
-_MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*", "<", ">")
-_DASHES = ("-", "--", "-.", ":")
-
-
-def _style(i: int, n_points: int, n_lines: int = 8) -> dict:
-    """Curve i of n_lines: colour, marker, dash pattern, and markers staggered
-    along the curve so that identical curves show every one of them."""
-    every = max(1, n_points // 8)
-    return {"marker": _MARKERS[i % len(_MARKERS)], "linestyle": _DASHES[i % len(_DASHES)],
-            "markevery": ((i * every) // max(n_lines, 1) % every, every), "ms": 4,
-            "color": f"C{i % 10}"}
-
-
-def _swept_label(sc: Scenario) -> str:
-    """What the swept angle a is, in terms of the law's axes."""
-    def rel(off):
-        d = math.degrees(off)
-        return "a" if abs(d) < 1e-12 else f"a {d:+g}°"
-    return f"swept angle a: α = {rel(sc.alpha_offset)}, β = {rel(sc.beta_offset)}"
-
-
 FLAT_DEG = 1e-9  # a closed form below this everywhere is flat: no extremum
-
-
-def _draw_here(fn, *args):
-    fn(*args)
-
-
-def _init_drawer():
-    from .sweep import _worker_signals
-    _worker_signals()
-    _plt()  # matplotlib's import, once per worker, while the rig still runs
-
-
-class _Done:
-    def __init__(self, value):
-        self._value = value
-
-    def result(self):
-        return self._value
-
-
-class FigureDrawer:
-    """Draws figures in `workers` processes while the caller goes on:
-    drawer(fn, *args) hands over one figure; leaving the `with` block waits
-    for all of them and raises the first failure.  workers <= 1 draws each
-    figure at once, here.  An exception in the block stops the workers."""
-
-    def __init__(self, workers: int):
-        self.workers = workers
-        self._ex = None
-        self._futures = []
-
-    def __enter__(self):
-        if self.workers > 1:
-            from .sweep import process_pool
-            self._ex = process_pool(self.workers, _init_drawer)
-            # Start the workers now, so that matplotlib's import in them
-            # overlaps the first rig runs instead of delaying the first figure.
-            self._ex.submit(int)
-        return self
-
-    def __call__(self, fn, *args):
-        if self._ex is None:
-            fn(*args)
-        else:
-            self._futures.append(self._ex.submit(fn, *args))
-
-    def submit(self, fn, *args):
-        """fn(*args) in a worker (here if there is none); something with
-        .result() that gives its value."""
-        if self._ex is None:
-            return _Done(fn(*args))
-        f = self._ex.submit(fn, *args)
-        self._futures.append(f)
-        return f
-
-    def __exit__(self, kind, value, tb):
-        if self._ex is None:
-            return False
-        from .sweep import stop_pool
-        if kind is not None:
-            stop_pool(self._ex)
-            return False
-        try:
-            for f in self._futures:
-                f.result()
-        except BaseException:
-            stop_pool(self._ex)
-            raise
-        self._ex.shutdown()
-        return False
 
 
 def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
@@ -356,7 +236,8 @@ PAPER_RIG = {"mass_kg": 1.875, "f_int_N": 5.0}
 
 def _paper_calibration(mu1=None, mu2=None):
     from pathlib import Path
-    from .identify import MeasurementSet, RigSetup, eq1, max_rule
+    from .estimators import eq1, max_rule
+    from .measurements import MeasurementSet, RigSetup
     data = MeasurementSet(Path("paper"), RigSetup(**PAPER_RIG),
                           forces=np.array([[0.0, PAPER_FORCES_N[0]], [90.0, PAPER_FORCES_N[1]]]),
                           angles=np.array([[39.2, -PAPER_PHI_MAX_DEG]]))  # counterclockwise sign

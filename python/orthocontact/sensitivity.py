@@ -201,7 +201,7 @@ def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
 
 
 def _figures(res: Sensitivity, sc: Scenario, out) -> None:
-    from .report import _finish, _plt
+    from .figures import _finish, _plt
     plt = _plt()
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5))
     for i, v in enumerate(VELOCITIES):

@@ -316,7 +316,7 @@ def _widest(angles, bp) -> dict:
 
 
 def _figure(res: UQResult, est: Estimates, sc: Scenario, bp: dict, bm: dict, path: Path) -> None:
-    from .report import _finish, _plt, _swept_label
+    from .figures import _finish, _plt, _swept_label
     plt = _plt()
     fig, ax = plt.subplots(figsize=(8, 4.5))
     a = res.angles_deg

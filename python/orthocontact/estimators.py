@@ -1,0 +1,325 @@
+"""The estimators: the paper's calibration formulas (eq. 1, the maximum
+rule eq. 29/37-39, eq. 40/41) and the joint weighted least-squares fit of all
+data (casadi/IPOPT) with Gauss-Newton covariance and per-parameter
+Welch-Satterthwaite intervals.
+
+Models (closed_forms): driving force F_int + m g / sqrt(f11) (friction
+ellipse, eq. 1 at 0 and 90 deg); steady angle eq. (10)/(23) from the tensors;
+stick branch of the ramp F_int + k x1 with k = 1/(B^-1)_11.  Units: N, m, deg.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import closed_forms as cf
+from .errors import InputError
+from .measurements import MeasurementSet, RigSetup, _beta_key
+from .uncertainty import _t975
+
+
+REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
+
+
+def _reported(j: dict) -> list:
+    """The parameters a summary lists: the five, and l1/l2 when angles alone were fitted."""
+    return list(REPORTED) + (["l1_l2_ratio"] if "l1_l2_ratio" in j else [])
+
+
+def eq1(data: MeasurementSet) -> dict | None:
+    """mu1, mu2 by eq. (1) from the mean forces at the friction axes."""
+    if data.forces is None:
+        return None
+    a, f = data.forces[:, 0], data.forces[:, 1]
+    key = _beta_key(data.rig, a)
+    on1, on2 = np.isclose(key, 1.0, atol=1e-12), np.isclose(key, 0.0, atol=1e-12)
+    if not on1.any() or not on2.any():
+        return None
+    r = data.rig
+    return {"mu1": cf.eq1_mu(float(np.mean(f[on1])), r.f_int_N, r.mass_kg, r.g),
+            "mu2": cf.eq1_mu(float(np.mean(f[on2])), r.f_int_N, r.mass_kg, r.g)}
+
+
+def _mean_by_angle(values: np.ndarray):
+    angles = np.unique(values[:, 0])
+    return angles, np.array([values[values[:, 0] == a, 1].mean() for a in angles])
+
+
+def _tan_alpha(rig: RigSetup, angles_deg):
+    return np.tan(np.radians(np.asarray(angles_deg) + rig.alpha_offset_deg))
+
+
+def max_rule(data: MeasurementSet, mu1: float | None, mu2: float | None) -> dict | None:
+    """The paper's maximum rule (eq. 29, 37-39): l1/l2 from the largest
+    |phi| of the mean angle curve, then eps1/eps2 from mu1, mu2."""
+    rig = data.rig
+    if data.angles is None or rig.rule == "associated" or not _eq25_geometry(rig):
+        return None
+    a, phi = _mean_by_angle(data.angles)
+    k = int(np.argmax(np.abs(phi)))
+    # eq. (28): tan phi_ext = s (l2^2 - l1^2) / (2 l1 l2) with s the sign of tan(alpha)
+    # at the extremum; eq. (29) is its positive root.
+    s = 1.0 if _tan_alpha(rig, a[k]) > 0 else -1.0
+    ratio = cf.eq29_ratio(s * math.tan(math.radians(phi[k])))
+    out = {"phi_ext_deg": float(phi[k]), "at_alpha_deg": float(a[k]), "l1_l2_ratio": ratio}
+    if mu1 is not None:
+        out["eps_ratio"] = _eps_ratio_from_l(ratio, mu1, mu2, rig)
+    return out
+
+
+def _eps_ratio_from_l(ratio, mu1, mu2, rig: RigSetup):
+    """eps1/eps2 from l1/l2: Case 5 geometry l = eps1 mu1/(eps2 mu2) (eq. 37, 39),
+    Case 4 l = eps1 mu2/(eps2 mu1)."""
+    d = math.degrees(rig.beta_minus_alpha) % 180.0
+    return ratio * mu2 / mu1 if abs(d - 90.0) < 1e-9 else ratio * mu1 / mu2
+
+
+def eq40_fit(data: MeasurementSet, mu1=None, mu2=None) -> dict | None:
+    """l1/l2 by the exact least squares of eq. (40), solved with casadi/IPOPT,
+    and the paper's closed form eq. (41) beside it."""
+    import casadi as ca
+    rig = data.rig
+    if data.angles is None or rig.rule == "associated" or not _eq25_geometry(rig):
+        return None
+    ta = _tan_alpha(rig, data.angles[:, 0])
+    tphi = np.tan(np.radians(data.angles[:, 1]))
+    r2 = ca.SX.sym("r2")
+    res = ca.vertcat(*[tp + (r2 - 1) * t / (r2 * t * t + 1) for t, tp in zip(ta, tphi)])
+    solver = ca.nlpsol("eq40", "ipopt", {"x": r2, "f": ca.sumsqr(res)},
+                       {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
+                        "ipopt.sb": "yes"})
+    # start from the maximum rule: IPOPT finds the minimiser nearest to it
+    mr = max_rule(data, mu1, mu2)
+    x0 = mr["l1_l2_ratio"] ** 2 if mr else 1.0
+    sol = solver(x0=x0, lbx=1e-8, ubx=1e8)
+    r2_fit = float(sol["x"])
+    r2_41 = cf.eq41_r2(ta, tphi)
+    out = {"r2": r2_fit, "l1_l2_ratio": math.sqrt(r2_fit), "objective": float(sol["f"]),
+           "solver": solver.stats()["return_status"],
+           "eq41": {"r2": r2_41, "l1_l2_ratio": math.sqrt(r2_41) if r2_41 > 0 else float("nan"),
+                    "objective": cf.eq40_objective(r2_41, ta, tphi),
+                    "note": "the paper's closed form (41); not the minimiser of eq. (40)"}}
+    if mu1 is not None:
+        out["eps_ratio"] = _eps_ratio_from_l(out["l1_l2_ratio"], mu1, mu2, rig)
+        out["eq41"]["eps_ratio"] = _eps_ratio_from_l(out["eq41"]["l1_l2_ratio"], mu1, mu2, rig)
+    return out
+
+
+@dataclass
+class JointFit:
+    free: list                      # names of the fitted parameters
+    values: dict                    # name -> value (incl. derived eps1)
+    cov: np.ndarray                 # covariance of the free parameters
+    stderr: dict
+    ci95: dict
+    dof: int
+    sigma: dict                     # group -> noise estimate
+    residuals: dict                 # group -> array of residuals (data - model)
+    not_identifiable: dict = field(default_factory=dict)   # name -> reason
+    stick_points: int = 0
+    sigma_assumed: list = field(default_factory=list)      # groups whose noise is the prior
+    param_dof: dict = field(default_factory=dict)  # name -> Welch-Satterthwaite dof of its interval
+
+
+def identifiability(data: MeasurementSet) -> tuple[list, dict]:
+    """Which of mu1, mu2, eps_ratio, eps2 the data determine, and why not the
+    others (a statement instead of an arbitrary number)."""
+    rig = data.rig
+    free, why = [], {}
+    if data.forces is not None:
+        free += ["mu1", "mu2"]
+    else:
+        why["mu1"] = why["mu2"] = "needs driving forces (forces.csv) at two orientations"
+    informative_angles = data.angles is not None and np.any(
+        np.abs(np.sin(2 * np.radians(data.angles[:, 0] + rig.alpha_offset_deg))) > 1e-9)
+    if rig.rule == "associated":
+        why["eps_ratio"] = "the associated rule's trajectory does not depend on the stiffness"
+    elif not informative_angles:
+        why["eps_ratio"] = "needs trajectory angles (angles.csv) away from the tensor axes"
+    elif "mu1" not in free:
+        why["eps_ratio"] = ("trajectory angles fix only l1/l2 = (eps1/eps2)(mu1/mu2); "
+                            "mu1/mu2 needs forces.csv")
+        if _eq25_geometry(rig):
+            free.append("l1_l2_ratio")
+    else:
+        free.append("eps_ratio")
+    if data.ramp is None:
+        why["eps2"] = why["eps1"] = ("absolute stiffness does not show in steady sliding (forces, "
+                                     "angles); it needs the pre-sliding ramp (ramp.csv)")
+    else:
+        alpha_r = math.radians(rig.ramp_angle_deg + rig.alpha_offset_deg)
+        if "eps_ratio" in free or abs(math.cos(alpha_r)) < 1e-9:
+            free.append("eps2")
+        else:
+            why["eps2"] = ("the ramp's stiffness mixes eps1 and eps2 at this ramp angle; "
+                           "separating them needs eps_ratio")
+        if "eps_ratio" not in free:
+            why["eps1"] = "eps1 = eps_ratio * eps2 needs eps_ratio"
+    return free, why
+
+
+def _eq25_geometry(rig: RigSetup) -> bool:
+    """A = B F B has its eigenbasis at alpha (Case 4 or 5 geometry), so eq. (25) holds."""
+    return cf.eq25_lambdas(1.0, 1.0, 1.0, 1.0, rig.beta_minus_alpha) is not None
+
+
+def _stick_mask(data: MeasurementSet, mu1, mu2) -> np.ndarray:
+    """Ramp points on the stick branch: below 90% of the sliding force."""
+    rig = data.rig
+    F = data.ramp[:, 1] - rig.f_int_N
+    if mu1 is not None:
+        _, beta = rig.axes(rig.ramp_angle_deg)
+        plateau = cf.steady_drive_force(mu1, mu2, beta, 0.0, rig.mass_kg, rig.g)
+    else:
+        top = np.sort(F)[-max(3, len(F) // 4):]
+        plateau = float(np.median(top))
+    return (F < 0.9 * plateau) & (data.ramp[:, 0] > 0)
+
+
+def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
+    """Weighted nonlinear least squares of all data present over the
+    identifiable parameters (casadi/IPOPT), each group weighted by its own
+    noise, estimated from its residuals (three rounds); covariance
+    (J^T W J)^-1 at the optimum (Gauss-Newton)."""
+    import casadi as ca
+    rig = data.rig
+    free, why = identifiability(data)
+    if not free:
+        raise InputError(f"{data.folder}: expected data that determine at least one parameter: "
+                         + "; ".join(f"{k}: {v}" for k, v in why.items()))
+    scale = {"mu1": 1.0, "mu2": 1.0, "eps_ratio": 1.0, "l1_l2_ratio": 1.0,
+             "eps2": max(start.get("eps2", 1e4), 1e-9)}
+    x = ca.SX.sym("x", len(free))
+    sym = {n: x[i] * scale[n] for i, n in enumerate(free)}
+    val = lambda n: sym[n] if n in sym else start.get(n, 1.0)
+    groups = {}
+    if data.forces is not None and "mu1" in free:
+        res = []
+        for a, f in data.forces:
+            _, beta = rig.axes(a)
+            res.append(f - cf.steady_drive_force(val("mu1"), val("mu2"), beta, rig.f_int_N, rig.mass_kg, rig.g))
+        groups["forces"] = (ca.vertcat(*res), 2)
+    if data.angles is not None and ("eps_ratio" in free or "l1_l2_ratio" in free):
+        res = []
+        for a, phi in data.angles:
+            al, be = rig.axes(a)
+            if "eps_ratio" in free:
+                tp = cf.steady_tan_phi(val("mu1"), val("mu2"), val("eps_ratio"), 1.0, al, be, rig.rule)
+            else:
+                tp = cf.eq25_tan_phi(val("l1_l2_ratio"), 1.0, al)
+            res.append(phi - ca.atan(tp) * 180 / math.pi)
+        groups["angles"] = (ca.vertcat(*res), 1)
+    stick = np.zeros(0, dtype=bool)
+    if data.ramp is not None and "eps2" in free:
+        stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
+        if stick.sum() < 2:
+            raise InputError(f"{data.folder / 'ramp.csv'}: expected at least 2 points on the stick "
+                             f"branch (below 90% of the sliding force), got {int(stick.sum())}")
+        al, _ = rig.axes(rig.ramp_angle_deg)
+        k = cf.stick_stiffness_x1(val("eps_ratio") * val("eps2"), val("eps2"), al)
+        res = [F - (rig.f_int_N + k * x1) for x1, F in data.ramp[stick]]
+        groups["ramp"] = (ca.vertcat(*res), 1)
+
+    names = list(groups)
+    r_all = ca.vertcat(*[groups[g][0] for g in names])
+    J_all = ca.jacobian(r_all, x)
+    w = ca.SX.sym("w", len(names))
+    obj = 0
+    for i, g in enumerate(names):
+        obj += w[i] * ca.sumsqr(groups[g][0])
+    solver = ca.nlpsol("joint", "ipopt", {"x": x, "p": w, "f": 0.5 * obj},
+                       {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
+                        "ipopt.sb": "yes", "ipopt.max_iter": 500})
+    fres = ca.Function("res", [x], [r_all, J_all])
+    sizes = [groups[g][0].numel() for g in names]
+    x0 = np.array([start.get(n, 1.0) / scale[n] for n in free])
+    # Prior noise levels; a group with no residual degrees of freedom (e.g.
+    # two forces for mu1, mu2) keeps its prior, flagged as assumed.
+    sigma = {"forces": 0.05, "angles": 0.5, "ramp": 0.05}
+    floors = {"forces": 1e-12, "angles": 1e-12, "ramp": 1e-12}
+    assumed = [g for g, n in zip(names, sizes) if n - groups[g][1] <= 0]
+    for _round in range(3):
+        wv = [1.0 / sigma[g] ** 2 for g in names]
+        sol = solver(x0=x0, p=wv, lbx=1e-9, ubx=1e9)
+        x0 = np.array(sol["x"]).ravel()
+        r, _ = fres(x0)
+        r = np.array(r).ravel()
+        parts = np.split(r, np.cumsum(sizes)[:-1])
+        for g, part in zip(names, parts):
+            if g not in assumed:
+                sigma[g] = max(math.sqrt(float(part @ part) / (len(part) - groups[g][1])), floors[g])
+    r, J = fres(x0)
+    r, J = np.array(r).ravel(), np.array(J)
+    wdiag = np.concatenate([np.full(n, 1.0 / sigma[g] ** 2) for g, n in zip(names, sizes)])
+    info = J.T @ (wdiag[:, None] * J)
+    cov_scaled = np.linalg.pinv(info)
+    S = np.diag([scale[n] for n in free])
+    cov = S @ cov_scaled @ S
+    values = {n: float(x0[i] * scale[n]) for i, n in enumerate(free)}
+    dof = len(r) - len(free)
+    # Each group's noise is estimated from its own residuals, with its own
+    # degrees of freedom; a parameter's variance is a sum of the groups'
+    # contributions (cov J_g' W_g J_g cov), so its interval takes the
+    # Welch-Satterthwaite degrees of freedom of that sum: the forces' for
+    # mu1, mu2, mostly the ramp's for eps2, a blend for the ratio.  A group
+    # whose noise is the prior contributes with infinite dof.
+    group_dof = {g: (math.inf if g in assumed else n - groups[g][1]) for g, n in zip(names, sizes)}
+    rows = np.split(np.arange(len(r)), np.cumsum(sizes)[:-1])
+    contrib = {}
+    for g, idx in zip(names, rows):
+        Jg = J[idx] / sigma[g]
+        contrib[g] = S @ cov_scaled @ (Jg.T @ Jg) @ cov_scaled @ S
+    grads = {n: np.eye(len(free))[i] for i, n in enumerate(free)}
+    if "eps2" in free and "eps_ratio" in free:
+        i, j = free.index("eps_ratio"), free.index("eps2")
+        values["eps1"] = values["eps_ratio"] * values["eps2"]
+        grad = np.zeros(len(free))
+        grad[i], grad[j] = values["eps2"], values["eps_ratio"]
+        grads["eps1"] = grad
+    stderr, param_dof, ci = {}, {}, {}
+    for n, gvec in grads.items():
+        shares = {g: max(float(gvec @ C @ gvec), 0.0) for g, C in contrib.items()}
+        var = max(float(gvec @ cov @ gvec), 0.0)
+        stderr[n] = math.sqrt(var)
+        den = sum(v * v / group_dof[g] for g, v in shares.items() if math.isfinite(group_dof[g]))
+        nu = (sum(shares.values()) ** 2 / den) if den > 0 else math.inf
+        param_dof[n] = nu
+        t = 1.959963984540054 if not math.isfinite(nu) else _t975(nu)
+        ci[n] = [values[n] - t * stderr[n], values[n] + t * stderr[n]]
+    # Identifiability is about the shape of the information, not its scale:
+    # judge the correlation form, which weights and units do not distort.
+    dscale = np.sqrt(np.maximum(np.diag(info), 1e-300))
+    cond = np.linalg.cond(info / np.outer(dscale, dscale)) if info.size else 0.0
+    if not np.isfinite(cond) or cond > 1e14:
+        raise InputError(f"{data.folder}: expected data that separate {', '.join(free)} "
+                         f"(information matrix singular, condition {cond:.1e})")
+    parts = np.split(r, np.cumsum(sizes)[:-1])
+    return JointFit(free, values, cov, stderr, ci, dof, {g: sigma[g] for g in names},
+                    dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof)
+
+
+def _start_values(data: MeasurementSet) -> dict:
+    """Starting point: eq. (1) or a one-parameter-per-axis guess, the
+    maximum rule, a straight line through the ramp's stick branch."""
+    rig = data.rig
+    start = {}
+    e1 = eq1(data)
+    if e1:
+        start.update(e1)
+    elif data.forces is not None:
+        mu = float(np.mean(data.forces[:, 1]) - rig.f_int_N) / rig.normal_force
+        start.update(mu1=max(mu, 0.05), mu2=max(mu, 0.05))
+    mr = max_rule(data, start.get("mu1"), start.get("mu2"))
+    start["eps_ratio"] = mr["eps_ratio"] if mr and "eps_ratio" in mr else 1.0
+    start["l1_l2_ratio"] = mr["l1_l2_ratio"] if mr else 1.0
+    if data.ramp is not None:
+        stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
+        if stick.sum() >= 2:
+            xs, F = data.ramp[stick, 0], data.ramp[stick, 1] - rig.f_int_N
+            k = float(xs @ F / (xs @ xs))
+            al, _ = rig.axes(rig.ramp_angle_deg)
+            # the stick stiffness is linear in eps2 for a given ratio
+            start["eps2"] = max(k / cf.stick_stiffness_x1(start["eps_ratio"], 1.0, al), 1e-9)
+    return start

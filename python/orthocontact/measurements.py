@@ -1,0 +1,220 @@
+"""Measurement data for identification and their files.
+
+A measurement set is a folder (see scenarios/example_identification/README.md):
+  rig.toml     mass_kg, g, f_int_N, velocity_m_s, rule, geometry (required file)
+  forces.csv   alpha_deg,force_N    driving force at an orientation (repeats allowed)
+  angles.csv   alpha_deg,phi_deg    trajectory angle (repeats allowed)
+  ramp.csv     x1_m,force_N         start of a pull, before and into sliding
+`alpha_deg` is the orientation angle of the sweep (the mat angle in the
+paper's experiment); the tensors' axes follow from it by the geometry offsets.
+A bad file is an InputError naming the file, the line and the column.
+Units: N, m, deg.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from . import closed_forms as cf
+from .errors import InputError
+from .fmu import RULES, ContactParams
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+
+@dataclass
+class RigSetup:
+    """What rig.toml says: the rig and the assumptions of the fit."""
+    mass_kg: float
+    g: float = cf.G_STANDARD
+    f_int_N: float = 0.0
+    velocity_m_s: float = 0.244
+    rule: str = "coupled"
+    alpha_offset_deg: float = 90.0   # the paper's mat: adhesion axis 1 across the ripples
+    beta_offset_deg: float = 0.0     # friction axis 1 along the ripples
+    phi_convention: str = "counterclockwise"   # or "paper" (opposite sign)
+    ramp_angle_deg: float = 0.0
+    mode: str = "dynamic"            # rig mode of the validation runs
+    travel_m: float = 0.5
+    step_s: float = 2e-4
+    eps2_nominal_N_m: float = 1e4    # for validation runs when eps2 is not identifiable
+
+    @property
+    def normal_force(self) -> float:
+        return self.mass_kg * self.g
+
+    def axes(self, angle_deg: float) -> tuple[float, float]:
+        """(alpha, beta) [rad] at a data orientation angle [deg]."""
+        return (math.radians(angle_deg + self.alpha_offset_deg),
+                math.radians(angle_deg + self.beta_offset_deg))
+
+    def params_at(self, law: ContactParams, angle_deg: float) -> ContactParams:
+        """The law's parameters with the tensors' axes of this orientation and rig.rule."""
+        alpha, beta = self.axes(angle_deg)
+        return law.replace(alpha=alpha, beta=beta, rule=self.rule)
+
+    def harness(self, **overrides):
+        """The rig harness (orthocontact.rig.Rig) for this setup."""
+        from .rig import Rig
+        kw = dict(mass_kg=self.mass_kg, g=self.g, f_int_N=self.f_int_N,
+                  velocity_m_s=self.velocity_m_s, travel_m=self.travel_m, mode=self.mode,
+                  step_s=self.step_s)
+        kw.update(overrides)
+        return Rig(**kw)
+
+    @property
+    def beta_minus_alpha(self) -> float:
+        """Angle [rad] of the friction axes from the adhesion axes."""
+        return math.radians(self.beta_offset_deg - self.alpha_offset_deg)
+
+
+@dataclass
+class MeasurementSet:
+    folder: Path
+    rig: RigSetup
+    forces: np.ndarray | None = None   # (n, 2): alpha_deg, force_N
+    angles: np.ndarray | None = None   # (n, 2): alpha_deg, phi_deg (counterclockwise)
+    ramp: np.ndarray | None = None     # (n, 2): x1_m, force_N
+
+
+_RIG_KEYS = {
+    "mass_kg": ("pos", None), "g": ("pos", cf.G_STANDARD), "f_int_N": ("nonneg", 0.0),
+    "velocity_m_s": ("pos", 0.244), "rule": (tuple(RULES), "coupled"),
+    "alpha_offset_deg": ("angle", 90.0), "beta_offset_deg": ("angle", 0.0),
+    "phi_convention": (("counterclockwise", "paper"), "counterclockwise"),
+    "ramp_angle_deg": ("angle", 0.0), "mode": (("dynamic", "quasistatic"), "dynamic"),
+    "travel_m": ("pos", 0.5), "step_s": ("pos", 2e-4), "eps2_nominal_N_m": ("pos", 1e4),
+}
+
+
+def _beta_key(rig: RigSetup, angles_deg):
+    """cos^2 of the friction axis angle: what the force depends on."""
+    return np.cos(np.radians(np.asarray(angles_deg) + rig.beta_offset_deg)) ** 2
+
+
+def _load_rig(path: Path) -> RigSetup:
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise InputError(f"{path}: expected a rig.toml in the data folder (mass_kg, f_int_N, ...)") from None
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"{path}: expected valid TOML ({e})") from None
+    out = {}
+    for key, value in raw.items():
+        if key not in _RIG_KEYS:
+            raise InputError(f"{path}: {key}: expected one of the known keys {', '.join(sorted(_RIG_KEYS))}")
+    for key, (kind, default) in _RIG_KEYS.items():
+        if key not in raw:
+            if default is None:
+                raise InputError(f"{path}: {key}: expected a value (the key is required)")
+            out[key] = default
+            continue
+        v = raw[key]
+        if isinstance(kind, tuple):
+            if v not in kind:
+                raise InputError(f"{path}: {key}: expected one of {', '.join(map(repr, kind))}, got {v!r}")
+        else:
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise InputError(f"{path}: {key}: expected a finite number, got {v!r}")
+            if (kind == "pos" and v <= 0) or (kind == "nonneg" and v < 0) or \
+                    (kind == "angle" and abs(v) > 360):
+                what = {"pos": "> 0", "nonneg": ">= 0", "angle": "in [-360, 360]"}[kind]
+                raise InputError(f"{path}: {key}: expected a number {what}, got {v!r}")
+            v = float(v)
+        out[key] = v
+    return RigSetup(**out)
+
+
+def _load_csv(path: Path, columns: tuple[str, str], checks, min_rows: int, why: str) -> np.ndarray | None:
+    """Rows of two numeric columns, or None if the file is absent."""
+    if not path.exists():
+        return None
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = list(csv.reader(fh))
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"{path}: expected a readable UTF-8 CSV file ({e})") from None
+    rows = [(i + 1, r) for i, r in enumerate(rows) if r and any(c.strip() for c in r)
+            and not r[0].lstrip().startswith("#")]
+    if not rows:
+        raise InputError(f"{path}: expected a header line with columns {','.join(columns)}")
+    line0, header = rows[0]
+    header = [h.strip() for h in header]
+    idx = []
+    for c in columns:
+        if c not in header:
+            raise InputError(f"{path}: line {line0}: expected column {c!r} (header has {','.join(header)})")
+        idx.append(header.index(c))
+    data = []
+    for line, r in rows[1:]:
+        vals = []
+        for c, k in zip(columns, idx):
+            cell = r[k].strip() if k < len(r) else ""
+            try:
+                v = float(cell)
+            except ValueError:
+                raise InputError(f"{path}: line {line}: {c}: expected a number, got {cell!r}") from None
+            if not math.isfinite(v):
+                raise InputError(f"{path}: line {line}: {c}: expected a finite number, got {cell!r}")
+            bad = checks[c](v)
+            if bad:
+                raise InputError(f"{path}: line {line}: {c}: expected {bad}, got {cell}")
+            vals.append(v)
+        data.append(vals)
+    if len(data) < min_rows:
+        raise InputError(f"{path}: expected at least {min_rows} data rows ({why}), got {len(data)}")
+    return np.array(data, dtype=float)
+
+
+def load_data(folder) -> MeasurementSet:
+    """Reads and validates a measurement set; raises InputError (one line)."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise InputError(f"{folder}: expected a folder with rig.toml and forces.csv/angles.csv/ramp.csv")
+    rig = _load_rig(folder / "rig.toml")
+    angle = lambda v: None if -180 <= v <= 180 else "an angle in [-180, 180] deg"
+    forces = _load_csv(folder / "forces.csv", ("alpha_deg", "force_N"),
+                       {"alpha_deg": angle, "force_N": lambda v: None if v > 0 else "a force > 0"},
+                       2, "two parameters, mu1 and mu2")
+    angles = _load_csv(folder / "angles.csv", ("alpha_deg", "phi_deg"),
+                       {"alpha_deg": angle, "phi_deg": lambda v: None if -90 < v < 90 else "an angle in (-90, 90) deg"},
+                       1, "the stiffness ratio")
+    ramp = _load_csv(folder / "ramp.csv", ("x1_m", "force_N"),
+                     {"x1_m": lambda v: None if v >= 0 else "a travel >= 0",
+                      "force_N": lambda v: None if v >= 0 else "a force >= 0"},
+                     3, "stiffness needs points on the stick branch")
+    if forces is None and angles is None and ramp is None:
+        raise InputError(f"{folder}: expected at least one of forces.csv, angles.csv, ramp.csv")
+    if angles is not None and rig.phi_convention == "paper":
+        angles[:, 1] = -angles[:, 1]
+    if forces is not None and len(np.unique(np.round(_beta_key(rig, forces[:, 0]), 9))) < 2:
+        raise InputError(f"{folder / 'forces.csv'}: expected forces at two or more orientations "
+                         "with different friction directions (mu1 and mu2 are two parameters)")
+    return MeasurementSet(folder, rig, forces, angles, ramp)
+
+
+def write_measurements(folder: Path, rig: RigSetup, forces=None, angles=None, ramp=None):
+    """Writes a measurement set (rig.toml and CSV files) to folder."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    keys = ("mass_kg", "g", "f_int_N", "velocity_m_s", "rule", "alpha_offset_deg", "beta_offset_deg",
+            "ramp_angle_deg")
+    lines = []
+    for k in keys:
+        v = getattr(rig, k)
+        lines.append(f'{k} = "{v}"' if isinstance(v, str) else f"{k} = {v!r}")
+    (folder / "rig.toml").write_text("\n".join(lines) + "\n")
+    for name, header, arr in (("forces.csv", "alpha_deg,force_N", forces),
+                              ("angles.csv", "alpha_deg,phi_deg", angles),
+                              ("ramp.csv", "x1_m,force_N", ramp)):
+        if arr is not None:
+            body = "\n".join(f"{a!r},{b!r}" for a, b in arr)
+            (folder / name).write_text(header + "\n" + body + "\n")
