@@ -61,6 +61,7 @@ LAYERS = [
     {"cluster", "ssp"},
     {"sweep"},
     {"figures", "measurements", "uncertainty"},
+    {"strip"},
     {"estimators"},
     {"identify_report"},
     {"identify"},

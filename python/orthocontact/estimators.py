@@ -17,6 +17,7 @@ import numpy as np
 from . import closed_forms as cf
 from .errors import InputError
 from .measurements import MeasurementSet, RigSetup, _beta_key
+from .strip import _strip_state, strip_regimes
 from .uncertainty import _t975
 
 
@@ -157,6 +158,14 @@ def identifiability(data: MeasurementSet) -> tuple[list, dict]:
                            "separating them needs eps_ratio")
         if "eps_ratio" not in free:
             why["eps1"] = "eps1 = eps_ratio * eps2 needs eps_ratio"
+    if rig.c_strip is None:
+        n_v = 0 if data.angles is None else len(np.unique(np.round(data.velocities_of_angles(), 9)))
+        if "eps_ratio" in free and n_v >= 2:
+            free.append("c_strip")
+        else:
+            why["c_strip"] = ("the strip's viscosity shows only as a change of the angle with "
+                              "velocity: it needs angles.csv at two or more velocities "
+                              "(velocity_m_s column) and eps_ratio; taken as 0")
     return free, why
 
 
@@ -179,6 +188,22 @@ def _stick_mask(data: MeasurementSet, mu1, mu2) -> np.ndarray:
 
 
 def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
+    """_joint_fit_once; with the strip, again from its result until the
+    regimes of motion (strip_regimes) the model was built for are those of
+    the fitted values (at most 4 fits)."""
+    fit = _joint_fit_once(data, start)
+    for _ in range(3):
+        if "mu1" not in fit.values or "eps_ratio" not in fit.values:
+            break
+        new = dict(start, **fit.values)
+        if strip_regimes(data, new) == strip_regimes(data, start):
+            break
+        start = new
+        fit = _joint_fit_once(data, start)
+    return fit
+
+
+def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     """Weighted nonlinear least squares of all data present over the
     identifiable parameters (casadi/IPOPT), each group weighted by its own
     noise, estimated from its residuals (three rounds); covariance
@@ -190,27 +215,42 @@ def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
         raise InputError(f"{data.folder}: expected data that determine at least one parameter: "
                          + "; ".join(f"{k}: {v}" for k, v in why.items()))
     scale = {"mu1": 1.0, "mu2": 1.0, "eps_ratio": 1.0, "l1_l2_ratio": 1.0,
-             "eps2": max(start.get("eps2", 1e4), 1e-9)}
-    x = ca.SX.sym("x", len(free))
+             "eps2": max(start.get("eps2", 1e4), 1e-9), "c_strip": 10.0}
+    c_known = rig.c_strip or 0.0
+    viscous = "c_strip" in free or c_known > 0
+    # A viscous strip makes each steady angle the root of an equation
+    # (closed_forms.steady_tan_phi_with_strip): casadi's rootfinder, which
+    # needs the matrix graph (MX); the scalar graph (SX) is faster otherwise.
+    x = (ca.MX if viscous else ca.SX).sym("x", len(free))
     sym = {n: x[i] * scale[n] for i, n in enumerate(free)}
     val = lambda n: sym[n] if n in sym else start.get(n, 1.0)
     groups = {}
     if data.forces is not None and "mu1" in free:
         res = []
         for a, f in data.forces:
-            _, beta = rig.axes(a)
-            res.append(f - cf.steady_drive_force(val("mu1"), val("mu2"), beta, rig.f_int_N, rig.mass_kg, rig.g))
+            al, beta = rig.axes(a)
+            if (rig.mu_strip > 0 or viscous) and "eps_ratio" in free:
+                # the strip's lateral force turns the push off the friction
+                # ellipse's X1 point wherever the block drifts
+                F = rig.f_int_N + _strip_state(val, start, rig, al, beta, rig.velocity_m_s,
+                                               "c_strip" in free, c_known)[1]
+            else:
+                F = cf.steady_drive_force(val("mu1"), val("mu2"), beta, rig.f_int_N, rig.mass_kg, rig.g)
+            res.append(f - F)
         groups["forces"] = (ca.vertcat(*res), 2)
     if data.angles is not None and ("eps_ratio" in free or "l1_l2_ratio" in free):
         res = []
-        for a, phi in data.angles:
+        strip = rig.mu_strip > 0 or viscous
+        for (a, phi), v in zip(data.angles, data.velocities_of_angles()):
             al, be = rig.axes(a)
-            if "eps_ratio" in free:
+            if "eps_ratio" in free and strip:
+                tp = _strip_state(val, start, rig, al, be, v, "c_strip" in free, c_known)[0]
+            elif "eps_ratio" in free:
                 tp = cf.steady_tan_phi(val("mu1"), val("mu2"), val("eps_ratio"), 1.0, al, be, rig.rule)
             else:
                 tp = cf.eq25_tan_phi(val("l1_l2_ratio"), 1.0, al)
             res.append(phi - ca.atan(tp) * 180 / math.pi)
-        groups["angles"] = (ca.vertcat(*res), 1)
+        groups["angles"] = (ca.vertcat(*res), 1 + ("c_strip" in free))
     stick = np.zeros(0, dtype=bool)
     if data.ramp is not None and "eps2" in free:
         stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
@@ -225,7 +265,7 @@ def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
     names = list(groups)
     r_all = ca.vertcat(*[groups[g][0] for g in names])
     J_all = ca.jacobian(r_all, x)
-    w = ca.SX.sym("w", len(names))
+    w = type(x).sym("w", len(names))
     obj = 0
     for i, g in enumerate(names):
         obj += w[i] * ca.sumsqr(groups[g][0])
@@ -314,6 +354,7 @@ def _start_values(data: MeasurementSet) -> dict:
     mr = max_rule(data, start.get("mu1"), start.get("mu2"))
     start["eps_ratio"] = mr["eps_ratio"] if mr and "eps_ratio" in mr else 1.0
     start["l1_l2_ratio"] = mr["l1_l2_ratio"] if mr else 1.0
+    start["c_strip"] = rig.c_strip if rig.c_strip is not None else 0.0
     if data.ramp is not None:
         stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
         if stick.sum() >= 2:

@@ -84,6 +84,11 @@ class Identification:
                           "dof": _json_dof(f.param_dof.get(n))}
             else:
                 out[n] = {"identifiable": False, "reason": f.not_identifiable.get(n, "not determined")}
+        if "c_strip" in f.values:
+            out["c_strip"] = {"value": f.values["c_strip"], "stderr": f.stderr["c_strip"],
+                              "ci95": f.ci95["c_strip"], "dof": _json_dof(f.param_dof.get("c_strip")),
+                              "unit": "N s/m", "note": "the strip's lateral viscosity, from the "
+                                                       "angles' change with velocity"}
         if "l1_l2_ratio" in f.values:
             n = "l1_l2_ratio"
             out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n],
@@ -119,6 +124,9 @@ class Identification:
         out["assumptions"] = {"rule": r.rule, "alpha_offset_deg": r.alpha_offset_deg,
                               "beta_offset_deg": r.beta_offset_deg, "mass_kg": r.mass_kg, "g": r.g,
                               "f_int_N": r.f_int_N, "ramp_angle_deg": r.ramp_angle_deg,
+                              "mu_strip": r.mu_strip,
+                              "c_strip_N_s_m": ("estimated" if "c_strip" in f.values else
+                                                (r.c_strip if r.c_strip is not None else 0.0)),
                               "phi_convention": "counterclockwise (data converted)" if r.phi_convention == "paper"
                               else "counterclockwise",
                               "ci": "95%, Student t with each parameter's Welch-Satterthwaite "

@@ -46,6 +46,9 @@ class RigSetup:
     travel_m: float = 0.5
     step_s: float = 2e-4
     eps2_nominal_N_m: float = 1e4    # for validation runs when eps2 is not identifiable
+    mu_strip: float = 0.0            # the Teflon strip's Coulomb friction, a known input
+    c_strip: float | None = None     # its lateral viscosity [N s/m]: known if given, else
+                                     # estimated from angles at two velocities (else 0)
 
     @property
     def normal_force(self) -> float:
@@ -66,7 +69,7 @@ class RigSetup:
         from .rig import Rig
         kw = dict(mass_kg=self.mass_kg, g=self.g, f_int_N=self.f_int_N,
                   velocity_m_s=self.velocity_m_s, travel_m=self.travel_m, mode=self.mode,
-                  step_s=self.step_s)
+                  step_s=self.step_s, mu_strip=self.mu_strip, c_strip=self.c_strip or 0.0)
         kw.update(overrides)
         return Rig(**kw)
 
@@ -83,6 +86,13 @@ class MeasurementSet:
     forces: np.ndarray | None = None   # (n, 2): alpha_deg, force_N
     angles: np.ndarray | None = None   # (n, 2): alpha_deg, phi_deg (counterclockwise)
     ramp: np.ndarray | None = None     # (n, 2): x1_m, force_N
+    angle_velocities: np.ndarray | None = None  # (n,): m/s of each angle (None: rig.velocity_m_s)
+
+    def velocities_of_angles(self) -> np.ndarray:
+        """The carriage velocity [m/s] of each measured angle."""
+        if self.angle_velocities is not None:
+            return self.angle_velocities
+        return np.full(0 if self.angles is None else len(self.angles), self.rig.velocity_m_s)
 
 
 _RIG_KEYS = {
@@ -92,6 +102,7 @@ _RIG_KEYS = {
     "phi_convention": (("counterclockwise", "paper"), "counterclockwise"),
     "ramp_angle_deg": ("angle", 0.0), "mode": (("dynamic", "quasistatic"), "dynamic"),
     "travel_m": ("pos", 0.5), "step_s": ("pos", 2e-4), "eps2_nominal_N_m": ("pos", 1e4),
+    "mu_strip": ("nonneg", 0.0), "c_strip": ("nonneg", "unset"),
 }
 
 
@@ -115,7 +126,7 @@ def _load_rig(path: Path) -> RigSetup:
         if key not in raw:
             if default is None:
                 raise InputError(f"{path}: {key}: expected a value (the key is required)")
-            out[key] = default
+            out[key] = None if default == "unset" else default
             continue
         v = raw[key]
         if isinstance(kind, tuple):
@@ -133,8 +144,11 @@ def _load_rig(path: Path) -> RigSetup:
     return RigSetup(**out)
 
 
-def _load_csv(path: Path, columns: tuple[str, str], checks, min_rows: int, why: str) -> np.ndarray | None:
-    """Rows of two numeric columns, or None if the file is absent."""
+def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: str,
+              optional: dict | None = None) -> np.ndarray | None:
+    """Rows of the numeric columns (then the optional ones, their default
+    where the header lacks them), or None if the file is absent."""
+    optional = optional or {}
     if not path.exists():
         return None
     try:
@@ -153,6 +167,9 @@ def _load_csv(path: Path, columns: tuple[str, str], checks, min_rows: int, why: 
         if c not in header:
             raise InputError(f"{path}: line {line0}: expected column {c!r} (header has {','.join(header)})")
         idx.append(header.index(c))
+    present = [c for c in optional if c in header]
+    columns = tuple(columns) + tuple(present)
+    idx += [header.index(c) for c in present]
     data = []
     for line, r in rows[1:]:
         vals = []
@@ -168,7 +185,7 @@ def _load_csv(path: Path, columns: tuple[str, str], checks, min_rows: int, why: 
             if bad:
                 raise InputError(f"{path}: line {line}: {c}: expected {bad}, got {cell}")
             vals.append(v)
-        data.append(vals)
+        data.append(vals + [optional[c] for c in optional if c not in present])
     if len(data) < min_rows:
         raise InputError(f"{path}: expected at least {min_rows} data rows ({why}), got {len(data)}")
     return np.array(data, dtype=float)
@@ -185,8 +202,12 @@ def load_data(folder) -> MeasurementSet:
                        {"alpha_deg": angle, "force_N": lambda v: None if v > 0 else "a force > 0"},
                        2, "two parameters, mu1 and mu2")
     angles = _load_csv(folder / "angles.csv", ("alpha_deg", "phi_deg"),
-                       {"alpha_deg": angle, "phi_deg": lambda v: None if -90 < v < 90 else "an angle in (-90, 90) deg"},
-                       1, "the stiffness ratio")
+                       {"alpha_deg": angle, "phi_deg": lambda v: None if -90 < v < 90 else "an angle in (-90, 90) deg",
+                        "velocity_m_s": lambda v: None if v > 0 else "a velocity > 0"},
+                       1, "the stiffness ratio", optional={"velocity_m_s": rig.velocity_m_s})
+    velocities = None
+    if angles is not None:
+        velocities, angles = angles[:, 2].copy(), angles[:, :2].copy()
     ramp = _load_csv(folder / "ramp.csv", ("x1_m", "force_N"),
                      {"x1_m": lambda v: None if v >= 0 else "a travel >= 0",
                       "force_N": lambda v: None if v >= 0 else "a force >= 0"},
@@ -198,23 +219,30 @@ def load_data(folder) -> MeasurementSet:
     if forces is not None and len(np.unique(np.round(_beta_key(rig, forces[:, 0]), 9))) < 2:
         raise InputError(f"{folder / 'forces.csv'}: expected forces at two or more orientations "
                          "with different friction directions (mu1 and mu2 are two parameters)")
-    return MeasurementSet(folder, rig, forces, angles, ramp)
+    return MeasurementSet(folder, rig, forces, angles, ramp, velocities)
 
 
-def write_measurements(folder: Path, rig: RigSetup, forces=None, angles=None, ramp=None):
-    """Writes a measurement set (rig.toml and CSV files) to folder."""
+def write_measurements(folder: Path, rig: RigSetup, forces=None, angles=None, ramp=None,
+                       angle_velocities=None):
+    """Writes a measurement set (rig.toml and CSV files) to folder; the
+    angles with a velocity_m_s column if angle_velocities is given."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     keys = ("mass_kg", "g", "f_int_N", "velocity_m_s", "rule", "alpha_offset_deg", "beta_offset_deg",
-            "ramp_angle_deg")
+            "ramp_angle_deg", "mu_strip", "c_strip")
     lines = []
     for k in keys:
         v = getattr(rig, k)
+        if v is None:
+            continue
         lines.append(f'{k} = "{v}"' if isinstance(v, str) else f"{k} = {v!r}")
     (folder / "rig.toml").write_text("\n".join(lines) + "\n")
+    if angles is not None and angle_velocities is not None:
+        angles = [(a, p, v) for (a, p), v in zip(angles, angle_velocities)]
     for name, header, arr in (("forces.csv", "alpha_deg,force_N", forces),
-                              ("angles.csv", "alpha_deg,phi_deg", angles),
+                              ("angles.csv", "alpha_deg,phi_deg" + (",velocity_m_s" if angle_velocities
+                                                                     is not None else ""), angles),
                               ("ramp.csv", "x1_m,force_N", ramp)):
         if arr is not None:
-            body = "\n".join(f"{a!r},{b!r}" for a, b in arr)
+            body = "\n".join(",".join(repr(float(x)) for x in row) for row in arr)
             (folder / name).write_text(header + "\n" + body + "\n")
