@@ -79,6 +79,40 @@ def stick_stiffness_x1(eps1, eps2, alpha):
     return 1 / (c * c / eps1 + s * s / eps2)
 
 
+def strip_tensors(mu1, mu2, eps1, eps2, alpha, beta, rule):
+    """(f11, f12, f22) of F and (g11, g12, g22) of a positive multiple of the
+    slip tensor G (F, or adj(B F B) = det(B F B) (B F B)^-1 for the coupled
+    rule: the same directions).  Plain arithmetic: floats, numpy arrays of
+    angles, or casadi symbols."""
+    f11, f12, f22 = _sym2(1 / mu1**2, 1 / mu2**2, beta)
+    if rule == "associated":
+        return (f11, f12, f22), (f11, f12, f22)
+    b11, b12, b22 = _sym2(eps1, eps2, alpha)
+    bf11, bf12 = b11 * f11 + b12 * f12, b11 * f12 + b12 * f22
+    bf21, bf22 = b12 * f11 + b22 * f12, b12 * f12 + b22 * f22
+    a11, a12, a22 = bf11 * b11 + bf12 * b12, bf11 * b12 + bf12 * b22, bf21 * b12 + bf22 * b22
+    return (f11, f12, f22), (a22, -a12, a11)
+
+
+def strip_equilibrium(f, g, mu_strip, s, c_times_v, normal_force, t):
+    """Steady sliding with the strip at slope t = tan(phi) and lateral
+    motion of sign s: lateral equilibrium T2 = mu_strip P s + c_strip v2
+    gives q2 = a q1 + b with a = -mu_strip s, b = -c_strip v t; q on the
+    yield ellipse q.Fq = N^2 fixes q1 > 0.  Returns (q1, q2, t') with
+    t' = (Gq)_2 / (Gq)_1 the slope the block then takes: the steady state is
+    t' = t.  f, g from strip_tensors; floats, arrays or casadi symbols."""
+    f11, f12, f22 = f
+    g11, g12, g22 = g
+    a, b = -mu_strip * s, -c_times_v * t
+    # f11 q1^2 + 2 f12 q1 (a q1 + b) + f22 (a q1 + b)^2 = N^2
+    A = f11 + 2 * f12 * a + f22 * a * a
+    Bq = 2 * (f12 + f22 * a) * b
+    C = f22 * b * b - normal_force**2
+    q1 = (-Bq + (Bq * Bq - 4 * A * C) ** 0.5) / (2 * A)
+    q2 = a * q1 + b
+    return q1, q2, (g12 * q1 + g22 * q2) / (g11 * q1 + g12 * q2)
+
+
 def steady_tan_phi_with_strip(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip, c_strip=0.0,
                               velocity=0.0, normal_force=1.0) -> float:
     """Steady tan(phi) when the Teflon strip resists the drift (beyond the
@@ -86,38 +120,21 @@ def steady_tan_phi_with_strip(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip,
     c_strip [N s/m] on the lateral velocity v2 = velocity tan(phi) [m/s];
     normal_force [N] matters only with c_strip.
 
-    Lateral equilibrium T2 = mu_strip P s + c_strip v2 (s = sgn v2) gives
-    q2 = -mu_strip s q1 - c_strip velocity t with t = tan(phi); q lies on the
-    yield ellipse q.Fq = N^2 and the block moves along G q, so t = (Gq)_2 /
-    (Gq)_1: a scalar equation in t, solved by bisection (the direction turns
-    back towards X1 as t, and with it the viscous force, grows).  If neither
-    sign of motion is consistent, the strip holds the block on the X1 axis
-    (tan phi = 0)."""
-    F = friction_tensor(mu1, mu2, beta)
-    if rule == "associated":
-        G = F
-    else:
-        B = adhesion_tensor(eps1, eps2, alpha)
-        G = np.linalg.inv(B @ F @ B)
-    b_per_t = -c_strip * velocity
-    f11, f12, f22 = F[0, 0], F[0, 1], F[1, 1]
+    The steady slope solves t = t'(t) of strip_equilibrium, by bisection (the
+    direction turns back towards X1 as t, and with it the viscous force,
+    grows).  If neither sign of motion is consistent, the strip holds the
+    block on the X1 axis (tan phi = 0)."""
+    f, g = strip_tensors(mu1, mu2, eps1, eps2, alpha, beta, rule)
+    cv = c_strip * velocity
 
     def turned(t, s):
-        """t' = (Gq)_2 / (Gq)_1 for the equilibrium q at slope t, sign s."""
-        a, b = -mu_strip * s, b_per_t * t
-        # f11 q1^2 + 2 f12 q1 (a q1 + b) + f22 (a q1 + b)^2 = N^2, q1 > 0
-        A = f11 + 2 * f12 * a + f22 * a * a
-        Bq = 2 * (f12 + f22 * a) * b
-        C = f22 * b * b - normal_force**2
-        q1 = (-Bq + math.sqrt(Bq * Bq - 4 * A * C)) / (2 * A)
-        d = G @ np.array([q1, a * q1 + b])
-        return d[1] / d[0]
+        return strip_equilibrium(f, g, mu_strip, s, cv, normal_force, t)[2]
 
     for s in (1.0, -1.0):
         t0 = turned(0.0, s)
         if t0 * s <= 0:
             continue  # this sign of motion is not consistent even without viscosity
-        if c_strip == 0 or velocity == 0:
+        if cv == 0:
             return t0
         lo, hi = 0.0, t0  # t - turned(t) < 0 at 0, >= 0 at t0 (the viscous force only turns back)
         for _ in range(STRIP_BISECTIONS):
@@ -135,37 +152,21 @@ STRIP_BISECTIONS = 64  # halvings of [0, t0]: past double precision for any t0
 
 def steady_tan_phi_with_strip_array(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip, c_strip=0.0,
                                     velocity=0.0, normal_force=1.0) -> np.ndarray:
-    """steady_tan_phi_with_strip for arrays of angles alpha, beta [rad],
-    operation for operation the same equations, all angles at once."""
+    """steady_tan_phi_with_strip for arrays of angles alpha, beta [rad]: the
+    same equations, every angle bisected at once."""
     alpha, beta = np.asarray(alpha, dtype=float), np.asarray(beta, dtype=float)
-    f11, f12, f22 = _sym2(1 / mu1**2, 1 / mu2**2, beta)
-    if rule == "associated":
-        g11, g12, g22 = f11, f12, f22
-    else:
-        b11, b12, b22 = _sym2(eps1, eps2, alpha)
-        # A = B F B, G = A^-1
-        bf11, bf12 = b11 * f11 + b12 * f12, b11 * f12 + b12 * f22
-        bf21, bf22 = b12 * f11 + b22 * f12, b12 * f12 + b22 * f22
-        a11, a12, a22 = bf11 * b11 + bf12 * b12, bf11 * b12 + bf12 * b22, bf21 * b12 + bf22 * b22
-        det = a11 * a22 - a12 * a12
-        g11, g12, g22 = a22 / det, -a12 / det, a11 / det
-    b_per_t = -c_strip * velocity
+    f, g = strip_tensors(mu1, mu2, eps1, eps2, alpha, beta, rule)
+    cv = c_strip * velocity
 
     def turned(t, s):
-        a, b = -mu_strip * s, b_per_t * t
-        A = f11 + 2 * f12 * a + f22 * a * a
-        Bq = 2 * (f12 + f22 * a) * b
-        C = f22 * b * b - normal_force**2
-        q1 = (-Bq + np.sqrt(Bq * Bq - 4 * A * C)) / (2 * A)
-        q2 = a * q1 + b
-        return (g12 * q1 + g22 * q2) / (g11 * q1 + g12 * q2)
+        return strip_equilibrium(f, g, mu_strip, s, cv, normal_force, t)[2]
 
     out = np.zeros(np.broadcast(alpha, beta).shape)
     done = np.zeros(out.shape, dtype=bool)
     for s in (1.0, -1.0):
         t0 = turned(np.zeros(out.shape), s)
         ok = (t0 * s > 0) & ~done
-        if c_strip == 0 or velocity == 0:
+        if cv == 0:
             t = t0
         else:
             lo, hi = np.zeros(out.shape), t0.copy()

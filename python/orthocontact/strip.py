@@ -44,41 +44,24 @@ def _strip_state(val, start: dict, rig: RigSetup, alpha: float, beta: float, vel
     t_start = cf.steady_tan_phi_with_strip(start["mu1"], start["mu2"], start.get("eps_ratio", 1.0) * 1e4,
                                            1e4, alpha, beta, rig.rule, rig.mu_strip,
                                            start.get("c_strip", c_known), velocity, N)
-    f11, f12, f22 = cf._sym2(1 / mu1**2, 1 / mu2**2, beta)
     s = 1.0 if t_start > 0 else -1.0
     # eps enters the direction only through eps1/eps2: eps2 = 1 N/m here
-    if rig.rule == "associated":
-        g11, g12, g22 = f11, f12, f22
-    else:
-        b11, b12, b22 = cf._sym2(ratio, 1.0, alpha)
-        bf11, bf12 = b11 * f11 + b12 * f12, b11 * f12 + b12 * f22
-        bf21, bf22 = b12 * f11 + b22 * f12, b12 * f12 + b22 * f22
-        a11, a12, a22 = bf11 * b11 + bf12 * b12, bf11 * b12 + bf12 * b22, bf21 * b12 + bf22 * b22
-        g11, g12, g22 = a22, -a12, a11  # (B F B)^-1 up to 1/det > 0: the direction is what counts
+    f, g = cf.strip_tensors(mu1, mu2, ratio, 1.0, alpha, beta, rig.rule)
     if t_start == 0:
         # held on the X1 axis by the strip: the slip runs along X1, so
         # q is along G^-1 e1, on the yield ellipse
+        (f11, f12, f22), (_, g12, g22) = f, g
         k = N / ca.sqrt(f11 * g22 * g22 - 2 * f12 * g22 * g12 + f22 * g12 * g12)
         return 0.0, k * g22
-    a = -rig.mu_strip * s
 
-    def push(t):
-        b = -c * velocity * t
-        A = f11 + 2 * f12 * a + f22 * a * a
-        Bq = 2 * (f12 + f22 * a) * b
-        C = f22 * b * b - N**2
-        q1 = (-Bq + ca.sqrt(Bq * Bq - 4 * A * C)) / (2 * A)
-        return q1, a * q1 + b
-
-    def turned(t):
-        q1, q2 = push(t)
-        return (g12 * q1 + g22 * q2) / (g11 * q1 + g12 * q2)
-    if not (c_free or c_known > 0):
-        t = turned(0.0)
-        return t, push(t)[0]
+    def state(t):
+        return cf.strip_equilibrium(f, g, rig.mu_strip, s, c * velocity, N, t)
+    if not (c_free or c_known > 0):  # no viscosity: the push does not depend on t
+        q1, _, t = state(0.0)
+        return t, q1
     ts = ca.MX.sym("t")
     args = ca.vertcat(*ca.symvar(ca.vertcat(mu1, mu2, ratio, c)))
-    res = ca.Function("strip_residual", [ts, args], [ts - turned(ts)])
+    res = ca.Function("strip_residual", [ts, args], [ts - state(ts)[2]])
     rf = ca.rootfinder("strip_angle", "newton", res, {"abstol": 1e-14})
     t = rf(t_start, args)
-    return t, push(t)[0]
+    return t, state(t)[0]
