@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from orthocontact.cli import build_parser
+from procs import alive, children
 
 ROOT = Path(__file__).resolve().parents[1]
 CMD = [sys.executable, "-m", "orthocontact"]
@@ -51,27 +52,6 @@ def test_bad_workers_names_the_option(tmp_path, value):
     assert leftovers(tmp_path) == []
 
 
-def _children(pid):
-    kids = []
-    for d in Path("/proc").iterdir():
-        if d.name.isdigit():
-            try:
-                fields = (d / "stat").read_text().rsplit(")", 1)[1].split()
-            except OSError:
-                continue
-            if int(fields[1]) == pid:
-                kids.append(int(d.name))
-    return kids
-
-
-def _alive(pid):
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except OSError:
-        return False
-    return state != "Z"
-
-
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
 def test_signal_to_the_main_process_stops_everything_and_writes_nothing(tmp_path, sig):
     """As an IDE's stop button or a job runner does: the signal goes to the
@@ -81,7 +61,7 @@ def test_signal_to_the_main_process_stops_everything_and_writes_nothing(tmp_path
     kids = []
     t0 = time.monotonic()
     while time.monotonic() - t0 < 60:  # wait until the sweep's workers are running
-        kids = [k for k in _children(proc.pid)]
+        kids = [k for k in children(proc.pid)]
         if len(kids) >= 2:
             break
         time.sleep(0.1)
@@ -97,7 +77,7 @@ def test_signal_to_the_main_process_stops_everything_and_writes_nothing(tmp_path
     assert stopped_after < 10
     assert leftovers(tmp_path) == []  # no results/, no .results.partial-*
     time.sleep(0.2)
-    assert [k for k in kids if _alive(k)] == []
+    assert [k for k in kids if alive(k)] == []
 
 
 def test_version_names_the_package_and_both_fmus(tmp_path):

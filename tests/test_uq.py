@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from orthocontact import closed_forms as cf
+from procs import alive, descendants
 from orthocontact.scenarios import load
 from orthocontact.uq import Estimates, draw, load_estimates, propagate
 
@@ -243,7 +244,7 @@ def test_ctrl_c_stops_the_local_cluster_and_writes_nothing(identified, tmp_path)
     for line in run.stderr:
         if line.startswith("uq mat_aged:") and "(0%" not in line:
             break
-    kids = _descendants(run.pid)
+    kids = descendants(run.pid)
     assert kids, "the cluster's processes were not found"
     run.send_signal(signal.SIGINT)
     out, err = run.communicate(timeout=60)
@@ -251,30 +252,7 @@ def test_ctrl_c_stops_the_local_cluster_and_writes_nothing(identified, tmp_path)
     assert err.strip().splitlines()[-1] == f"orthocontact: interrupted; nothing written to {tmp_path / 'o'}"
     assert not (tmp_path / "o").exists() and list(tmp_path.iterdir()) == []
     deadline = time.monotonic() + 10
-    while time.monotonic() < deadline and [k for k in kids if _alive(k)]:
+    while time.monotonic() < deadline and [k for k in kids if alive(k)]:
         time.sleep(0.2)
-    assert [k for k in kids if _alive(k)] == []
+    assert [k for k in kids if alive(k)] == []
 
-
-def _descendants(pid):
-    parent = {}
-    for d in Path("/proc").iterdir():
-        if d.name.isdigit():
-            try:
-                parent[int(d.name)] = int((d / "stat").read_text().rsplit(")", 1)[1].split()[1])
-            except OSError:
-                continue
-    out, todo = [], [pid]
-    while todo:
-        p = todo.pop()
-        kids = [k for k, v in parent.items() if v == p]
-        out += kids
-        todo += kids
-    return out
-
-
-def _alive(pid):
-    try:
-        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
-    except OSError:
-        return False

@@ -43,13 +43,6 @@ def _master_for(fmu):
     return _masters[digest]
 
 
-def release(fmu) -> None:
-    """Closes the master on `fmu` in this process, if there is one."""
-    m = _masters.pop(fmu[0], None)
-    if m is not None:
-        m.close()
-
-
 def fmu_payload(fmu_path) -> tuple:
     """(digest, file name, bytes): the FMU as it travels to the workers."""
     path = Path(fmu_path)

@@ -98,10 +98,7 @@ class FigureDrawer:
         return self
 
     def __call__(self, fn, *args):
-        if self._ex is None:
-            fn(*args)
-        else:
-            self._futures.append(self._ex.submit(fn, *args))
+        self.submit(fn, *args)
 
     def submit(self, fn, *args):
         """fn(*args) in a worker (here if there is none); something with

@@ -111,18 +111,18 @@ def draw(est: Estimates, n: int, seed: int) -> tuple[np.ndarray, float]:
     distribution of the estimates, only those with every parameter > 0 (the
     normal truncated to the physical region); and the fraction of draws kept."""
     rng = np.random.default_rng(seed)
-    kept, drawn = [], 0
-    while sum(len(k) for k in kept) < n:
-        batch = max(1024, 2 * (n - sum(len(k) for k in kept)))
+    kept, have, drawn = [], 0, 0
+    while have < n:
+        batch = max(1024, 2 * (n - have))
         # eigh: defined for a semidefinite covariance too, and the same on every machine
         x = rng.multivariate_normal(est.mean, est.cov, size=batch, method="eigh")
         drawn += batch
         kept.append(x[np.all(x > 0, axis=1)])
-        if drawn >= 1000 * n + 10**6 and sum(len(k) for k in kept) < n:
+        have += len(kept[-1])
+        if drawn >= 1000 * n + 10**6 and have < n:
             raise InputError(f"{est.path}: covariance: fewer than 1 in 1000 draws are physical "
                              "(all parameters > 0); the estimates are too uncertain to propagate")
-    x = np.concatenate(kept)[:n]
-    return x, float(sum(len(k) for k in kept)) / drawn
+    return np.concatenate(kept)[:n], have / drawn
 
 
 def scenario_with(sc: Scenario, names: list, row) -> Scenario:
@@ -148,15 +148,19 @@ def chunk_tasks(sc: Scenario, rig, names: list, rows) -> list:
     return tasks
 
 
-def run_chunk(fmu, chunk):
-    """On a worker: chunk = (scenario, rig, names, rows) -> phi, drive
-    arrays [len(rows) x angles]."""
-    from .cluster import run_tasks
+def _run_chunk_on(run, chunk):
+    """chunk = (scenario, rig, names, rows) -> phi, drive arrays
+    [len(rows) x angles], the runs made by run([(params, rig)])."""
     sc, rig, names, rows = chunk
-    res = run_tasks(fmu, chunk_tasks(sc, rig, names, rows))
-    n_a = len(sc.sweep_angles())
-    arr = np.array(res, dtype=float).reshape(len(rows), n_a, 2)
+    arr = np.array(run(chunk_tasks(sc, rig, names, rows)), dtype=float)
+    arr = arr.reshape(len(rows), len(sc.sweep_angles()), 2)
     return arr[:, :, 0], arr[:, :, 1]
+
+
+def run_chunk(fmu, chunk):
+    """On a worker: _run_chunk_on the worker's compiled master for `fmu`."""
+    from .cluster import run_tasks
+    return _run_chunk_on(lambda tasks: run_tasks(fmu, tasks), chunk)
 
 
 @dataclass
@@ -199,30 +203,25 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     x, accepted = draw(est, samples, seed)
     angles = sc.sweep_angles()
     nominal = scenario_with(sc, est.names, est.mean)
-    # The step check: the estimates at the scenario's own step and at the UQ step.
+    per = max(1, chunk_runs // len(angles))
+    chunks = [(sc, rig, est.names, x[i:i + per]) for i in range(0, samples, per)]
+    bar = Progress(samples * len(angles), f"uq {sc.name}", progress)
     cm = CMaster(fmu_path)
     try:
+        # The step check: the estimates at the scenario's own step and at the UQ step.
         fine = np.array([r[0] for r in cm.run([(nominal.params_at(a), sc.rig) for a in angles])])
         coarse = np.array([r[0] for r in cm.run([(nominal.params_at(a), rig) for a in angles])])
+        if scheduler is None:
+            results = []
+            for c in chunks:
+                results.append(_run_chunk_on(cm.run, c))
+                bar.update(len(c[3]) * len(angles))
+            engine = "serial (this process)"
     finally:
         cm.close()
     dev = float(np.nanmax(np.abs(coarse - fine))) if np.any(np.isfinite(fine)) else float("nan")
     check = {"scenario_step_s": sc.rig.step_s, "uq_step_s": step_s, "max_abs_difference_deg": dev}
-    per = max(1, chunk_runs // len(angles))
-    chunks = [(sc, rig, est.names, x[i:i + per]) for i in range(0, samples, per)]
-    bar = Progress(samples * len(angles), f"uq {sc.name}", progress)
-    if scheduler is None:
-        from .cluster import fmu_payload, release
-        fmu = fmu_payload(fmu_path)
-        results = []
-        try:
-            for c in chunks:
-                results.append(run_chunk(fmu, c))
-                bar.update(len(c[3]) * len(angles))
-        finally:
-            release(fmu)
-        engine = "serial (this process)"
-    else:
+    if scheduler is not None:
         from .cluster import DaskRunner
         with DaskRunner(scheduler, workers) as dr:
             results = dr.map(run_chunk, chunks, fmu_path, lambda i, r: bar.update(r[0].size))
