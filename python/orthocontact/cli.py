@@ -128,10 +128,9 @@ def packaged_scenarios() -> Path:
 
 def cmd_run(args) -> int:
     from .figures import FigureDrawer
-    from .sweep import default_workers
     sc = load(args.scenario)
     with staged_output(args.out) as stage, _dask_for(args) as dask, \
-            FigureDrawer(args.workers or default_workers()) as draw:
+            FigureDrawer(args.workers or _default_workers()) as draw:
         summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
                                 dask=dask)
     print(json.dumps({k: summary[k] for k in summary if k in ("scenario", "extremum", "max_deviation_deg",
@@ -148,12 +147,11 @@ def cmd_reproduce(args) -> int:
     if not files:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
     scenarios = [load(f) for f in files]  # all validated before anything runs
-    from .sweep import default_workers
     t0 = time.time()
     runs, rows = [], []
     with staged_output(args.out) as stage:
         # The figures are drawn in worker processes while the rig runs on.
-        with _dask_for(args) as dask, FigureDrawer(args.workers or default_workers()) as draw:
+        with _dask_for(args) as dask, FigureDrawer(args.workers or _default_workers()) as draw:
             # The rig's hidden assumptions, on the calibrated experiment: a
             # job of its own beside the sweeps.
             sens = None
@@ -292,14 +290,7 @@ def cmd_ssp(args) -> int:
     return 0
 
 
-def _workers(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number of worker processes >= 1, got {text!r}")
-    if n < 1:
-        raise argparse.ArgumentTypeError(f"expected a whole number of worker processes >= 1, got {n}")
-    return n
+_workers = _positive_int("worker processes")
 
 
 def _version_text() -> str:
@@ -446,7 +437,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 _interrupted = False
-_fork_hook_installed = False
 
 
 def _interrupt(signum, frame):
@@ -459,19 +449,21 @@ def _interrupt(signum, frame):
 
 
 def _install_signal_handlers():
-    global _interrupted, _fork_hook_installed
+    global _interrupted
     _interrupted = False
     with contextlib.suppress(ValueError):  # not in the main thread: leave them
         # SIGTERM (a job runner, an IDE's stop button) ends a run like Ctrl-C.
         signal.signal(signal.SIGINT, _interrupt)
         signal.signal(signal.SIGTERM, _interrupt)
-    if not _fork_hook_installed and hasattr(os, "register_at_fork"):
-        # A forked worker must not run this process's handler (and with it
-        # this process's unwinding and messages) if a signal reaches it
-        # before its pool initializer has run.
-        from .sweep import _worker_signals
-        os.register_at_fork(after_in_child=_worker_signals)
-        _fork_hook_installed = True
+
+
+def _quiet_interrupts(unraisable):
+    """sys.unraisablehook of the command: an interrupt raised inside a
+    finalizer is already remembered (_interrupt) and ends the run as
+    interrupted; its traceback would only bury the one line the user gets."""
+    if issubclass(unraisable.exc_type, KeyboardInterrupt) and _interrupted:
+        return
+    sys.__unraisablehook__(unraisable)
 
 
 def main(argv=None) -> int:
@@ -511,6 +503,7 @@ def entry() -> None:
     and the interpreter's shutdown would restore the default signal handlers,
     so that a second Ctrl-C during it would end the process by the signal
     instead of with the status documented above."""
+    sys.unraisablehook = _quiet_interrupts
     status = main()
     if status == 130:
         sys.stdout.flush()

@@ -86,11 +86,18 @@ def _eq25_eigenvalues(sc: Scenario) -> tuple[float, float]:
 _worker_fmu: ContactFMU | None = None
 
 
+_STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+
+
 def _worker_signals():
     # The main process decides about interrupts: Ctrl-C reaches the whole
     # process group, and a worker must not die with its own traceback.
+    # A forked worker starts with these signals held (process_pool): what
+    # arrived meanwhile is delivered now, to these dispositions.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP_SIGNALS)
 
 
 def _init_worker(fmu_path):
@@ -188,13 +195,33 @@ def _run_chunk(chunk):
     return [(i, phi, drive) for (i, _, _), (phi, drive) in zip(chunk, res)]
 
 
+class _SignalSafePool(ProcessPoolExecutor):
+    """A pool whose submit holds SIGINT and SIGTERM while it runs.  submit
+    forks the workers and records them; a signal landing in between would
+    be raised inside Python's at-fork hooks (logging's lock release among
+    them), reported as ignored, or leave a worker the pool does not know of
+    and so never stops.  Held, it arrives once submit has returned; a forked
+    worker inherits the hold until its initializer has set its dispositions
+    (_worker_signals)."""
+
+    def submit(self, fn, /, *args, **kwargs):
+        if not hasattr(signal, "pthread_sigmask"):
+            return super().submit(fn, *args, **kwargs)
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS)
+        try:
+            return super().submit(fn, *args, **kwargs)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
 def process_pool(workers: int, initializer, *initargs) -> ProcessPoolExecutor:
     """Worker processes: forked where that exists (they start in
     milliseconds; each creates its own FMU instance after the fork, so no FMU
-    state is shared), spawned elsewhere."""
+    state is shared), spawned elsewhere.  The initializer must call
+    _worker_signals first."""
     method = "fork" if sys.platform.startswith("linux") else "spawn"
-    return ProcessPoolExecutor(max_workers=workers, mp_context=get_context(method),
-                               initializer=initializer, initargs=initargs)
+    return _SignalSafePool(max_workers=workers, mp_context=get_context(method), initializer=initializer,
+                           initargs=initargs)
 
 
 def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, label: str,
