@@ -25,8 +25,9 @@ REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
 
 
 def _reported(j: dict) -> list:
-    """The parameters a summary lists: the five, and l1/l2 when angles alone were fitted."""
-    return list(REPORTED) + (["l1_l2_ratio"] if "l1_l2_ratio" in j else [])
+    """The parameters a summary lists: the five, l1/l2 when angles alone were
+    fitted, and the strip's viscosity when it was estimated."""
+    return list(REPORTED) + [n for n in ("l1_l2_ratio", "c_strip") if n in j]
 
 
 def eq1(data: MeasurementSet) -> dict | None:
