@@ -96,23 +96,37 @@ class Interface:
         return (u[0] - e[0], u[1] - e[1])
 
 
-def run_rig(mu1, mu2, eps1, eps2, alpha, beta, rule, N, travel, steps, fit_from=0.5):
-    """Quasi-static rig: x1 = travel k / steps, x2 from q2 = 0 each step.
-    Returns (x1 list, x2 list, q1 list)."""
+def run_rig(mu1, mu2, eps1, eps2, alpha, beta, rule, N, travel, steps, fit_from=0.5,
+            mu_strip=0.0, c_strip=0.0, velocity=1.0):
+    """Quasi-static rig: x1 = travel k / steps, x2 from the lateral balance
+    each step: q2 = 0 without a strip; with one, the strip holds the block
+    while |q2| <= mu_strip q1, else q2 = -mu_strip s q1 - c_strip v2 with s
+    the sign of the lateral motion and v2 = (x2 - x2_before) / dt [m/s],
+    dt = travel / (steps velocity).  Returns (x1 list, x2 list, q1 list)."""
     law = Interface(mu1, mu2, eps1, eps2, alpha, beta, rule)
     s = (0.0, 0.0)
     x2 = 0.0
     xs1, xs2, q1s = [], [], []
     scale = min(mu1, mu2) * N / max(eps1, eps2)
+    visc = c_strip * steps * velocity / travel      # c_strip / dt [N/m]
     for k in range(1, steps + 1):
         x1 = travel * k / steps
+        x2_before = x2
+        q_here = law.force((x1, x2), s, N)
+        if mu_strip > 0 and abs(q_here[1]) <= mu_strip * max(q_here[0], 0.0):
+            side = 0.0      # held by the strip's friction
+        else:
+            side = -math.copysign(1.0, q_here[1]) if mu_strip > 0 else 0.0
 
         def r(y):
-            return law.force((x1, y), s, N)[1]
+            q = law.force((x1, y), s, N)
+            if mu_strip > 0 and side == 0.0:
+                return 0.0
+            return q[1] + mu_strip * side * max(q[0], 0.0) + visc * (y - x2_before)
         r0 = r(x2)
         if r0 != 0:
-            # q2 rises with x2 (B is positive definite, the return map
-            # monotone): step against the sign of q2 until it changes
+            # r rises with x2 (B is positive definite, the return map
+            # monotone): step against the sign of r until it changes
             step = scale
             b, fb = x2 - math.copysign(step, r0), None
             fb = r(b)

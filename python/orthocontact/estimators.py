@@ -17,7 +17,7 @@ import numpy as np
 from . import closed_forms as cf
 from .errors import InputError
 from .measurements import MeasurementSet, RigSetup, _beta_key
-from .strip import _strip_state, strip_regimes
+from .strip import strip_steady_state, strip_regimes
 from .uncertainty import _t975
 
 
@@ -233,7 +233,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
             if (rig.mu_strip > 0 or viscous) and "eps_ratio" in free:
                 # the strip's lateral force turns the push off the friction
                 # ellipse's X1 point wherever the block drifts
-                F = rig.f_int_N + _strip_state(val, start, rig, al, beta, rig.velocity_m_s,
+                F = rig.f_int_N + strip_steady_state(val, start, rig, al, beta, rig.velocity_m_s,
                                                "c_strip" in free, c_known)[1]
             else:
                 F = cf.steady_drive_force(val("mu1"), val("mu2"), beta, rig.f_int_N, rig.mass_kg, rig.g)
@@ -245,7 +245,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
         for (a, phi), v in zip(data.angles, data.velocities_of_angles()):
             al, be = rig.axes(a)
             if "eps_ratio" in free and strip:
-                tp = _strip_state(val, start, rig, al, be, v, "c_strip" in free, c_known)[0]
+                tp = strip_steady_state(val, start, rig, al, be, v, "c_strip" in free, c_known)[0]
             elif "eps_ratio" in free:
                 tp = cf.steady_tan_phi(val("mu1"), val("mu2"), val("eps_ratio"), 1.0, al, be, rig.rule)
             else:

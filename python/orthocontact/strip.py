@@ -28,15 +28,16 @@ def strip_regimes(data: MeasurementSet, values: dict) -> tuple:
     return tuple(out)
 
 
-def _strip_state(val, start: dict, rig: RigSetup, alpha: float, beta: float, velocity: float,
-                 c_free: bool, c_known: float):
+def strip_steady_state(val, start: dict, rig: RigSetup, alpha: float, beta: float, velocity: float,
+                       c_free: bool, c_known: float):
     """(tan(phi), q1 [N]) of steady sliding with the strip (closed_forms.
-    steady_tan_phi_with_strip) as casadi expressions of the fitted
-    parameters: explicit for Coulomb friction alone, through a rootfinder with
-    a viscous term.  q1 is the push, so the driving force is F_int + q1.  The
-    sign of the lateral motion is the one at the start values (fixed during
-    the fit); where the strip holds the block there, tan(phi) = 0 and the
-    push is the friction ellipse's along X1."""
+    steady_strip_state_array) as casadi expressions of the fitted
+    parameters: the root of the lateral force (closed_forms.
+    strip_lateral_force) in the slope, by casadi's Newton rootfinder from
+    the slope at the start values.  q1 is the push, so the driving force is
+    F_int + q1.  The sign of the lateral motion is the one at the start values
+    (fixed during the fit); where the strip holds the block there,
+    tan(phi) = 0 and the push is that of slip along X1."""
     import casadi as ca
     mu1, mu2, ratio = val("mu1"), val("mu2"), val("eps_ratio")
     c = val("c_strip") if c_free else c_known
@@ -44,24 +45,19 @@ def _strip_state(val, start: dict, rig: RigSetup, alpha: float, beta: float, vel
     t_start = cf.steady_tan_phi_with_strip(start["mu1"], start["mu2"], start.get("eps_ratio", 1.0) * 1e4,
                                            1e4, alpha, beta, rig.rule, rig.mu_strip,
                                            start.get("c_strip", c_known), velocity, N)
-    s = 1.0 if t_start > 0 else -1.0
+    sign = 0.0 if t_start == 0 else (1.0 if t_start > 0 else -1.0)
     # eps enters the direction only through eps1/eps2: eps2 = 1 N/m here
-    f, g = cf.strip_tensors(mu1, mu2, ratio, 1.0, alpha, beta, rig.rule)
-    if t_start == 0:
-        # held on the X1 axis by the strip: the slip runs along X1, so
-        # q is along G^-1 e1, on the yield ellipse
-        (f11, f12, f22), (_, g12, g22) = f, g
-        k = N / ca.sqrt(f11 * g22 * g22 - 2 * f12 * g22 * g12 + f22 * g12 * g12)
-        return 0.0, k * g22
+    h = cf.slip_force_tensor(mu1, mu2, ratio, 1.0, alpha, beta, rig.rule)
+    f = cf.friction_entries(mu1, mu2, beta)
 
-    def state(t):
-        return cf.strip_equilibrium(f, g, rig.mu_strip, s, c * velocity, N, t)
-    if not (c_free or c_known > 0):  # no viscosity: the push does not depend on t
-        q1, _, t = state(0.0)
-        return t, q1
-    ts = ca.MX.sym("t")
+    def balance(t):
+        return cf.strip_lateral_force(h, f, t, sign, rig.mu_strip, c * velocity, N)
+    if sign == 0:
+        return 0.0, balance(0.0)[1]
+    sym = ca.MX if any(isinstance(x, ca.MX) for x in (*h, c)) else ca.SX
+    ts = sym.sym("t")
     args = ca.vertcat(*ca.symvar(ca.vertcat(mu1, mu2, ratio, c)))
-    res = ca.Function("strip_residual", [ts, args], [ts - state(ts)[2]])
-    rf = ca.rootfinder("strip_angle", "newton", res, {"abstol": 1e-14})
+    res = ca.Function("strip_lateral_force", [ts, args], [balance(ts)[0]])
+    rf = ca.rootfinder("strip_slope", "newton", res, {"abstol": 1e-14 * N})
     t = rf(t_start, args)
-    return t, state(t)[0]
+    return t, balance(t)[1]
