@@ -74,6 +74,9 @@ def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
         + (f", or set {env}" if env else ""))
 
 
+ANGLE_LIMIT_RAD = 4 * math.pi   # the FMU's range of alpha and beta [rad]
+
+
 @dataclass(frozen=True)
 class ContactParams:
     """Parameters of the law.
@@ -107,6 +110,9 @@ class ContactParams:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
                 raise ValueError(f"ContactParams: {name} [rad] must be a finite number, got {v!r}")
+            if abs(v) > ANGLE_LIMIT_RAD:
+                raise ValueError(f"ContactParams: {name} = {v!r} rad is outside [-4 pi, 4 pi] rad, the FMU's "
+                                 f"range; degrees? ({name} is in rad: ContactParams.from_degrees takes deg)")
 
     @classmethod
     def from_degrees(cls, mu1: float, mu2: float, eps1: float, eps2: float,

@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from . import closed_forms as cf
+from . import plausibility
 from .errors import InputError
 from .fmu import RULES, ContactParams
 
@@ -49,6 +50,7 @@ class RigSetup:
     mu_strip: float = 0.0            # the Teflon strip's Coulomb friction, a known input
     c_strip: float | None = None     # its lateral viscosity [N s/m]: known if given, else
                                      # estimated from angles at two velocities (else 0)
+    warnings: tuple = ()             # one line each: unusual values in the files
 
     @property
     def normal_force(self) -> float:
@@ -87,6 +89,7 @@ class MeasurementSet:
     angles: np.ndarray | None = None   # (n, 2): alpha_deg, phi_deg (counterclockwise)
     ramp: np.ndarray | None = None     # (n, 2): x1_m, force_N
     angle_velocities: np.ndarray | None = None  # (n,): m/s of each angle (None: rig.velocity_m_s)
+    warnings: tuple = ()               # one line each: unusual values in the files
 
     def velocities_of_angles(self) -> np.ndarray:
         """The carriage velocity [m/s] of each measured angle."""
@@ -118,7 +121,7 @@ def _load_rig(path: Path) -> RigSetup:
         raise InputError(f"{path}: expected a rig.toml in the data folder (mass_kg, f_int_N, ...)") from None
     except tomllib.TOMLDecodeError as e:
         raise InputError(f"{path}: expected valid TOML ({e})") from None
-    out = {}
+    out, warnings = {}, []
     for key, value in raw.items():
         if key not in _RIG_KEYS:
             raise InputError(f"{path}: {key}: expected one of the known keys {', '.join(sorted(_RIG_KEYS))}")
@@ -140,8 +143,15 @@ def _load_rig(path: Path) -> RigSetup:
                 what = {"pos": "> 0", "nonneg": ">= 0", "angle": "in [-360, 360]"}[kind]
                 raise InputError(f"{path}: {key}: expected a number {what}, got {v!r}")
             v = float(v)
+            found = plausibility.check(key, v) or \
+                (plausibility.check_angle_deg(key, v) if key.endswith("_deg") else None)
+            if found is not None:
+                level, message = found
+                if level == "error":
+                    raise InputError(f"{path}: {message}")
+                warnings.append(f"{path}: {message}")
         out[key] = v
-    return RigSetup(**out)
+    return RigSetup(**out, warnings=tuple(warnings))
 
 
 def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: str,
@@ -214,12 +224,45 @@ def load_data(folder) -> MeasurementSet:
                      3, "stiffness needs points on the stick branch")
     if forces is None and angles is None and ramp is None:
         raise InputError(f"{folder}: expected at least one of forces.csv, angles.csv, ramp.csv")
+    warnings = list(rig.warnings) + _plausible_data(folder, rig, forces, angles)
     if angles is not None and rig.phi_convention == "paper":
         angles[:, 1] = -angles[:, 1]
     if forces is not None and len(np.unique(np.round(_beta_key(rig, forces[:, 0]), 9))) < 2:
         raise InputError(f"{folder / 'forces.csv'}: expected forces at two or more orientations "
                          "with different friction directions (mu1 and mu2 are two parameters)")
-    return MeasurementSet(folder, rig, forces, angles, ramp, velocities)
+    return MeasurementSet(folder, rig, forces, angles, ramp, velocities, tuple(warnings))
+
+
+RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |orientation| [deg] of a sweep typed in rad
+RADIAN_TRAJECTORY = 0.2                   # |phi| [deg] of angles typed in rad
+MU_FROM_FORCE = (0.0, 5.0)                # (F - F_int) / (m g) of a plausible force
+
+
+def _plausible_data(folder: Path, rig: RigSetup, forces, angles) -> list[str]:
+    """Raises InputError for data that cannot be right (orientations in
+    radians, forces below F_int or implying mu outside (0, 5)); returns
+    warnings for unusual ones (trajectory angles that all look like
+    radians)."""
+    warnings = []
+    for name, arr in (("forces.csv", forces), ("angles.csv", angles)):
+        if arr is not None and plausibility.looks_like_radians(arr[:, 0], RADIAN_ORIENTATIONS):
+            raise InputError(f"{folder / name}: alpha_deg: all orientations lie within +-pi/2 "
+                             f"({arr[:, 0].min():g} .. {arr[:, 0].max():g}): radians? the column is "
+                             "in degrees")
+    if angles is not None and plausibility.looks_like_radians(angles[:, 1], RADIAN_TRAJECTORY):
+        warnings.append(f"{folder / 'angles.csv'}: phi_deg: all trajectory angles lie within "
+                        f"+-{RADIAN_TRAJECTORY} deg: radians? the column is in degrees")
+    if forces is not None:
+        W = rig.mass_kg * rig.g
+        for k, (a, F) in enumerate(forces):
+            mu = (F - rig.f_int_N) / W
+            if not MU_FROM_FORCE[0] < mu < MU_FROM_FORCE[1]:
+                why = (f"below f_int_N = {rig.f_int_N:g} N (the sensor reads F_int plus the push)"
+                       if F <= rig.f_int_N else
+                       f"mu = (F - F_int)/(m g) = {mu:.3g}, outside (0, 5): N? (kN, or lbf?)")
+                raise InputError(f"{folder / 'forces.csv'}: row {k + 1} (alpha_deg = {a:g}): force_N = {F:g}: "
+                                 f"{why}")
+    return warnings
 
 
 def write_measurements(folder: Path, rig: RigSetup, forces=None, angles=None, ramp=None,

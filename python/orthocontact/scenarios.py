@@ -18,6 +18,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
+from . import plausibility
 from .closed_forms import G_STANDARD, isotropic_eps_ratio
 from .fmu import RULES, ContactParams
 from .rig import MODES, Rig
@@ -34,6 +35,13 @@ class ScenarioError(Exception):
         if got is not None:
             msg += f", got {got!r}"
         super().__init__(msg)
+
+    @classmethod
+    def implausible(cls, path, section: str, message: str) -> "ScenarioError":
+        """An error of plausibility.check: '<path>: <section>.<key> = ...'."""
+        err = cls.__new__(cls)
+        Exception.__init__(err, f"{path}: {section}.{message}")
+        return err
 
 
 _REQ = object()  # marks a required key
@@ -143,6 +151,7 @@ class Scenario:
     study: dict = field(default_factory=dict)
     paper: dict = field(default_factory=dict)
     fmu: str | None = None
+    warnings: list = field(default_factory=list)   # one line each: unusual values
 
     def params_at(self, angle_deg: float, rule: str | None = None) -> ContactParams:
         """The law's parameters with the swept angle [deg] set."""
@@ -213,6 +222,9 @@ def load(path) -> Scenario:
         raise ScenarioError(path, "sweep.stop_deg", f"a value >= sweep.start_deg = {sweep['start_deg']}",
                             sweep["stop_deg"])
 
+    warnings = _plausibility(path, {"law": law, "rig": rig, "geometry": geo, "sweep": sweep,
+                                    "study": study})
+
     if law["eps1"] is not None and law["eps_ratio"] is not None:
         raise ScenarioError(path, "law.eps_ratio", "either law.eps1 or law.eps_ratio, not both")
     if law["eps1"] is None and law["eps_ratio"] is None:
@@ -241,4 +253,24 @@ def load(path) -> Scenario:
                 velocity_m_s=rig["velocity_m_s"], travel_m=rig["travel_m"], mu_strip=rig["mu_strip"],
                 c_strip=rig["c_strip"],
                 mode=rig["mode"], step_s=rig["step_s"], fit_from=rig["fit_from"]),
-        sweep=sweep, study=study, paper=paper, fmu=fmu)
+        sweep=sweep, study=study, paper=paper, fmu=fmu, warnings=warnings)
+
+
+def _plausibility(path, sections: dict) -> list[str]:
+    """Raises ScenarioError for a value that cannot be right for this kind
+    of rig and law; returns the warnings for unusual ones (plausibility)."""
+    warnings = []
+    for name, values in sections.items():
+        for key, value in values.items():
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                continue
+            found = plausibility.check(key, value)
+            if found is None and key.endswith("_deg") and key != "step_deg":
+                found = plausibility.check_angle_deg(key, value)
+            if found is None:
+                continue
+            level, message = found
+            if level == "error":
+                raise ScenarioError.implausible(path, name, message)
+            warnings.append(f"{path}: {name}.{message}")
+    return warnings
