@@ -5,6 +5,7 @@
 
 #include "fmu_bytes.h"
 #include "fmu_model.h"
+#include "rig_core.h"
 #include "rig_variables.h"
 
 const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER, FMU_GUID, FMU_STATE_TAG};
@@ -114,28 +115,15 @@ fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t
     return fmu_fail(msg, "unknown value reference %u (this FMU has no integer variables)", vr[0]);
 }
 
-/* One step with T held, as the Python harness's dynamic rig: symplectic
- * Euler; the strip's Coulomb force opposes the lateral motion and may stop
- * the block within the step but never reverse it; the viscous term is
- * implicit, so any step is stable (with cStrip = 0 the update is the
- * harness's, operation for operation). */
+/* One step with T held: the rig's lateral step (rig_core.h), refused
+ * unchanged if the motion overflows. */
 fmu_status fmu_model_do_step(fmu_model *m, double h, fmu_msg *msg) {
     const double mass = m->par[RIG_VR_mass - 1], mu_s = m->par[RIG_VR_muStrip - 1];
     const double c = m->par[RIG_VR_cStrip - 1];
-    const double P = fmax(-m->T[0], 0.0), T2 = m->T[1];
-    const double f_max = mu_s * P, a_free = T2 / mass, damp = 1.0 + h * c / mass;
-    double v2;
-    if (f_max > 0.0) {
-        const double v_free = (m->v2 + h * a_free) / damp;
-        const double f = v_free != 0.0 ? -copysign(fmin(f_max, fabs(mass * v_free / h)), v_free)
-                                       : -copysign(fmin(f_max, fabs(T2)), T2);
-        v2 = v_free + h * f / mass;
-    } else {
-        v2 = (m->v2 + h * a_free) / damp;
-    }
-    const double x2 = m->x2 + h * v2;
+    double x2 = m->x2, v2 = m->v2;
+    rig_lateral_step(&x2, &v2, m->T[0], m->T[1], mass, mu_s, 1.0 + h * c / mass, h);
     if (!isfinite(v2) || !isfinite(x2))
-        return fmu_fail(msg, "the lateral motion overflows (T2 = %g N, h = %g s)", T2, h);
+        return fmu_fail(msg, "the lateral motion overflows (T2 = %g N, h = %g s)", m->T[1], h);
     m->v2 = v2;
     m->x2 = x2;
     return FMU_OK;
