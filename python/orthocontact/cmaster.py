@@ -99,12 +99,23 @@ def _load():
     return _lib
 
 
+def _filled(cls, **values):
+    """cls with every field given, by name: ctypes would leave a field the
+    caller does not name at 0 and keep a name it does not know as a Python
+    attribute, both silently."""
+    fields = [f for f, _ in cls._fields_]
+    if sorted(values) != sorted(fields):
+        raise FMUError(f"struct {cls.__name__} of the compiled master has the fields {fields}, "
+                       f"this package fills {sorted(values)}")
+    return cls(**values)
+
+
 def _structs(p: ContactParams, r: Rig):
-    return (_Contact(mu1=p.mu1, mu2=p.mu2, eps1=p.eps1, eps2=p.eps2, alpha=p.alpha, beta=p.beta,
-                     rule=RULES[p.rule]),
-            _Rig(mass=r.mass_kg, g=r.g, f_int=r.f_int_N, velocity=r.velocity_m_s,
-                 travel=r.travel_m, mu_strip=r.mu_strip, step=r.step_s, fit_from=r.fit_from,
-                 c_strip=r.c_strip, quasistatic=1 if r.mode == "quasistatic" else 0))
+    return (_filled(_Contact, mu1=p.mu1, mu2=p.mu2, eps1=p.eps1, eps2=p.eps2, alpha=p.alpha,
+                    beta=p.beta, rule=RULES[p.rule]),
+            _filled(_Rig, mass=r.mass_kg, g=r.g, f_int=r.f_int_N, velocity=r.velocity_m_s,
+                    travel=r.travel_m, mu_strip=r.mu_strip, step=r.step_s, fit_from=r.fit_from,
+                    c_strip=r.c_strip, quasistatic=1 if r.mode == "quasistatic" else 0))
 
 
 def _figures(f) -> RunFigures:
