@@ -21,6 +21,11 @@ Modes:
                every step (x2' the step's lateral displacement over h),
                solved by a safeguarded Newton on u2 with the FMU's directional
                derivative, iterating on a saved FMU state before committing.
+
+The same rig in C (fmu_src/rig_core.c: the CarriageBlock FMU's step and the
+compiled master's loop) is tested against this module bit for bit
+(tests/test_cmaster.py): this is the reference, and the path that needs no
+compiled master.
 """
 from __future__ import annotations
 
