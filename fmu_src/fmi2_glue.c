@@ -117,8 +117,9 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
                   startTime, stopTime);
         return fmi2Error;
     }
-    fmu_set_start_time(I, startTime);
-    return fmi2OK;
+    fmu_msg msg;
+    return status2(
+        fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, "fmi2SetupExperiment"));
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c) {

@@ -145,7 +145,9 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
                      "interval", startTime, stopTime);
         return fmi3Error;
     }
-    fmu_set_start_time(I, startTime);
+    fmu_msg msg;
+    if (fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, "fmi3EnterInitializationMode"))
+        return fmi3Error;
     I->phase = FMU_INIT;
     return fmi3OK;
 }

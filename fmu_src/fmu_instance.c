@@ -119,7 +119,16 @@ int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
     return 0;
 }
 
-void fmu_set_start_time(fmu_instance *I, double t) { *fmu_model_time(I->model) = t; }
+fmu_status fmu_set_start_time(fmu_instance *I, double t, fmu_msg *msg) {
+    double *time = fmu_model_time(I->model);
+    const double before = *time;
+    *time = t;
+    if (fmu_model_check(I->model, msg) != FMU_OK) {
+        *time = before;
+        return FMU_ERR;
+    }
+    return FMU_OK;
+}
 
 fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
@@ -131,8 +140,12 @@ fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     if (fabs(t - *time) > 1e-9 * fmax(fabs(*time), h))
         return fmu_fail(msg, "currentCommunicationPoint=%.17g but the FMU is at time %.17g", t,
                         *time);
-    if (fmu_model_do_step(I->model, h, msg) != FMU_OK) return FMU_ERR;
+    const double before = *time;
     *time = t + h;
+    if (fmu_model_do_step(I->model, h, msg) != FMU_OK) {
+        *time = before;
+        return FMU_ERR;
+    }
     return FMU_OK;
 }
 
@@ -175,9 +188,14 @@ fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size
         phase != FMU_TERMINATED)
         return fmu_fail(msg, "serialized state holds an unknown phase %u", (unsigned)phase);
     if (!isfinite(time)) return fmu_fail(msg, "serialized state holds a non-finite time");
-    if (fmu_model_state_read(I->model, p, msg) != FMU_OK) return FMU_ERR;
+    double *model_time = fmu_model_time(I->model);
+    const double before = *model_time;
+    *model_time = time;
+    if (fmu_model_state_read(I->model, p, msg) != FMU_OK) {
+        *model_time = before;
+        return FMU_ERR;
+    }
     I->phase = (int)phase;
-    *fmu_model_time(I->model) = time;
     return FMU_OK;
 }
 

@@ -64,7 +64,8 @@ int fmu_result(fmu_instance *I, fmu_status st, const fmu_msg *msg, const char *f
 int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
                           const char *const categories[]);
 
-void fmu_set_start_time(fmu_instance *I, double t);
+/* Refused, unchanged, if the model's outputs are not finite at time t. */
+fmu_status fmu_set_start_time(fmu_instance *I, double t, fmu_msg *msg);
 /* Checks and commits a communication step [t, t + h]. */
 fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg);
 

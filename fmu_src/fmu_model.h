@@ -61,8 +61,15 @@ fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, co
 fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
                              size_t width, int kinds, fmu_msg *msg);
 
-/* Advances the model by h [s] (> 0, finite); the glue keeps the time. */
+/* Advances the model by h [s] (> 0, finite).  The glue keeps the time: it
+ * is already the step's end when this runs (outputs that depend on it are
+ * checked here), and the glue puts it back if the step is refused. */
 fmu_status fmu_model_do_step(fmu_model *m, double h, fmu_msg *msg);
+
+/* FMU_OK if every output the model gives now is a finite number.  The glue
+ * asks after it moves the time at the start of an experiment, and puts the
+ * time back on FMU_ERR (with msg saying why). */
+fmu_status fmu_model_check(const fmu_model *m, fmu_msg *msg);
 
 /* adjoint = 0: out = J seed (seed over `known`, out over `unknown`);
  * adjoint = 1: out = J^T seed (seed over `unknown`, out over `known`). */
@@ -72,7 +79,8 @@ fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[]
 
 /* The model's part of a serialized state: a fixed number of bytes, field by
  * field, little-endian (fmu_bytes.h).  Reading validates every field and
- * changes `m` only on success. */
+ * changes `m` only on success; the model's time is already the state's
+ * (the glue puts it back on failure). */
 size_t fmu_model_state_size(void);
 void fmu_model_state_write(const fmu_model *m, unsigned char *buf);
 fmu_status fmu_model_state_read(fmu_model *m, const unsigned char *buf, fmu_msg *msg);

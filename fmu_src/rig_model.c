@@ -5,6 +5,7 @@
 
 #include "fmu_bytes.h"
 #include "fmu_model.h"
+#include "rig_core.h"
 #include "rig_variables.h"
 
 const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER, FMU_GUID, FMU_STATE_TAG};
@@ -43,6 +44,24 @@ const char *fmu_model_variable_name(unsigned int vr) {
 size_t fmu_model_size(void) { return sizeof(struct fmu_model); }
 double *fmu_model_time(fmu_model *m) { return &m->time; }
 
+/* Every output is finite: each change of the time, a parameter, an input or
+ * the state passes here before it is kept.  x1 = velocity time is the one
+ * that can overflow from values each inside its range (1e6 m/s, 1e303 s). */
+static fmu_status outputs_finite(const struct fmu_model *m, fmu_msg *msg) {
+    const double x1 = m->par[RIG_VR_velocity - 1] * m->time;
+    if (!isfinite(x1))
+        return fmu_fail(msg, "x1 = u1 = velocity time = %g m/s * %g s overflows",
+                        m->par[RIG_VR_velocity - 1], m->time);
+    if (!isfinite(m->x2)) return fmu_fail(msg, "x2 = u2 = %g m is not finite", m->x2);
+    if (!isfinite(m->par[RIG_VR_mass - 1] * m->par[RIG_VR_g - 1]))
+        return fmu_fail(msg, "N = mass g overflows");
+    if (!isfinite(m->par[RIG_VR_fInt - 1] - m->T[0]))
+        return fmu_fail(msg, "driveForce = fInt - T1 overflows");
+    return FMU_OK;
+}
+
+fmu_status fmu_model_check(const fmu_model *m, fmu_msg *msg) { return outputs_finite(m, msg); }
+
 void fmu_model_init(fmu_model *m) {
     memset(m, 0, sizeof *m);
     for (int i = 0; i < N_PAR; ++i) m->par[i] = VARS[i + 1].start;
@@ -72,6 +91,7 @@ fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n
         if (vr[i] >= 1 && vr[i] <= N_PAR) next.par[vr[i] - 1] = v[i];
         else next.T[vr[i] - RIG_VR_T1] = v[i];
     }
+    if (outputs_finite(&next, msg) != FMU_OK) return FMU_ERR;
     *m = next;
     return FMU_OK;
 }
@@ -114,30 +134,18 @@ fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t
     return fmu_fail(msg, "unknown value reference %u (this FMU has no integer variables)", vr[0]);
 }
 
-/* One step with T held, as the Python harness's dynamic rig: symplectic
- * Euler; the strip's Coulomb force opposes the lateral motion and may stop
- * the block within the step but never reverse it; the viscous term is
- * implicit, so any step is stable (with cStrip = 0 the update is the
- * harness's, operation for operation). */
+/* One step with T held: the rig's lateral step (rig_core.h), refused
+ * unchanged if the motion overflows or an output at the step's end (the
+ * glue has moved the time there) is not finite. */
 fmu_status fmu_model_do_step(fmu_model *m, double h, fmu_msg *msg) {
     const double mass = m->par[RIG_VR_mass - 1], mu_s = m->par[RIG_VR_muStrip - 1];
     const double c = m->par[RIG_VR_cStrip - 1];
-    const double P = fmax(-m->T[0], 0.0), T2 = m->T[1];
-    const double f_max = mu_s * P, a_free = T2 / mass, damp = 1.0 + h * c / mass;
-    double v2;
-    if (f_max > 0.0) {
-        const double v_free = (m->v2 + h * a_free) / damp;
-        const double f = v_free != 0.0 ? -copysign(fmin(f_max, fabs(mass * v_free / h)), v_free)
-                                       : -copysign(fmin(f_max, fabs(T2)), T2);
-        v2 = v_free + h * f / mass;
-    } else {
-        v2 = (m->v2 + h * a_free) / damp;
-    }
-    const double x2 = m->x2 + h * v2;
-    if (!isfinite(v2) || !isfinite(x2))
-        return fmu_fail(msg, "the lateral motion overflows (T2 = %g N, h = %g s)", T2, h);
-    m->v2 = v2;
-    m->x2 = x2;
+    struct fmu_model next = *m;
+    rig_lateral_step(&next.x2, &next.v2, m->T[0], m->T[1], mass, mu_s, 1.0 + h * c / mass, h);
+    if (!isfinite(next.v2) || !isfinite(next.x2))
+        return fmu_fail(msg, "the lateral motion overflows (T2 = %g N, h = %g s)", m->T[1], h);
+    if (outputs_finite(&next, msg) != FMU_OK) return FMU_ERR;
+    *m = next;
     return FMU_OK;
 }
 
@@ -176,6 +184,10 @@ fmu_status fmu_model_state_read(fmu_model *m, const unsigned char *p, fmu_msg *m
     fmu_get_f64(p, &t.v2);
     if (!isfinite(t.T[0]) || !isfinite(t.T[1]) || !isfinite(t.x2) || !isfinite(t.v2))
         return fmu_fail(msg, "serialized state: a value is not finite");
+    if (outputs_finite(&t, msg) != FMU_OK) {
+        fmu_msg why = *msg;
+        return fmu_fail(msg, "serialized state at t = %g s: %s", t.time, why.text);
+    }
     *m = t;
     return FMU_OK;
 }

@@ -1,10 +1,9 @@
 /*
- * The compiled master: loads a contact FMU through its FMI 2.0 functions
- * (dlopen of the extracted binary, as any importer does) and runs the
- * carriage/block rig loop for a batch of parameter sets per call.  It is the
- * Python harness's loop (python/orthocontact/rig.py) operation for operation —
- * the same coupling, the same lateral Newton, the same line fit — so the two
- * masters give the same trajectory angles; only the per-step cost differs.
+ * The compiled master (rig_master.h): loads a contact FMU through its FMI 2.0
+ * functions (dlopen of the extracted binary, as any importer does) and runs
+ * the rig of fmu_src/rig_core.c on it for a batch of parameter sets per call.
+ * The rig itself is not here: this file only gives it the contact's FMI 2.0
+ * functions and records what a caller asks for.
  */
 #include <dlfcn.h>
 #include <math.h>
@@ -14,16 +13,8 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
-
-typedef struct {
-    double mu1, mu2, eps1, eps2, alpha, beta;
-    int rule; /* 1 associated, 2 coupled, 3 eq20 */
-} rm_contact;
-
-typedef struct {
-    double mass, g, f_int, velocity, travel, mu_strip, step, fit_from, c_strip;
-    int quasistatic;
-} rm_rig;
+#include "model_variables.h"
+#include "rig_master.h"
 
 typedef struct {
     void *lib;
@@ -46,9 +37,6 @@ typedef struct {
     char last[512]; /* the FMU's last logged message */
 } rm_master;
 
-/* Value references of OrthotropicContact (its variable table). */
-enum { VR_MU1 = 1, VR_RULE = 7, VR_U1 = 8, VR_U2 = 9, VR_N = 10, VR_T1 = 11, VR_T2 = 12, VR_S1 = 13,
-       VR_S2 = 14, VR_STATE = 15, VR_ENERGY = 16 };
 
 static void set_err(char *err, size_t n, const char *fmt, ...) {
     if (!err || n == 0) return;
@@ -113,210 +101,168 @@ void *rm_open(const char *binary, const char *guid, const char *resources, char 
     return m;
 }
 
-/* The streaming least-squares line of rig.LineFit, sums about the first point. */
-typedef struct {
-    long n;
-    double x0, y0, sx, sy, sxx, sxy, sf;
-} line_fit;
-
-static void fit_add(line_fit *f, double x1, double x2, double drive) {
-    if (f->n == 0) {
-        f->x0 = x1;
-        f->y0 = x2;
-    }
-    const double dx = x1 - f->x0, dy = x2 - f->y0;
-    f->n += 1;
-    f->sx += dx;
-    f->sy += dy;
-    f->sxx += dx * dx;
-    f->sxy += dx * dy;
-    f->sf += drive;
+int rm_layout(char *buf, size_t n) {
+    size_t used = 0;
+    int total = 0;
+#define RM_PUT(...)                                                                          \
+    do {                                                                                     \
+        const int k = snprintf(buf ? buf + used : NULL, buf && used < n ? n - used : 0,      \
+                               __VA_ARGS__);                                                 \
+        if (k < 0) return -1;                                                                \
+        total += k;                                                                          \
+        used = (size_t)total < n ? (size_t)total : n;                                        \
+    } while (0)
+#define RM_STRUCT(S) RM_PUT("struct %s %zu\n", #S, sizeof(S));
+#define RM_FIELD_OF(S) RM_FIELD_##S
+#define RM_FIELD(S, type, name) RM_PUT("%s %zu %s\n", #name, offsetof(S, name), #type);
+#define RM_FIELD_rm_contact(type, name) RM_FIELD(rm_contact, type, name)
+#define RM_FIELD_rig_setup(type, name) RM_FIELD(rig_setup, type, name)
+#define RM_FIELD_rig_figures(type, name) RM_FIELD(rig_figures, type, name)
+    RM_STRUCT(rm_contact) RM_CONTACT_FIELDS(RM_FIELD_rm_contact)
+    RM_STRUCT(rig_setup) RIG_SETUP_FIELDS(RM_FIELD_rig_setup)
+    RM_STRUCT(rig_figures) RIG_FIGURES_FIELDS(RM_FIELD_rig_figures)
+#undef RM_PUT
+#undef RM_STRUCT
+#undef RM_FIELD_OF
+#undef RM_FIELD
+#undef RM_FIELD_rm_contact
+#undef RM_FIELD_rig_setup
+#undef RM_FIELD_rig_figures
+    return total;
 }
 
-static double fit_angle_deg(const line_fit *f) {
-    const double n = (double)f->n, den = n * f->sxx - f->sx * f->sx;
-    if (f->n < 2 || den <= 0) return NAN;
-    return atan((n * f->sxy - f->sx * f->sy) / den) * (180.0 / 3.141592653589793);
-}
-
+/* The contact FMU as rig_core's rig_contact. */
 typedef struct {
     rm_master *m;
     fmi2Component c;
     double time;
-    fmi2ValueReference in_vr[3], T_vr[2], known_u2;
-} fmu_t;
+    fmi2FMUstate snapshot;
+} fmu_contact;
 
-static int set_inputs(fmu_t *F, double u1, double u2, double N) {
+static const fmi2ValueReference VR_INPUTS[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+static const fmi2ValueReference VR_FORCE[2] = {OC_VR_T1, OC_VR_T2};
+static const fmi2ValueReference VR_U2 = OC_VR_u2;
+
+static int fc_set_inputs(void *ctx, double u1, double u2, double N) {
+    fmu_contact *F = ctx;
     const double v[3] = {u1, u2, N};
-    return F->m->set_real(F->c, F->in_vr, 3, v) <= fmi2Warning;
+    return F->m->set_real(F->c, VR_INPUTS, 3, v) <= fmi2Warning;
 }
 
-static int force(fmu_t *F, double *T1, double *T2) {
+static int fc_force(void *ctx, double *T1, double *T2) {
+    fmu_contact *F = ctx;
     double T[2];
-    if (F->m->get_real(F->c, F->T_vr, 2, T) > fmi2Warning) return 0;
+    if (F->m->get_real(F->c, VR_FORCE, 2, T) > fmi2Warning) return 0;
     *T1 = T[0];
     *T2 = T[1];
     return 1;
 }
 
-/* Python's max(a, b): the first argument unless the second is larger. */
-static double pymax(double a, double b) { return b > a ? b : a; }
-static double pymin(double a, double b) { return b < a ? b : a; }
-
-/* rig.solve_lateral: u2 with T2 - strip * max(-T1, 0) - visc * (u2 - u2_ref)
- * = 0, from u2_ref = *u2p; *iters as the harness counts them.  0 on failure. */
-static int solve_lateral(fmu_t *F, double u1, double *u2p, double N, double strip, double scale,
-                         double visc, long *iters) {
-    const double tol = 1e-12, u2_ref = *u2p;
-    double u2 = *u2p, lo = 0, hi = 0, grow = scale;
-    int have_lo = 0, have_hi = 0;
-    for (int it = 1; it <= 200; ++it) {
-        double T1, T2;
-        *iters = it;
-        if (!set_inputs(F, u1, u2, N) || !force(F, &T1, &T2)) return 0;
-        const double r = T2 - strip * pymax(-T1, 0.0) - visc * (u2 - u2_ref);
-        if (fabs(r) <= tol * pymax(fabs(N), 1e-300)) {
-            *u2p = u2;
-            return 1;
-        }
-        if (r > 0) {
-            lo = u2;
-            have_lo = 1;
-        } else {
-            hi = u2;
-            have_hi = 1;
-        }
-        const double one = 1.0;
-        double dT[2];
-        if (F->m->dir_der(F->c, F->T_vr, 2, &F->known_u2, 1, &one, dT) > fmi2Warning) return 0;
-        const double d = dT[1] + (T1 < 0 ? strip * dT[0] : 0.0) - visc;
-        double cand = d < 0 ? u2 - r / d : NAN;
-        if (have_lo && have_hi) {
-            if (!(pymin(lo, hi) < cand && cand < pymax(lo, hi))) cand = 0.5 * (lo + hi);
-            if (fabs(hi - lo) <= 4e-16 * pymax(fabs(lo), fabs(hi))) {
-                *u2p = u2;
-                return 1;
-            }
-        } else if (!isfinite(cand) || fabs(cand - u2) > grow) {
-            cand = u2 + copysign(grow, r);
-            grow *= 4;
-        }
-        u2 = cand;
-    }
-    return 0;
+static int fc_force_du2(void *ctx, double *dT1, double *dT2) {
+    fmu_contact *F = ctx;
+    const double one = 1.0;
+    double dT[2];
+    if (F->m->dir_der(F->c, VR_FORCE, 2, &VR_U2, 1, &one, dT) > fmi2Warning) return 0;
+    *dT1 = dT[0];
+    *dT2 = dT[1];
+    return 1;
 }
 
-/* What a recorded run keeps every `every` steps (and at the last), as
- * rig.RigResult's columns: t, x1, x2, T1, T2, s1, s2, state, energy, drive. */
-enum { REC_COLUMNS = 10 };
+static int fc_save(void *ctx) {
+    fmu_contact *F = ctx;
+    return F->m->get_state(F->c, &F->snapshot) <= fmi2Warning;
+}
+
+static int fc_restore(void *ctx) {
+    fmu_contact *F = ctx;
+    return F->m->set_state(F->c, F->snapshot) <= fmi2Warning;
+}
+
+static int fc_commit(void *ctx, double h) {
+    fmu_contact *F = ctx;
+    if (F->m->do_step(F->c, F->time, h, fmi2True) > fmi2Warning) return 0;
+    F->time += h;
+    return 1;
+}
+
+/* What a recorded run keeps every `every` steps (and at the last). */
 typedef struct {
-    long every, capacity, rows, newton;
-    double *data; /* capacity x REC_COLUMNS, row-major */
+    fmu_contact *F;
+    long every, capacity, rows;
+    double *data; /* capacity x RM_RECORD_COLUMNS, row-major */
+    int full;
 } recording;
 
-static int record_row(fmu_t *F, recording *rec, double t, double x1, double x2, double T1, double T2,
-                      double drive) {
-    if (rec->rows >= rec->capacity) return 0;
-    const fmi2ValueReference vr[3] = {VR_S1, VR_S2, VR_ENERGY}, vr_state = VR_STATE;
+static int record_row(void *ctx, long k, long n_steps, double t, double x1, double x2, double T1,
+                      double T2, double drive) {
+    recording *rec = ctx;
+    if (!(k % rec->every == 0 || k == n_steps)) return 1;
+    if (rec->rows >= rec->capacity) {
+        rec->full = 1;
+        return 0;
+    }
+    static const fmi2ValueReference vr[3] = {OC_VR_s1, OC_VR_s2, OC_VR_dissipatedEnergy};
+    static const fmi2ValueReference vr_state = OC_VR_contactState;
     double o[3];
     fmi2Integer state;
-    if (F->m->get_real(F->c, vr, 3, o) > fmi2Warning ||
-        F->m->get_integer(F->c, &vr_state, 1, &state) > fmi2Warning)
+    if (rec->F->m->get_real(rec->F->c, vr, 3, o) > fmi2Warning ||
+        rec->F->m->get_integer(rec->F->c, &vr_state, 1, &state) > fmi2Warning)
         return 0;
-    double *row = rec->data + rec->rows * REC_COLUMNS;
+    double *row = rec->data + rec->rows * RM_RECORD_COLUMNS;
     row[0] = t, row[1] = x1, row[2] = x2, row[3] = T1, row[4] = T2;
     row[5] = o[0], row[6] = o[1], row[7] = (double)state, row[8] = o[2], row[9] = drive;
     rec->rows += 1;
     return 1;
 }
 
-/* One run of rig._simulate on an initialized instance; rec may be NULL. */
-static int simulate(fmu_t *F, const rm_contact *p, const rm_rig *r, double *phi, double *drive_mean,
+/* One run on an initialized instance; rec may be NULL.  1, or 0 with err. */
+static int simulate(fmu_contact *F, const rm_contact *p, const rig_setup *r, rig_figures *out,
                     recording *rec, char *err, size_t n) {
-    const double h = r->step, v = r->velocity, m = r->mass, N = r->mass * r->g;
-    const long n_steps = (long)ceil(r->travel / (v * h) - 1e-9);
-    const double scale = pymin(p->mu1, p->mu2) * N / pymax(p->eps1, p->eps2);
-    const double mu_s = r->mu_strip;
-    /* the strip's viscous term: implicit in the dynamic rig (damp is exactly 1
-     * without it), a residual term in the quasi-static one */
-    const double damp = 1.0 + h * r->c_strip / m, visc = r->c_strip / h;
-    double x2 = 0.0, v2 = 0.0, T1 = 0.0, T2 = 0.0;
-    line_fit fit = {0};
-    const double x1_fit = r->fit_from * v * n_steps * h;
-    fmi2FMUstate snapshot = NULL;
-    for (long k = 1; k <= n_steps; ++k) {
-        const double t = k * h, x1 = v * t;
-        const double P = pymax(-T1, 0.0);
-        if (!r->quasistatic) {
-            const double f_max = mu_s * P, a_free = T2 / m;
-            if (f_max > 0.0) {
-                const double v_free = (v2 + h * a_free) / damp;
-                const double f = v_free != 0.0
-                                     ? -copysign(pymin(f_max, fabs(m * v_free / h)), v_free)
-                                     : -copysign(pymin(f_max, fabs(T2)), T2);
-                v2 = v_free + h * f / m;
-            } else {
-                v2 = (v2 + h * a_free) / damp;
-            }
-            x2 += h * v2;
-            if (!set_inputs(F, x1, x2, N) || !force(F, &T1, &T2)) goto fail;
-        } else {
-            if (F->m->get_state(F->c, &snapshot) > fmi2Warning) goto fail;
-            if (!set_inputs(F, x1, x2, N) || !force(F, &T1, &T2)) goto fail;
-            if (fabs(T2) > mu_s * pymax(-T1, 0.0)) {
-                if (F->m->set_state(F->c, snapshot) > fmi2Warning) goto fail;
-                long it = 0;
-                const int ok = solve_lateral(F, x1, &x2, N, copysign(mu_s, T2), scale, visc, &it);
-                if (rec) rec->newton += it;
-                if (!ok) {
-                    set_err(err, n, "lateral equilibrium not reached at x1 = %g m", x1);
-                    goto fail_quiet;
-                }
-                if (!force(F, &T1, &T2)) goto fail;
-            }
-        }
-        if (F->m->do_step(F->c, F->time, h, fmi2True) > fmi2Warning) goto fail;
-        F->time += h;
-        if (x1 >= x1_fit) fit_add(&fit, x1, x2, r->f_int - T1);
-        if (rec && (k % rec->every == 0 || k == n_steps) &&
-            !record_row(F, rec, t, x1, x2, T1, T2, r->f_int - T1)) {
-            if (rec->rows >= rec->capacity) {
-                set_err(err, n, "recording buffer of %ld rows is full", rec->capacity);
-                goto fail_quiet;
-            }
-            goto fail;
-        }
+    const rig_contact contact = {F, fc_set_inputs, fc_force, fc_force_du2, fc_save, fc_restore,
+                                 fc_commit};
+    const double scale = rig_lateral_scale(p->mu1, p->mu2, p->eps1, p->eps2, r->mass * r->g);
+    double x1_failed = NAN;
+    const int st = rig_run(r, &contact, scale, rec ? record_row : NULL, rec, out, &x1_failed);
+    if (F->snapshot) F->m->free_state(F->c, &F->snapshot);
+    F->snapshot = NULL;
+    switch (st) {
+    case RIG_OK: return 1;
+    case RIG_NOT_CONVERGED:
+        set_err(err, n, "lateral equilibrium not reached at x1 = %g m", x1_failed);
+        return 0;
+    case RIG_BAD_SETUP:
+        set_err(err, n, "travel %g m at %g m/s in steps of %g s is not a whole number of steps "
+                        "in [1, 2^53]", r->travel, r->velocity, r->step);
+        return 0;
+    case RIG_OBSERVER_FAILED:
+        if (rec && rec->full)
+            set_err(err, n, "recording buffer of %ld rows is full", rec->capacity);
+        else
+            set_err(err, n, "FMU call failed: %s", F->m->last);
+        return 0;
+    default:
+        set_err(err, n, "FMU call failed: %s", F->m->last);
+        return 0;
     }
-    if (snapshot) F->m->free_state(F->c, &snapshot);
-    *phi = fit_angle_deg(&fit);
-    *drive_mean = fit.n ? fit.sf / (double)fit.n : NAN;
-    return 1;
-fail:
-    set_err(err, n, "FMU call failed: %s", F->m->last);
-fail_quiet:
-    if (snapshot) F->m->free_state(F->c, &snapshot);
-    return 0;
 }
 
-/* Runs n parameter sets on one instance (reset between runs, as the harness's
- * workers do).  phi [deg], drive [N] per set; the first set recorded into rec
- * if rec is not NULL.  0, or -1 with err. */
-static int run_sets(void *h, int count, const rm_contact *p, const rm_rig *r, double *phi,
-                    double *drive, recording *rec, char *err, size_t n) {
+static int run_sets(void *h, int count, const rm_contact *p, const rig_setup *r, rig_figures *out,
+                    recording *rec, char *err, size_t n) {
     rm_master *m = h;
     const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, m};
-    fmu_t F = {m, NULL, 0.0, {VR_U1, VR_U2, VR_N}, {VR_T1, VR_T2}, VR_U2};
+    fmu_contact F = {m, NULL, 0.0, NULL};
     F.c = m->instantiate("cmaster", fmi2CoSimulation, m->guid, m->resources, &cb, fmi2False, fmi2False);
     if (!F.c) {
         set_err(err, n, "fmi2Instantiate failed: %s", m->last);
         return -1;
     }
+    if (rec) rec->F = &F;
+    static const fmi2ValueReference vr[6] = {OC_VR_mu1, OC_VR_mu2, OC_VR_eps1,
+                                             OC_VR_eps2, OC_VR_alpha, OC_VR_beta};
+    static const fmi2ValueReference vr_rule = OC_VR_slidingRule;
     int status = 0;
     for (int i = 0; i < count && status == 0; ++i) {
-        const fmi2ValueReference vr[6] = {VR_MU1, VR_MU1 + 1, VR_MU1 + 2, VR_MU1 + 3, VR_MU1 + 4,
-                                          VR_MU1 + 5};
         const double v[6] = {p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2, p[i].alpha, p[i].beta};
-        const fmi2ValueReference vr_rule = VR_RULE;
         const fmi2Integer rule = p[i].rule;
         if ((i > 0 && m->reset(F.c) > fmi2Warning) || m->set_real(F.c, vr, 6, v) > fmi2Warning ||
             m->set_integer(F.c, &vr_rule, 1, &rule) > fmi2Warning ||
@@ -327,30 +273,25 @@ static int run_sets(void *h, int count, const rm_contact *p, const rm_rig *r, do
             break;
         }
         F.time = 0.0;
-        if (!simulate(&F, &p[i], &r[i], &phi[i], &drive[i], i == 0 ? rec : NULL, err, n))
-            status = -1;
+        if (!simulate(&F, &p[i], &r[i], &out[i], i == 0 ? rec : NULL, err, n)) status = -1;
     }
     m->free_instance(F.c);
     return status;
 }
 
-int rm_run(void *h, int count, const rm_contact *p, const rm_rig *r, double *phi, double *drive,
+int rm_run(void *h, int count, const rm_contact *p, const rig_setup *r, rig_figures *out,
            char *err, size_t n) {
-    return run_sets(h, count, p, r, phi, drive, NULL, err, n);
+    return run_sets(h, count, p, r, out, NULL, err, n);
 }
 
-/* One run, recorded every `every` steps into rows (capacity x 10, the
- * columns of rig.RigResult); *n_rows rows written, *newton lateral Newton
- * iterations.  0, or -1 with err. */
-int rm_record(void *h, const rm_contact *p, const rm_rig *r, long every, double *rows, long capacity,
-              long *n_rows, double *phi, double *drive, long *newton, char *err, size_t n) {
+int rm_record(void *h, const rm_contact *p, const rig_setup *r, long every, double *rows,
+              long capacity, long *n_rows, rig_figures *out, char *err, size_t n) {
     if (every < 1) {
         set_err(err, n, "record every %ld steps: expected >= 1", every);
         return -1;
     }
-    recording rec = {every, capacity, 0, 0, rows};
-    const int status = run_sets(h, 1, p, r, phi, drive, &rec, err, n);
+    recording rec = {NULL, every, capacity, 0, rows, 0};
+    const int status = run_sets(h, 1, p, r, out, &rec, err, n);
     *n_rows = rec.rows;
-    *newton = rec.newton;
     return status;
 }

@@ -13,7 +13,12 @@ from orthocontact.rig import LineFit, Rig, run
 AGED = ContactParams.from_degrees(0.408, 0.625, 1.251e4, 1e4, 90 + 39.2, 39.2)
 
 
-def _rig_slave(version, name="rig"):
+_KEEP = []  # the loggers' ctypes callbacks must outlive the instances
+
+
+def _rig_slave(version, name="rig", messages=None):
+    """An instantiated CarriageBlock; what it logs is appended to `messages`
+    as (status, text) if given."""
     path = str(find_fmu(fmi_version=version, model="CarriageBlock"))
     md = read_model_description(path)
     vr = {v.name: v.valueReference for v in md.modelVariables}
@@ -23,7 +28,28 @@ def _rig_slave(version, name="rig"):
         from fmpy.fmi3 import FMU3Slave as Slave
     s = Slave(guid=md.guid, unzipDirectory=extract(path), modelIdentifier="CarriageBlock",
               instanceName=name)
-    s.instantiate()
+    if messages is None:
+        s.instantiate()
+    elif version == 2:
+        import ctypes
+        from fmpy.fmi2 import (calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
+        from fmpy.logging import addLoggerProxy
+
+        def log(env, instance, status, category, message):
+            messages.append((status, message.decode(errors="replace")))
+        cb = fmi2CallbackFunctions()
+        cb.logger = fmi2CallbackLoggerTYPE(log)
+        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        addLoggerProxy(ctypes.byref(cb))
+        _KEEP.append((cb, log))
+        s.instantiate(callbacks=cb)
+    else:
+        def log(env, status, category, message):
+            messages.append((status, message.decode(errors="replace")))
+        _KEEP.append(log)
+        s.instantiate(logMessage=log)
     set_real = s.setReal if version == 2 else s.setFloat64
     get_real = s.getReal if version == 2 else s.getFloat64
     return s, vr, md, set_real, get_real
@@ -81,8 +107,8 @@ def cosimulate(version, params, rig: Rig, n_steps):
 @pytest.mark.parametrize("version", [2, 3])
 @pytest.mark.parametrize("mu_strip,c_strip", [(0.0, 0.0), (0.1, 0.0), (0.0, 20.0), (0.05, 20.0)])
 def test_rig_fmu_with_the_contact_fmu_gives_the_harness(version, mu_strip, c_strip):
-    """The rig FMU's C and the harness's Python are two implementations of the
-    same rig, strip terms included."""
+    """The rig FMU (the C rig's step, fmu_src/rig_core.c) against the harness's
+    Python, the reference, strip terms included."""
     rig = Rig(mode="dynamic", travel_m=0.1, step_s=2e-4, mu_strip=mu_strip, c_strip=c_strip)
     n = int(math.ceil(rig.travel_m / (rig.velocity_m_s * rig.step_s) - 1e-9))
     phi, drive = cosimulate(version, AGED, rig, n)
@@ -118,3 +144,90 @@ def test_rig_fmu_state_restores_into_a_fresh_instance(version):
         t += 1e-3
     assert get_real(outs) == get_b(outs)
     assert get_real([vr["x2"]])[0] != 0.0
+
+
+# -- every output finite before OK ------------------------------------------------
+# x1 = u1 = velocity time: velocity up to 1e6 m/s and any finite time are each
+# accepted, but their product can overflow.  Each way in is refused with an
+# error and a logged reason, and changes nothing.
+
+def _refused(call, messages, why):
+    from fmpy.fmi1 import FMICallException
+    n = len(messages)
+    with pytest.raises(FMICallException):
+        call()
+    assert any(status == 3 and why in text for status, text in messages[n:]), messages[n:]
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_rig_fmu_refuses_a_start_time_whose_x1_overflows(version):
+    messages = []
+    s, vr, _, set_real, get_real = _rig_slave(version, messages=messages)
+    set_real([vr["velocity"]], [1e6])
+    if version == 2:
+        _refused(lambda: s.setupExperiment(startTime=1e303), messages, "overflows")
+        s.enterInitializationMode()  # at the time it had: 0
+    else:
+        _refused(lambda: s.enterInitializationMode(startTime=1e303), messages, "overflows")
+        s.enterInitializationMode(startTime=0.0)  # still instantiated: it may enter now
+    s.exitInitializationMode()
+    assert get_real([vr["time"], vr["x1"], vr["u1"], vr["velocity"]]) == [0.0, 0.0, 0.0, 1e6]
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_rig_fmu_refuses_a_velocity_whose_x1_overflows_at_the_start_time(version):
+    messages = []
+    s, vr, _, set_real, get_real = _rig_slave(version, messages=messages)
+    if version == 2:
+        s.setupExperiment(startTime=1e303)  # x1 = 0.244 * 1e303: finite
+        s.enterInitializationMode()
+    else:
+        s.enterInitializationMode(startTime=1e303)
+    _refused(lambda: set_real([vr["velocity"]], [1e6]), messages, "overflows")
+    assert get_real([vr["velocity"], vr["x1"]]) == [0.244, 0.244 * 1e303]
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_rig_fmu_refuses_a_step_whose_x1_overflows(version):
+    messages = []
+    s, vr, _, set_real, get_real = _rig_slave(version, messages=messages)
+    set_real([vr["velocity"]], [1e6])
+    t0 = 1.7e302  # x1 = 1.7e308, just below the largest double
+    if version == 2:
+        s.setupExperiment(startTime=t0)
+        s.enterInitializationMode()
+    else:
+        s.enterInitializationMode(startTime=t0)
+    s.exitInitializationMode()
+    set_real([vr["T1"], vr["T2"]], [-5.0, 0.0])  # no lateral motion: only x1 can overflow
+    before = get_real([vr["time"], vr["x1"], vr["x2"]])
+    assert math.isfinite(before[1])
+    _refused(lambda: s.doStep(t0, 1e301), messages, "overflows")
+    assert get_real([vr["time"], vr["x1"], vr["x2"]]) == before
+    s.doStep(t0, 1.0)  # an ordinary step still goes
+    assert get_real([vr["time"]]) == [t0 + 1.0]
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_rig_fmu_refuses_a_restored_state_whose_x1_overflows(version):
+    import struct
+    messages = []
+    s, vr, _, set_real, get_real = _rig_slave(version, messages=messages)
+    set_real([vr["velocity"]], [1e6])
+    _start(s, version)
+    set_real([vr["T1"], vr["T2"]], [-5.0, 1.0])
+    s.doStep(0.0, 1e-3)
+    get_state = s.getFMUstate if version == 2 else s.getFMUState
+    ser = s.serializeFMUstate if version == 2 else s.serializeFMUState
+    des = s.deSerializeFMUstate if version == 2 else s.deserializeFMUState
+    data = bytearray(ser(get_state()))
+    # the glue's header: tag, format, length, phase (4 bytes each), then the time
+    assert struct.unpack_from("<d", data, 16)[0] == 1e-3
+    struct.pack_into("<d", data, 16, 1e303)
+    before = get_real([vr["time"], vr["x1"], vr["x2"]])
+    _refused(lambda: des(bytes(data)), messages, "overflows")
+    assert get_real([vr["time"], vr["x1"], vr["x2"]]) == before
+    # the untouched bytes still restore
+    struct.pack_into("<d", data, 16, 1e-3)
+    (s.setFMUstate if version == 2 else s.setFMUState)(des(bytes(data)))
+    assert get_real([vr["time"], vr["x1"], vr["x2"]]) == before

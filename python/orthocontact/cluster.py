@@ -51,7 +51,7 @@ def fmu_payload(fmu_path) -> tuple:
 
 
 def run_tasks(fmu, tasks):
-    """[(ContactParams, Rig)] -> [(phi_deg, drive_mean_N)] on the worker."""
+    """[(ContactParams, Rig)] -> [RunFigures] on the worker."""
     return _master_for(fmu).run(tasks)
 
 

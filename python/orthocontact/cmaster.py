@@ -1,14 +1,17 @@
-"""The compiled master: the rig loop of orthocontact.rig in C
-(master_src/rig_master.c), running a contact FMU through its FMI 2.0 functions
-(dlopen of the extracted binary) for a batch of parameter sets per call.
+"""The compiled master: the rig in C (fmu_src/rig_core.c, the CarriageBlock
+FMU's rig too) run by master_src/rig_master.c over a contact FMU's FMI 2.0
+functions (dlopen of the extracted binary) for a batch of parameter sets per
+call.
 
-It is the Python harness's loop operation for operation, so it gives the same
-trajectory angles (tests/test_cmaster.py); it only spends no Python per step.
-Units as in orthocontact.rig: kg, m/s^2, N, m/s, m, s; angles in rad."""
+The C rig is pinned to the Python harness (orthocontact.rig, the reference)
+bit for bit by tests/test_cmaster.py; it only spends no Python per step.
+The structs passed to it are built from the library's own description of
+their layout (rm_layout, master_src/rig_master.h), so there is one
+declaration of them, in C.  Units as in orthocontact.rig: kg, m/s^2, N, m/s,
+m, s; angles in rad."""
 from __future__ import annotations
 
 import ctypes
-import math
 import sys
 from pathlib import Path
 
@@ -16,18 +19,37 @@ import numpy as np
 
 from .fmu import (MODEL_IDENTIFIER, RULES, ContactParams, FMUError, _unzipped, fmi_version_of,
                   installed_file, model_description)
-from .rig import Rig, RigResult
+from .rig import Rig, RigResult, RunFigures
 
 
-class _Contact(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_double) for n in ("mu1", "mu2", "eps1", "eps2", "alpha", "beta")] + \
-               [("rule", ctypes.c_int)]
+_CTYPES = {"double": ctypes.c_double, "int": ctypes.c_int, "long": ctypes.c_long}
 
 
-class _Rig(ctypes.Structure):
-    _fields_ = [(n, ctypes.c_double) for n in ("mass", "g", "f_int", "velocity", "travel", "mu_strip",
-                                               "step", "fit_from", "c_strip")] + \
-               [("quasistatic", ctypes.c_int)]
+def _structs_from_layout(text: str) -> dict[str, type]:
+    """ctypes structures from rm_layout's description ("struct <name> <size>",
+    then "<field> <offset> <type>" lines), each checked field by field against
+    the offsets and size the C compiler gave them."""
+    layout: dict[str, tuple[int, list[tuple[str, int, str]]]] = {}
+    current = None
+    for line in text.splitlines():
+        words = line.split()
+        if len(words) == 3 and words[0] == "struct":
+            current = words[1]
+            layout[current] = (int(words[2]), [])
+        elif len(words) == 3 and current is not None and words[2] in _CTYPES:
+            layout[current][1].append((words[0], int(words[1]), words[2]))
+        else:
+            raise FMUError(f"the compiled master describes its structs in a form this package "
+                           f"does not read: {line!r}")
+    structs = {}
+    for name, (size, fields) in layout.items():
+        cls = type(name, (ctypes.Structure,), {"_fields_": [(f, _CTYPES[t]) for f, _, t in fields]})
+        got = [(f, getattr(cls, f).offset) for f, _, _ in fields]
+        if got != [(f, o) for f, o, _ in fields] or ctypes.sizeof(cls) != size:
+            raise FMUError(f"struct {name}: ctypes lays it out as {got} ({ctypes.sizeof(cls)} "
+                           f"bytes), the compiled master as {fields} ({size} bytes)")
+        structs[name] = cls
+    return structs
 
 
 def _library_path() -> Path:
@@ -40,34 +62,68 @@ def _library_path() -> Path:
 
 
 _lib = None
+_Contact = _Rig = _Figures = None
 
 
 def _load():
-    global _lib
+    global _lib, _Contact, _Rig, _Figures
     if _lib is None:
         lib = ctypes.CDLL(str(_library_path()))
+        lib.rm_layout.restype = ctypes.c_int
+        lib.rm_layout.argtypes = [ctypes.c_char_p, ctypes.c_size_t]
+        size = lib.rm_layout(None, 0)
+        buf = ctypes.create_string_buffer(size + 1)
+        lib.rm_layout(buf, size + 1)
+        structs = _structs_from_layout(buf.value.decode())
+        missing = {"rm_contact", "rig_setup", "rig_figures"} - structs.keys()
+        if missing:
+            raise FMUError(f"the compiled master does not describe {sorted(missing)}")
+        contact, rig, figures = structs["rm_contact"], structs["rig_setup"], structs["rig_figures"]
         lib.rm_open.restype = ctypes.c_void_p
         lib.rm_open.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p,
                                 ctypes.c_size_t]
         lib.rm_run.restype = ctypes.c_int
-        lib.rm_run.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.POINTER(_Contact),
-                               ctypes.POINTER(_Rig), ctypes.POINTER(ctypes.c_double),
-                               ctypes.POINTER(ctypes.c_double), ctypes.c_char_p, ctypes.c_size_t]
+        lib.rm_run.argtypes = [ctypes.c_void_p, ctypes.c_int, ctypes.POINTER(contact),
+                               ctypes.POINTER(rig), ctypes.POINTER(figures), ctypes.c_char_p,
+                               ctypes.c_size_t]
         lib.rm_record.restype = ctypes.c_int
-        lib.rm_record.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Contact), ctypes.POINTER(_Rig),
+        lib.rm_record.argtypes = [ctypes.c_void_p, ctypes.POINTER(contact), ctypes.POINTER(rig),
                                   ctypes.c_long, ctypes.POINTER(ctypes.c_double), ctypes.c_long,
-                                  ctypes.POINTER(ctypes.c_long), ctypes.POINTER(ctypes.c_double),
-                                  ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_long),
+                                  ctypes.POINTER(ctypes.c_long), ctypes.POINTER(figures),
                                   ctypes.c_char_p, ctypes.c_size_t]
         lib.rm_close.argtypes = [ctypes.c_void_p]
+        lib.rig_step_count.restype = ctypes.c_long
+        lib.rig_step_count.argtypes = [ctypes.c_double] * 3
+        _Contact, _Rig, _Figures = contact, rig, figures
         _lib = lib
     return _lib
 
 
-def _structs(p: ContactParams, r: Rig) -> tuple[_Contact, _Rig]:
-    return (_Contact(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, RULES[p.rule]),
-            _Rig(r.mass_kg, r.g, r.f_int_N, r.velocity_m_s, r.travel_m, r.mu_strip, r.step_s,
-                 r.fit_from, r.c_strip, 1 if r.mode == "quasistatic" else 0))
+def _filled(cls, **values):
+    """cls with every field given, by name: ctypes would leave a field the
+    caller does not name at 0 and keep a name it does not know as a Python
+    attribute, both silently."""
+    fields = [f for f, _ in cls._fields_]
+    if sorted(values) != sorted(fields):
+        raise FMUError(f"struct {cls.__name__} of the compiled master has the fields {fields}, "
+                       f"this package fills {sorted(values)}")
+    return cls(**values)
+
+
+def _structs(p: ContactParams, r: Rig):
+    return (_filled(_Contact, mu1=p.mu1, mu2=p.mu2, eps1=p.eps1, eps2=p.eps2, alpha=p.alpha,
+                    beta=p.beta, rule=RULES[p.rule]),
+            _filled(_Rig, mass=r.mass_kg, g=r.g, f_int=r.f_int_N, velocity=r.velocity_m_s,
+                    travel=r.travel_m, mu_strip=r.mu_strip, step=r.step_s, fit_from=r.fit_from,
+                    c_strip=r.c_strip, quasistatic=1 if r.mode == "quasistatic" else 0))
+
+
+def _figures(f) -> RunFigures:
+    return RunFigures(f.phi_deg, f.drive_mean_N, f.phi_head_deg, f.phi_tail_deg)
+
+
+# rm_record's columns (master_src/rig_master.h), RigResult's names.
+_RECORD_COLUMNS = ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive")
 
 
 class CMaster:
@@ -90,8 +146,8 @@ class CMaster:
         if not self._h:
             raise FMUError(err.value.decode(errors="replace"))
 
-    def run(self, tasks: list[tuple[ContactParams, Rig]]) -> list[tuple[float, float]]:
-        """(phi_deg, drive_mean_N) of each (params, rig), in order."""
+    def run(self, tasks: list[tuple[ContactParams, Rig]]) -> list[RunFigures]:
+        """The RunFigures of each (params, rig), in order."""
         n = len(tasks)
         if n == 0:
             return []
@@ -99,33 +155,34 @@ class CMaster:
         rs = (_Rig * n)()
         for i, (p, r) in enumerate(tasks):
             cs[i], rs[i] = _structs(p, r)
-        phi = (ctypes.c_double * n)()
-        drive = (ctypes.c_double * n)()
+        out = (_Figures * n)()
         err = ctypes.create_string_buffer(512)
-        if self._lib.rm_run(self._h, n, cs, rs, phi, drive, err, 512) != 0:
+        if self._lib.rm_run(self._h, n, cs, rs, out, err, 512) != 0:
             raise FMUError(err.value.decode(errors="replace"))
-        return [(phi[i], drive[i]) for i in range(n)]
+        return [_figures(f) for f in out]
 
     def record(self, params: ContactParams, rig: Rig, record_every: int = 1) -> RigResult:
         """One run with its time series kept every `record_every` steps (and
         at the last): the RigResult of rig.run, from the compiled loop."""
         if isinstance(record_every, bool) or not isinstance(record_every, int) or record_every < 1:
             raise ValueError(f"record_every must be a whole number >= 1, got {record_every!r}")
-        n_steps = math.ceil(rig.travel_m / (rig.velocity_m_s * rig.step_s) - 1e-9)
+        n_steps = self._lib.rig_step_count(rig.travel_m, rig.velocity_m_s, rig.step_s)
+        if n_steps < 1:
+            raise ValueError(f"travel {rig.travel_m} m at {rig.velocity_m_s} m/s in steps of "
+                             f"{rig.step_s} s is not a whole number of steps in [1, 2^53]")
         capacity = n_steps // record_every + 1
-        rows = np.empty((capacity, 10))
+        rows = np.empty((capacity, len(_RECORD_COLUMNS)))
         c, r = _structs(params, rig)
-        n_rows, newton = ctypes.c_long(), ctypes.c_long()
-        phi, drive = ctypes.c_double(), ctypes.c_double()
+        n_rows, f = ctypes.c_long(), _Figures()
         err = ctypes.create_string_buffer(512)
         if self._lib.rm_record(self._h, ctypes.byref(c), ctypes.byref(r), record_every,
                                rows.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), capacity,
-                               ctypes.byref(n_rows), ctypes.byref(phi), ctypes.byref(drive),
-                               ctypes.byref(newton), err, 512) != 0:
+                               ctypes.byref(n_rows), ctypes.byref(f), err, 512) != 0:
             raise FMUError(err.value.decode(errors="replace"))
-        cols = rows[:n_rows.value].T.copy()
-        return RigResult(*cols, phi_deg=phi.value, drive_mean_N=drive.value,
-                         newton_iterations=newton.value)
+        cols = dict(zip(_RECORD_COLUMNS, rows[:n_rows.value].T.copy()))
+        return RigResult(**cols, phi_deg=f.phi_deg, drive_mean_N=f.drive_mean_N,
+                         newton_iterations=f.newton_iterations, phi_head_deg=f.phi_head_deg,
+                         phi_tail_deg=f.phi_tail_deg)
 
     def close(self):
         if getattr(self, "_h", None):

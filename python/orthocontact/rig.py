@@ -21,11 +21,17 @@ Modes:
                every step (x2' the step's lateral displacement over h),
                solved by a safeguarded Newton on u2 with the FMU's directional
                derivative, iterating on a saved FMU state before committing.
+
+The same rig in C (fmu_src/rig_core.c: the CarriageBlock FMU's step and the
+compiled master's loop) is tested against this module bit for bit
+(tests/test_cmaster.py): this is the reference, and the path that needs no
+compiled master.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -73,13 +79,25 @@ class Rig:
         return self.mass_kg * self.g
 
 
+class RunFigures(NamedTuple):
+    """What one run measures: the trajectory angle fitted over the fit range
+    [deg], the mean driving force over it [N], and the angle fitted over the
+    first and over the second half of the range [deg]."""
+    phi_deg: float
+    drive_mean_N: float
+    phi_head_deg: float
+    phi_tail_deg: float
+
+
 @dataclass
 class RigResult:
     """Time series of one run and the measured figures.
 
     t [s], x1, x2 [m] block path, T1, T2 [N], s1, s2 [m], state, energy [J],
     drive [N] the sensor's force; phi_deg the fitted trajectory angle
-    (counterclockwise), drive_mean_N the mean driving force over the fit range.
+    (counterclockwise), drive_mean_N the mean driving force over the fit range;
+    phi_head_deg, phi_tail_deg the angle fitted over the first and the second
+    half of the fit range (equal when the block slides steadily throughout).
     """
     t: np.ndarray
     x1: np.ndarray
@@ -94,6 +112,12 @@ class RigResult:
     phi_deg: float
     drive_mean_N: float
     newton_iterations: int = 0
+    phi_head_deg: float = math.nan
+    phi_tail_deg: float = math.nan
+
+    @property
+    def figures(self) -> RunFigures:
+        return RunFigures(self.phi_deg, self.drive_mean_N, self.phi_head_deg, self.phi_tail_deg)
 
 
 class LineFit:
@@ -207,8 +231,10 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
     damp = 1.0 + h * rig.c_strip / m  # the viscous term, implicit (1.0 without it: exact)
     visc = rig.c_strip / h
     rec = 0
-    fit = LineFit()
+    fit, head, tail = LineFit(), LineFit(), LineFit()
     x1_fit = rig.fit_from * v * n_steps * h
+    x1_end = v * n_steps * h
+    x1_mid = x1_fit + 0.5 * (x1_end - x1_fit)
     set_inputs, force, do_step = fmu.set_inputs, fmu.force, fmu.do_step
     snapshot = None
     for k in range(1, n_steps + 1):
@@ -245,6 +271,7 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
         do_step(h)
         if x1 >= x1_fit:
             fit.add(x1, x2, rig.f_int_N - T1)
+            (tail if x1 >= x1_mid else head).add(x1, x2, rig.f_int_N - T1)
         if k % record_every == 0 or k == n_steps:
             o = fmu.outputs()
             cols["t"][rec], cols["x1"][rec], cols["x2"][rec] = t, x1, x2
@@ -258,5 +285,6 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
     for key in cols:
         cols[key] = cols[key][:rec]
     return RigResult(**cols, phi_deg=fit.angle_deg(), drive_mean_N=fit.mean_drive(),
-                     newton_iterations=newton)
+                     newton_iterations=newton, phi_head_deg=head.angle_deg(),
+                     phi_tail_deg=tail.angle_deg())
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from . import closed_forms as cf
 from .fmu import ContactFMU, ContactParams
-from .rig import Rig, run
+from .rig import Rig, RunFigures, run
 from .scenarios import Scenario, ScenarioError
 
 # -- closed form for a scenario --------------------------------------------------
@@ -122,11 +122,10 @@ def stop_pool(ex: ProcessPoolExecutor) -> None:
 
 
 def _run_one(task, fmu: ContactFMU | None = None):
-    """(index, params, rig) -> (index, phi_deg, drive_mean_N), on `fmu` or the
-    worker's own instance."""
+    """(index, params, rig) -> (index, RunFigures), on `fmu` or the worker's
+    own instance."""
     index, params, rig = task
-    r = run(params, rig, fmu=fmu or _worker_fmu, record_every=1 << 30)
-    return index, r.phi_deg, r.drive_mean_N
+    return index, run(params, rig, fmu=fmu or _worker_fmu, record_every=1 << 30).figures
 
 
 class Progress:
@@ -189,10 +188,10 @@ def _init_cworker(fmu_path):
 
 
 def _run_chunk(chunk):
-    """[(index, params, rig)] -> [(index, phi_deg, drive_mean_N)] on the
-    worker's compiled master."""
+    """[(index, params, rig)] -> [(index, RunFigures)] on the worker's
+    compiled master."""
     res = _worker_cmaster.run([(p, r) for _, p, r in chunk])
-    return [(i, phi, drive) for (i, _, _), (phi, drive) in zip(chunk, res)]
+    return [(i, figures) for (i, _, _), figures in zip(chunk, res)]
 
 
 class _SignalSafePool(ProcessPoolExecutor):
@@ -225,8 +224,9 @@ def process_pool(workers: int, initializer, *initargs) -> ProcessPoolExecutor:
 
 
 def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, label: str,
-             progress: bool = True, master: str = "auto", dask=None) -> list[tuple[float, float]]:
-    """(phi_deg, drive_mean_N) of each (params, rig), in order.  master: "c"
+             progress: bool = True, master: str = "auto", dask=None) -> list[RunFigures]:
+    """The RunFigures (phi_deg, drive_mean_N, phi_head_deg, phi_tail_deg) of
+    each (params, rig), in order.  master: "c"
     (the compiled master, FMI 2.0 FMUs), "fmpy" (the Python harness), or
     "auto" (c where it applies); both give the same angles.  dask: a
     cluster.DaskRunner to run the compiled master's chunks on (else local
@@ -244,7 +244,7 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
         size = max(1, min(1000, -(-len(tasks) // 8)))
         chunks = [tasks[k:k + size] for k in range(0, len(tasks), size)]
         res = dask.map(run_tasks, chunks, find_fmu(fmu_path), lambda i, r: bar.update(len(r)))
-        return [tuple(x) for part in res for x in part]
+        return [RunFigures(*x) for part in res for x in part]
     if use_c:
         # chunks small enough to show progress and balance two workers
         size = max(1, min(256, -(-len(indexed) // (4 * max(workers, 1)))))
@@ -265,8 +265,7 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
         fmu = ContactFMU(fmu_path, instance_name="serial")
         try:
             for t in indexed:
-                i, phi, drive = _run_one(t, fmu)
-                out[i] = (phi, drive)
+                i, out[i] = _run_one(t, fmu)
                 bar.update()
         finally:
             fmu.close()
@@ -277,14 +276,14 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
             futures = [ex.submit(_run_chunk, c) for c in chunks]
             for fut in as_completed(futures):
                 done = fut.result()
-                for i, phi, drive in done:
-                    out[i] = (phi, drive)
+                for i, figures in done:
+                    out[i] = figures
                 bar.update(len(done))
         else:
             futures = [ex.submit(_run_one, t) for t in indexed]
             for fut in as_completed(futures):
-                i, phi, drive = fut.result()
-                out[i] = (phi, drive)
+                i, figures = fut.result()
+                out[i] = figures
                 bar.update()
     except BaseException:
         stop_pool(ex)
@@ -438,7 +437,7 @@ def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = Tr
     tasks = [(sc.params_at(a, rule), replace(sc.rig, step_s=h)) for rule, h in combos]
     res = run_many(tasks, workers, fmu_path or sc.fmu, sc.name, progress, master, dask)
     rows = []
-    for (rule, h), (phi, drive) in zip(combos, res):
+    for (rule, h), (phi, drive, _, _) in zip(combos, res):
         closed = closed_form_phi_deg(sc, a, rule)
         rows.append({"rule": rule, "step_s": h, "phi_deg": phi, "phi_closed_deg": closed,
                      "deviation_deg": phi - closed, "drive_mean_N": drive})

@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError
+from .rig import RunFigures
 from .scenarios import Scenario
 
 LAW_PARAMETERS = ("mu1", "mu2", "eps_ratio", "eps2")
@@ -153,7 +154,7 @@ def _run_chunk_on(run, chunk):
     [len(rows) x angles], the runs made by run([(params, rig)])."""
     sc, rig, names, rows = chunk
     arr = np.array(run(chunk_tasks(sc, rig, names, rows)), dtype=float)
-    arr = arr.reshape(len(rows), len(sc.sweep_angles()), 2)
+    arr = arr.reshape(len(rows), len(sc.sweep_angles()), len(RunFigures._fields))
     return arr[:, :, 0], arr[:, :, 1]
 
 

@@ -1,0 +1,121 @@
+/*
+ * The carriage/block rig of the paper's experiment, once, in C: the block's
+ * lateral step with the strip's Coulomb and viscous terms, the quasi-static
+ * lateral solve, the streaming line fit of the trajectory angle, the step
+ * count and the rig's run loop over any contact.  The CarriageBlock FMU
+ * (rig_model.c) takes its step from here, the compiled master
+ * (master_src/rig_master.c) its whole loop.  No FMI in it: the contact is
+ * reached through rig_contact's functions.
+ *
+ * The Python harness (python/orthocontact/rig.py) is the independent
+ * reference the tests pin this to, bit for bit: every expression here is
+ * evaluated in the order rig.py writes it.
+ */
+#ifndef RIG_CORE_H
+#define RIG_CORE_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Structs are declared through field lists (type, name) so that the
+ * compiled master can describe their layout to its Python caller
+ * (rm_layout in master_src/rig_master.h) from the same list. */
+#define RIG_DECLARE_FIELD(type, name) type name;
+
+/* The rig, as orthocontact.rig.Rig.  kg, m/s^2, N, m/s, m, s, N s/m;
+ * quasistatic: 0 dynamic, 1 quasi-static. */
+#define RIG_SETUP_FIELDS(F)                                                                  \
+    F(double, mass) F(double, g) F(double, f_int) F(double, velocity) F(double, travel)     \
+    F(double, mu_strip) F(double, step) F(double, fit_from) F(double, c_strip)              \
+    F(int, quasistatic)
+typedef struct {
+    RIG_SETUP_FIELDS(RIG_DECLARE_FIELD)
+} rig_setup;
+
+/* What a run measures: the trajectory angle fitted over the fitted range
+ * [x1_fit, x1_end] and over each half of it (split at x1_mid), the mean
+ * driving force over the range, the lateral Newton iterations. */
+#define RIG_FIGURES_FIELDS(F)                                                                \
+    F(double, phi_deg) F(double, drive_mean_N) F(double, phi_head_deg) F(double, phi_tail_deg) \
+    F(long, newton_iterations)
+typedef struct {
+    RIG_FIGURES_FIELDS(RIG_DECLARE_FIELD)
+} rig_figures;
+
+/* Steps of a run: ceil(travel / (velocity step) - 1e-9), the tolerance
+ * absorbing the rounding of travels meant as whole multiples of a step. */
+long rig_step_count(double travel, double velocity, double step);
+
+/* Where the fit starts, where the run ends, where the halves meet [m]. */
+double rig_fit_start(const rig_setup *r, long n_steps);
+double rig_fit_end(const rig_setup *r, long n_steps);
+double rig_fit_middle(double x1_fit, double x1_end);
+
+/* One lateral step of the dynamic rig with the mat's force T held over h:
+ * symplectic Euler, the strip's Coulomb force |f| <= mu_strip max(-T1, 0)
+ * opposing the lateral motion and never reversing it within the step, the
+ * viscous term implicit (damp = 1 + h c_strip / mass, so any step is stable;
+ * with c_strip = 0 damp is exactly 1).  Updates *x2 [m], *v2 [m/s]. */
+void rig_lateral_step(double *x2, double *v2, double T1, double T2, double mass, double mu_strip,
+                      double damp, double h);
+
+/* The streaming least-squares line x2 = a + b x1 and mean driving force;
+ * sums about the first point to avoid cancellation. */
+typedef struct {
+    long n;
+    double x0, y0, sx, sy, sxx, sxy, sf;
+} rig_line_fit;
+
+void rig_fit_add(rig_line_fit *f, double x1, double x2, double drive);
+double rig_fit_angle_deg(const rig_line_fit *f); /* NaN with fewer than 2 distinct x1 */
+double rig_fit_mean_drive(const rig_line_fit *f); /* NaN without points */
+
+/* The contact as the rig sees it.  Each function returns 1 on success, 0 on
+ * failure (the caller knows why).  set_inputs makes a pending step at
+ * (u1, u2, N); force reads its T; force_du2 its derivative along u2;
+ * save/restore the committed state; commit ends the step of h [s]. */
+typedef struct {
+    void *ctx;
+    int (*set_inputs)(void *ctx, double u1, double u2, double N);
+    int (*force)(void *ctx, double *T1, double *T2);
+    int (*force_du2)(void *ctx, double *dT1, double *dT2);
+    int (*save)(void *ctx);
+    int (*restore)(void *ctx);
+    int (*commit)(void *ctx, double h);
+} rig_contact;
+
+/* The quasi-static lateral solve: u2 with r(u2) = T2 - strip max(-T1, 0) -
+ * visc (u2 - u2_ref) = 0 from u2_ref = *u2, strip the strip's signed friction
+ * coefficient, visc = c_strip / h [N/m].  r falls with u2 (the return map is
+ * monotone), so every evaluation tightens a bracket; Newton steps with the
+ * contact's tangent are taken when they stay inside it, bisection otherwise;
+ * before a bracket exists steps are limited to a growing multiple of `scale`
+ * [m].  Tolerance 1e-12 relative to N, at most 200 iterations.  Leaves the
+ * contact's pending step at the solution.  RIG_OK, RIG_CONTACT_FAILED or
+ * RIG_NOT_CONVERGED; *iterations as rig.solve_lateral counts them. */
+int rig_solve_lateral(const rig_contact *c, double u1, double *u2, double N, double strip,
+                      double scale, double visc, long *iterations);
+
+/* Called after every committed step k of n_steps (t = k h), if given; 0
+ * stops the run with RIG_OBSERVER_FAILED. */
+typedef int (*rig_observer)(void *ctx, long k, long n_steps, double t, double x1, double x2,
+                            double T1, double T2, double drive);
+
+enum { RIG_OK = 0, RIG_CONTACT_FAILED, RIG_NOT_CONVERGED, RIG_OBSERVER_FAILED, RIG_BAD_SETUP };
+
+/* The lateral solve's first step [m]: the elastic displacement
+ * min(mu1, mu2) N / max(eps1, eps2) of the contact. */
+double rig_lateral_scale(double mu1, double mu2, double eps1, double eps2, double N);
+
+/* One run of the rig over r->travel on an initialized contact, `scale` from
+ * rig_lateral_scale.  RIG_BAD_SETUP if its step count is not a whole number
+ * in [1, 2^53].  On RIG_NOT_CONVERGED *x1_failed is where.  Figures
+ * are written on RIG_OK only. */
+int rig_run(const rig_setup *r, const rig_contact *c, double scale, rig_observer observe,
+            void *observer_ctx, rig_figures *out, double *x1_failed);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
