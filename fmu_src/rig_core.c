@@ -37,10 +37,11 @@ void rig_lateral_step(double *x2, double *v2, double T1, double T2, double mass,
     const double f_max = mu_strip * P, a_free = T2 / mass;
     double v;
     if (f_max > 0.0) {
-        const double v_free = (*v2 + h * a_free) / damp;
-        const double f = v_free != 0.0 ? -copysign(py_min(f_max, fabs(mass * v_free / h)), v_free)
-                                       : -copysign(py_min(f_max, fabs(T2)), T2);
-        v = v_free + h * f / mass;
+        /* the strip's friction inside the implicit viscous update, as every
+         * force: a steady state balances T2 + f = c_strip v2 exactly */
+        const double w = *v2 + h * a_free;
+        const double f = -copysign(py_min(f_max, fabs(mass * w / h)), w);
+        v = (w + h * f / mass) / damp;
     } else {
         v = (*v2 + h * a_free) / damp;
     }

@@ -243,14 +243,15 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
         P = max(-T1, 0.0)  # the carriage can only push
         if dynamic:
             # Teflon strip: Coulomb friction on the lateral sliding, bounded by
-            # what stops the block within this step (no reversal by friction).
+            # what stops the block within this step (no reversal by friction),
+            # inside the implicit viscous update like every other force, so
+            # that a steady state balances T2 + f = c_strip v2 exactly.
             f_max = mu_s * P
             a_free = T2 / m
             if f_max > 0.0:
-                v_free = (v2 + h * a_free) / damp
-                f = -math.copysign(min(f_max, abs(m * v_free / h)), v_free) if v_free != 0.0 \
-                    else -math.copysign(min(f_max, abs(T2)), T2)
-                v2 = v_free + h * f / m
+                w = v2 + h * a_free
+                f = -math.copysign(min(f_max, abs(m * w / h)), w)
+                v2 = (w + h * f / m) / damp
             else:
                 v2 = (v2 + h * a_free) / damp
             x2 += h * v2
