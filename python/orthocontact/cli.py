@@ -4,8 +4,9 @@
   orthocontact reproduce --out DIR           every paper scenario + report.md
   orthocontact identify DATA_DIR --out DIR   parameter identification
 
-Exit status: 0 success, 1 a result that does not match the paper, 2 bad
-input (one line on stderr naming the file, option, key or row, and what was
+Exit status: 0 success, 1 a result that does not match the paper (or, with
+--strict, any warning: an implausible input, a rig run that is not steady
+sliding), 2 bad input (one line on stderr naming the file, option, key or row, and what was
 expected), 130 interrupted (Ctrl-C, SIGINT or SIGTERM).  Arguments and the
 output folder are checked before any work; the output folder is written all at
 once or not at all.
@@ -103,16 +104,36 @@ def _fmu_for(sc, args) -> str:
     return sc.fmu or str(find_fmu(fmi_version=args.fmi))
 
 
+_warnings: list[str] = []
+
+
+def warn(line: str) -> None:
+    """One warning line on stderr; --strict turns any into exit status 1."""
+    _warnings.append(line)
+    print(f"orthocontact: warning: {line}", file=sys.stderr, flush=True)
+
+
+def load_scenario(path):
+    """The scenario file, its unusual values said as warnings."""
+    sc = load(path)
+    for line in sc.warnings:
+        warn(line)
+    return sc
+
+
 def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True, draw=None,
                   dask=None) -> dict:
     from . import report, sweep
     from .fmu import fmi_version_of
     if sc.kind == "sweep":
-        summary = report.sweep_outputs(
-            sc, sweep.run_sweep(sc, workers, progress, fmu_path, master, dask), out, draw)
+        res = sweep.run_sweep(sc, workers, progress, fmu_path, master, dask)
+        summary = report.sweep_outputs(sc, res, out, draw)
     else:
-        summary = report.step_study_outputs(
-            sc, sweep.run_step_study(sc, workers, progress, fmu_path, master, dask), out, draw)
+        res = sweep.run_step_study(sc, workers, progress, fmu_path, master, dask)
+        summary = report.step_study_outputs(sc, res, out, draw)
+    line = res.warning(sc)
+    if line:
+        warn(line)
     summary["fmi_version"] = fmi_version_of(fmu_path)
     report.write_json(out / "summary.json", summary)
     return summary
@@ -128,7 +149,7 @@ def packaged_scenarios() -> Path:
 
 def cmd_run(args) -> int:
     from .figures import FigureDrawer
-    sc = load(args.scenario)
+    sc = load_scenario(args.scenario)
     with staged_output(args.out) as stage, _dask_for(args) as dask, \
             FigureDrawer(args.workers or _default_workers()) as draw:
         summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
@@ -146,7 +167,7 @@ def cmd_reproduce(args) -> int:
     files = sorted(folder.glob("*.toml"))
     if not files:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
-    scenarios = [load(f) for f in files]  # all validated before anything runs
+    scenarios = [load_scenario(f) for f in files]  # all validated before anything runs
     t0 = time.time()
     runs, rows = [], []
     with staged_output(args.out) as stage:
@@ -179,11 +200,15 @@ def cmd_reproduce(args) -> int:
 def cmd_identify(args) -> int:
     from . import identify
     data = identify.load_data(args.data)
+    for line in data.warnings:
+        warn(line)
     with staged_output(args.out) as stage:
         from .fmu import find_fmu
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
                               fmu_path=str(find_fmu(fmi_version=args.fmi)))
     print(identify.summary_text(result))
+    if result.validation and result.validation.get("warning"):
+        warn(result.validation["warning"])
     print(f"wrote {args.out}/identified.json")
     return 0
 
@@ -198,7 +223,7 @@ def _sensitivity_job(sc, fmu_path, master, out) -> dict:
 def cmd_sensitivity(args) -> int:
     from . import sensitivity
     from .figures import FigureDrawer
-    sc = load(args.scenario)
+    sc = load_scenario(args.scenario)
     with staged_output(args.out) as stage, _dask_for(args) as dask, \
             FigureDrawer(1) as draw:
         res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
@@ -219,7 +244,7 @@ def cmd_sensitivity(args) -> int:
 def cmd_uq(args) -> int:
     from . import uq
     est = uq.load_estimates(args.identification)
-    sc = load(args.scenario)
+    sc = load_scenario(args.scenario)
     uq.check_geometry(sc, est)  # before any work
     with staged_output(args.out) as stage:
         res = uq.propagate(est, sc, args.samples, args.seed, None,
@@ -281,7 +306,7 @@ def _positive_float(text):
 
 def cmd_ssp(args) -> int:
     from .ssp import write_ssp
-    sc = load(args.scenario)
+    sc = load_scenario(args.scenario)
     if sc.kind != "sweep":
         raise InputError(f"{args.scenario}: kind: expected a sweep scenario for an SSP, got {sc.kind!r}")
     path = write_ssp(sc, args.angle, args.out)
@@ -322,12 +347,18 @@ def build_parser() -> argparse.ArgumentParser:
                     "Schweizerhof 2007) as FMI 2.0/3.0 FMUs: run the paper's carriage/block rig "
                     "on scenario files, reproduce the paper, identify parameters from "
                     "measurements.",
-        epilog="Exit status: 0 success, 1 a result that does not match the paper, 2 bad input "
+        epilog="Exit status: 0 success, 1 a result that does not match the paper (or, with "
+               "--strict, any warning), 2 bad input "
                "(one line naming the file or option), 130 interrupted.  Angles in scenario and "
                "data files are in degrees, counterclockwise from the driving axis X1.")
     ap.add_argument("--version", action=_Version, help="print the package version and the "
                     "installed FMUs (FMI 2.0 and 3.0), then exit")
     sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
+
+    def strict(p):
+        p.add_argument("--strict", action="store_true",
+                       help="exit with status 1 if any warning was printed (an implausible input, a "
+                            "rig run that is not steady sliding); the results are written all the same")
 
     def common(p, out_help, scheduler=True):
         p.add_argument("--out", required=True, type=Path, metavar="DIR", help=out_help)
@@ -340,6 +371,7 @@ def build_parser() -> argparse.ArgumentParser:
                        help="who runs the rig loop: c, the compiled master (FMI 2.0 FMUs, about "
                             "25-55x faster), fmpy, the Python harness, or auto (default: c where "
                             "it applies); both give the same angles")
+        strict(p)
         if scheduler:
             p.add_argument("--scheduler", default=None, metavar="ADDRESS",
                            help="run the sweeps on Dask: local (a LocalCluster of --workers "
@@ -432,6 +464,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "scenario's step at the estimates")
     u.add_argument("--chunk-runs", type=_positive_int("runs"), default=1000, metavar="RUNS",
                    help="rig runs per task sent to a worker (default 1000)")
+    strict(u)
     u.set_defaults(func=cmd_uq)
     return ap
 
@@ -470,6 +503,7 @@ def main(argv=None) -> int:
     """Runs the command line `argv` (default: sys.argv[1:]); returns the exit status."""
     args = build_parser().parse_args(argv)
     _install_signal_handlers()
+    _warnings.clear()
     out = getattr(args, "out", None)
     try:
         if getattr(args, "master", None) == "c" and getattr(args, "fmi", 2) == 3:
@@ -485,6 +519,9 @@ def main(argv=None) -> int:
         status = args.func(args)
         if _interrupted:
             raise KeyboardInterrupt
+        if status == 0 and _warnings and getattr(args, "strict", False):
+            print(f"orthocontact: --strict: {len(_warnings)} warning(s); exit status 1", file=sys.stderr)
+            return 1
         return status
     except KeyboardInterrupt:
         print(f"orthocontact: interrupted; nothing written to {out}", file=sys.stderr)

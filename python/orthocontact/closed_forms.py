@@ -196,6 +196,30 @@ def steady_tan_phi_with_strip(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip,
                                                  c_strip, velocity, normal_force))
 
 
+def settling_length_array(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip, c_strip, velocity,
+                          normal_force, mass_kg) -> np.ndarray:
+    """Length [m] of carriage travel over which a lateral disturbance of
+    steady sliding decays by the factor e in the dynamic rig (beyond the
+    paper): linearised about the steady slope t*, m dv2/dt = F2(v2 / v)
+    decays at the rate -F2'(t*) / (m v), so over L = m v^2 / -F2'(t*)
+    (F2: strip_lateral_force).  0 where the strip holds the block (no drift
+    to settle); inf where F2 does not fall through t* (no restoring force).
+    For Case 2 at its extremum, 0.244 m/s, 1.875 kg: 0.40 m."""
+    alpha, beta = np.asarray(alpha, dtype=float), np.asarray(beta, dtype=float)
+    t, _ = steady_strip_state_array(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_strip, c_strip,
+                                    velocity, normal_force)
+    h = slip_force_tensor(mu1, mu2, eps1, eps2, alpha, beta, rule)
+    f = friction_entries(mu1, mu2, beta)
+    sign = np.sign(t)
+    d = 1e-6 * (1 + np.abs(t))
+    cv = c_strip * velocity
+    slope = (strip_lateral_force(h, f, t + d, sign, mu_strip, cv, normal_force)[0]
+             - strip_lateral_force(h, f, t - d, sign, mu_strip, cv, normal_force)[0]) / (2 * d)
+    with np.errstate(divide="ignore"):
+        L = np.where(slope < 0, mass_kg * velocity**2 / -np.minimum(slope, -1e-300), np.inf)
+    return np.where((t == 0) & (mu_strip > 0), 0.0, L)
+
+
 def steady_phi_deg(mu1, mu2, eps1, eps2, alpha, beta, rule="coupled") -> float:
     return math.degrees(math.atan(steady_tan_phi(mu1, mu2, eps1, eps2, alpha, beta, rule)))
 

@@ -18,7 +18,7 @@ from . import closed_forms as cf
 from .errors import InputError
 from .measurements import MeasurementSet, RigSetup, _beta_key
 from .strip import strip_steady_state, strip_regimes
-from .uncertainty import _t975
+from .uncertainty import t975
 
 
 REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
@@ -327,7 +327,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
         den = sum(v * v / group_dof[g] for g, v in shares.items() if math.isfinite(group_dof[g]))
         nu = (sum(shares.values()) ** 2 / den) if den > 0 else math.inf
         param_dof[n] = nu
-        t = 1.959963984540054 if not math.isfinite(nu) else _t975(nu)
+        t = 1.959963984540054 if not math.isfinite(nu) else t975(nu)
         ci[n] = [values[n] - t * stderr[n], values[n] + t * stderr[n]]
     # Identifiability is about the shape of the information, not its scale:
     # judge the correlation form, which weights and units do not distort.

@@ -18,7 +18,7 @@ from .estimators import (REPORTED, JointFit, _start_values, eq1, eq40_fit, ident
                          joint_fit, max_rule)
 from .fmu import ContactParams
 from .measurements import MeasurementSet, RigSetup, load_data, write_measurements
-from .uncertainty import _json_dof, _res_stats
+from .uncertainty import json_dof, res_stats
 
 # The whole job here; its parts importable from here as before.
 __all__ = ["Identification", "identify", "run", "validate_with_fmu", "simulate_measurements",
@@ -28,9 +28,12 @@ __all__ = ["Identification", "identify", "run", "validate_with_fmu", "simulate_m
 
 def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path=None) -> dict:
     """Simulates the identified parameters in the rig harness with the FMU at
-    the data's orientations (and the ramp) and returns the residuals
-    data - simulation."""
+    the data's orientations and velocities (and the ramp), strip terms
+    included (the estimated c_strip where it was fitted), and returns the
+    residuals data - simulation and the runs' self-checks (rig_checks):
+    "warning" holds the user's line if a run was not steady sliding."""
     from .rig import run
+    from .rig_checks import check_runs, warning_line
     from .sweep import default_workers, run_many
     rig = data.rig
     mu1, mu2 = values.get("mu1"), values.get("mu2")
@@ -39,29 +42,44 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     ratio = values.get("eps_ratio", 1.0)
     eps2 = values.get("eps2", rig.eps2_nominal_N_m)
     law = ContactParams(mu1, mu2, ratio * eps2, eps2)
-    h = rig.harness()
-    angles = sorted(set(np.concatenate([d[:, 0] for d in (data.forces, data.angles) if d is not None])))
-    sims = run_many([(rig.params_at(law, a), h) for a in angles], workers or default_workers(), fmu_path,
-                    "validation", progress=False)
-    sim = dict(zip(angles, sims))
-    out = {"rig_mode": rig.mode, "eps_used": {"eps1": ratio * eps2, "eps2": eps2,
-                                               "eps2_identified": "eps2" in values}}
-    if data.forces is not None:
-        res = data.forces[:, 1] - np.array([sim[a][1] for a in data.forces[:, 0]])
-        out["forces_N"] = _res_stats(res)
+    c_strip = values.get("c_strip", rig.c_strip or 0.0)
+    h = rig.harness(c_strip=c_strip)
+    points = [] if data.forces is None else [(float(a), rig.velocity_m_s) for a in data.forces[:, 0]]
     if data.angles is not None:
-        res = data.angles[:, 1] - np.array([sim[a][0] for a in data.angles[:, 0]])
-        out["angles_deg"] = _res_stats(res)
+        points += [(float(a), float(v)) for a, v in zip(data.angles[:, 0], data.velocities_of_angles())]
+    points = sorted(set(points))
+    tasks = [(rig.params_at(law, a), rig.harness(c_strip=c_strip, velocity_m_s=v)) for a, v in points]
+    sims = run_many(tasks, workers or default_workers(), fmu_path, "validation", progress=False)
+    sim = dict(zip(points, sims))
+    checks = check_runs(tasks, sims)
+    out = {"rig_mode": rig.mode, "eps_used": {"eps1": ratio * eps2, "eps2": eps2,
+                                               "eps2_identified": "eps2" in values},
+           "c_strip_used_N_s_m": c_strip,
+           "checks": {"ok": bool(checks.ok.all()),
+                      "not_steady": [{"alpha_deg": a, "velocity_m_s": v, "check": st}
+                                     for (a, v), st, ok in zip(points, checks.status(), checks.ok)
+                                     if not ok]}}
+    line = warning_line("identification's validation runs", [a for a, _ in points], checks,
+                        [f.phi_deg for f in sims], tasks)
+    if line:
+        out["warning"] = line
+    if data.forces is not None:
+        res = data.forces[:, 1] - np.array([sim[(float(a), rig.velocity_m_s)][1] for a in data.forces[:, 0]])
+        out["forces_N"] = res_stats(res)
+    if data.angles is not None:
+        res = data.angles[:, 1] - np.array([sim[(float(a), float(v))][0] for a, v in
+                                            zip(data.angles[:, 0], data.velocities_of_angles())])
+        out["angles_deg"] = res_stats(res)
     if data.ramp is not None:
         xmax = float(data.ramp[:, 0].max())
         # fine steps: the comparison interpolates the simulation at the data's x1
         r = run(rig.params_at(law, rig.ramp_angle_deg),
-                rig.harness(travel_m=max(xmax * 1.01, 1e-6),
+                rig.harness(c_strip=c_strip, travel_m=max(xmax * 1.01, 1e-6),
                             step_s=min(h.step_s, xmax / rig.velocity_m_s / 4000)))
         x = np.concatenate([[0.0], r.x1])
         F = np.concatenate([[rig.f_int_N], r.drive])
         res = data.ramp[:, 1] - np.interp(data.ramp[:, 0], x, F)
-        out["ramp_N"] = _res_stats(res)
+        out["ramp_N"] = res_stats(res)
     return out
 
 
@@ -81,12 +99,12 @@ class Identification:
         for n in REPORTED:
             if n in f.values:
                 out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n],
-                          "dof": _json_dof(f.param_dof.get(n))}
+                          "dof": json_dof(f.param_dof.get(n))}
             else:
                 out[n] = {"identifiable": False, "reason": f.not_identifiable.get(n, "not determined")}
         if "c_strip" in f.values:
             out["c_strip"] = {"value": f.values["c_strip"], "stderr": f.stderr["c_strip"],
-                              "ci95": f.ci95["c_strip"], "dof": _json_dof(f.param_dof.get("c_strip")),
+                              "ci95": f.ci95["c_strip"], "dof": json_dof(f.param_dof.get("c_strip")),
                               "unit": "N s/m", "note": "the strip's lateral viscosity, from the "
                                                        "angles' change with velocity"}
         if "l1_l2_ratio" in f.values:
@@ -102,7 +120,7 @@ class Identification:
         out["noise_estimate"] = {unit[g]: s for g, s in f.sigma.items()}
         if f.sigma_assumed:
             out["noise_assumed"] = [unit[g] for g in f.sigma_assumed]
-        out["fit_residuals"] = {g: _res_stats(r) for g, r in f.residuals.items()}
+        out["fit_residuals"] = {g: res_stats(r) for g, r in f.residuals.items()}
         out["dof"] = f.dof
         # What uncertainty propagation (orthocontact uq) draws from: the
         # joint Gauss-Newton covariance of the fitted parameters, and the

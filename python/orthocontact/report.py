@@ -13,6 +13,7 @@ from . import closed_forms as cf
 from .scenarios import Scenario
 from .tables import write_csv, write_json  # noqa: F401  (re-exported: report.write_json)
 from .figures import _draw_here, _finish, _plt, _style, _swept_label
+from .rig_checks import SETTLE_TOL_DEG, STEADY_TOL_DEG
 from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg_array
 
 
@@ -24,12 +25,17 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
     draw(fn, *args) draws a figure (default: here and now; a FigureDrawer
     draws them in worker processes)."""
     rows = []
-    for a, phi, c, d in zip(res.angles_deg, res.phi_deg, res.phi_closed_deg, res.drive_mean_N):
+    ch = res.checks
+    for i, (a, phi, c, d) in enumerate(zip(res.angles_deg, res.phi_deg, res.phi_closed_deg,
+                                           res.drive_mean_N)):
         p = sc.params_at(a)
+        f = res.figures[i]
         rows.append((float(a), math.degrees(p.alpha), math.degrees(p.beta), float(phi), float(c),
-                     float(phi - c), float(d)))
+                     float(phi - c), float(d), float(f.phi_head_deg), float(f.phi_tail_deg),
+                     float(ch.steady_deg[i]), ch.status()[i]))
     write_csv(out / "sweep.csv", ["angle_deg", "alpha_deg", "beta_deg", "phi_deg", "phi_closed_deg",
-                                  "deviation_deg", "drive_mean_N"], rows)
+                                  "deviation_deg", "drive_mean_N", "phi_head_deg", "phi_tail_deg",
+                                  "phi_steady_deg", "check"], rows)
     traj_rows = []
     for a, r in res.trajectories.items():
         for i in range(len(r.t)):
@@ -63,6 +69,7 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
         "closed_form_extremum": closed_ext,
         "max_deviation_deg": res.max_deviation_deg,
         "angle_convention": "counterclockwise from X1; phi = atan(dx2/dx1) of the fitted path",
+        "checks": checks_summary(res.checks, res.angles_deg, res.phi_deg, res.warning(sc)),
     }
     drives = {}
     for target in (0.0, 90.0):
@@ -81,6 +88,22 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
     return summary
 
 
+def checks_summary(checks, angles_deg, phi_deg, warning: str | None) -> dict:
+    """summary.json's "checks": the tolerances, the flagged angles and the
+    warning line (rig_checks)."""
+    angles = np.asarray(angles_deg, dtype=float)
+    dev = np.abs(np.asarray(phi_deg, dtype=float) - checks.steady_deg)
+    return {
+        "ok": warning is None,   # eq20 runs are listed below but not warned about (rig_checks)
+        "settle_tolerance_deg": SETTLE_TOL_DEG, "steady_tolerance_deg": STEADY_TOL_DEG,
+        "unsettled_angles_deg": [float(a) for a in angles[~checks.settled]],
+        "off_steady_angles_deg": [float(a) for a in angles[~checks.on_steady]],
+        "max_halves_deg": float(np.max(np.abs(checks.halves_deg))) if len(angles) else 0.0,
+        "max_steady_deviation_deg": float(np.nanmax(dev)) if np.any(np.isfinite(dev)) else None,
+        "warning": warning,
+    }
+
+
 def _figure_phi(sc: Scenario, res: SweepResult, path: Path, flat: bool) -> None:
     plt = _plt()
     fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 721)
@@ -88,6 +111,10 @@ def _figure_phi(sc: Scenario, res: SweepResult, path: Path, flat: bool) -> None:
     ax.plot(fine, closed_form_phi_deg_array(sc, fine), "-", color="0.3",
             label=f"closed form ({sc.closed_form})")
     ax.plot(res.angles_deg, res.phi_deg, "o", ms=3.5, color="C0", label=f"rig + FMU ({sc.rig.mode})")
+    bad = ~res.checks.ok
+    if bad.any():
+        ax.plot(res.angles_deg[bad], res.phi_deg[bad], "x", ms=8, mew=1.6, color="C3",
+                label=f"not steady sliding ({int(bad.sum())}): see summary.json")
     e = res.extremum
     if not flat:
         ax.plot([e["angle_deg"]], [e["phi_deg"]], "*", ms=12, color="C3",
@@ -127,9 +154,9 @@ def _closed_extremum(sc: Scenario, res: SweepResult) -> dict:
 
 def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path, draw=None) -> dict:
     write_csv(out / "step_study.csv", ["rule", "step_s", "phi_deg", "phi_closed_deg", "deviation_deg",
-                                       "drive_mean_N"],
+                                       "drive_mean_N", "check"],
               [(r["rule"], r["step_s"], r["phi_deg"], r["phi_closed_deg"], r["deviation_deg"],
-                r["drive_mean_N"]) for r in res.rows])
+                r["drive_mean_N"], r["check"]) for r in res.rows])
     (draw or _draw_here)(_figure_step_study, sc, res, out / "step_study.png")
     rules = list(dict.fromkeys(r["rule"] for r in res.rows))
     per_rule = {}
@@ -140,7 +167,9 @@ def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path, draw=None)
                           "spread_deg": max(phis) - min(phis),
                           "max_deviation_deg": max(abs(r["deviation_deg"]) for r in rs)}
     summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
-               "angle_deg": res.angle_deg, "rules": per_rule, "seconds": round(res.seconds, 3)}
+               "angle_deg": res.angle_deg, "rules": per_rule, "seconds": round(res.seconds, 3),
+               "checks": checks_summary(res.checks, [res.angle_deg] * len(res.rows),
+                                        [r["phi_deg"] for r in res.rows], res.warning(sc))}
     write_json(out / "summary.json", summary)
     return summary
 

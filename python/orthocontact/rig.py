@@ -54,7 +54,7 @@ class Rig:
     velocity_m_s: float = 0.244
     travel_m: float = 0.5
     mu_strip: float = 0.0
-    mode: str = "dynamic"          # or "quasistatic"
+    mode: str = "quasistatic"      # or "dynamic" (settles over a length: closed_forms.settling_length_array)
     step_s: float = 2e-4           # communication step
     fit_from: float = 0.5          # fit phi over the travel after this fraction
     c_strip: float = 0.0           # N s/m: the strip's lateral viscous resistance

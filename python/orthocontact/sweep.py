@@ -17,6 +17,7 @@ import numpy as np
 from . import closed_forms as cf
 from .fmu import ContactFMU, ContactParams
 from .rig import Rig, RunFigures, run
+from .rig_checks import RunChecks, check_runs, warning_line
 from .scenarios import Scenario, ScenarioError
 
 # -- closed form for a scenario --------------------------------------------------
@@ -305,10 +306,17 @@ class SweepResult:
     workers: int
     seconds: float
     trajectories: dict = field(default_factory=dict)  # angle_deg -> RigResult
+    figures: list = field(default_factory=list)       # RunFigures of each angle
+    checks: RunChecks | None = None                   # rig_checks of each angle
 
     @property
     def max_deviation_deg(self) -> float:
         return float(np.max(np.abs(self.phi_deg - self.phi_closed_deg)))
+
+    def warning(self, sc: Scenario) -> str | None:
+        """The user's one line if some runs are not steady sliding."""
+        return warning_line(sc.name, self.angles_deg, self.checks, self.phi_deg,
+                            [(sc.params_at(a), sc.rig) for a in self.angles_deg])
 
 
 def _parabolic_extremum(f, xs, fs, tol: float = 1e-4, max_evals: int = 12):
@@ -362,8 +370,9 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     fmu_path = fmu_path or sc.fmu
     t0 = time.time()
     angles = sc.sweep_angles()
-    res = run_many([(sc.params_at(a), sc.rig) for a in angles], workers, fmu_path, sc.name, progress,
-                   master, dask)
+    tasks = [(sc.params_at(a), sc.rig) for a in angles]
+    res = run_many(tasks, workers, fmu_path, sc.name, progress, master, dask)
+    checks = check_runs(tasks, res)
     phi = np.array([r[0] for r in res])
     drive = np.array([r[1] for r in res])
     closed = closed_form_phi_deg_array(sc, np.asarray(angles, dtype=float))
@@ -416,15 +425,26 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     finally:
         engine.close()
     return SweepResult(np.array(angles, dtype=float), phi, closed, drive, extremum, grid_ext, workers,
-                       time.time() - t0, traj)
+                       time.time() - t0, traj, list(res), checks)
 
 
 @dataclass
 class StepStudyResult:
-    rows: list  # dicts: rule, step_s, phi_deg, phi_closed_deg, deviation_deg
+    rows: list  # dicts: rule, step_s, phi_deg, phi_closed_deg, deviation_deg, check
     angle_deg: float
     seconds: float
+    checks: RunChecks | None = None
+    tasks: list = field(default_factory=list)
 
+    def warning(self, sc: Scenario) -> str | None:
+        """The user's one line if some runs are not steady sliding."""
+        labels = [f"{r['rule']} at step {r['step_s']:g} s" for r in self.rows]
+        line = warning_line(sc.name, [self.angle_deg] * len(self.rows), self.checks,
+                            [r["phi_deg"] for r in self.rows], self.tasks)
+        if line is None:
+            return None
+        bad = [lab for lab, ok, r in zip(labels, self.checks.ok, self.rows) if not ok and r["rule"] != "eq20"]
+        return line + f" (runs: {', '.join(bad)})"
 
 def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = True,
                    fmu_path=None, master: str = "auto", dask=None) -> StepStudyResult:
@@ -436,9 +456,10 @@ def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = Tr
     combos = [(rule, h) for rule in sc.study["rules"] for h in sc.study["steps_s"]]
     tasks = [(sc.params_at(a, rule), replace(sc.rig, step_s=h)) for rule, h in combos]
     res = run_many(tasks, workers, fmu_path or sc.fmu, sc.name, progress, master, dask)
+    checks = check_runs(tasks, res)
     rows = []
-    for (rule, h), (phi, drive, _, _) in zip(combos, res):
+    for (rule, h), (phi, drive, _, _), status in zip(combos, res, checks.status()):
         closed = closed_form_phi_deg(sc, a, rule)
         rows.append({"rule": rule, "step_s": h, "phi_deg": phi, "phi_closed_deg": closed,
-                     "deviation_deg": phi - closed, "drive_mean_N": drive})
-    return StepStudyResult(rows, a, time.time() - t0)
+                     "deviation_deg": phi - closed, "drive_mean_N": drive, "check": status})
+    return StepStudyResult(rows, a, time.time() - t0, checks, tasks)

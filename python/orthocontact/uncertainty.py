@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 
-def _t975(dof: float) -> float:
+def t975(dof: float) -> float:
     """97.5% quantile of Student's t for dof degrees of freedom (not
     necessarily whole; Cornish-Fisher expansion, better than 1e-4 for
     dof >= 3); 1.96 in the limit."""
@@ -22,10 +22,10 @@ def _t975(dof: float) -> float:
     return z + g1 / n + g2 / n**2 + g3 / n**3 + g4 / n**4
 
 
-def _res_stats(res: np.ndarray) -> dict:
+def res_stats(res: np.ndarray) -> dict:
     return {"rms": float(np.sqrt(np.mean(res**2))), "max_abs": float(np.max(np.abs(res))),
             "mean": float(np.mean(res)), "n": int(len(res))}
 
 
-def _json_dof(nu):
+def json_dof(nu):
     return None if nu is None else ("inf" if not math.isfinite(nu) else round(float(nu), 2))
