@@ -189,6 +189,8 @@ def cmd_reproduce(args) -> int:
                 runs.append((sc, summary))
                 rows += report.paper_rows(sc, summary)
             sens = sens.result() if sens is not None else None
+            if sens is not None and sens["checks"]["warning"]:
+                warn(sens["checks"]["warning"])
         rows += report.calibration_rows()
         report.write_json(stage / "summary.json", {"rows": rows, "scenarios": {sc.name: s for sc, s in runs}})
         text = report.reproduction_report(stage, runs, rows, time.time() - t0, sens)
@@ -229,6 +231,8 @@ def cmd_sensitivity(args) -> int:
         res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
                               dask=dask)
         summary = sensitivity.write_outputs(res, sc, stage, draw)
+    if res.checks["warning"]:
+        warn(res.checks["warning"])
     for r in summary["strip"]:
         if r["velocity_m_s"] == sensitivity.VELOCITIES[-1]:
             ratio = r["eps_ratio_for_measured_peak"]
@@ -252,6 +256,8 @@ def cmd_uq(args) -> int:
                            workers=args.workers or _default_workers(), step_s=args.step_s,
                            chunk_runs=args.chunk_runs)
         summary = uq.write_outputs(res, est, sc, args.seed, stage)
+    if summary["checks"]["warning"]:
+        warn(summary["checks"]["warning"])
     chk = summary["step_check"]
     if not chk["max_abs_difference_deg"] <= uq.STEP_CHECK_WARN_DEG:
         print(f"orthocontact: warning: at the estimates, phi at the uq step {chk['uq_step_s']:g} s "

@@ -234,7 +234,7 @@ def load_data(folder) -> MeasurementSet:
 
 
 RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |orientation| [deg] of a sweep typed in rad
-RADIAN_TRAJECTORY = 0.2                   # |phi| [deg] of angles typed in rad
+RADIAN_TRAJECTORY = 0.25                  # |phi| [deg] of angles typed in rad (the aged mat peaks at 0.2007 rad)
 MU_FROM_FORCE = (0.0, 5.0)                # (F - F_int) / (m g) of a plausible force
 
 

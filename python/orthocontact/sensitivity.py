@@ -27,6 +27,7 @@ import numpy as np
 
 from . import closed_forms as cf
 from .errors import InputError
+from .rig_checks import check_runs, warning_line
 from .scenarios import Scenario
 
 MU_STRIPS = (0.0, 0.025, 0.05, 0.075, 0.1, 0.15, 0.2)
@@ -117,6 +118,7 @@ class Sensitivity:
     viscous_rows: list    # c_strip, ratio calibrated at 0.125 m/s, peaks at both velocities
     rig_step_s: float
     seconds: float
+    checks: dict          # rig_checks of the rig's runs: counts and the warning line
 
 
 def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", progress: bool = True,
@@ -152,6 +154,9 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
         closed.append(cl)
         tasks += [(s.params_at(a), rig) for a in angles]
     res = run_many(tasks, workers, fmu_path or sc.fmu, f"sensitivity {sc.name}", progress, master, dask)
+    checks = check_runs(tasks, res)
+    line = warning_line(f"sensitivity {sc.name}", [math.degrees(p.beta - sc.beta_offset) for p, _ in tasks],
+                        checks, [r.phi_deg for r in res], tasks)
     strip_rows = []
     peaks = {}
     for (kind, mu, v, c, ratio), (start, angles), cl in zip(combos, spans, closed):
@@ -173,7 +178,8 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
                 (cl, rig_peak) = peaks[key]
                 row[f"peak_phi_closed_deg_at_{v:g}"] = cl[0]
                 row[f"peak_phi_rig_deg_at_{v:g}"] = rig_peak[0]
-    return Sensitivity(sc.name, measured, strip_rows, viscous, RIG_STEP_S, time.time() - t0)
+    return Sensitivity(sc.name, measured, strip_rows, viscous, RIG_STEP_S, time.time() - t0,
+                       {"runs": len(tasks), "not_steady": int((~checks.ok).sum()), "warning": line})
 
 
 def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
@@ -192,6 +198,7 @@ def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
     summary = {"scenario": res.scenario, "kind": "sensitivity", "measured_peak_deg": res.measured_peak_deg,
                "calibration_velocity_m_s": CALIBRATION_VELOCITY, "rig_step_s": res.rig_step_s,
                "strip": res.strip_rows, "viscous": res.viscous_rows, "seconds": round(res.seconds, 3),
+               "checks": res.checks,
                "angle_convention": "counterclockwise (ours)",
                "note": "the paper prints no peak angle at 0.244 m/s (Fig. 4 is a plot), so c_strip is "
                        "not determined by it: the velocity table shows what each c_strip implies"}

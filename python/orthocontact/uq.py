@@ -24,6 +24,7 @@ import numpy as np
 
 from .errors import InputError
 from .rig import RunFigures
+from .rig_checks import SETTLE_TOL_DEG, RunChecks, angle_list, check_runs, warning_line
 from .scenarios import Scenario
 
 LAW_PARAMETERS = ("mu1", "mu2", "eps_ratio", "eps2")
@@ -150,12 +151,13 @@ def chunk_tasks(sc: Scenario, rig, names: list, rows) -> list:
 
 
 def _run_chunk_on(run, chunk):
-    """chunk = (scenario, rig, names, rows) -> phi, drive arrays
-    [len(rows) x angles], the runs made by run([(params, rig)])."""
+    """chunk = (scenario, rig, names, rows) -> phi, drive and head - tail
+    (rig_checks: a settled run's halves agree) arrays [len(rows) x angles],
+    the runs made by run([(params, rig)])."""
     sc, rig, names, rows = chunk
     arr = np.array(run(chunk_tasks(sc, rig, names, rows)), dtype=float)
     arr = arr.reshape(len(rows), len(sc.sweep_angles()), len(RunFigures._fields))
-    return arr[:, :, 0], arr[:, :, 1]
+    return arr[:, :, 0], arr[:, :, 1], arr[:, :, 2] - arr[:, :, 3]
 
 
 def run_chunk(fmu, chunk):
@@ -177,6 +179,31 @@ class UQResult:
     step_check: dict
     engine: str
     seconds: float
+    halves: np.ndarray           # n x angles: head - tail of each run [deg] (rig_checks)
+    nominal_tasks: list          # the runs at the estimates, the UQ step
+    nominal_checks: RunChecks    # their checks, the closed form included
+
+    @property
+    def unsettled(self) -> np.ndarray:
+        """n x angles: the runs whose two halves disagree (rig_checks)."""
+        return ~(np.abs(self.halves) <= SETTLE_TOL_DEG)
+
+    def warning(self, sc: Scenario) -> str | None:
+        """The user's one line if runs at the estimates or over the draws
+        are not steady sliding."""
+        parts = []
+        line = warning_line(f"uq {sc.name} at the estimates", self.angles_deg, self.nominal_checks,
+                            self.nominal_phi, self.nominal_tasks)
+        if line:
+            parts.append(line)
+        if sc.law.rule != "eq20" and self.unsettled.any():
+            bad = self.unsettled
+            parts.append(f"uq {sc.name}: {int(bad.sum())} of {bad.size} runs over the drawn parameter "
+                         f"sets did not settle (halves of the fitted path up to "
+                         f"{np.nanmax(np.abs(np.where(bad, self.halves, 0))):.3g} deg apart; angles "
+                         f"{angle_list(self.angles_deg[bad.any(axis=0)])} deg): their bands are not "
+                         "steady-state predictions; use a quasi-static rig or a longer travel")
+        return "; ".join(parts) or None
 
 
 def check_geometry(sc: Scenario, est: Estimates) -> None:
@@ -211,7 +238,9 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     try:
         # The step check: the estimates at the scenario's own step and at the UQ step.
         fine = np.array([r[0] for r in cm.run([(nominal.params_at(a), sc.rig) for a in angles])])
-        coarse = np.array([r[0] for r in cm.run([(nominal.params_at(a), rig) for a in angles])])
+        nominal_tasks = [(nominal.params_at(a), rig) for a in angles]
+        nominal_runs = cm.run(nominal_tasks)
+        coarse = np.array([r[0] for r in nominal_runs])
         if scheduler is None:
             results = []
             for c in chunks:
@@ -229,8 +258,10 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
             engine = dr.description
     phi = np.concatenate([r[0] for r in results])
     drive = np.concatenate([r[1] for r in results])
+    halves = np.concatenate([r[2] for r in results])
     return UQResult(np.array(angles, dtype=float), x, est.names, accepted, phi, drive, coarse, step_s,
-                    check, engine, time.time() - t0)
+                    check, engine, time.time() - t0, halves, nominal_tasks,
+                    check_runs(nominal_tasks, nominal_runs))
 
 
 def measurement_draws(res: UQResult, sigma_deg: float, seed: int) -> np.ndarray:
@@ -275,6 +306,11 @@ def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: P
         "accepted_fraction": res.accepted_fraction,
         "non_finite_runs": n_nan,
         "step_s": res.step_s, "step_check": res.step_check,
+        "checks": {"unsettled_runs": int(res.unsettled.sum()),
+                   "settle_tolerance_deg": SETTLE_TOL_DEG,
+                   "at_estimates": [{"angle_deg": float(a), "check": st} for a, st in
+                                    zip(res.angles_deg, res.nominal_checks.status())],
+                   "warning": res.warning(sc)},
         "widest_band": _widest(res.angles_deg, bp),
         "measurement_noise_deg": est.angle_noise_deg,
         "data_inside_measurement_band": _inside(res.angles_deg, bm, est, sc),

@@ -1,0 +1,137 @@
+"""Inputs checked for their units (orthocontact.plausibility), through the
+real command: an error where a value cannot be right, a warning where it is
+merely unusual, each naming the likely unit slip."""
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from orthocontact import ContactParams, plausibility
+from orthocontact.identify import RigSetup, write_measurements
+
+CMD = [sys.executable, "-m", "orthocontact"]
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "scenarios" / "example_identification"
+
+MAT = """name = "mat"
+kind = "sweep"
+[law]
+mu1 = 0.408
+mu2 = 0.625
+eps2 = 1.0e4
+eps_ratio = 1.251
+[geometry]
+alpha_offset_deg = 90.0
+closed_form = "mat"
+[sweep]
+start_deg = 35.0
+stop_deg = 40.0
+step_deg = 5.0
+"""
+
+
+def run(args, cwd):
+    return subprocess.run(CMD + args, cwd=cwd, capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize("table,line,says", [
+    ("rig", "velocity_m_s = 24.4", "rig.velocity_m_s = 24.4 m/s: a lab rig's carriage moves at 0.001-2 m/s; cm/s?"),
+    ("rig", "travel_m = 500", "rig.travel_m = 500 m: a lab rig's travel is 0.005-10 m; mm?"),
+    ("rig", "mass_kg = 1875", "rig.mass_kg = 1875 kg: a block on a lab rig weighs 0.01-100 kg; g?"),
+    ("rig", "g = 981", "rig.g = 981 m/s^2: gravity on Earth is 9.76-9.84 m/s^2; cm/s^2?"),
+    ("law", "mu1 = 40.8", "law.mu1 = 40.8: friction coefficients are 0.01-3"),
+])
+def test_a_value_that_cannot_be_right_is_one_line_and_exit_2(tmp_path, table, line, says):
+    text = MAT.replace("mu1 = 0.408\n", "") if line.startswith("mu1") else MAT
+    body = text + f"[{table}]\n{line}\n" if table == "rig" else text.replace("[law]\n", f"[law]\n{line}\n")
+    (tmp_path / "s.toml").write_text(body)
+    p = run(["run", "s.toml", "--out", "o"], tmp_path)
+    assert p.returncode == 2 and p.stdout == ""
+    assert p.stderr.strip() == f"orthocontact: error: s.toml: {says}"
+    assert not (tmp_path / "o").exists()
+
+
+def test_an_angle_in_radians_in_a_degree_key_is_a_warning(tmp_path):
+    (tmp_path / "s.toml").write_text(MAT.replace("alpha_offset_deg = 90.0", "alpha_offset_deg = 1.5708"))
+    p = run(["run", "s.toml", "--out", "o"], tmp_path)
+    assert p.returncode == 0, p.stderr
+    w = [x for x in p.stderr.splitlines() if x.startswith("orthocontact: warning:")]
+    assert w == ["orthocontact: warning: s.toml: geometry.alpha_offset_deg = 1.5708: looks like pi/2 in "
+                 "radians; this key is in degrees (90.0002 deg if it was meant in rad)"]
+    assert run(["run", "s.toml", "--out", "o2", "--strict"], tmp_path).returncode == 1
+
+
+def test_an_unusual_velocity_is_a_warning_naming_the_slip(tmp_path):
+    (tmp_path / "s.toml").write_text(MAT + '[rig]\nvelocity_m_s = 5.0\nmode = "quasistatic"\n')
+    p = run(["run", "s.toml", "--out", "o"], tmp_path)
+    assert p.returncode == 0
+    assert "orthocontact: warning: s.toml: rig.velocity_m_s = 5 m/s: a lab rig's carriage moves at " \
+           "0.001-2 m/s; cm/s?" in p.stderr
+
+
+def measurement_set(tmp_path, rig=None, angles=None, forces=None):
+    rig = rig or RigSetup(mass_kg=1.875, f_int_N=5.0)
+    angles = [[a, p] for a, p in np.loadtxt(EXAMPLE / "angles.csv", delimiter=",", skiprows=1,
+                                            usecols=(0, 1))] if angles is None else angles
+    forces = [[a, f] for a, f in np.loadtxt(EXAMPLE / "forces.csv", delimiter=",", skiprows=1)] \
+        if forces is None else forces
+    write_measurements(tmp_path / "d", rig, forces=forces, angles=angles)
+    return tmp_path / "d"
+
+
+def test_angles_csv_written_in_radians_is_refused(tmp_path):
+    """It gave eps1/eps2 = 1.447 with a tight interval (truth 1.251)."""
+    good = np.loadtxt(EXAMPLE / "angles.csv", delimiter=",", skiprows=1, usecols=(0, 1))
+    d = measurement_set(tmp_path, angles=[[math.radians(a), math.radians(p)] for a, p in good])
+    p = run(["identify", str(d), "--out", "o"], tmp_path)
+    assert p.returncode == 2 and not (tmp_path / "o").exists()
+    line = p.stderr.strip()
+    assert len(line.splitlines()) == 1
+    assert "angles.csv: alpha_deg: all orientations lie within +-pi/2" in line and "radians?" in line
+
+
+def test_trajectory_angles_that_all_look_like_radians_are_a_warning(tmp_path):
+    good = np.loadtxt(EXAMPLE / "angles.csv", delimiter=",", skiprows=1, usecols=(0, 1))
+    d = measurement_set(tmp_path, angles=[[a, math.radians(p)] for a, p in good])
+    p = run(["identify", str(d), "--out", "o", "--no-validate"], tmp_path)
+    assert "angles.csv: phi_deg: all trajectory angles lie within +-0.25 deg: radians?" in p.stderr
+
+
+@pytest.mark.parametrize("force,says", [
+    (4.0, "force_N = 4: below f_int_N = 5 N"),
+    (200.0, "mu = (F - F_int)/(m g) = 10.6, outside (0, 5)"),
+])
+def test_forces_that_cannot_be_right_are_refused(tmp_path, force, says):
+    d = measurement_set(tmp_path, forces=[[0.0, 12.5], [90.0, force]])
+    p = run(["identify", str(d), "--out", "o"], tmp_path)
+    assert p.returncode == 2 and says in p.stderr and "forces.csv: row 2 (alpha_deg = 90)" in p.stderr
+
+
+def test_rig_toml_velocity_in_cm_s_is_refused(tmp_path):
+    d = measurement_set(tmp_path)
+    (d / "rig.toml").write_text((d / "rig.toml").read_text().replace("velocity_m_s = 0.244",
+                                                                     "velocity_m_s = 24.4"))
+    p = run(["identify", str(d), "--out", "o"], tmp_path)
+    assert p.returncode == 2 and "rig.toml: velocity_m_s = 24.4 m/s" in p.stderr and "cm/s?" in p.stderr
+
+
+def test_contact_params_refuse_angles_outside_4_pi_naming_radians():
+    with pytest.raises(ValueError, match=r"alpha = 90 rad is outside \[-4 pi, 4 pi\] rad.*degrees\?"):
+        ContactParams(0.408, 0.625, 1e4, 1e4, alpha=90)
+    with pytest.raises(ValueError, match="beta"):
+        ContactParams(0.408, 0.625, 1e4, 1e4, beta=-13.0)
+    assert ContactParams(0.408, 0.625, 1e4, 1e4, alpha=4 * math.pi).alpha == 4 * math.pi
+
+
+def test_the_plausibility_table_itself():
+    assert plausibility.check("velocity_m_s", 0.244) is None
+    assert plausibility.check("f_int_N", 0.0) is None and plausibility.check("mu_strip", 0.0) is None
+    assert plausibility.check("velocity_m_s", 0.0)[0] == "error"
+    assert plausibility.radian_slip(90.0) is None and plausibility.radian_slip(3.14159) == "pi"
+    assert plausibility.radian_slip(-0.5236) == "-pi/6" and plausibility.radian_slip(2.0) is None
+    # every quantity's usual range lies inside its hard range
+    for key, q in plausibility.QUANTITIES.items():
+        assert q.hard[0] <= q.usual[0] <= q.usual[1] <= q.hard[1], key
