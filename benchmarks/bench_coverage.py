@@ -27,7 +27,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 import rig_reference as ref  # noqa: E402
-from orthocontact.identify import MeasurementSet, RigSetup, _start_values, joint_fit  # noqa: E402
+
+from orthocontact.experiment.rig_setup import RigSetup
+from orthocontact.identification.estimators import joint_fit, start_values
+from orthocontact.identification.measurements import MeasurementSet
 
 TRUTHS = {
     "aged mat": dict(mu1=0.408, mu2=0.625, eps_ratio=1.251, eps2=1.0e4),
@@ -59,7 +62,7 @@ def one(args):
     rng = np.random.default_rng(seed)
     noisy = {g: v + np.c_[np.zeros(len(v)), rng.normal(0, NOISE[g], len(v))] for g, v in data.items()}
     ms = MeasurementSet(Path("coverage"), RIG, noisy["forces"], noisy["angles"], noisy["ramp"])
-    fit = joint_fit(ms, _start_values(ms))
+    fit = joint_fit(ms, start_values(ms))
     return {k: (fit.values[k], fit.stderr[k], fit.ci95[k][0], fit.ci95[k][1]) for k in PARAMS}
 
 

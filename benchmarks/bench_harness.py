@@ -15,10 +15,11 @@ from pathlib import Path
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 
-from orthocontact.fmu import ContactFMU, find_fmu
-from orthocontact.rig import run
-from orthocontact.scenarios import load
-from orthocontact.sweep import run_sweep
+from orthocontact.experiment.scenario import load
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu
+from orthocontact.rig.harness import run
+from orthocontact.runs.sweep import run_sweep
 
 SCEN = Path(__file__).resolve().parents[1] / "scenarios"
 

@@ -11,10 +11,11 @@ import argparse
 import time
 from pathlib import Path
 
-from orthocontact.cmaster import CMaster
-from orthocontact.fmu import ContactFMU, find_fmu
-from orthocontact.rig import run
-from orthocontact.scenarios import load
+from orthocontact.experiment.scenario import load
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu
+from orthocontact.rig.compiled import CMaster
+from orthocontact.rig.harness import run
 
 SCEN = Path(__file__).resolve().parents[1] / "scenarios"
 

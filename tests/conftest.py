@@ -2,7 +2,9 @@ import math
 
 import pytest
 
-from orthocontact.fmu import ContactFMU, ContactParams, find_fmu
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.params import ContactParams
 
 CASE1 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e4, rule="associated")
 CASE5 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e3, rule="coupled")
@@ -17,7 +19,7 @@ def fmu_path(request):
 
 @pytest.fixture(scope="session")
 def fmi_version(fmu_path):
-    from orthocontact.fmu import fmi_version_of
+    from orthocontact.fmu.files import fmi_version_of
     return fmi_version_of(fmu_path)
 
 

@@ -9,9 +9,9 @@ import time
 from pathlib import Path
 
 import pytest
-
-from orthocontact.cli import build_parser
 from procs import alive, children
+
+from orthocontact.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[1]
 CMD = [sys.executable, "-m", "orthocontact"]
@@ -107,7 +107,7 @@ def test_an_interrupt_swallowed_by_a_finalizer_still_stops_and_writes_nothing(tm
     """Python reports a KeyboardInterrupt raised inside __del__ as "Exception
     ignored" and runs on (this happened to the CLI, in ContactFMU.__del__);
     the run must still end as interrupted, with nothing committed."""
-    from orthocontact import cli
+    from orthocontact.cli import interrupts, output
 
     class SignalledDuringFinalization:
         def __del__(self):
@@ -116,14 +116,16 @@ def test_an_interrupt_swallowed_by_a_finalizer_still_stops_and_writes_nothing(tm
 
     old = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
     try:
-        cli._install_signal_handlers()
+        interrupts.install_signal_handlers()
         with pytest.raises(KeyboardInterrupt):
-            with cli.staged_output(tmp_path / "results") as stage:
+            with output.staged_output(tmp_path / "results") as stage:
                 (stage / "summary.json").write_text("{}")
                 SignalledDuringFinalization()  # dropped at once: __del__ runs
                 # reaching here means the interrupt was swallowed
     finally:
         signal.signal(signal.SIGINT, old[0])
         signal.signal(signal.SIGTERM, old[1])
-        cli._interrupted = False
+        interrupts.install_signal_handlers()  # forgets the interrupt
+        signal.signal(signal.SIGINT, old[0])
+        signal.signal(signal.SIGTERM, old[1])
     assert leftovers(tmp_path) == []

@@ -4,13 +4,13 @@ import math
 
 import numpy as np
 import pytest
+import rig_reference
 
 from orthocontact import closed_forms as cf
-from orthocontact.cmaster import CMaster
-from orthocontact.fmu import ContactParams, find_fmu
-from orthocontact.rig import Rig
-
-import rig_reference
+from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.params import ContactParams
+from orthocontact.rig.compiled import CMaster
+from orthocontact.rig.harness import Rig
 
 N_RIG = 1.875 * cf.G_STANDARD
 

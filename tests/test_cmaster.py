@@ -8,11 +8,12 @@ from pathlib import Path
 
 import pytest
 
-from orthocontact.cmaster import CMaster
-from orthocontact.fmu import ContactFMU, find_fmu
-from orthocontact.rig import Rig, run
-from orthocontact.scenarios import load
-from orthocontact.sweep import run_many
+from orthocontact.experiment.scenario import load
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu
+from orthocontact.rig.compiled import CMaster
+from orthocontact.rig.harness import Rig, run
+from orthocontact.runs.batch import run_many
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENARIOS = sorted(p.stem for p in (ROOT / "scenarios").glob("*.toml"))
@@ -94,8 +95,9 @@ def test_the_master_describes_its_structs_and_a_drift_is_refused():
     ctypes would lay out otherwise, or a field the package does not fill, is
     refused before any call."""
     import ctypes
-    from orthocontact import cmaster
-    from orthocontact.fmu import FMUError
+
+    from orthocontact.rig import compiled as cmaster
+    from orthocontact.fmu.contact import FMUError
     cmaster._load()
     size = cmaster._lib.rm_layout(None, 0)
     buf = ctypes.create_string_buffer(size + 1)

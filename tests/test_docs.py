@@ -10,7 +10,7 @@ NOTES = ROOT / "docs" / "model-notes.md"
 
 
 def test_readme_report_and_scenarios_link_the_model_notes(tmp_path):
-    from orthocontact import report
+    from orthocontact.reproduction import paper_report as report
     assert "docs/model-notes.md" in (ROOT / "README.md").read_text()
     assert "docs/model-notes.md" in (ROOT / "scenarios" / "README.md").read_text()
     assert "docs/model-notes.md" in (ROOT / "scenarios" / "mat_new.toml").read_text()

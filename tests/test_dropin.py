@@ -11,11 +11,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from conftest import CASE5, G_N
+
 from orthocontact import closed_forms as cf
-from orthocontact.fmu import ContactFMU, ContactParams, find_fmu, fmi_version_of
-from orthocontact.rig import Rig, run
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu, fmi_version_of
+from orthocontact.fmu.params import ContactParams
+from orthocontact.rig.harness import Rig, run
 
 ROOT = Path(__file__).resolve().parents[1]
 AGED = ContactParams(0.408, 0.625, 1.251e4, 1e4, math.radians(90 + 30), math.radians(30), "coupled")
@@ -277,7 +279,7 @@ def test_cli_runs_the_harness_on_either_fmi_version(tmp_path):
     summaries = {}
     for v in (2, 3):
         out = tmp_path / f"out{v}"
-        proc = subprocess.run([sys.executable, "-m", "orthocontact.cli", "run", str(sc), "--out", str(out),
+        proc = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(sc), "--out", str(out),
                                "--fmi", str(v), "--workers", "1"], capture_output=True, text=True, timeout=300)
         assert proc.returncode == 0, proc.stderr
         summaries[v] = json.loads((out / "summary.json").read_text())

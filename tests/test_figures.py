@@ -10,22 +10,23 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-from orthocontact import report  # noqa: E402
-from orthocontact.scenarios import load  # noqa: E402
+from orthocontact.output import figures  # noqa: E402
+from orthocontact.reproduction import paper_report  # noqa: E402
+from orthocontact.experiment.scenario import load
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_overlapping_curves_get_distinct_markers_dashes_and_staggered_marks():
-    styles = [report._style(i, 400, 7) for i in range(7)]
+    styles = [figures.curve_style(i, 400, 7) for i in range(7)]
     assert len({(s["marker"], s["linestyle"], s["color"]) for s in styles}) == 7
     assert len({s["markevery"][0] for s in styles}) == 7  # marks do not stack
 
 
 def test_legend_names_the_swept_angle():
-    assert report._swept_label(load(ROOT / "scenarios/mat_aged.toml")) == \
+    assert figures.swept_label(load(ROOT / "scenarios/mat_aged.toml")) == \
         "swept angle a: α = a +90°, β = a"
-    assert report._swept_label(load(ROOT / "scenarios/case5.toml")) == \
+    assert figures.swept_label(load(ROOT / "scenarios/case5.toml")) == \
         "swept angle a: α = a, β = a +90°"
 
 
@@ -43,7 +44,7 @@ def test_legend_outside_the_axes(tmp_path):
         orig(f)
     plt.close = keep
     try:
-        report._finish(fig, ax, tmp_path / "f.png", "t", "legend", outside=True)
+        figures.finish(fig, ax, tmp_path / "f.png", "t", "legend", outside=True)
     finally:
         plt.close = orig
     assert seen["legend"].x0 >= seen["axes"].x1  # right of the data, not over it
@@ -60,7 +61,7 @@ def test_flat_sweep_has_no_extremum_and_titles_have_no_doubled_parentheses(tmp_p
     s = json.loads((out / "summary.json").read_text())
     assert s["flat"] is True and s["extremum"] is None
     assert s["max_abs_phi_deg"] < 0.5  # 5 cm of travel has not settled; still no "extremum"
-    text = report.reproduction_report(tmp_path, [(load(sc), s)], [], 1.0)
+    text = paper_report.reproduction_report(tmp_path, [(load(sc), s)], [], 1.0)
     assert "flat: |φ|" in text and "extremum φ" not in text
     step = load(ROOT / "scenarios/step_study.toml")
     assert ") (" not in step.title + " " and "((" not in step.title

@@ -8,14 +8,15 @@ import zipfile
 
 import numpy as np
 import pytest
+from conftest import CASE1, CASE5, G_N, deg
 from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
-from conftest import CASE1, CASE5, G_N, deg
 from orthocontact import closed_forms as cf
-from orthocontact.fmu import ContactParams, FMUError
-from orthocontact.rig import solve_lateral
+from orthocontact.fmu.contact import FMUError
+from orthocontact.fmu.params import ContactParams
+from orthocontact.rig.harness import solve_lateral
 
 
 def test_fmpy_validate_is_clean(fmu_path):
@@ -85,6 +86,7 @@ def test_every_fmi_function_is_exported(fmu_path, fmi_version, tmp_path):
     import ctypes
     import os
     import re
+
     import fmpy
     header = open(os.path.join(os.path.dirname(fmpy.__file__), "c-code",
                                f"fmi{fmi_version}Functions.h")).read()
@@ -486,7 +488,8 @@ def test_sources_compile_into_a_working_binary(fmu_path, fmi_version, tmp_path):
     for FMI 3.0 from sources/buildDescription.xml)."""
     from fmpy import extract
     from fmpy.build import build_platform_binary
-    from orthocontact.fmu import ContactFMU
+
+    from orthocontact.fmu.contact import ContactFMU
     unzip = extract(str(fmu_path), unzipdir=str(tmp_path / "fmu"))
     so = tmp_path / "fmu" / "binaries" / HOST_DIR[fmi_version] / "OrthotropicContact.so"
     so.unlink()

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from orthocontact import closed_forms as cf
-from orthocontact.cli import main
-from orthocontact.fmu import ContactParams
-from orthocontact.rig import Rig, run
-from orthocontact.scenarios import load
-from orthocontact.sweep import closed_form_phi_deg, run_sweep
+from orthocontact.cli.main import main
+from orthocontact.experiment.scenario import load
+from orthocontact.fmu.params import ContactParams
+from orthocontact.rig.harness import Rig, run
+from orthocontact.runs.sweep import closed_form_phi_deg, run_sweep
 
 SCEN = Path(__file__).resolve().parents[1] / "scenarios"
 QS = Rig(mode="quasistatic", step_s=1e-3, travel_m=0.2)
@@ -203,7 +203,7 @@ def test_failed_run_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
     out = tmp_path / "out"
     out.mkdir()
     (out / "keep.txt").write_text("earlier result")
-    import orthocontact.report as report
+    import orthocontact.reproduction.scenario_outputs as report
 
     def boom(*a, **k):
         raise RuntimeError("disk full")
@@ -272,9 +272,11 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
 
 def test_vectorized_closed_forms_equal_the_scalar_ones():
     """The report's 90,001-point scans use the array form: same numbers."""
-    import numpy as np
-    from orthocontact.sweep import closed_form_phi_deg, closed_form_phi_deg_array
     from pathlib import Path as _P
+
+    import numpy as np
+
+    from orthocontact.runs.sweep import closed_form_phi_deg, closed_form_phi_deg_array
     a = np.linspace(-30, 120, 301)
     for f in sorted((_P(__file__).resolve().parents[1] / "scenarios").glob("*.toml")):
         sc = load(f)

@@ -10,11 +10,12 @@ import numpy as np
 import pytest
 
 from orthocontact import closed_forms as cf
-from orthocontact.cli import main
-from orthocontact.fmu import ContactParams
-from orthocontact.identify import (MeasurementSet, RigSetup, _start_values, eq40_fit, identify,
-                                   joint_fit, load_data, simulate_measurements,
-                                   write_measurements)
+from orthocontact.cli.main import main
+from orthocontact.experiment.rig_setup import RigSetup
+from orthocontact.fmu.params import ContactParams
+from orthocontact.identification.estimators import eq40_fit, joint_fit, start_values
+from orthocontact.identification.job import identify, simulate_measurements
+from orthocontact.identification.measurements import MeasurementSet, load_data, write_measurements
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "scenarios" / "example_identification"
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # rig_reference
@@ -91,6 +92,7 @@ def reference_data():
     """Noise-free data of the issue's truth (mu 0.30 / 0.55, eps1/eps2 0.8,
     eps2 3e4 N/m) from the independent simulator (tests/rig_reference.py)."""
     import math
+
     import rig_reference as ref
     t = {"mu1": 0.30, "mu2": 0.55, "eps_ratio": 0.8, "eps2": 3.0e4}
     N = RIG.mass_kg * RIG.g
@@ -107,7 +109,7 @@ def reference_data():
 def test_independent_simulators_noise_free_data_give_the_truth(reference_data):
     truth, d = reference_data
     fit = joint_fit(MeasurementSet(Path("ref"), RIG, d["forces"], d["angles"], d["ramp"]),
-                    _start_values(MeasurementSet(Path("ref"), RIG, d["forces"], d["angles"], d["ramp"])))
+                    start_values(MeasurementSet(Path("ref"), RIG, d["forces"], d["angles"], d["ramp"])))
     for k, v in truth.items():
         assert fit.values[k] == pytest.approx(v, rel=1e-6), k
 
@@ -126,7 +128,7 @@ def test_intervals_are_honest_coverage_over_200_replicates(reference_data):
                                d["forces"] + np.c_[np.zeros(len(d["forces"])), rng.normal(0, 0.05, len(d["forces"]))],
                                d["angles"] + np.c_[np.zeros(len(d["angles"])), rng.normal(0, 0.3, len(d["angles"]))],
                                d["ramp"] + np.c_[np.zeros(len(d["ramp"])), rng.normal(0, 0.02, len(d["ramp"]))])
-        fit = joint_fit(noisy, _start_values(noisy))
+        fit = joint_fit(noisy, start_values(noisy))
         for k in truth:
             lo, hi = fit.ci95[k]
             hits[k] += lo <= truth[k] <= hi
@@ -212,8 +214,8 @@ def _strip_data(mu_strip, c_strip, velocities):
     """Noise-free forces (at the rig's velocity) and angles (at each velocity)
     from the quasi-static rig with a strip (the compiled master: lateral
     equilibrium solved by Newton on the FMU, not by the fit's closed form)."""
-    from orthocontact.cmaster import CMaster
-    from orthocontact.fmu import find_fmu
+    from orthocontact.fmu.files import find_fmu
+    from orthocontact.rig.compiled import CMaster
     rig = RigSetup(mass_kg=1.875, f_int_N=5.0, mu_strip=mu_strip)
     tasks, meta = [], []
     for v in velocities:
@@ -252,10 +254,10 @@ def test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity():
     rig, forces, angles, vel = _strip_data(0.05, 20.0, (0.244,))
     from dataclasses import replace
     known = MeasurementSet(Path("k"), replace(rig, c_strip=20.0), forces, angles, None, vel)
-    fit = joint_fit(known, _start_values(known))
+    fit = joint_fit(known, start_values(known))
     assert "c_strip" not in fit.values
     for k in ("mu1", "mu2", "eps_ratio"):
         assert fit.values[k] == pytest.approx(TV[k], rel=1e-6), k
     unknown = MeasurementSet(Path("u"), rig, forces, angles, None, vel)
-    fit = joint_fit(unknown, _start_values(unknown))
+    fit = joint_fit(unknown, start_values(unknown))
     assert "c_strip" in fit.not_identifiable and "two or more velocities" in fit.not_identifiable["c_strip"]

@@ -54,7 +54,8 @@ def test_missing_fmu_is_one_line_not_a_traceback(tmp_path):
 def test_license_in_the_repo_the_package_and_both_fmus():
     import zipfile
     from importlib.metadata import metadata
-    from orthocontact.fmu import find_fmu
+
+    from orthocontact.fmu.files import find_fmu
     text = (ROOT / "LICENSE").read_text()
     assert text.startswith("BSD 2-Clause License")
     assert "BSD-2-Clause" in (ROOT / "pyproject.toml").read_text()

@@ -9,12 +9,14 @@ import sys
 import zipfile
 from pathlib import Path
 
+import binformat
 import fmpy
 import numpy as np
 import pytest
 
-import binformat
-from orthocontact.fmu import ContactFMU, ContactParams, find_fmu
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.params import ContactParams
 
 ROOT = Path(__file__).resolve().parents[1]
 HEADERS = Path(fmpy.__file__).parent / "c-code"

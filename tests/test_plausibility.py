@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from orthocontact import ContactParams, plausibility
-from orthocontact.identify import RigSetup, write_measurements
+from orthocontact.experiment.rig_setup import RigSetup
+from orthocontact.identification.measurements import write_measurements
 
 CMD = [sys.executable, "-m", "orthocontact"]
 ROOT = Path(__file__).resolve().parents[1]

@@ -1,4 +1,4 @@
-"""Results that check themselves (orthocontact.rig_checks), through the real
+"""Results that check themselves (orthocontact.rig.checks), through the real
 command in a subprocess: a rig that never settled, a run off the steady
 closed form, --strict, the default rig of a new scenario, and the
 identification's validation with its strip terms."""
@@ -8,14 +8,13 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 
-from orthocontact import closed_forms as cf
-from orthocontact.cmaster import CMaster
-from orthocontact.fmu import ContactParams, find_fmu
-from orthocontact.rig import Rig
-from orthocontact.rig_checks import SETTLE_TOL_DEG, check_runs
+from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.params import ContactParams
+from orthocontact.rig.checks import SETTLE_TOL_DEG, check_runs
+from orthocontact.rig.compiled import CMaster
+from orthocontact.rig.harness import Rig
 
 CMD = [sys.executable, "-m", "orthocontact"]
 
@@ -137,7 +136,8 @@ def test_the_identifications_validation_runs_the_fitted_strip(tmp_path):
     """Noise-free data from the rig with a viscous strip at two velocities:
     the validation simulates the estimated c_strip (it took c_strip = 0 and
     reported 3.1 deg and -0.19 N of residuals for a perfect fit)."""
-    from orthocontact.identify import RigSetup, write_measurements
+    from orthocontact.experiment.rig_setup import RigSetup
+    from orthocontact.identification.measurements import write_measurements
     truth = ContactParams(0.408, 0.625, 12510.0, 1e4)
     rig = RigSetup(mass_kg=1.875, f_int_N=5.0, mu_strip=0.05)
     tasks, meta = [], []
@@ -171,7 +171,8 @@ def test_the_identifications_validation_runs_the_fitted_strip(tmp_path):
 def test_identify_no_longer_ends_in_a_traceback_on_case5_material_with_a_viscous_strip(tmp_path):
     """Case 5's material in the mat geometry with c_strip = 40 N s/m known:
     the old strip closed form took a square root of a negative number."""
-    from orthocontact.identify import RigSetup, write_measurements
+    from orthocontact.experiment.rig_setup import RigSetup
+    from orthocontact.identification.measurements import write_measurements
     truth = ContactParams(0.1, 0.5, 1e4, 1e3)
     rig = RigSetup(mass_kg=1.875, f_int_N=5.0, c_strip=40.0)
     h = rig.harness(step_s=1e-3, travel_m=0.2)

@@ -7,8 +7,10 @@ import pytest
 from fmpy import extract, read_model_description
 from fmpy.validation import validate_fmu
 
-from orthocontact.fmu import ContactFMU, ContactParams, find_fmu
-from orthocontact.rig import LineFit, Rig, run
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.params import ContactParams
+from orthocontact.rig.harness import LineFit, Rig, run
 
 AGED = ContactParams.from_degrees(0.408, 0.625, 1.251e4, 1e4, 90 + 39.2, 39.2)
 
@@ -32,6 +34,7 @@ def _rig_slave(version, name="rig", messages=None):
         s.instantiate()
     elif version == 2:
         import ctypes
+
         from fmpy.fmi2 import (calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
                                fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
         from fmpy.logging import addLoggerProxy

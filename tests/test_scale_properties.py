@@ -18,7 +18,8 @@ import numpy as np
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from orthocontact.fmu import ContactFMU, ContactParams
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.params import ContactParams
 
 EPS = np.finfo(float).eps
 RULES = ["associated", "coupled", "eq20"]

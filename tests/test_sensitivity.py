@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from orthocontact import closed_forms as cf
-from orthocontact import sensitivity as S
-from orthocontact.cmaster import CMaster
-from orthocontact.fmu import find_fmu
-from orthocontact.scenarios import load
+from orthocontact.reproduction import sensitivity as S
+from orthocontact.experiment.scenario import load
+from orthocontact.fmu.files import find_fmu
+from orthocontact.rig.compiled import CMaster
 
 ROOT = Path(__file__).resolve().parents[1]
 AGED = load(ROOT / "scenarios/mat_aged.toml")

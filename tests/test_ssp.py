@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from orthocontact.rig import LineFit, run
-from orthocontact.scenarios import load
+from orthocontact.experiment.scenario import load
+from orthocontact.rig.harness import LineFit, run
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -1,24 +1,40 @@
-"""The package's layers read one way: no module imports, directly or through
-others, a module that imports it back."""
+"""The package's layers read one way: subpackages by layer, every import
+going down, no cycle between modules, no private name used across modules."""
 import ast
 from pathlib import Path
 
 PKG = Path(__file__).resolve().parents[1] / "python" / "orthocontact"
 
 
+def module_name(path: Path) -> str:
+    parts = list(path.relative_to(PKG).with_suffix("").parts)
+    if parts[-1] == "__init__" and len(parts) > 1:
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def resolve(mod: str, is_pkg: bool, node: ast.ImportFrom, known: set) -> set:
+    """The package modules a relative ImportFrom in `mod` reaches."""
+    base = mod.split(".") if is_pkg else mod.split(".")[:-1]
+    if node.level > 1:
+        base = base[:len(base) - (node.level - 1)]
+    if node.module:
+        target = ".".join(base + node.module.split("."))
+        return {target} if target in known else {target.rsplit(".", 1)[0]} & known
+    return {".".join(base + [a.name]) for a in node.names} & known
+
+
 def import_graph() -> dict:
     """module -> the package modules it imports (lazy imports included)."""
-    mods = {p.stem for p in PKG.glob("*.py")}
+    paths = {module_name(p): p for p in PKG.rglob("*.py")}
+    known = set(paths)
     graph = {}
-    for p in PKG.glob("*.py"):
+    for mod, p in paths.items():
         deps = set()
         for node in ast.walk(ast.parse(p.read_text())):
-            if isinstance(node, ast.ImportFrom) and node.level == 1:
-                if node.module:
-                    deps.add(node.module.split(".")[0])
-                else:
-                    deps |= {a.name for a in node.names if a.name in mods}
-        graph[p.stem] = deps - {p.stem}
+            if isinstance(node, ast.ImportFrom) and node.level >= 1:
+                deps |= resolve(mod, p.name == "__init__.py", node, known)
+        graph[mod] = deps - {mod}
     return graph
 
 
@@ -42,7 +58,8 @@ def find_cycles(graph: dict) -> list:
 
 def test_the_import_graph_has_no_cycle():
     graph = import_graph()
-    assert {"cli", "report", "identify", "sweep", "fmu"} <= set(graph)
+    assert {"cli.main", "rig.harness", "identification.job", "runs.sweep", "fmu.contact"} <= set(graph)
+    assert "fmu.params" in graph["fmu.contact"] and "rig.harness" in graph["runs.batch"]
     assert find_cycles(graph) == []
 
 
@@ -52,37 +69,53 @@ def test_the_cycle_finder_finds_cycles():
     assert find_cycles({"a": {"b", "c"}, "b": {"c"}, "c": set()}) == []
 
 
-# The layers, lowest first: a module may import only from layers below its own.
+# The subpackages' layers, lowest first: a module may import from its own
+# subpackage and from the layers below.
 LAYERS = [
-    {"errors", "tables"},
+    {"errors", "plausibility"},
     {"fmu", "closed_forms"},
     {"rig"},
-    {"cmaster", "scenarios"},
-    {"cluster", "ssp"},
-    {"sweep"},
-    {"figures", "measurements", "uncertainty"},
-    {"strip"},
-    {"estimators"},
-    {"identify_report"},
-    {"identify"},
-    {"uq", "sensitivity"},
-    {"report"},
+    {"experiment"},
+    {"runs"},
+    {"output"},
+    {"identification"},
+    {"uq", "reproduction"},
     {"cli"},
     {"__init__", "__main__"},
 ]
+RANK = {m: i for i, layer in enumerate(LAYERS) for m in layer}
+
+
+def upward_imports(graph: dict) -> list:
+    top = lambda m: m.split(".")[0]
+    return [(m, d) for m, deps in graph.items() for d in deps
+            if top(d) != top(m) and RANK[top(d)] >= RANK[top(m)]]
 
 
 def test_the_layers_read_one_way():
-    """fmu -> closed forms / rig -> scenarios -> sweep -> identification ->
-    report -> cli, as the package's design says: every import goes down."""
+    """fmu, closed forms -> rig -> experiment -> runs -> output ->
+    identification -> uq, reproduction -> cli: every import goes down."""
     graph = import_graph()
-    rank = {m: i for i, layer in enumerate(LAYERS) for m in layer}
-    assert set(graph) == set(rank), "a module without a layer: add it to LAYERS"
-    upward = [(m, d) for m, deps in graph.items() for d in deps if rank[d] >= rank[m]]
-    assert upward == [], upward
+    missing = {m.split(".")[0] for m in graph} - set(RANK)
+    assert not missing, f"a subpackage without a layer: add {missing} to LAYERS"
+    assert upward_imports(graph) == []
 
 
-def test_identification_is_split_by_job():
-    sizes = {m: len((PKG / f"{m}.py").read_text().splitlines())
-             for m in ("measurements", "estimators", "uncertainty", "identify", "identify_report")}
-    assert max(sizes.values()) < 400, sizes
+def test_the_layer_check_sees_an_upward_import():
+    assert upward_imports({"fmu.contact": {"cli.main"}, "cli.main": {"fmu.contact"}}) == \
+        [("fmu.contact", "cli.main")]
+
+
+def test_no_private_name_is_imported_across_modules():
+    crossing = []
+    for p in PKG.rglob("*.py"):
+        for node in ast.walk(ast.parse(p.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level >= 1:
+                crossing += [(module_name(p), a.name) for a in node.names
+                             if a.name.startswith("_") and a.name != "__version__"]
+    assert crossing == []
+
+
+def test_modules_are_small():
+    sizes = {module_name(p): len(p.read_text().splitlines()) for p in PKG.rglob("*.py")}
+    assert max(sizes.values()) < 400, sorted(sizes.items(), key=lambda kv: -kv[1])[:3]

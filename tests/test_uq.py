@@ -14,11 +14,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from procs import alive, descendants
 
 from orthocontact import closed_forms as cf
-from procs import alive, descendants
-from orthocontact.scenarios import load
-from orthocontact.uq import Estimates, draw, load_estimates, propagate
+from orthocontact.experiment.scenario import load
+from orthocontact.uq.estimates import Estimates, draw, load_estimates
+from orthocontact.uq.propagate import propagate
 
 ROOT = Path(__file__).resolve().parents[1]
 CMD = [sys.executable, "-m", "orthocontact"]

@@ -28,7 +28,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
 from orthocontact import __version__  # noqa: E402
-from orthocontact.fmu import find_fmu  # noqa: E402
+from orthocontact.fmu.files import find_fmu
 
 MODEL = "OrthotropicContact"
 START, STOP, STEP, RELTOL = 0.0, 1.0, 1e-3, 1e-6

@@ -9,8 +9,10 @@ from pathlib import Path
 
 import numpy as np
 
-from orthocontact.fmu import ContactParams
-from orthocontact.identify import RigSetup, simulate_measurements, write_measurements
+from orthocontact.experiment.rig_setup import RigSetup
+from orthocontact.fmu.params import ContactParams
+from orthocontact.identification.job import simulate_measurements
+from orthocontact.identification.measurements import write_measurements
 
 OUT = Path(__file__).resolve().parents[1] / "scenarios" / "example_identification"
 TRUTH = ContactParams(0.408, 0.625, 12510.0, 10000.0)

@@ -13,34 +13,33 @@ The public API (see README, "Python API"):
     load_measurements     read and validate a measurement folder
     identify_parameters   identification from a measurement folder or set
 
-Modules, one job each:
-    fmu           -- access to the OrthotropicContact FMU through fmpy
-    closed_forms  -- the paper's closed-form results (eq. 1, 11, 25-29, 31, 33, 37-41)
-    rig           -- the carriage/block test rig coupled with the FMU
-    cmaster       -- the compiled master: the rig loop in C, batches of runs
-    scenarios     -- scenario files (TOML): parsing and validation
-    sweep         -- orientation sweeps over worker processes
-    tables        -- CSV and JSON files (a leaf: every layer may write results)
-    report        -- PNG figures and Markdown reports
-    identify      -- parameter identification with casadi
-    ssp           -- the experiment as an SSP 1.0 package (rig FMU + contact FMU)
-    errors        -- the one-line errors the command reports
-    cli           -- the `orthocontact` command
+Subpackages by layer, lowest first (tests/test_structure.py keeps every
+import going down):
+    errors, plausibility  -- one-line errors; the plausible ranges of inputs with a unit
+    fmu            -- the law's parameters, the installed FMUs, an FMU instance through fmpy
+    closed_forms   -- the paper's closed forms; the rig's steady state with its strip
+    rig            -- the carriage/block rig: harness (fmpy), compiled master (C), self-checks
+    experiment     -- scenario files, a lab's rig.toml, the experiment as an SSP package
+    runs           -- many runs: worker processes, batches, sweeps, Dask
+    output         -- CSV/JSON tables and PNG figures
+    identification -- measurements, the joint casadi fit, statistics, the job and its report
+    uq, reproduction -- uncertainty propagation; the paper reproduced, sensitivity
+    cli            -- the `orthocontact` command
 """
 
 __version__ = "0.3.0"
 
+from .experiment.scenario import load as load_scenario  # noqa: E402
 from .fmu import ContactFMU, ContactParams, find_fmu  # noqa: E402
 from .rig import Rig, RigResult  # noqa: E402
 from .rig import run as run_rig  # noqa: E402
-from .scenarios import load as load_scenario  # noqa: E402
 
 
 def load_measurements(folder):
     """Reads and validates a measurement folder (rig.toml and any of
     forces.csv, angles.csv, ramp.csv; angles in degrees, forces in N, travel in
     m).  Raises orthocontact.errors.InputError with a one-line message."""
-    from .identify import load_data
+    from .identification.measurements import load_data
     return load_data(folder)
 
 
@@ -49,7 +48,8 @@ def identify_parameters(data, validate: bool = True, workers=None, fmi_version: 
     stiffness [N/m] from a measurement folder or a set from load_measurements.
     Returns an Identification; .as_json() gives the values, standard errors and
     95 % intervals (what the command writes to identified.json)."""
-    from .identify import MeasurementSet, identify
+    from .identification.job import identify
+    from .identification.measurements import MeasurementSet
     if not isinstance(data, MeasurementSet):
         data = load_measurements(data)
     return identify(data, validate, workers, str(find_fmu(fmi_version=fmi_version)))

@@ -6,8 +6,7 @@ message names the likely mistake.
 
 One table serves every place a user types such a number: scenario files,
 rig.toml, the measurement CSVs, ContactParams and Rig.  README, "What the
-tool checks", lists the ranges.
-"""
+tool checks", lists the ranges."""
 from __future__ import annotations
 
 import math
@@ -57,6 +56,7 @@ QUANTITIES = {
                                  "a contact's tangential stiffness is 10-1e9 N/m", ((1e3, "N/mm"),)),
     "eps_ratio": Quantity("-", (0.0, 1e6), (1e-3, 1e3), "stiffness ratios eps1/eps2 are 1e-3-1e3"),
 }
+
 
 # An angle in degrees that equals a "round" angle in radians (a multiple of
 # pi/12 up to a full turn) was most likely typed in radians.

@@ -1,199 +1,20 @@
-"""Results for machines (CSV, JSON) and for people (PNG figures, Markdown).
-
-Every writer takes the folder to write into; the CLI hands it a staging
-folder and moves the files into place only when all of them are written."""
+"""report.md and report.json: every number the paper prints beside the value
+obtained here, with the kind of evidence each comparison is (closed-form,
+round-trip, prediction), the calibration chain and the sensitivity section."""
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 
-from . import closed_forms as cf
-from .scenarios import Scenario
-from .tables import write_csv, write_json  # noqa: F401  (re-exported: report.write_json)
-from .figures import _draw_here, _finish, _plt, _style, _swept_label
-from .rig_checks import SETTLE_TOL_DEG, STEADY_TOL_DEG
-from .sweep import StepStudyResult, SweepResult, closed_form_phi_deg_array
-
-
-FLAT_DEG = 1e-9  # a closed form below this everywhere is flat: no extremum
-
-
-def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
-    """sweep.csv, trajectories.csv, three figures; returns the summary.
-    draw(fn, *args) draws a figure (default: here and now; a FigureDrawer
-    draws them in worker processes)."""
-    rows = []
-    ch = res.checks
-    for i, (a, phi, c, d) in enumerate(zip(res.angles_deg, res.phi_deg, res.phi_closed_deg,
-                                           res.drive_mean_N)):
-        p = sc.params_at(a)
-        f = res.figures[i]
-        rows.append((float(a), math.degrees(p.alpha), math.degrees(p.beta), float(phi), float(c),
-                     float(phi - c), float(d), float(f.phi_head_deg), float(f.phi_tail_deg),
-                     float(ch.steady_deg[i]), ch.status()[i]))
-    write_csv(out / "sweep.csv", ["angle_deg", "alpha_deg", "beta_deg", "phi_deg", "phi_closed_deg",
-                                  "deviation_deg", "drive_mean_N", "phi_head_deg", "phi_tail_deg",
-                                  "phi_steady_deg", "check"], rows)
-    traj_rows = []
-    for a, r in res.trajectories.items():
-        for i in range(len(r.t)):
-            traj_rows.append((a, float(r.t[i]), float(r.x1[i]), float(r.x2[i]), float(r.T1[i]),
-                              float(r.T2[i]), float(r.drive[i]), int(r.state[i])))
-    write_csv(out / "trajectories.csv", ["angle_deg", "t_s", "x1_m", "x2_m", "T1_N", "T2_N",
-                                         "drive_N", "contact_state"], traj_rows)
-
-    e = res.extremum
-    closed_ext = _closed_extremum(sc, res)
-    # Flat when the paper's closed form is: then there is no extremum to show,
-    # however far a short dynamic run has settled.
-    flat = abs(closed_ext["phi_deg"]) < FLAT_DEG
-    draw = draw or _draw_here
-    draw(_figure_phi, sc, res, out / "phi_vs_angle.png", flat)
-    draw(_figure_paths, sc, res, out / "trajectories.png", "x2")
-    draw(_figure_paths, sc, res, out / "force_vs_travel.png", "drive")
-
-    summary = {
-        "scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
-        "rule": sc.law.rule, "n_angles": int(len(res.angles_deg)), "workers": res.workers,
-        "seconds": round(res.seconds, 3),
-        # a flat curve (the closed form is zero everywhere) has no extremum to report
-        "extremum": None if flat else {"angle_deg": e["angle_deg"], "phi_deg": e["phi_deg"],
-                                       **({"other_rule": e["other_rule"]} if "other_rule" in e else {})},
-        "flat": flat,
-        "extremum_refined": bool(e.get("refined", False)) and not flat,
-        "grid_extremum": res.grid_extremum,
-        "max_abs_phi_deg": float(np.max(np.abs(res.phi_deg))),
-        "closed_form": sc.closed_form,
-        "closed_form_extremum": closed_ext,
-        "max_deviation_deg": res.max_deviation_deg,
-        "angle_convention": "counterclockwise from X1; phi = atan(dx2/dx1) of the fitted path",
-        "checks": checks_summary(res.checks, res.angles_deg, res.phi_deg, res.warning(sc)),
-    }
-    drives = {}
-    for target in (0.0, 90.0):
-        hit = np.where(np.abs(res.angles_deg - target) < 1e-9)[0]
-        if len(hit):
-            drives[f"{target:g}"] = float(res.drive_mean_N[hit[0]])
-    if drives:
-        summary["drive_mean_N"] = drives
-        if math.isclose(math.degrees(sc.beta_offset) % 180.0, 0.0, abs_tol=1e-9) and len(drives) == 2:
-            # Sliding along a friction axis at 0 and 90 deg: eq. (1).
-            r = sc.rig
-            summary["mu_from_drive"] = {
-                "mu1": cf.eq1_mu(drives["0"], r.f_int_N, r.mass_kg, r.g),
-                "mu2": cf.eq1_mu(drives["90"], r.f_int_N, r.mass_kg, r.g)}
-    write_json(out / "summary.json", summary)
-    return summary
-
-
-def checks_summary(checks, angles_deg, phi_deg, warning: str | None) -> dict:
-    """summary.json's "checks": the tolerances, the flagged angles and the
-    warning line (rig_checks)."""
-    angles = np.asarray(angles_deg, dtype=float)
-    dev = np.abs(np.asarray(phi_deg, dtype=float) - checks.steady_deg)
-    return {
-        "ok": warning is None,   # eq20 runs are listed below but not warned about (rig_checks)
-        "settle_tolerance_deg": SETTLE_TOL_DEG, "steady_tolerance_deg": STEADY_TOL_DEG,
-        "unsettled_angles_deg": [float(a) for a in angles[~checks.settled]],
-        "off_steady_angles_deg": [float(a) for a in angles[~checks.on_steady]],
-        "max_halves_deg": float(np.max(np.abs(checks.halves_deg))) if len(angles) else 0.0,
-        "max_steady_deviation_deg": float(np.nanmax(dev)) if np.any(np.isfinite(dev)) else None,
-        "warning": warning,
-    }
-
-
-def _figure_phi(sc: Scenario, res: SweepResult, path: Path, flat: bool) -> None:
-    plt = _plt()
-    fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 721)
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    ax.plot(fine, closed_form_phi_deg_array(sc, fine), "-", color="0.3",
-            label=f"closed form ({sc.closed_form})")
-    ax.plot(res.angles_deg, res.phi_deg, "o", ms=3.5, color="C0", label=f"rig + FMU ({sc.rig.mode})")
-    bad = ~res.checks.ok
-    if bad.any():
-        ax.plot(res.angles_deg[bad], res.phi_deg[bad], "x", ms=8, mew=1.6, color="C3",
-                label=f"not steady sliding ({int(bad.sum())}): see summary.json")
-    e = res.extremum
-    if not flat:
-        ax.plot([e["angle_deg"]], [e["phi_deg"]], "*", ms=12, color="C3",
-                label=f"extremum {e['phi_deg']:.2f}° at {e['angle_deg']:.2f}°")
-    ax.set_xlabel(f"{_swept_label(sc)} [deg]")
-    ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
-    _finish(fig, ax, path, sc.title)
-
-
-def _figure_paths(sc: Scenario, res: SweepResult, path: Path, what: str) -> None:
-    """The recorded runs: the block's path (what = "x2") or the driving
-    force (what = "drive") over the travel."""
-    plt = _plt()
-    legend_title = _swept_label(sc).replace("swept angle a: ", "a, with ")
-    fig, ax = plt.subplots(figsize=(8, 4.5))
-    for i, (a, r) in enumerate(res.trajectories.items()):
-        y = r.x2 * 1e3 if what == "x2" else r.drive
-        ax.plot(r.x1 * 1e3, y, label=f"a = {a:g}°", **_style(i, len(r.x1), len(res.trajectories)))
-    if what == "x2":
-        ax.set_xlabel("x1 [mm] (driving direction)")
-        ax.set_ylabel("x2 [mm]")
-        ax.set_aspect("equal", adjustable="datalim")
-        title = f"{sc.title}: block trajectories"
-    else:
-        ax.set_xlabel("travel x1 [mm]")
-        ax.set_ylabel("driving force (sensor) [N]")
-        title = f"{sc.title}: driving force"
-    _finish(fig, ax, path, title, legend_title, outside=True)
-
-
-def _closed_extremum(sc: Scenario, res: SweepResult) -> dict:
-    fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 90001)
-    vals = closed_form_phi_deg_array(sc, fine)
-    k = int(np.argmax(np.abs(vals)))
-    return {"angle_deg": float(fine[k]), "phi_deg": float(vals[k])}
-
-
-def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path, draw=None) -> dict:
-    write_csv(out / "step_study.csv", ["rule", "step_s", "phi_deg", "phi_closed_deg", "deviation_deg",
-                                       "drive_mean_N", "check"],
-              [(r["rule"], r["step_s"], r["phi_deg"], r["phi_closed_deg"], r["deviation_deg"],
-                r["drive_mean_N"], r["check"]) for r in res.rows])
-    (draw or _draw_here)(_figure_step_study, sc, res, out / "step_study.png")
-    rules = list(dict.fromkeys(r["rule"] for r in res.rows))
-    per_rule = {}
-    for rule in rules:
-        rs = [r for r in res.rows if r["rule"] == rule]
-        phis = [r["phi_deg"] for r in rs]
-        per_rule[rule] = {"phi_deg": dict((f"{r['step_s']:g}", r["phi_deg"]) for r in rs),
-                          "spread_deg": max(phis) - min(phis),
-                          "max_deviation_deg": max(abs(r["deviation_deg"]) for r in rs)}
-    summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
-               "angle_deg": res.angle_deg, "rules": per_rule, "seconds": round(res.seconds, 3),
-               "checks": checks_summary(res.checks, [res.angle_deg] * len(res.rows),
-                                        [r["phi_deg"] for r in res.rows], res.warning(sc))}
-    write_json(out / "summary.json", summary)
-    return summary
-
-
-def _figure_step_study(sc: Scenario, res: StepStudyResult, path: Path) -> None:
-    plt = _plt()
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    rules = list(dict.fromkeys(r["rule"] for r in res.rows))
-    for i, rule in enumerate(rules):
-        rs = [r for r in res.rows if r["rule"] == rule]
-        st = _style(i, len(rs))
-        ax.plot([r["step_s"] for r in rs], [r["phi_deg"] for r in rs], color=st["color"],
-                marker=st["marker"], ls="-", label=f"{rule}: FMU in the rig")
-        ax.axhline(rs[0]["phi_closed_deg"], color=st["color"], ls=":", lw=1.2,
-                   label=f"{rule}: closed form")
-    ax.set_xscale("log")
-    ax.set_xlabel("communication step [s]")
-    ax.set_ylabel("steady trajectory angle φ [deg] (counterclockwise)")
-    _finish(fig, ax, path, sc.title, "rule (colour)", outside=True)
-
+from ..experiment.scenario import Scenario
+from ..output.tables import write_json
 
 # -- the paper reproduction report ---------------------------------------------------
 
 KINDS = ("closed-form", "round-trip", "prediction")
+
+
 KIND_MEANING = {
     "closed-form": "the FMU through the rig harness against the number the paper computes with "
                    "its own formula",
@@ -254,14 +75,20 @@ def paper_rows(sc: Scenario, summary: dict) -> list[dict]:
 
 # The paper's measured inputs of the calibration (sec. 2.2, 4.6).
 PAPER_FORCES_N = (12.50, 16.50)     # driving force at mat angle 0 and 90 deg
+
+
 PAPER_PHI_MAX_DEG = 11.5            # in the paper's convention (clockwise)
+
+
 PAPER_RIG = {"mass_kg": 1.875, "f_int_N": 5.0}
 
 
 def _paper_calibration(mu1=None, mu2=None):
     from pathlib import Path
-    from .estimators import eq1, max_rule
-    from .measurements import MeasurementSet, RigSetup
+
+    from ..experiment.rig_setup import RigSetup
+    from ..identification.estimators import eq1, max_rule
+    from ..identification.measurements import MeasurementSet
     data = MeasurementSet(Path("paper"), RigSetup(**PAPER_RIG),
                           forces=np.array([[0.0, PAPER_FORCES_N[0]], [90.0, PAPER_FORCES_N[1]]]),
                           angles=np.array([[39.2, -PAPER_PHI_MAX_DEG]]))  # counterclockwise sign

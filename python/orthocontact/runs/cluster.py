@@ -10,8 +10,7 @@ its inputs, so the scheduler may run a chunk again (a lost worker's chunks
 are recomputed on the others) and the results stay identical to a serial
 run.
 
-The workers need this package installed (the compiled master ships with it).
-"""
+The workers need this package installed (the compiled master ships with it)."""
 from __future__ import annotations
 
 import hashlib
@@ -19,7 +18,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from .errors import InputError
+from ..errors import InputError
 
 # -- the worker's side ------------------------------------------------------------
 
@@ -31,7 +30,7 @@ def _master_for(fmu):
     unpacked once per worker process."""
     digest, name, blob = fmu
     if digest not in _masters:
-        from .cmaster import CMaster
+        from ..rig.compiled import CMaster
         folder = Path(tempfile.gettempdir()) / f"orthocontact-fmu-{digest[:16]}-{os.getpid()}"
         folder.mkdir(exist_ok=True)
         path = folder / name

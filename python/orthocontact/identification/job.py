@@ -5,8 +5,7 @@ pre-sliding ramp, with Gauss-Newton standard errors and 95% intervals.
 The job, by layer: measurements (data and files) -> estimators (the paper's
 formulas and the joint fit) -> uncertainty (statistics) -> here (the whole
 identification, its validation on the FMU, its JSON) -> identify_report
-(figure, Markdown, summary).  Units: N, m, deg.
-"""
+(figure, Markdown, summary).  Units: N, m, deg."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -14,11 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .estimators import (REPORTED, JointFit, _start_values, eq1, eq40_fit, identifiability,
-                         joint_fit, max_rule)
-from .fmu import ContactParams
-from .measurements import MeasurementSet, RigSetup, load_data, write_measurements
-from .uncertainty import json_dof, res_stats
+from ..experiment.rig_setup import RigSetup
+from ..fmu.params import ContactParams
+from .estimators import REPORTED, JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
+from .measurements import MeasurementSet, load_data, write_measurements
+from .statistics import json_dof, res_stats
 
 # The whole job here; its parts importable from here as before.
 __all__ = ["Identification", "identify", "run", "validate_with_fmu", "simulate_measurements",
@@ -32,9 +31,10 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     included (the estimated c_strip where it was fitted), and returns the
     residuals data - simulation and the runs' self-checks (rig_checks):
     "warning" holds the user's line if a run was not steady sliding."""
-    from .rig import run
-    from .rig_checks import check_runs, warning_line
-    from .sweep import default_workers, run_many
+    from ..rig.checks import check_runs, warning_line
+    from ..rig.harness import run
+    from ..runs.batch import run_many
+    from ..runs.pool import default_workers
     rig = data.rig
     mu1, mu2 = values.get("mu1"), values.get("mu2")
     if mu1 is None:
@@ -155,7 +155,7 @@ class Identification:
 
 def identify(data: MeasurementSet, validate: bool = True, workers=None,
              fmu_path=None) -> Identification:
-    start = _start_values(data)
+    start = start_values(data)
     fit = joint_fit(data, start)
     mu1, mu2 = fit.values.get("mu1"), fit.values.get("mu2")
     mr = max_rule(data, mu1, mu2)
@@ -167,12 +167,12 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
 def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
         fmu_path=None) -> Identification:
     """identify() and write identified.json, fit.png, identified.md into out."""
-    from .tables import write_json
-    from .identify_report import _figure, _markdown
+    from ..output.tables import write_json
+    from .report import fit_figure, markdown_text
     res = identify(data, validate, workers, fmu_path)
     write_json(out / "identified.json", res.as_json())
-    _figure(res, out / "fit.png")
-    (out / "identified.md").write_text(_markdown(res))
+    fit_figure(res, out / "fit.png")
+    (out / "identified.md").write_text(markdown_text(res))
     return res
 
 
@@ -183,8 +183,8 @@ def simulate_measurements(truth: ContactParams, rig: RigSetup, force_angles, ang
     and fitted trajectory angles at the given orientations [deg], and the
     start of a pull at rig.ramp_angle_deg up to ramp_max_x1_m [m].
     truth.alpha/beta are ignored: the rig's geometry sets them per angle."""
-    from .rig import run
-    from .sweep import run_many
+    from ..rig.harness import run
+    from ..runs.batch import run_many
     h = rig.harness(mode="quasistatic", step_s=1e-3, travel_m=0.2)
     angles = sorted(set(force_angles) | set(angle_angles))
     sims = dict(zip(angles, run_many([(rig.params_at(truth, a), h) for a in angles], workers, None,
@@ -202,5 +202,5 @@ def simulate_measurements(truth: ContactParams, rig: RigSetup, force_angles, ang
 
 def summary_text(res: Identification) -> str:
     """The terminal summary of an identification (identify_report.summary_text)."""
-    from .identify_report import summary_text as text
+    from .report import summary_text as text
     return text(res)

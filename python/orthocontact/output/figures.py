@@ -5,17 +5,17 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .scenarios import Scenario
+from ..experiment.scenario import Scenario
 
 
-def _plt():
+def pyplot():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     return plt
 
 
-def _finish(fig, ax, path: Path, title: str, legend_title: str | None = None,
+def finish(fig, ax, path: Path, title: str, legend_title: str | None = None,
             outside: bool = False) -> None:
     """The common end of every figure: title, grid, legend, file, close.
     outside: the legend goes right of the axes, where it cannot cover data."""
@@ -33,16 +33,18 @@ def _finish(fig, ax, path: Path, title: str, legend_title: str | None = None,
     fig.subplots_adjust(left=0.75 / width, bottom=0.12, top=0.93,
                         right=1 - (2.0 if outside else 0.2) / width)
     fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
-    _plt().close(fig)
+    pyplot().close(fig)
 
 
 # Lines that lie on top of each other stay distinguishable: each curve gets its
 # own marker and dash pattern besides its colour.
 _MARKERS = ("o", "s", "^", "v", "D", "P", "X", "*", "<", ">")
+
+
 _DASHES = ("-", "--", "-.", ":")
 
 
-def _style(i: int, n_points: int, n_lines: int = 8) -> dict:
+def curve_style(i: int, n_points: int, n_lines: int = 8) -> dict:
     """Curve i of n_lines: colour, marker, dash pattern, and markers staggered
     along the curve so that identical curves show every one of them."""
     every = max(1, n_points // 8)
@@ -51,7 +53,7 @@ def _style(i: int, n_points: int, n_lines: int = 8) -> dict:
             "color": f"C{i % 10}"}
 
 
-def _swept_label(sc: Scenario) -> str:
+def swept_label(sc: Scenario) -> str:
     """What the swept angle a is, in terms of the law's axes."""
     def rel(off):
         d = math.degrees(off)
@@ -59,14 +61,14 @@ def _swept_label(sc: Scenario) -> str:
     return f"swept angle a: α = {rel(sc.alpha_offset)}, β = {rel(sc.beta_offset)}"
 
 
-def _draw_here(fn, *args):
+def draw_here(fn, *args):
     fn(*args)
 
 
 def _init_drawer():
-    from .sweep import _worker_signals
-    _worker_signals()
-    _plt()  # matplotlib's import, once per worker, while the rig still runs
+    from ..runs.pool import worker_signals
+    worker_signals()
+    pyplot()  # matplotlib's import, once per worker, while the rig still runs
 
 
 class _Done:
@@ -90,7 +92,7 @@ class FigureDrawer:
 
     def __enter__(self):
         if self.workers > 1:
-            from .sweep import process_pool
+            from ..runs.pool import process_pool
             self._ex = process_pool(self.workers, _init_drawer)
             # Start the workers now, so that matplotlib's import in them
             # overlaps the first rig runs instead of delaying the first figure.
@@ -112,7 +114,7 @@ class FigureDrawer:
     def __exit__(self, kind, value, tb):
         if self._ex is None:
             return False
-        from .sweep import stop_pool
+        from ..runs.pool import stop_pool
         if kind is not None:
             stop_pool(self._ex)
             return False

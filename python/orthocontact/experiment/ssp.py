@@ -16,19 +16,25 @@ import zipfile
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from .fmu import RULES, RIG_MODEL_IDENTIFIER, MODEL_IDENTIFIER, find_fmu
-from .scenarios import Scenario
+from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
+from ..fmu.params import RULES
+from .scenario import Scenario
 
 NS = ('xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
       'xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" '
       'xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues" '
       'xmlns:osp="http://opensimulationplatform.com/SSP/OSPAnnotations"')
 
+
 RIG_CONNECTORS = (("T1", "input"), ("T2", "input"), ("u1", "output"), ("u2", "output"),
                   ("N", "output"), ("x1", "output"), ("x2", "output"), ("driveForce", "output"))
+
+
 CONTACT_CONNECTORS = (("u1", "input"), ("u2", "input"), ("N", "input"), ("T1", "output"),
                       ("T2", "output"), ("s1", "output"), ("s2", "output"),
                       ("dissipatedEnergy", "output"))
+
+
 CONNECTIONS = (("rig", "u1", "contact", "u1"), ("rig", "u2", "contact", "u2"),
                ("rig", "N", "contact", "N"), ("contact", "T1", "rig", "T1"),
                ("contact", "T2", "rig", "T2"))

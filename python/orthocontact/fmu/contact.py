@@ -2,168 +2,18 @@
 through fmpy.
 
 Units: displacements u, slip s in m; forces N, T in N; stiffness eps in N/m;
-angles alpha, beta in rad; energy in J.
-"""
+angles alpha, beta in rad; energy in J."""
 from __future__ import annotations
 
 import ctypes
-import dataclasses
-import math
-import os
-import sys
-from dataclasses import dataclass
 from functools import partial
-from pathlib import Path
 
-from fmpy import extract, read_model_description
-
-MODEL_IDENTIFIER = "OrthotropicContact"
-FMU_ENV = {2: "ORTHOCONTACT_FMU", 3: "ORTHOCONTACT_FMU3"}
-FMI_VERSIONS = (2, 3)
-
-RULES = {"associated": 1, "coupled": 2, "eq20": 3}
+from .files import MODEL_IDENTIFIER, find_fmu, model_description, unzipped
+from .params import RULES, ContactParams
 
 
 class FMUError(RuntimeError):
     """An FMI call returned an error; the message carries what the FMU logged."""
-
-
-RIG_MODEL_IDENTIFIER = "CarriageBlock"
-
-
-def installed_file(rel) -> Path | None:
-    """A file installed with the package, `rel` relative to it: beside this
-    module, or (an editable install, whose code stays in the source tree)
-    under `orthocontact/` in a site-packages folder on sys.path."""
-    here = Path(__file__).parent / rel
-    if here.is_file():
-        return here
-    for entry in sys.path:
-        candidate = Path(entry or ".") / "orthocontact" / rel
-        if candidate.is_file():
-            return candidate
-    return None
-
-
-def _installed(fmi_version: int, model: str = MODEL_IDENTIFIER):
-    """The FMU of `model` installed with the package, or None."""
-    return installed_file(Path(f"fmi{fmi_version}") / (model + ".fmu"))
-
-
-def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
-             model: str = MODEL_IDENTIFIER) -> Path:
-    """The FMU to use: `path`, else $ORTHOCONTACT_FMU ($ORTHOCONTACT_FMU3 for
-    FMI 3.0), else the one installed with the package (regular or editable
-    install).  fmi_version: 2 (default) or 3; model: "OrthotropicContact" (the
-    contact, default) or "CarriageBlock" (the rig of the experiment).  Raises
-    FileNotFoundError with a one-line message saying what to do."""
-    if fmi_version not in FMI_VERSIONS:
-        raise ValueError(f"fmi_version must be 2 or 3, got {fmi_version!r}")
-    env = FMU_ENV[fmi_version] if model == MODEL_IDENTIFIER else None
-    for given, where in ((path, "given path"), (os.environ.get(env) if env else None, f"${env}")):
-        if given:
-            if not Path(given).is_file():
-                raise FileNotFoundError(f"FMU not found: {given} ({where})")
-            return Path(given)
-    installed = _installed(fmi_version, model)
-    if installed is not None:
-        return installed
-    raise FileNotFoundError(
-        f"the FMI {fmi_version}.0 {model}.fmu is not installed with the package; run "
-        f"`pip install .` (or `pip install -e .`) from the repository, which builds it"
-        + (f", or set {env}" if env else ""))
-
-
-ANGLE_LIMIT_RAD = 4 * math.pi   # the FMU's range of alpha and beta [rad]
-
-
-@dataclass(frozen=True)
-class ContactParams:
-    """Parameters of the law.
-
-    mu1, mu2   friction coefficients along the friction axes [-]
-    eps1, eps2 tangential stiffnesses along the adhesion axes [N/m]
-    alpha      angle of adhesion axis 1 from X1, counterclockwise [rad]
-    beta       angle of friction axis 1 from X1, counterclockwise [rad]
-    rule       "associated", "coupled" or "eq20"
-
-    The angles are in radians, as the FMU takes them; ContactParams.from_degrees
-    takes degrees, as scenario files do.  Invalid values raise ValueError.
-    """
-    mu1: float
-    mu2: float
-    eps1: float
-    eps2: float
-    alpha: float = 0.0
-    beta: float = 0.0
-    rule: str = "coupled"
-
-    def __post_init__(self):
-        if self.rule not in RULES:
-            raise ValueError(f"ContactParams: rule must be one of {', '.join(map(repr, RULES))}, "
-                             f"got {self.rule!r}")
-        for name in ("mu1", "mu2", "eps1", "eps2"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-                raise ValueError(f"ContactParams: {name} must be a finite number > 0, got {v!r}")
-        for name in ("alpha", "beta"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise ValueError(f"ContactParams: {name} [rad] must be a finite number, got {v!r}")
-            if abs(v) > ANGLE_LIMIT_RAD:
-                raise ValueError(f"ContactParams: {name} = {v!r} rad is outside [-4 pi, 4 pi] rad, the FMU's "
-                                 f"range; degrees? ({name} is in rad: ContactParams.from_degrees takes deg)")
-
-    @classmethod
-    def from_degrees(cls, mu1: float, mu2: float, eps1: float, eps2: float,
-                     alpha_deg: float = 0.0, beta_deg: float = 0.0,
-                     rule: str = "coupled") -> "ContactParams":
-        """The same parameters with the axis angles in degrees (as scenario
-        files give them): alpha_deg, beta_deg counterclockwise from X1."""
-        return cls(mu1, mu2, eps1, eps2, math.radians(alpha_deg), math.radians(beta_deg), rule)
-
-    @property
-    def alpha_deg(self) -> float:
-        """alpha in degrees."""
-        return math.degrees(self.alpha)
-
-    @property
-    def beta_deg(self) -> float:
-        """beta in degrees."""
-        return math.degrees(self.beta)
-
-    def replace(self, **kw) -> "ContactParams":
-        return dataclasses.replace(self, **kw)
-
-
-_extracted: dict[Path, str] = {}
-
-
-def _unzipped(path: Path) -> str:
-    """One extraction per FMU file and process (instances share it)."""
-    key = path.resolve()
-    if key not in _extracted:
-        _extracted[key] = extract(str(key))
-    return _extracted[key]
-
-
-_descriptions: dict = {}
-
-
-def model_description(path):
-    """fmpy's reading of the FMU's modelDescription.xml, parsed once per
-    file version and process (a reproduction asks for it dozens of times)."""
-    p = Path(path).resolve()
-    st = p.stat()
-    key = (p, st.st_mtime_ns, st.st_size)
-    if key not in _descriptions:
-        _descriptions[key] = read_model_description(str(p))
-    return _descriptions[key]
-
-
-def fmi_version_of(path) -> int:
-    """2 or 3: the FMI version of the FMU at `path`."""
-    return int(model_description(path).fmiVersion.split(".")[0])
 
 
 class ContactFMU:
@@ -213,9 +63,8 @@ class ContactFMU:
         self.messages.append((status, category.decode(), message.decode(errors="replace")))
 
     def _open_fmi2(self, path, name, logging_on):
-        from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE,
-                               fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
-                               fmi2CallbackLoggerTYPE, free)
+        from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
         from fmpy.logging import addLoggerProxy
 
         def log(env, instance, status, category, message):
@@ -226,7 +75,7 @@ class ContactFMU:
         cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         addLoggerProxy(ctypes.byref(cb))  # formats the printf-style message in C
         self._callbacks = (cb, log)
-        s = FMU2Slave(guid=self.model_description.guid, unzipDirectory=_unzipped(path),
+        s = FMU2Slave(guid=self.model_description.guid, unzipDirectory=unzipped(path),
                       modelIdentifier=MODEL_IDENTIFIER, instanceName=name)
         s.instantiate(callbacks=cb, loggingOn=logging_on)
         self._slave, c, f = s, s.component, s._functions  # raw ctypes: no exceptions, no allocation
@@ -248,7 +97,7 @@ class ContactFMU:
         def log(env, status, category, message):
             self._log(status, category, message)
         self._callbacks = (log,)
-        s = FMU3Slave(guid=self.model_description.guid, unzipDirectory=_unzipped(path),
+        s = FMU3Slave(guid=self.model_description.guid, unzipDirectory=unzipped(path),
                       modelIdentifier=MODEL_IDENTIFIER, instanceName=name)
         s.instantiate(loggingOn=logging_on, logMessage=log)
         self._slave, c, f = s, s.component, s._functions

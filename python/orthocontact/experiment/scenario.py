@@ -4,8 +4,7 @@ A scenario says what to simulate and, for the paper's analyses, which
 published numbers to compare with.  Every key is checked: an unknown key, a
 wrong type or an out-of-range value raises ScenarioError, whose message is
 one line naming the file, the key and what was expected.  See
-scenarios/README.md for the format.
-"""
+scenarios/README.md for the format."""
 from __future__ import annotations
 
 import math
@@ -13,17 +12,20 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .. import plausibility
+from ..closed_forms.paper import G_STANDARD, isotropic_eps_ratio
+from ..fmu.params import RULES, ContactParams
+from ..rig.harness import MODES, Rig
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
 
-from . import plausibility
-from .closed_forms import G_STANDARD, isotropic_eps_ratio
-from .fmu import RULES, ContactParams
-from .rig import MODES, Rig
 
 KINDS = ("sweep", "step_study")
+
+
 CLOSED_FORMS = ("general", "eq11", "eq25", "eq31", "eq33", "mat")
 
 
@@ -45,6 +47,8 @@ class ScenarioError(Exception):
 
 
 _REQ = object()  # marks a required key
+
+
 # Where the quasi-static rig has settled: over 300 random laws with strip
 # terms, |phi - closed form| < 3e-8 deg (99th percentile) with the fit
 # starting 10 elastic lengths in, < 1e-3 deg at 5, up to 0.4 deg at 2.
@@ -105,12 +109,20 @@ def _eps_ratio(v):
 # A number listed in calibrated_on is a round trip: the scenario's parameters
 # were derived from it.
 EVIDENCE = ("closed-form", "prediction")
+
+
 PAPER_NUMBERS = ("extremum_angle_deg", "extremum_phi_deg", "max_abs_phi_deg", "drive_0_N",
                  "drive_90_N", "mu1", "mu2", "phi_max_deg")
 
+
 POS = _num(0, lo_open=True)
+
+
 NONNEG = _num(0)
+
+
 ANGLE = _num(-360, 360)
+
 
 SCHEMA = {
     "": {"name": (_str, _REQ), "title": (_str, ""), "kind": (_choice(KINDS), _REQ),
@@ -136,6 +148,8 @@ SCHEMA = {
               "source": (_str, ""), "evidence": (_choice(EVIDENCE), "prediction"),
               "calibrated_on": (_list(_choice(PAPER_NUMBERS), min_len=0), [])},
 }
+
+
 SECTION_FOR_KIND = {"sweep": {"sweep"}, "step_study": {"study"}}
 
 

@@ -5,8 +5,7 @@ Welch-Satterthwaite intervals.
 
 Models (closed_forms): driving force F_int + m g / sqrt(f11) (friction
 ellipse, eq. 1 at 0 and 90 deg); steady angle eq. (10)/(23) from the tensors;
-stick branch of the ramp F_int + k x1 with k = 1/(B^-1)_11.  Units: N, m, deg.
-"""
+stick branch of the ramp F_int + k x1 with k = 1/(B^-1)_11.  Units: N, m, deg."""
 from __future__ import annotations
 
 import math
@@ -14,17 +13,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import closed_forms as cf
-from .errors import InputError
-from .measurements import MeasurementSet, RigSetup, _beta_key
-from .strip import strip_steady_state, strip_regimes
-from .uncertainty import t975
-
+from .. import closed_forms as cf
+from ..errors import InputError
+from ..experiment.rig_setup import RigSetup
+from .measurements import MeasurementSet, friction_axis_key
+from .statistics import t975
+from .strip_model import strip_regimes, strip_steady_state
 
 REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
 
 
-def _reported(j: dict) -> list:
+def reported_names(j: dict) -> list:
     """The parameters a summary lists: the five, l1/l2 when angles alone were
     fitted, and the strip's viscosity when it was estimated."""
     return list(REPORTED) + [n for n in ("l1_l2_ratio", "c_strip") if n in j]
@@ -35,7 +34,7 @@ def eq1(data: MeasurementSet) -> dict | None:
     if data.forces is None:
         return None
     a, f = data.forces[:, 0], data.forces[:, 1]
-    key = _beta_key(data.rig, a)
+    key = friction_axis_key(data.rig, a)
     on1, on2 = np.isclose(key, 1.0, atol=1e-12), np.isclose(key, 0.0, atol=1e-12)
     if not on1.any() or not on2.any():
         return None
@@ -341,7 +340,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
                     dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof)
 
 
-def _start_values(data: MeasurementSet) -> dict:
+def start_values(data: MeasurementSet) -> dict:
     """Starting point: eq. (1) or a one-parameter-per-axis guess, the
     maximum rule, a straight line through the ramp's stick branch."""
     rig = data.rig

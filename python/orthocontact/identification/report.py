@@ -8,11 +8,11 @@ from pathlib import Path
 
 import numpy as np
 
-from . import closed_forms as cf
-from .estimators import _reported
+from .. import closed_forms as cf
+from .estimators import reported_names
 
 
-def _figure(res, path: Path):
+def fit_figure(res, path: Path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -66,7 +66,7 @@ def _figure(res, path: Path):
 def summary_text(res) -> str:
     j = res.as_json()
     lines = []
-    for n in _reported(j):
+    for n in reported_names(j):
         e = j[n]
         if "value" in e:
             lines.append(f"{n:>9} = {e['value']:.6g} ± {e['stderr']:.2g}  (95%: {e['ci95'][0]:.6g} .. {e['ci95'][1]:.6g})")
@@ -81,14 +81,14 @@ def summary_text(res) -> str:
     return "\n".join(lines)
 
 
-def _markdown(res) -> str:
+def markdown_text(res) -> str:
     j = res.as_json()
     L = [f"# Identification: {res.data.folder.name}", "",
          f"Data: {j['data']['forces']} forces, {j['data']['angles']} angles, {j['data']['ramp']} ramp points. "
          f"Rule {j['assumptions']['rule']}, alpha = angle {j['assumptions']['alpha_offset_deg']:+g}°, "
          f"beta = angle {j['assumptions']['beta_offset_deg']:+g}°.", "",
          "| parameter | value | std. error | 95% interval |", "|---|---|---|---|"]
-    for n in _reported(j):
+    for n in reported_names(j):
         e = j[n]
         if "value" in e:
             L.append(f"| {n} | {e['value']:.6g} | {e['stderr']:.3g} | {e['ci95'][0]:.6g} … {e['ci95'][1]:.6g} |")

@@ -17,10 +17,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .fmu import (MODEL_IDENTIFIER, RULES, ContactParams, FMUError, _unzipped, fmi_version_of,
-                  installed_file, model_description)
-from .rig import Rig, RigResult, RunFigures
-
+from ..fmu.contact import FMUError
+from ..fmu.files import MODEL_IDENTIFIER, fmi_version_of, installed_file, model_description, unzipped
+from ..fmu.params import RULES, ContactParams
+from .harness import Rig, RigResult, RunFigures
 
 _CTYPES = {"double": ctypes.c_double, "int": ctypes.c_int, "long": ctypes.c_long}
 
@@ -62,6 +62,8 @@ def _library_path() -> Path:
 
 
 _lib = None
+
+
 _Contact = _Rig = _Figures = None
 
 
@@ -135,7 +137,7 @@ class CMaster:
             raise ValueError(f"{path}: the compiled master runs FMI 2.0 FMUs; use --master fmpy "
                              "for FMI 3.0")
         md = model_description(path)
-        folder = Path(_unzipped(path))
+        folder = Path(unzipped(path))
         binary = folder / "binaries" / "linux64" / (MODEL_IDENTIFIER + ".so")
         if sys.platform == "darwin":
             binary = folder / "binaries" / "darwin64" / (MODEL_IDENTIFIER + ".dylib")

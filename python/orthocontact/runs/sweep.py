@@ -1,24 +1,21 @@
-"""Orientation sweeps and step-size studies of the rig, run over local
-worker processes.  Each worker holds its own FMU instance and resets it for
-every run, so results do not depend on the number of workers or the order."""
+"""A scenario's orientation sweep (with its extremum refined on the rig
+itself and the trajectories recorded) and its step-size study; the closed
+form the scenario names, at its angles."""
 from __future__ import annotations
 
 import math
-import os
-import signal
-import sys
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
-from multiprocessing import get_context
 
 import numpy as np
 
-from . import closed_forms as cf
-from .fmu import ContactFMU, ContactParams
-from .rig import Rig, RunFigures, run
-from .rig_checks import RunChecks, check_runs, warning_line
-from .scenarios import Scenario, ScenarioError
+from .. import closed_forms as cf
+from ..experiment.scenario import Scenario, ScenarioError
+from ..fmu.contact import ContactFMU
+from ..rig.checks import RunChecks, check_runs, warning_line
+from ..rig.harness import run
+from .batch import resolve_master, run_many
+from .pool import default_workers
 
 # -- closed form for a scenario --------------------------------------------------
 
@@ -80,217 +77,6 @@ def _eq25_eigenvalues(sc: Scenario) -> tuple[float, float]:
         return cf.eigen_ratio_case5(law.mu1, law.mu2, law.eps1, law.eps2)
     raise ScenarioError(sc.path, "geometry.closed_form",
                         "eq25 only with beta_offset - alpha_offset = 0 or 90 deg")
-
-
-# -- workers ----------------------------------------------------------------------
-
-_worker_fmu: ContactFMU | None = None
-
-
-_STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
-
-
-def _worker_signals():
-    # The main process decides about interrupts: Ctrl-C reaches the whole
-    # process group, and a worker must not die with its own traceback.
-    # A forked worker starts with these signals held (process_pool): what
-    # arrived meanwhile is delivered now, to these dispositions.
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    if hasattr(signal, "pthread_sigmask"):
-        signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP_SIGNALS)
-
-
-def _init_worker(fmu_path):
-    global _worker_fmu
-    _worker_signals()
-    _worker_fmu = ContactFMU(fmu_path, instance_name=f"worker{os.getpid()}")
-
-
-def stop_pool(ex: ProcessPoolExecutor) -> None:
-    """Ends the pool now: queued tasks are cancelled and the worker processes
-    terminated (shutdown(wait=True) would first run every queued task)."""
-    procs = list((getattr(ex, "_processes", None) or {}).values())
-    ex.shutdown(wait=False, cancel_futures=True)
-    for p in procs:
-        if p.is_alive():
-            p.terminate()
-    for p in procs:
-        p.join(timeout=5)
-        if p.is_alive():
-            p.kill()
-            p.join(timeout=5)
-
-
-def _run_one(task, fmu: ContactFMU | None = None):
-    """(index, params, rig) -> (index, RunFigures), on `fmu` or the worker's
-    own instance."""
-    index, params, rig = task
-    return index, run(params, rig, fmu=fmu or _worker_fmu, record_every=1 << 30).figures
-
-
-class Progress:
-    """A progress bar on stderr (a line per 10% when not a terminal)."""
-
-    def __init__(self, total: int, label: str, enabled: bool = True):
-        self.total, self.label, self.enabled = total, label, enabled
-        self.done, self.t0, self.last_decile = 0, time.time(), -1
-        self.tty = sys.stderr.isatty()
-
-    def update(self, n: int = 1):
-        self.done += n
-        if not self.enabled:
-            return
-        frac = self.done / self.total
-        if self.tty:
-            bar = "#" * int(30 * frac)
-            sys.stderr.write(f"\r{self.label:<22} [{bar:<30}] {self.done}/{self.total} "
-                             f"{time.time() - self.t0:5.1f}s")
-            if self.done == self.total:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
-        elif int(10 * frac) > self.last_decile:
-            self.last_decile = int(10 * frac)
-            print(f"{self.label}: {self.done}/{self.total} ({100 * frac:.0f}%, "
-                  f"{time.time() - self.t0:.1f}s)", file=sys.stderr, flush=True)
-
-
-def default_workers() -> int:
-    return max(1, min(os.cpu_count() or 1, 8))
-
-
-MASTERS = ("auto", "c", "fmpy")
-
-
-def resolve_master(master: str, fmu_path) -> str:
-    """"c" or "fmpy": auto takes the compiled master for an FMI 2.0 FMU."""
-    if master not in MASTERS:
-        raise ValueError(f"master must be one of {', '.join(map(repr, MASTERS))}, got {master!r}")
-    from .fmu import find_fmu, fmi_version_of
-    version = fmi_version_of(find_fmu(fmu_path))
-    if master == "c" and version != 2:
-        # checked here, in the main process, not in a worker's initializer
-        raise ValueError(f"the compiled master runs FMI 2.0 FMUs, this one is FMI {version}.0; "
-                         "use master='fmpy'")
-    if master != "auto":
-        return master
-    return "c" if version == 2 else "fmpy"
-
-
-_worker_cmaster = None
-
-
-def _init_cworker(fmu_path):
-    global _worker_cmaster
-    _worker_signals()
-    from .cmaster import CMaster
-    from .fmu import find_fmu
-    _worker_cmaster = CMaster(find_fmu(fmu_path))
-
-
-def _run_chunk(chunk):
-    """[(index, params, rig)] -> [(index, RunFigures)] on the worker's
-    compiled master."""
-    res = _worker_cmaster.run([(p, r) for _, p, r in chunk])
-    return [(i, figures) for (i, _, _), figures in zip(chunk, res)]
-
-
-class _SignalSafePool(ProcessPoolExecutor):
-    """A pool whose submit holds SIGINT and SIGTERM while it runs.  submit
-    forks the workers and records them; a signal landing in between would
-    be raised inside Python's at-fork hooks (logging's lock release among
-    them), reported as ignored, or leave a worker the pool does not know of
-    and so never stops.  Held, it arrives once submit has returned; a forked
-    worker inherits the hold until its initializer has set its dispositions
-    (_worker_signals)."""
-
-    def submit(self, fn, /, *args, **kwargs):
-        if not hasattr(signal, "pthread_sigmask"):
-            return super().submit(fn, *args, **kwargs)
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS)
-        try:
-            return super().submit(fn, *args, **kwargs)
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, old)
-
-
-def process_pool(workers: int, initializer, *initargs) -> ProcessPoolExecutor:
-    """Worker processes: forked where that exists (they start in
-    milliseconds; each creates its own FMU instance after the fork, so no FMU
-    state is shared), spawned elsewhere.  The initializer must call
-    _worker_signals first."""
-    method = "fork" if sys.platform.startswith("linux") else "spawn"
-    return _SignalSafePool(max_workers=workers, mp_context=get_context(method), initializer=initializer,
-                           initargs=initargs)
-
-
-def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, label: str,
-             progress: bool = True, master: str = "auto", dask=None) -> list[RunFigures]:
-    """The RunFigures (phi_deg, drive_mean_N, phi_head_deg, phi_tail_deg) of
-    each (params, rig), in order.  master: "c"
-    (the compiled master, FMI 2.0 FMUs), "fmpy" (the Python harness), or
-    "auto" (c where it applies); both give the same angles.  dask: a
-    cluster.DaskRunner to run the compiled master's chunks on (else local
-    processes)."""
-    out: list = [None] * len(tasks)
-    bar = Progress(len(tasks), label, progress)
-    indexed = [(i, p, r) for i, (p, r) in enumerate(tasks)]
-    use_c = resolve_master(master, fmu_path) == "c"
-    if dask is not None:
-        if not use_c:
-            raise ValueError("a Dask cluster runs the compiled master: use master 'c' or 'auto' "
-                             "with an FMI 2.0 FMU")
-        from .cluster import run_tasks
-        from .fmu import find_fmu
-        size = max(1, min(1000, -(-len(tasks) // 8)))
-        chunks = [tasks[k:k + size] for k in range(0, len(tasks), size)]
-        res = dask.map(run_tasks, chunks, find_fmu(fmu_path), lambda i, r: bar.update(len(r)))
-        return [RunFigures(*x) for part in res for x in part]
-    if use_c:
-        # chunks small enough to show progress and balance two workers
-        size = max(1, min(256, -(-len(indexed) // (4 * max(workers, 1)))))
-        chunks = [indexed[k:k + size] for k in range(0, len(indexed), size)]
-    if workers <= 1:
-        if use_c:
-            from .cmaster import CMaster
-            from .fmu import find_fmu
-            cm = CMaster(find_fmu(fmu_path))
-            try:
-                for chunk in chunks:
-                    for (i, _, _), res in zip(chunk, cm.run([(p, r) for _, p, r in chunk])):
-                        out[i] = res
-                    bar.update(len(chunk))
-            finally:
-                cm.close()
-            return out
-        fmu = ContactFMU(fmu_path, instance_name="serial")
-        try:
-            for t in indexed:
-                i, out[i] = _run_one(t, fmu)
-                bar.update()
-        finally:
-            fmu.close()
-        return out
-    ex = process_pool(workers, _init_cworker if use_c else _init_worker, fmu_path)
-    try:
-        if use_c:
-            futures = [ex.submit(_run_chunk, c) for c in chunks]
-            for fut in as_completed(futures):
-                done = fut.result()
-                for i, figures in done:
-                    out[i] = figures
-                bar.update(len(done))
-        else:
-            futures = [ex.submit(_run_one, t) for t in indexed]
-            for fut in as_completed(futures):
-                i, figures = fut.result()
-                out[i] = figures
-                bar.update()
-    except BaseException:
-        stop_pool(ex)
-        raise
-    ex.shutdown()
-    return out
 
 
 # -- sweeps ------------------------------------------------------------------------
@@ -380,8 +166,8 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     grid_ext = {"angle_deg": float(angles[k]), "phi_deg": float(phi[k])}
     extremum = dict(grid_ext, refined=False)
     if resolve_master(master, fmu_path) == "c":
-        from .cmaster import CMaster
-        from .fmu import find_fmu
+        from ..fmu.files import find_fmu
+        from ..rig.compiled import CMaster
         engine = CMaster(find_fmu(fmu_path))
         one = lambda a, rule=None: engine.run([(sc.params_at(a, rule), sc.rig)])[0][0]
         record = lambda a, every: engine.record(sc.params_at(a), sc.rig, every)
@@ -445,6 +231,7 @@ class StepStudyResult:
             return None
         bad = [lab for lab, ok, r in zip(labels, self.checks.ok, self.rows) if not ok and r["rule"] != "eq20"]
         return line + f" (runs: {', '.join(bad)})"
+
 
 def run_step_study(sc: Scenario, workers: int | None = None, progress: bool = True,
                    fmu_path=None, master: str = "auto", dask=None) -> StepStudyResult:

@@ -16,8 +16,7 @@ a mat scenario (the aged mat) this module computes
 * for a viscous strip c_strip [N s/m] (force c_strip * lateral velocity): the
   ratio calibrated on 11.5 deg at 0.125 m/s, and the peak that ratio then
   gives at 0.244 m/s, i.e. how far the two velocities drift apart.  The law
-  is rate-independent: only such a rig term makes the angle depend on speed.
-"""
+  is rate-independent: only such a rig term makes the angle depend on speed."""
 from __future__ import annotations
 
 import math
@@ -25,17 +24,29 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from . import closed_forms as cf
-from .errors import InputError
-from .rig_checks import check_runs, warning_line
-from .scenarios import Scenario
+from .. import closed_forms as cf
+from ..errors import InputError
+from ..experiment.scenario import Scenario
+from ..rig.checks import check_runs, warning_line
 
 MU_STRIPS = (0.0, 0.025, 0.05, 0.075, 0.1, 0.15, 0.2)
+
+
 VELOCITIES = (0.125, 0.244)          # m/s: the calibration's and the stated one
+
+
 C_STRIPS = (0.0, 5.0, 10.0, 20.0, 40.0)
+
+
 CALIBRATION_VELOCITY = 0.125
+
+
 RIG_STEP_S = 4e-3  # the implicit rules' angle does not depend on the step (docs/benchmarks.md)
+
+
 GRID = np.arange(0.0, 90.0 + 1e-9, 0.25)
+
+
 RIG_SPAN_DEG = 3  # the rig's angles: whole degrees within this of the closed form's peak
 
 
@@ -126,7 +137,8 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
     """The tables above for a mat scenario; the rig runs over the scenario's
     angles at a 4 ms step."""
     import time
-    from .sweep import run_many
+
+    from ..runs.batch import run_many
     t0 = time.time()
     if sc.closed_form != "mat" or sc.kind != "sweep":
         raise InputError(f"{sc.path}: geometry.closed_form: expected \"mat\" (the experiment's "
@@ -185,7 +197,7 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
 def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
     """sensitivity_strip.csv, sensitivity_velocity.csv, sensitivity.json and
     two figures into out."""
-    from .tables import write_csv, write_json
+    from ..output.tables import write_csv, write_json
     keys = ["mu_strip", "velocity_m_s", "peak_phi_closed_deg", "peak_angle_closed_deg",
             "peak_phi_rig_deg", "peak_angle_rig_deg", "eps_ratio_for_measured_peak"]
     write_csv(out / "sensitivity_strip.csv", keys,
@@ -208,8 +220,8 @@ def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
 
 
 def _figures(res: Sensitivity, sc: Scenario, out) -> None:
-    from .figures import _finish, _plt
-    plt = _plt()
+    from ..output.figures import finish, pyplot
+    plt = pyplot()
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5))
     for i, v in enumerate(VELOCITIES):
         rows = [r for r in res.strip_rows if r["velocity_m_s"] == v]
@@ -245,5 +257,5 @@ def _figures(res: Sensitivity, sc: Scenario, out) -> None:
                 color=f"C{i}", label=f"closed form, {v:g} m/s")
     ax.set_xlabel("strip's lateral viscosity c_strip [N s/m] (ε1/ε2 calibrated at 0.125 m/s each time)")
     ax.set_ylabel("peak |φ| [deg]")
-    _finish(fig, ax, out / "sensitivity_velocity.png", f"{sc.name}: velocity through a viscous strip",
+    finish(fig, ax, out / "sensitivity_velocity.png", f"{sc.name}: velocity through a viscous strip",
             outside=True)

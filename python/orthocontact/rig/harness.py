@@ -25,8 +25,7 @@ Modes:
 The same rig in C (fmu_src/rig_core.c: the CarriageBlock FMU's step and the
 compiled master's loop) is tested against this module bit for bit
 (tests/test_cmaster.py): this is the reference, and the path that needs no
-compiled master.
-"""
+compiled master."""
 from __future__ import annotations
 
 import math
@@ -35,9 +34,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .closed_forms import G_STANDARD
-from .fmu import ContactFMU, ContactParams
-
+from ..closed_forms.paper import G_STANDARD
+from ..fmu.contact import ContactFMU
+from ..fmu.params import ContactParams
 
 MODES = ("dynamic", "quasistatic")
 
@@ -288,4 +287,3 @@ def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: in
     return RigResult(**cols, phi_deg=fit.angle_deg(), drive_mean_N=fit.mean_drive(),
                      newton_iterations=newton, phi_head_deg=head.angle_deg(),
                      phi_tail_deg=tail.angle_deg())
-

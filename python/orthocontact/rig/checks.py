@@ -12,18 +12,21 @@ form with the rig's strip terms?
 
 A run that fails either is flagged; the commands print one warning line per
 scenario with the remedy (quasi-static mode, a longer travel: the dynamic
-rig's settling length is closed_forms.settling_length_array).
-"""
+rig's settling length is closed_forms.settling_length_array)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
 
-from . import closed_forms as cf
+from .. import closed_forms as cf
 
 SETTLE_TOL_DEG = 0.05   # |phi_head - phi_tail| of a run that reached steady sliding
+
+
 STEADY_TOL_DEG = 0.05   # |phi - phi_steady| of a run on the closed form
+
+
 # A travel whose fitted part starts this many settling lengths in leaves
 # e^-8 (3e-4) of an initial disturbance: the travel the message proposes.
 SETTLING_LENGTHS = 8.0

@@ -4,8 +4,9 @@ as casadi expressions of the fitted parameters, and the regimes of motion
 (which way the block drifts, or held) that model is built for."""
 from __future__ import annotations
 
-from . import closed_forms as cf
-from .measurements import MeasurementSet, RigSetup
+from .. import closed_forms as cf
+from ..experiment.rig_setup import RigSetup
+from .measurements import MeasurementSet
 
 
 def strip_regimes(data: MeasurementSet, values: dict) -> tuple:

@@ -1,0 +1,207 @@
+"""The subcommands: run, reproduce, identify, sensitivity, uq, ssp."""
+from __future__ import annotations
+
+import contextlib
+import json
+import sys
+import time
+from pathlib import Path
+
+from ..errors import InputError
+from ..experiment.scenario import load
+from .output import staged_output, warn
+
+
+def _fmu_for(sc, args) -> str:
+    """The scenario's own FMU if it names one, else the installed FMU of the
+    FMI version asked for with --fmi."""
+    from ..fmu.files import find_fmu
+    return sc.fmu or str(find_fmu(fmi_version=args.fmi))
+
+
+def load_scenario(path):
+    """The scenario file, its unusual values said as warnings."""
+    sc = load(path)
+    for line in sc.warnings:
+        warn(line)
+    return sc
+
+
+def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True, draw=None,
+                  dask=None) -> dict:
+    from ..fmu.files import fmi_version_of
+    from ..output.tables import write_json
+    from ..reproduction import scenario_outputs
+    from ..runs import sweep
+    if sc.kind == "sweep":
+        res = sweep.run_sweep(sc, workers, progress, fmu_path, master, dask)
+        summary = scenario_outputs.sweep_outputs(sc, res, out, draw)
+    else:
+        res = sweep.run_step_study(sc, workers, progress, fmu_path, master, dask)
+        summary = scenario_outputs.step_study_outputs(sc, res, out, draw)
+    line = res.warning(sc)
+    if line:
+        warn(line)
+    summary["fmi_version"] = fmi_version_of(fmu_path)
+    write_json(out / "summary.json", summary)
+    return summary
+
+
+def packaged_scenarios() -> Path:
+    """The paper's scenario files installed with the package (or, in a source
+    tree without an install, the repository's)."""
+    from ..fmu.files import PACKAGE_ROOT, installed_file
+    return installed_file("scenarios", folder=True) or PACKAGE_ROOT.parents[1] / "scenarios"
+
+
+def cmd_run(args) -> int:
+    from ..output.figures import FigureDrawer
+    sc = load_scenario(args.scenario)
+    with staged_output(args.out) as stage, _dask_for(args) as dask, \
+            FigureDrawer(args.workers or _default_workers()) as draw:
+        summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
+                                dask=dask)
+    print(json.dumps({k: summary[k] for k in summary if k in ("scenario", "extremum", "max_deviation_deg",
+                                                             "drive_mean_N", "rules")}, indent=1))
+    print(f"wrote {args.out}/summary.json")
+    return 0
+
+
+def cmd_reproduce(args) -> int:
+    from ..output.figures import FigureDrawer
+    from ..output.tables import write_json
+    from ..reproduction import paper_report
+    folder = Path(args.scenarios) if args.scenarios else packaged_scenarios()
+    files = sorted(folder.glob("*.toml"))
+    if not files:
+        raise InputError(f"{folder}: expected scenario files (*.toml), found none")
+    scenarios = [load_scenario(f) for f in files]  # all validated before anything runs
+    t0 = time.time()
+    runs, rows = [], []
+    with staged_output(args.out) as stage:
+        # The figures are drawn in worker processes while the rig runs on.
+        with _dask_for(args) as dask, FigureDrawer(args.workers or _default_workers()) as draw:
+            # The rig's hidden assumptions, on the calibrated experiment: a
+            # job of its own beside the sweeps.
+            sens = None
+            for sc in scenarios:
+                if sc.kind == "sweep" and sc.closed_form == "mat" and "extremum_phi_deg" in sc.paper:
+                    (stage / "sensitivity").mkdir()
+                    sens = draw.submit(_sensitivity_job, sc, _fmu_for(sc, args), args.master,
+                                       stage / "sensitivity")
+                    break
+            for sc in scenarios:
+                (stage / sc.name).mkdir()
+                summary = _run_scenario(sc, stage / sc.name, args.workers, _fmu_for(sc, args),
+                                        args.master, draw=draw, dask=dask)
+                runs.append((sc, summary))
+                rows += paper_report.paper_rows(sc, summary)
+            sens = sens.result() if sens is not None else None
+            if sens is not None and sens["checks"]["warning"]:
+                warn(sens["checks"]["warning"])
+        rows += paper_report.calibration_rows()
+        write_json(stage / "summary.json", {"rows": rows, "scenarios": {sc.name: s for sc, s in runs}})
+        text = paper_report.reproduction_report(stage, runs, rows, time.time() - t0, sens)
+    print(text.split("## Scenarios")[0].rstrip())
+    print(f"\nwrote {args.out}/report.md in {time.time() - t0:.1f} s")
+    return 0 if all(r["match"] for r in rows) else 1
+
+
+def cmd_identify(args) -> int:
+    from ..identification import job as identify
+    data = identify.load_data(args.data)
+    for line in data.warnings:
+        warn(line)
+    with staged_output(args.out) as stage:
+        from ..fmu.files import find_fmu
+        result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
+                              fmu_path=str(find_fmu(fmi_version=args.fmi)))
+    print(identify.summary_text(result))
+    if result.validation and result.validation.get("warning"):
+        warn(result.validation["warning"])
+    print(f"wrote {args.out}/identified.json")
+    return 0
+
+
+def _sensitivity_job(sc, fmu_path, master, out) -> dict:
+    """sensitivity.run and its files, in one process (a figure worker's)."""
+    from ..reproduction import sensitivity
+    res = sensitivity.run(sc, 1, fmu_path, master, progress=False)
+    return sensitivity.write_outputs(res, sc, out)
+
+
+def cmd_sensitivity(args) -> int:
+    from ..output.figures import FigureDrawer
+    from ..reproduction import sensitivity
+    sc = load_scenario(args.scenario)
+    with staged_output(args.out) as stage, _dask_for(args) as dask, \
+            FigureDrawer(1) as draw:
+        res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
+                              dask=dask)
+        summary = sensitivity.write_outputs(res, sc, stage, draw)
+    if res.checks["warning"]:
+        warn(res.checks["warning"])
+    for r in summary["strip"]:
+        if r["velocity_m_s"] == sensitivity.VELOCITIES[-1]:
+            ratio = r["eps_ratio_for_measured_peak"]
+            print(f"mu_strip {r['mu_strip']:<6g} peak |phi| {abs(r['peak_phi_rig_deg']):6.2f} deg (rig), "
+                  f"{abs(r['peak_phi_closed_deg']):6.2f} deg (closed form); eps1/eps2 for the measured "
+                  f"{summary['measured_peak_deg']:g} deg: "
+                  + ("not reachable" if ratio is None else f"{ratio:.4f}"))
+    print(f"wrote {args.out}/sensitivity.json, sensitivity_strip.csv, sensitivity_velocity.csv, "
+          "sensitivity_strip.png, sensitivity_velocity.png")
+    return 0
+
+
+def cmd_uq(args) -> int:
+    from .. import uq
+    est = uq.load_estimates(args.identification)
+    sc = load_scenario(args.scenario)
+    uq.check_geometry(sc, est)  # before any work
+    with staged_output(args.out) as stage:
+        res = uq.propagate(est, sc, args.samples, args.seed, None,
+                           scheduler=None if args.scheduler == "none" else args.scheduler,
+                           workers=args.workers or _default_workers(), step_s=args.step_s,
+                           chunk_runs=args.chunk_runs)
+        summary = uq.write_outputs(res, est, sc, args.seed, stage)
+    if summary["checks"]["warning"]:
+        warn(summary["checks"]["warning"])
+    chk = summary["step_check"]
+    if not chk["max_abs_difference_deg"] <= uq.STEP_CHECK_WARN_DEG:
+        print(f"orthocontact: warning: at the estimates, phi at the uq step {chk['uq_step_s']:g} s "
+              f"differs from the scenario's step {chk['scenario_step_s']:g} s by "
+              f"{chk['max_abs_difference_deg']:.3g} deg; choose --step-s", file=sys.stderr)
+    w = summary["widest_band"]
+    print(f"{summary['runs']} rig runs ({summary['samples']} parameter sets x "
+          f"{len(summary['bands'])} angles) in {summary['seconds']:.1f} s on {summary['engine']}")
+    print(f"widest 95 % band of phi: {w['width_deg']:.3f} deg at {w['angle_deg']:g} deg; "
+          f"{100 * summary['accepted_fraction']:.1f} % of the draws physical")
+    print(f"wrote {args.out}/uq.json, uq_bands.csv, samples.csv, uq.png")
+    return 0
+
+
+def _dask_for(args):
+    """The Dask cluster the command's sweeps run on (--scheduler), or None."""
+    if getattr(args, "scheduler", None) in (None, "none"):
+        return contextlib.nullcontext(None)
+    if args.master == "fmpy" or getattr(args, "fmi", 2) == 3:
+        raise InputError("--scheduler runs the compiled master on the workers: it takes FMI 2.0 "
+                         "FMUs and --master auto or c")
+    from ..runs.cluster import DaskRunner
+    return DaskRunner(args.scheduler, args.workers or _default_workers())
+
+
+def _default_workers() -> int:
+    from ..runs.pool import default_workers
+    return default_workers()
+
+
+def cmd_ssp(args) -> int:
+    from ..experiment.ssp import write_ssp
+    sc = load_scenario(args.scenario)
+    if sc.kind != "sweep":
+        raise InputError(f"{args.scenario}: kind: expected a sweep scenario for an SSP, got {sc.kind!r}")
+    path = write_ssp(sc, args.angle, args.out)
+    print(f"wrote {path}: rig + contact at {args.angle:g} deg "
+          f"(run it with libcosim: CosimExecution.from_ssp_file)")
+    return 0

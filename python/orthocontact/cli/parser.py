@@ -1,0 +1,183 @@
+"""The command line: subcommands, options with their units, and --version."""
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .commands import cmd_identify, cmd_reproduce, cmd_run, cmd_sensitivity, cmd_ssp, cmd_uq
+
+
+def _positive_int(what):
+    def parse(text):
+        try:
+            n = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number of {what} >= 1, got {text!r}")
+        if n < 1:
+            raise argparse.ArgumentTypeError(f"expected a whole number of {what} >= 1, got {n}")
+        return n
+    return parse
+
+
+def _positive_float(text):
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number > 0, got {text!r}")
+    if not (x > 0 and x < float("inf")):
+        raise argparse.ArgumentTypeError(f"expected a finite number > 0, got {text}")
+    return x
+
+
+_workers = _positive_int("worker processes")
+
+
+def _version_text() -> str:
+    from .. import __version__
+    from ..fmu.files import find_fmu, fmi_version_of
+    lines = [f"orthocontact {__version__}"]
+    for v in (2, 3):
+        try:
+            path = find_fmu(fmi_version=v)
+            lines.append(f"  FMI {fmi_version_of(path)}.0 FMU: {path}")
+        except (FileNotFoundError, OSError, ValueError) as e:
+            lines.append(f"  FMI {v}.0 FMU: not found ({e})")
+    return "\n".join(lines)
+
+
+class _Version(argparse.Action):
+    def __init__(self, option_strings, dest, **kw):
+        super().__init__(option_strings, dest, nargs=0, help=kw.get("help"))
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(_version_text())
+        parser.exit(0)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="orthocontact",
+        description="The coupled orthotropic adhesion-friction contact law (Konyukhov & "
+                    "Schweizerhof 2007) as FMI 2.0/3.0 FMUs: run the paper's carriage/block rig "
+                    "on scenario files, reproduce the paper, identify parameters from "
+                    "measurements.",
+        epilog="Exit status: 0 success, 1 a result that does not match the paper (or, with "
+               "--strict, any warning), 2 bad input "
+               "(one line naming the file or option), 130 interrupted.  Angles in scenario and "
+               "data files are in degrees, counterclockwise from the driving axis X1.")
+    ap.add_argument("--version", action=_Version, help="print the package version and the "
+                    "installed FMUs (FMI 2.0 and 3.0), then exit")
+    sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
+
+    def strict(p):
+        p.add_argument("--strict", action="store_true",
+                       help="exit with status 1 if any warning was printed (an implausible input, a "
+                            "rig run that is not steady sliding); the results are written all the same")
+
+    def common(p, out_help, scheduler=True):
+        p.add_argument("--out", required=True, type=Path, metavar="DIR", help=out_help)
+        p.add_argument("--workers", type=_workers, default=None, metavar="N",
+                       help="worker processes for sweeps (default: the number of cores, at most 8)")
+        p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
+                       help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
+                            "both give the same results bit for bit")
+        p.add_argument("--master", choices=("auto", "c", "fmpy"), default="auto",
+                       help="who runs the rig loop: c, the compiled master (FMI 2.0 FMUs, about "
+                            "25-55x faster), fmpy, the Python harness, or auto (default: c where "
+                            "it applies); both give the same angles")
+        strict(p)
+        if scheduler:
+            p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                           help="run the sweeps on Dask: local (a LocalCluster of --workers "
+                                "processes) or tcp://HOST:PORT (an existing scheduler); default: "
+                                "local processes, which start faster for sweeps of this size")
+
+    r = sub.add_parser("run", help="run one scenario file (a sweep over the mat/axis angle in "
+                                   "degrees, or a step-size study)",
+                       description="Run one scenario file and write summary.json, CSV tables, "
+                                   "PNG figures into DIR.")
+    r.add_argument("scenario", metavar="SCENARIO", help="scenario file (TOML; format in "
+                   "scenarios/README.md); angles in degrees, forces in N, lengths in m")
+    common(r, "output folder: created if missing, files replaced; written only when the run "
+              "completes")
+    r.set_defaults(func=cmd_run)
+    p = sub.add_parser("reproduce", help="run every paper scenario and write report.md",
+                       description="Run every scenario of the paper and write report.md beside "
+                                   "one folder per scenario into DIR.")
+    common(p, "output folder for report.md, summary.json and one folder per scenario; written "
+              "only when everything completes")
+    p.add_argument("--scenarios", default=None, metavar="FOLDER",
+                   help="folder of scenario files (*.toml; default: the packaged ones)")
+    p.set_defaults(func=cmd_reproduce)
+    i = sub.add_parser("identify", help="identify mu1, mu2, the stiffness ratio and the absolute "
+                                        "stiffness [N/m] from measurements",
+                       description="Identify the law's parameters from a measurement folder (mu1, "
+                                   "mu2 [-], eps1/eps2 [-], eps1, eps2 [N/m]) and write "
+                                   "identified.json, identified.md, fit.png into DIR.")
+    i.add_argument("data", type=Path, metavar="DATA_DIR",
+                   help="measurement folder: rig.toml and any of forces.csv (alpha_deg,force_N), "
+                        "angles.csv (alpha_deg,phi_deg), ramp.csv (x1_m,force_N); angles in "
+                        "degrees, forces in N, travel in m")
+    common(i, "output folder: created if missing; written only when the fit completes", scheduler=False)
+    i.add_argument("--no-validate", action="store_true",
+                   help="skip the validation runs of the identified parameters on the FMU")
+    i.set_defaults(func=cmd_identify)
+    s = sub.add_parser("ssp", help="write the experiment at one angle as an SSP 1.0 package "
+                                   "(rig FMU + contact FMU) for any SSP-capable simulator",
+                       description="Write SystemStructure.ssd and both FMI 2.0 FMUs (CarriageBlock, "
+                                   "OrthotropicContact) with the scenario's parameters as an .ssp.")
+    s.add_argument("scenario", metavar="SCENARIO", help="sweep scenario file (TOML); angles in "
+                   "degrees, forces in N, lengths in m")
+    s.add_argument("--angle", type=float, required=True, metavar="DEG",
+                   help="the swept angle [deg] (the mat angle for the experiment's scenarios)")
+    s.add_argument("--out", type=Path, required=True, metavar="FILE.ssp",
+                   help="the package to write (replaced if it exists)")
+    s.set_defaults(func=cmd_ssp)
+    v = sub.add_parser("sensitivity", help="how the rig's unmeasured strip friction and viscosity, "
+                                           "and the velocity, move the peak angle and the identified "
+                                           "eps1/eps2",
+                       description="For a mat scenario: the peak |phi| [deg] against the Teflon "
+                                   "strip's friction mu_strip (0-0.2) at 0.125 and 0.244 m/s (rig and "
+                                   "closed form), the eps1/eps2 the paper's calibration would return "
+                                   "for each, and for a viscous strip c_strip [N s/m] the peak at "
+                                   "0.244 m/s after calibrating at 0.125 m/s; CSV, JSON, PNG into DIR.")
+    v.add_argument("scenario", metavar="SCENARIO", help="a sweep scenario with the experiment's "
+                   "geometry (closed_form = \"mat\"), e.g. scenarios/mat_aged.toml")
+    common(v, "output folder: created if missing; written only when everything completes")
+    v.set_defaults(func=cmd_sensitivity)
+    u = sub.add_parser("uq", help="propagate an identification's uncertainty to the predicted "
+                                  "trajectory angle over a scenario's angles (Dask)",
+                       description="Draw parameter sets from identified.json's estimates and "
+                                   "covariance (only mu, eps > 0), run the rig over the scenario's "
+                                   "angles for each (compiled master, on Dask), and write the "
+                                   "predictive bands of phi [deg] and of the driving force [N] "
+                                   "(median, 2.5 and 97.5 %) as uq_bands.csv, uq.json, uq.png, "
+                                   "and the drawn sets as samples.csv.")
+    u.add_argument("identification", type=Path, metavar="IDENTIFICATION.json",
+                   help="identified.json written by `orthocontact identify`")
+    u.add_argument("--scenario", required=True, type=Path, metavar="SCENARIO",
+                   help="sweep scenario file (TOML) giving the rig and the angles [deg]; its rule "
+                        "must be the identification's")
+    u.add_argument("--samples", required=True, type=_positive_int("parameter sets"), metavar="N",
+                   help="parameter sets to draw; rig runs = N x the scenario's angles")
+    u.add_argument("--out", required=True, type=Path, metavar="DIR",
+                   help="output folder: created if missing; written only when all runs complete")
+    u.add_argument("--seed", type=int, default=0, metavar="S",
+                   help="seed of the draws (default 0): the same seed gives the same files, "
+                        "serial or on any cluster")
+    u.add_argument("--scheduler", default="local", metavar="ADDRESS",
+                   help="where the runs go: local (default: a Dask LocalCluster, --workers "
+                        "processes), tcp://HOST:PORT (an existing Dask scheduler), or none (this "
+                        "process, no Dask)")
+    u.add_argument("--workers", type=_workers, default=None, metavar="N",
+                   help="worker processes of the local cluster (default: the number of cores, at "
+                        "most 8)")
+    u.add_argument("--step-s", type=_positive_float, default=None, metavar="SECONDS",
+                   help="communication step of the rig [s] (default: 0.004 for the implicit rules, "
+                        "step-size independent; the scenario's for eq20); checked against the "
+                        "scenario's step at the estimates")
+    u.add_argument("--chunk-runs", type=_positive_int("runs"), default=1000, metavar="RUNS",
+                   help="rig runs per task sent to a worker (default 1000)")
+    strict(u)
+    u.set_defaults(func=cmd_uq)
+    return ap

@@ -1,0 +1,2 @@
+"""What results are written as: CSV and JSON (tables), PNG figures
+(figures)."""

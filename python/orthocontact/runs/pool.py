@@ -1,0 +1,98 @@
+"""Local worker processes for many rig runs: a process pool whose workers
+ignore Ctrl-C (the main process decides), that can be stopped at once, and a
+progress bar on stderr."""
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from multiprocessing import get_context
+
+_STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+
+
+def worker_signals():
+    # The main process decides about interrupts: Ctrl-C reaches the whole
+    # process group, and a worker must not die with its own traceback.
+    # A forked worker starts with these signals held (process_pool): what
+    # arrived meanwhile is delivered now, to these dispositions.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP_SIGNALS)
+
+
+def stop_pool(ex: ProcessPoolExecutor) -> None:
+    """Ends the pool now: queued tasks are cancelled and the worker processes
+    terminated (shutdown(wait=True) would first run every queued task)."""
+    procs = list((getattr(ex, "_processes", None) or {}).values())
+    ex.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        if p.is_alive():
+            p.terminate()
+    for p in procs:
+        p.join(timeout=5)
+        if p.is_alive():
+            p.kill()
+            p.join(timeout=5)
+
+
+class Progress:
+    """A progress bar on stderr (a line per 10% when not a terminal)."""
+
+    def __init__(self, total: int, label: str, enabled: bool = True):
+        self.total, self.label, self.enabled = total, label, enabled
+        self.done, self.t0, self.last_decile = 0, time.time(), -1
+        self.tty = sys.stderr.isatty()
+
+    def update(self, n: int = 1):
+        self.done += n
+        if not self.enabled:
+            return
+        frac = self.done / self.total
+        if self.tty:
+            bar = "#" * int(30 * frac)
+            sys.stderr.write(f"\r{self.label:<22} [{bar:<30}] {self.done}/{self.total} "
+                             f"{time.time() - self.t0:5.1f}s")
+            if self.done == self.total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+        elif int(10 * frac) > self.last_decile:
+            self.last_decile = int(10 * frac)
+            print(f"{self.label}: {self.done}/{self.total} ({100 * frac:.0f}%, "
+                  f"{time.time() - self.t0:.1f}s)", file=sys.stderr, flush=True)
+
+
+def default_workers() -> int:
+    return max(1, min(os.cpu_count() or 1, 8))
+
+
+class _SignalSafePool(ProcessPoolExecutor):
+    """A pool whose submit holds SIGINT and SIGTERM while it runs.  submit
+    forks the workers and records them; a signal landing in between would
+    be raised inside Python's at-fork hooks (logging's lock release among
+    them), reported as ignored, or leave a worker the pool does not know of
+    and so never stops.  Held, it arrives once submit has returned; a forked
+    worker inherits the hold until its initializer has set its dispositions
+    (worker_signals)."""
+
+    def submit(self, fn, /, *args, **kwargs):
+        if not hasattr(signal, "pthread_sigmask"):
+            return super().submit(fn, *args, **kwargs)
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS)
+        try:
+            return super().submit(fn, *args, **kwargs)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def process_pool(workers: int, initializer, *initargs) -> ProcessPoolExecutor:
+    """Worker processes: forked where that exists (they start in
+    milliseconds; each creates its own FMU instance after the fork, so no FMU
+    state is shared), spawned elsewhere.  The initializer must call
+    worker_signals first."""
+    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    return _SignalSafePool(max_workers=workers, mp_context=get_context(method), initializer=initializer,
+                           initargs=initargs)

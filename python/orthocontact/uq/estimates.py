@@ -1,0 +1,108 @@
+"""What uq draws from: identified.json's estimates and joint covariance,
+validated field by field, and the seeded draws of physical parameter sets."""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+
+LAW_PARAMETERS = ("mu1", "mu2", "eps_ratio", "eps2")
+
+
+IMPLICIT_RULES = ("associated", "coupled")
+
+
+@dataclass
+class Estimates:
+    """What uq draws from: names, values and covariance of the identified
+    parameters (mu1, mu2 [-], eps_ratio [-], eps2 [N/m], any subset), and the
+    identification's rule, geometry and measured points."""
+    path: Path
+    names: list
+    mean: np.ndarray
+    cov: np.ndarray
+    rule: str
+    alpha_offset_deg: float
+    beta_offset_deg: float
+    angle_points: np.ndarray | None  # [[mat angle deg, phi deg counterclockwise]]
+    angle_noise_deg: float | None    # the identification's noise estimate of a measured angle
+
+
+def load_estimates(path) -> Estimates:
+    """identified.json -> Estimates; InputError naming the file and the field."""
+    path = Path(path)
+    try:
+        d = json.loads(path.read_text())
+    except OSError as e:
+        raise InputError(f"{path}: cannot read ({e.strerror})") from None
+    except ValueError as e:
+        raise InputError(f"{path}: expected JSON written by `orthocontact identify` ({e})") from None
+    if not isinstance(d, dict):
+        raise InputError(f"{path}: expected a JSON object written by `orthocontact identify`")
+    cov = d.get("covariance")
+    if not isinstance(cov, dict) or not {"parameters", "values", "matrix"} <= set(cov):
+        raise InputError(f"{path}: covariance: expected parameters, values and matrix "
+                         "(written by `orthocontact identify` since version 0.3; run it again)")
+    names = cov["parameters"]
+    unknown = [n for n in names if n not in LAW_PARAMETERS]
+    if not isinstance(names, list) or not names or unknown:
+        raise InputError(f"{path}: covariance.parameters: expected some of {', '.join(LAW_PARAMETERS)}"
+                         f", got {names!r}")
+    try:
+        mean = np.array(cov["values"], dtype=float)
+        C = np.array(cov["matrix"], dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"{path}: covariance: expected numbers in values and matrix") from None
+    k = len(names)
+    if mean.shape != (k,) or C.shape != (k, k):
+        raise InputError(f"{path}: covariance: expected {k} values and a {k}x{k} matrix, "
+                         f"got {mean.shape[0] if mean.ndim else 0} and {C.shape}")
+    if not (np.all(np.isfinite(mean)) and np.all(np.isfinite(C))):
+        raise InputError(f"{path}: covariance: expected finite numbers")
+    if np.any(mean <= 0):
+        raise InputError(f"{path}: covariance.values: expected estimates > 0, got {mean.tolist()}")
+    # Judged in correlation form: the parameters' scales differ by 1e8.
+    sd = np.sqrt(np.clip(np.diag(C), 0, None))
+    norm = np.outer(sd, sd)
+    norm[norm == 0] = 1.0
+    if np.any(np.diag(C) < 0) or np.abs(C - C.T).max(initial=0) > 1e-9 * norm.max() or \
+            np.any(np.abs(C - C.T) / norm > 1e-6) or \
+            np.linalg.eigvalsh(0.5 * (C + C.T) / norm).min() < -1e-9:
+        raise InputError(f"{path}: covariance.matrix: expected a symmetric positive semidefinite "
+                         "matrix")
+    a = d.get("assumptions") or {}
+    rule = a.get("rule")
+    if rule not in IMPLICIT_RULES + ("eq20",):
+        raise InputError(f"{path}: assumptions.rule: expected associated, coupled or eq20, got {rule!r}")
+    pts = (d.get("points") or {}).get("angles")
+    points = np.array(pts, dtype=float).reshape(-1, 2) if pts else None
+    noise = (d.get("noise_estimate") or {}).get("angles_deg")
+    if noise is not None and not (isinstance(noise, (int, float)) and math.isfinite(noise) and noise >= 0):
+        raise InputError(f"{path}: noise_estimate.angles_deg: expected a number >= 0, got {noise!r}")
+    return Estimates(path, list(names), mean, 0.5 * (C + C.T), rule,
+                     float(a.get("alpha_offset_deg", 0.0)), float(a.get("beta_offset_deg", 0.0)), points,
+                     None if noise is None else float(noise))
+
+
+def draw(est: Estimates, n: int, seed: int) -> tuple[np.ndarray, float]:
+    """n parameter sets (rows, columns est.names) from the normal
+    distribution of the estimates, only those with every parameter > 0 (the
+    normal truncated to the physical region); and the fraction of draws kept."""
+    rng = np.random.default_rng(seed)
+    kept, have, drawn = [], 0, 0
+    while have < n:
+        batch = max(1024, 2 * (n - have))
+        # eigh: defined for a semidefinite covariance too, and the same on every machine
+        x = rng.multivariate_normal(est.mean, est.cov, size=batch, method="eigh")
+        drawn += batch
+        kept.append(x[np.all(x > 0, axis=1)])
+        have += len(kept[-1])
+        if drawn >= 1000 * n + 10**6 and have < n:
+            raise InputError(f"{est.path}: covariance: fewer than 1 in 1000 draws are physical "
+                             "(all parameters > 0); the estimates are too uncertain to propagate")
+    return np.concatenate(kept)[:n], have / drawn

@@ -1,0 +1,183 @@
+"""Uncertainty propagation: how the identified parameters' uncertainty moves
+the predicted trajectory angle.
+
+Parameter sets are drawn from the identification's estimates and joint
+covariance (identified.json, written by `orthocontact identify`), keeping
+only physical ones (mu1, mu2, eps > 0); each set runs the rig over the
+scenario's angles; the result is, per angle, the median and the 2.5 / 97.5 %
+quantiles of phi [deg] and of the mean driving force [N].
+
+The draws are made in the calling process from one seeded generator, and each
+run is deterministic, so the bands do not depend on how the runs are spread
+over processes or machines: the same seed gives the same files bit for bit,
+serial or on Dask."""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import InputError
+from ..experiment.scenario import Scenario
+from ..rig.checks import SETTLE_TOL_DEG, RunChecks, angle_list, check_runs, warning_line
+from ..rig.harness import RunFigures
+from .estimates import IMPLICIT_RULES, Estimates, draw
+
+# The step-size study (scenarios/step_study.toml; docs/benchmarks.md): the
+# implicit rules' steady angle does not depend on the step, and the dynamic
+# rig's lateral transient moves it by < 1e-6 deg between 0.2 and 4 ms.
+DEFAULT_STEP_S = 4e-3
+
+
+STEP_CHECK_WARN_DEG = 0.01
+
+
+def scenario_with(sc: Scenario, names: list, row) -> Scenario:
+    """The scenario with the law's parameters `names` set from `row`
+    (eps1 follows from eps_ratio and eps2)."""
+    v = dict(zip(names, (float(x) for x in row)))
+    law = sc.law
+    eps2 = v.get("eps2", law.eps2)
+    ratio = v.get("eps_ratio", law.eps1 / law.eps2)
+    law = law.replace(mu1=v.get("mu1", law.mu1), mu2=v.get("mu2", law.mu2), eps1=ratio * eps2,
+                      eps2=eps2)
+    return replace(sc, law=law)
+
+
+def chunk_tasks(sc: Scenario, rig, names: list, rows) -> list:
+    """The rig runs of parameter sets `rows`: every angle of the scenario for
+    each, set after set."""
+    angles = sc.sweep_angles()
+    tasks = []
+    for row in rows:
+        s = scenario_with(sc, names, row)
+        tasks += [(s.params_at(a), rig) for a in angles]
+    return tasks
+
+
+def _run_chunk_on(run, chunk):
+    """chunk = (scenario, rig, names, rows) -> phi, drive and head - tail
+    (rig_checks: a settled run's halves agree) arrays [len(rows) x angles],
+    the runs made by run([(params, rig)])."""
+    sc, rig, names, rows = chunk
+    arr = np.array(run(chunk_tasks(sc, rig, names, rows)), dtype=float)
+    arr = arr.reshape(len(rows), len(sc.sweep_angles()), len(RunFigures._fields))
+    return arr[:, :, 0], arr[:, :, 1], arr[:, :, 2] - arr[:, :, 3]
+
+
+def run_chunk(fmu, chunk):
+    """On a worker: _run_chunk_on the worker's compiled master for `fmu`."""
+    from ..runs.cluster import run_tasks
+    return _run_chunk_on(lambda tasks: run_tasks(fmu, tasks), chunk)
+
+
+@dataclass
+class UQResult:
+    angles_deg: np.ndarray
+    samples: np.ndarray          # n x len(names)
+    names: list
+    accepted_fraction: float
+    phi: np.ndarray              # n x angles [deg]
+    drive: np.ndarray            # n x angles [N]
+    nominal_phi: np.ndarray      # at the estimates, the UQ step [deg]
+    step_s: float
+    step_check: dict
+    engine: str
+    seconds: float
+    halves: np.ndarray           # n x angles: head - tail of each run [deg] (rig_checks)
+    nominal_tasks: list          # the runs at the estimates, the UQ step
+    nominal_checks: RunChecks    # their checks, the closed form included
+
+    @property
+    def unsettled(self) -> np.ndarray:
+        """n x angles: the runs whose two halves disagree (rig_checks)."""
+        return ~(np.abs(self.halves) <= SETTLE_TOL_DEG)
+
+    def warning(self, sc: Scenario) -> str | None:
+        """The user's one line if runs at the estimates or over the draws
+        are not steady sliding."""
+        parts = []
+        line = warning_line(f"uq {sc.name} at the estimates", self.angles_deg, self.nominal_checks,
+                            self.nominal_phi, self.nominal_tasks)
+        if line:
+            parts.append(line)
+        if sc.law.rule != "eq20" and self.unsettled.any():
+            bad = self.unsettled
+            parts.append(f"uq {sc.name}: {int(bad.sum())} of {bad.size} runs over the drawn parameter "
+                         f"sets did not settle (halves of the fitted path up to "
+                         f"{np.nanmax(np.abs(np.where(bad, self.halves, 0))):.3g} deg apart; angles "
+                         f"{angle_list(self.angles_deg[bad.any(axis=0)])} deg): their bands are not "
+                         "steady-state predictions; use a quasi-static rig or a longer travel")
+        return "; ".join(parts) or None
+
+
+def check_geometry(sc: Scenario, est: Estimates) -> None:
+    if sc.kind != "sweep":
+        raise InputError(f"{sc.path}: kind: expected a sweep scenario for uq, got {sc.kind!r}")
+    if sc.law.rule != est.rule:
+        raise InputError(f"{sc.path}: law.rule: expected {est.rule!r}, the rule the parameters of "
+                         f"{est.path} were identified under, got {sc.law.rule!r}")
+
+
+def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
+              scheduler: str | None = "local", workers: int = 1, step_s: float | None = None,
+              chunk_runs: int = 1000, progress: bool = True) -> UQResult:
+    """The rig over the scenario's angles for `samples` parameter sets.
+    scheduler None runs here, in this process; "local" or an address on Dask."""
+    from ..fmu.files import find_fmu
+    from ..rig.compiled import CMaster
+    from ..runs.pool import Progress
+    t0 = time.time()
+    check_geometry(sc, est)
+    fmu_path = find_fmu(fmu_path)
+    if step_s is None:
+        step_s = DEFAULT_STEP_S if sc.law.rule in IMPLICIT_RULES else sc.rig.step_s
+    rig = replace(sc.rig, step_s=step_s)
+    x, accepted = draw(est, samples, seed)
+    angles = sc.sweep_angles()
+    nominal = scenario_with(sc, est.names, est.mean)
+    per = max(1, chunk_runs // len(angles))
+    chunks = [(sc, rig, est.names, x[i:i + per]) for i in range(0, samples, per)]
+    bar = Progress(samples * len(angles), f"uq {sc.name}", progress)
+    cm = CMaster(fmu_path)
+    try:
+        # The step check: the estimates at the scenario's own step and at the UQ step.
+        fine = np.array([r[0] for r in cm.run([(nominal.params_at(a), sc.rig) for a in angles])])
+        nominal_tasks = [(nominal.params_at(a), rig) for a in angles]
+        nominal_runs = cm.run(nominal_tasks)
+        coarse = np.array([r[0] for r in nominal_runs])
+        if scheduler is None:
+            results = []
+            for c in chunks:
+                results.append(_run_chunk_on(cm.run, c))
+                bar.update(len(c[3]) * len(angles))
+            engine = "serial (this process)"
+    finally:
+        cm.close()
+    dev = float(np.nanmax(np.abs(coarse - fine))) if np.any(np.isfinite(fine)) else float("nan")
+    check = {"scenario_step_s": sc.rig.step_s, "uq_step_s": step_s, "max_abs_difference_deg": dev}
+    if scheduler is not None:
+        from ..runs.cluster import DaskRunner
+        with DaskRunner(scheduler, workers) as dr:
+            results = dr.map(run_chunk, chunks, fmu_path, lambda i, r: bar.update(r[0].size))
+            engine = dr.description
+    phi = np.concatenate([r[0] for r in results])
+    drive = np.concatenate([r[1] for r in results])
+    halves = np.concatenate([r[2] for r in results])
+    return UQResult(np.array(angles, dtype=float), x, est.names, accepted, phi, drive, coarse, step_s,
+                    check, engine, time.time() - t0, halves, nominal_tasks,
+                    check_runs(nominal_tasks, nominal_runs))
+
+
+def measurement_draws(res: UQResult, sigma_deg: float, seed: int) -> np.ndarray:
+    """phi of a new measurement: each run's angle plus the identification's
+    measurement noise (normal, sigma_deg), from its own seeded stream."""
+    rng = np.random.default_rng([seed, 1])
+    return res.phi + rng.normal(0.0, sigma_deg, size=res.phi.shape)
+
+
+def bands(values: np.ndarray) -> dict:
+    """Per column: median and the 2.5 / 97.5 % quantiles (NaN runs left out)."""
+    q = np.nanpercentile(values, [2.5, 50.0, 97.5], axis=0)
+    return {"lo": q[0], "median": q[1], "hi": q[2]}
