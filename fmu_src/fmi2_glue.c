@@ -131,8 +131,8 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
 fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2ExitInitializationMode", FMU_INIT)) return fmi2Error;
-    I->phase = FMU_STEP;
-    return fmi2OK;
+    fmu_msg msg;
+    return status2(fmu_result(I, fmu_exit_init(I, &msg), &msg, "fmi2ExitInitializationMode"));
 }
 
 fmi2Status fmi2Terminate(fmi2Component c) {
@@ -145,8 +145,7 @@ fmi2Status fmi2Terminate(fmi2Component c) {
 fmi2Status fmi2Reset(fmi2Component c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2Reset", FMU_ALIVE)) return fmi2Error;
-    fmu_model_init(I->model);
-    I->phase = FMU_INSTANTIATED;
+    fmu_reset(I);
     return fmi2OK;
 }
 

@@ -153,8 +153,8 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3ExitInitializationMode", FMU_INIT)) return fmi3Error;
-    I->phase = FMU_STEP;
-    return fmi3OK;
+    fmu_msg msg;
+    return status3(fmu_result(I, fmu_exit_init(I, &msg), &msg, "fmi3ExitInitializationMode"));
 }
 
 fmi3Status fmi3Terminate(fmi3Instance c) {
@@ -167,8 +167,7 @@ fmi3Status fmi3Terminate(fmi3Instance c) {
 fmi3Status fmi3Reset(fmi3Instance c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3Reset", FMU_ALIVE)) return fmi3Error;
-    fmu_model_init(I->model);
-    I->phase = FMU_INSTANTIATED;
+    fmu_reset(I);
     return fmi3OK;
 }
 

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fmu_bytes.h"
@@ -19,6 +20,182 @@ fmu_status fmu_fail(fmu_msg *msg, const char *fmt, ...) {
     return FMU_ERR;
 }
 
+/* ---- the table-driven variable access, once for every model ------------- */
+
+#define INFO FMU_MODEL_INFO
+#define SLOT_D(m, x) ((double *)((char *)(m) + (x)->slot))
+#define SLOT_I(m, x) ((int *)((char *)(m) + (x)->slot))
+#define CSLOT_D(m, x) ((const double *)((const char *)(m) + (x)->slot))
+#define CSLOT_I(m, x) ((const int *)((const char *)(m) + (x)->slot))
+
+/* Direct indexing: no search, no string work on the way of a value. */
+static inline const fmu_var *var_of(unsigned int vr) {
+    return vr < INFO.n_vars && INFO.vars[vr].name ? &INFO.vars[vr] : NULL;
+}
+
+const fmu_var *fmu_model_var(unsigned int vr) { return var_of(vr); }
+
+const char *fmu_model_variable_name(unsigned int vr) {
+    const fmu_var *x = var_of(vr);
+    return x ? x->name : NULL;
+}
+
+size_t fmu_model_size(void) { return INFO.size; }
+double *fmu_model_time(fmu_model *m) { return SLOT_D(m, &INFO.vars[0]); }
+
+static void refresh(fmu_model *m) {
+    if (INFO.refresh) INFO.refresh(m);
+}
+
+static const char *type_name(int type) {
+    return type == FMU_T_Float64 ? "Float64 (Real)" : type == FMU_T_Int32 ? "Int32 (Integer)"
+                                                                         : "Enumeration (Integer)";
+}
+
+/* The message for a value the fast check refused: only here is anything
+ * formatted. */
+static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int type_ok, double value,
+                                   int allow, fmu_msg *msg) {
+    if (!x) return fmu_fail(msg, "unknown value reference %u", vr);
+    if (!type_ok)
+        return fmu_fail(msg, "variable %s (vr %u) is of type %s", x->name, vr, type_name(x->type));
+    if (x->causality == FMU_C_output)
+        return fmu_fail(msg, "variable %s is an output and cannot be set", x->name);
+    if (x->causality == FMU_C_independent)
+        return fmu_fail(msg, "variable %s is the independent variable: doStep advances it", x->name);
+    if (x->causality == FMU_C_parameter && !(allow & FMU_ALLOW_PARAMETERS))
+        return fmu_fail(msg, "parameter %s is fixed: it can be set only before the end of "
+                             "initialization (reset the FMU to change it)", x->name);
+    if (x->causality == FMU_C_input && !(allow & FMU_ALLOW_INPUTS))
+        return fmu_fail(msg, "input %s cannot be set in this state", x->name);
+    if (!isfinite(value))
+        return fmu_fail(msg, "%s = %g rejected: values must be finite", x->name, value);
+    return fmu_fail(msg, "%s = %g rejected: outside [%g, %g]", x->name, value, x->min, x->max);
+}
+
+/* In range and finite (v - v is NaN for an infinity and for NaN). */
+static inline int in_range(const fmu_var *x, double v) {
+    return v >= x->min && v <= x->max && v - v == 0.0;
+}
+
+fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context,
+                                 fmu_msg *msg) {
+    const fmu_var *x = var_of(vr);
+    if (x && in_range(x, value)) return FMU_OK;
+    return fmu_fail(msg, "%s: %s = %g is outside [%g, %g]", context, x ? x->name : "?", value,
+                    x ? x->min : NAN, x ? x->max : NAN);
+}
+
+/* One pass: each value is checked, its old value saved and the new one
+ * written; a refused value or a refusing model puts the old ones back (last
+ * first, so that a value reference named twice ends as it was).  Only the
+ * refusal formats a message. */
+enum { SAVED_ON_STACK = 16 };
+
+#define SET_BATCH(CTYPE, TYPE_OK, VALUE, SLOT)                                                  \
+    const fmu_var *const vars = INFO.vars;                                                      \
+    const unsigned int nv = INFO.n_vars;                                                        \
+    CTYPE stack[SAVED_ON_STACK], *saved = stack;                                                \
+    if (n > SAVED_ON_STACK && !(saved = malloc(n * sizeof *saved)))                             \
+        return fmu_fail(msg, "out of memory");                                                  \
+    int changed = 0;                                                                            \
+    fmu_status st = FMU_OK;                                                                     \
+    size_t i = 0;                                                                               \
+    for (; i < n; ++i) {                                                                        \
+        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;                \
+        const double d = (double)(VALUE);                                                       \
+        if (!x || !(TYPE_OK) || !(x->settable & allow) || !in_range(x, d)) {                    \
+            st = why_not_settable(x, vr[i], x && (TYPE_OK), d, allow, msg);                     \
+            break;                                                                              \
+        }                                                                                       \
+        CTYPE *slot = SLOT(m, x);                                                               \
+        saved[i] = *slot;                                                                       \
+        *slot = (CTYPE)(VALUE);                                                                 \
+        changed |= x->settable;                                                                 \
+    }                                                                                           \
+    if (st == FMU_OK && n > 0) st = fmu_model_update(m, changed, allow, msg);                   \
+    if (st != FMU_OK)                                                                           \
+        while (i-- > 0) *SLOT(m, &vars[vr[i]]) = saved[i];                                      \
+    else if (n > 0)                                                                             \
+        refresh(m);                                                                             \
+    if (saved != stack) free(saved);                                                            \
+    return st;
+
+fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
+                                 int allow, fmu_msg *msg) {
+    SET_BATCH(double, x->type == FMU_T_Float64, v[i], SLOT_D)
+}
+
+fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, const void *v,
+                             size_t width, int kinds, int allow, fmu_msg *msg) {
+    /* In [min, max] (checked before the write): the int slot holds it. */
+    SET_BATCH(int, x->type & kinds, fmu_int_at(v, width, i), SLOT_I)
+}
+
+static fmu_status not_of_type(unsigned int vr, const char *asked, fmu_msg *msg) {
+    const fmu_var *x = var_of(vr);
+    if (x)
+        return fmu_fail(msg, "variable %s (vr %u) is of type %s, not %s", x->name, vr,
+                        type_name(x->type), asked);
+    return fmu_fail(msg, "unknown value reference %u", vr);
+}
+
+fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
+                                 fmu_msg *msg) {
+    const fmu_var *const vars = INFO.vars;
+    const unsigned int nv = INFO.n_vars;
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;
+        if (!x || x->type != FMU_T_Float64) return not_of_type(vr[i], "Float64 (Real)", msg);
+        v[i] = *CSLOT_D(m, x);
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
+                             size_t width, int kinds, fmu_msg *msg) {
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_var *x = var_of(vr[i]);
+        if (!x || !(x->type & kinds))
+            return not_of_type(vr[i], kinds == FMU_ENUM ? "Enumeration (Int64)"
+                                      : kinds == FMU_INT32 ? "Int32" : "Integer", msg);
+        fmu_int_put(v, width, i, *CSLOT_I(m, x));
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[],
+                                size_t n_unknown, const unsigned int known[], size_t n_known,
+                                const double seed[], double out[], int adjoint, fmu_msg *msg) {
+    if (!INFO.derivative)
+        return fmu_fail(msg, "this FMU provides no derivatives (providesDirectionalDerivative = "
+                             "false)");
+    return INFO.derivative(m, unknown, n_unknown, known, n_known, seed, out, adjoint, msg);
+}
+
+fmu_status fmu_model_init_from(fmu_model *m, const double start[], fmu_msg *msg) {
+    memset(m, 0, INFO.size);
+    for (unsigned int vr = 0; vr < INFO.n_vars; ++vr) {
+        const fmu_var *x = var_of(vr);
+        if (!x || !(x->settable || x->causality == FMU_C_independent)) continue;
+        const double s = start ? start[vr] : x->start;
+        if (x->type == FMU_T_Float64) *SLOT_D(m, x) = s;
+        else *SLOT_I(m, x) = (int)s;
+    }
+    const fmu_status st = fmu_model_update(
+        m, FMU_CHANGED_PARAMETERS | FMU_CHANGED_INPUTS, FMU_ALLOW_PARAMETERS | FMU_ALLOW_INPUTS, msg);
+    refresh(m);
+    return st;
+}
+
+void fmu_model_init(fmu_model *m) {
+    fmu_msg msg;
+    /* The table's start values are admissible (the C tests check it). */
+    (void)fmu_model_init_from(m, NULL, &msg);
+}
+
+/* ---- the instance ------------------------------------------------------- */
+
 fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
                                void (*release)(void *), fmu_log_fn log, void *glue,
                                int logging_on) {
@@ -28,9 +205,11 @@ fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
     const size_t len = strlen(name) + 1;
     I->name = alloc(len, 1);
     I->model = alloc(1, fmu_model_size());
-    if (!I->name || !I->model) {
+    I->start = alloc(FMU_MODEL_INFO.n_vars, sizeof *I->start);
+    if (!I->name || !I->model || !I->start) {
         if (I->name) release(I->name);
         if (I->model) release(I->model);
+        if (I->start) release(I->start);
         release(I);
         return NULL;
     }
@@ -41,6 +220,8 @@ fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
     I->glue = glue;
     I->log_on[FMU_LOG_ERROR] = I->log_on[FMU_LOG_WARNING] = 1;
     I->log_on[FMU_LOG_CALLS] = logging_on ? 1 : 0;
+    for (unsigned int vr = 0; vr < FMU_MODEL_INFO.n_vars; ++vr)
+        I->start[vr] = FMU_MODEL_INFO.vars[vr].start;
     fmu_model_init(I->model);
     I->phase = FMU_INSTANTIATED;
     return I;
@@ -50,6 +231,7 @@ void fmu_instance_free(fmu_instance *I) {
     if (!I) return;
     void (*release)(void *) = I->release;
     release(I->model);
+    release(I->start);
     release(I->name);
     release(I);
 }
@@ -119,7 +301,24 @@ int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
     return 0;
 }
 
-void fmu_set_start_time(fmu_instance *I, double t) { *fmu_model_time(I->model) = t; }
+void fmu_set_start_time(fmu_instance *I, double t) {
+    *fmu_model_time(I->model) = t;
+    refresh(I->model);
+}
+
+void fmu_reset(fmu_instance *I) {
+    fmu_msg msg;
+    /* The start values were accepted at instantiation: they are again. */
+    (void)fmu_model_init_from(I->model, I->start, &msg);
+    I->phase = FMU_INSTANTIATED;
+}
+
+fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg) {
+    if (INFO.exit_init && INFO.exit_init(I->model, msg) != FMU_OK) return FMU_ERR;
+    refresh(I->model);
+    I->phase = FMU_STEP;
+    return FMU_OK;
+}
 
 fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
@@ -133,6 +332,7 @@ fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
                         *time);
     if (fmu_model_do_step(I->model, h, msg) != FMU_OK) return FMU_ERR;
     *time = t + h;
+    refresh(I->model);
     return FMU_OK;
 }
 
@@ -178,6 +378,7 @@ fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size
     if (fmu_model_state_read(I->model, p, msg) != FMU_OK) return FMU_ERR;
     I->phase = (int)phase;
     *fmu_model_time(I->model) = time;
+    refresh(I->model);
     return FMU_OK;
 }
 
@@ -243,8 +444,8 @@ int fmu_state_deserialize(fmu_instance *I, const char *fn, const unsigned char *
         FMU_ERROR(I, "%s: out of memory", fn);
         return FMU_S_ERROR;
     }
-    fmu_model_init(scratch.model);
     fmu_msg msg;
+    fmu_model_init(scratch.model);
     const fmu_status st = fmu_state_read(&scratch, bytes, size, &msg);
     I->release(scratch.model);
     if (st != FMU_OK) return fmu_result(I, st, &msg, fn);

@@ -36,6 +36,7 @@ struct fmu_instance {
     int phase;
     int log_on[FMU_LOG_N];
     char *name;
+    double *start; /* start values by value reference: the table's, or the resources' */
     fmu_log_fn log;
     void *(*alloc)(size_t n, size_t size);
     void (*release)(void *p);
@@ -65,6 +66,10 @@ int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
                           const char *const categories[]);
 
 void fmu_set_start_time(fmu_instance *I, double t);
+/* Back to the instantiated state at the instance's start values. */
+void fmu_reset(fmu_instance *I);
+/* Ends initialization: the model's exit hook, then step mode. */
+fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg);
 /* Checks and commits a communication step [t, t + h]. */
 fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg);
 

@@ -25,6 +25,7 @@ struct fmu_model {
     double u[2], N;       /* the current inputs */
     oc_state start;       /* the state the shown result was computed from */
     oc_step result;       /* the shown result */
+    double T[2];          /* its force on the body, -result.q: the outputs T1, T2 */
     int result_committed; /* 0: pending, committed state = start; 1: = result.next */
     double time;
 };
