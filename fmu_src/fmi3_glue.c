@@ -65,8 +65,12 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
               "modelDescription.xml";
     else if (eventModeUsed)
         why = "fmi3InstantiateCoSimulation: this FMU has no event mode (hasEventMode = false)";
-    else if (nRequiredIntermediateVariables > 0)
-        why = "fmi3InstantiateCoSimulation: this FMU provides no intermediate variables";
+    /* A request for intermediate variables is allowed and answered by
+     * providing none (as the Reference-FMUs do): intermediateUpdate is never
+     * called, since doStep never returns early or stops between points. */
+    else if (nRequiredIntermediateVariables > 0 && !requiredIntermediateVariables)
+        why = "fmi3InstantiateCoSimulation: requiredIntermediateVariables is NULL with "
+              "nRequiredIntermediateVariables > 0";
     if (why) {
         if (logMessage) logMessage(instanceEnvironment, fmi3Error, "logStatusError", why);
         return NULL;

@@ -154,11 +154,50 @@ static void test_state_into_fresh_instance(void) {
     fmi3FreeInstance(b);
 }
 
+/* An importer may list required intermediate variables (fmusim
+ * --record-intermediate-values does): the FMU accepts and provides none,
+ * and runs as without the request. */
+static int n_intermediate_calls;
+static void intermediate(fmi3InstanceEnvironment env, fmi3Float64 t, fmi3Boolean setRequested,
+                         fmi3Boolean getAllowed, fmi3Boolean stepFinished,
+                         fmi3Boolean canReturnEarly, fmi3Boolean *returnEarly,
+                         fmi3Float64 *earlyReturnTime) {
+    (void)env; (void)t; (void)setRequested; (void)getAllowed; (void)stepFinished;
+    (void)canReturnEarly; (void)returnEarly; (void)earlyReturnTime;
+    ++n_intermediate_calls;
+}
+
+static void test_intermediate_variables_requested(void) {
+    const fmi3ValueReference wanted[3] = {OC_VR_T1, OC_VR_T2, OC_VR_s1};
+    fmi3Instance c = fmi3InstantiateCoSimulation("inter", FMU_GUID, "", 0, 0, 0, 0, wanted, 3,
+                                                 NULL, logger, intermediate);
+    CHECK(c != NULL, "a request for intermediate variables refused: %s", last_message);
+    fmi3Instance plain = make("plain");
+    start(c);
+    start(plain);
+    double t = 0, tp = 0;
+    for (int k = 1; k <= 20; ++k) {
+        drive(c, 3e-4 * k, 1e-4 * k, 18.0, &t);
+        drive(plain, 3e-4 * k, 1e-4 * k, 18.0, &tp);
+    }
+    const fmi3ValueReference out[3] = {OC_VR_T1, OC_VR_T2, OC_VR_s1};
+    double a[3], b[3];
+    CHECK(fmi3GetFloat64(c, out, 3, a, 3) == fmi3OK && fmi3GetFloat64(plain, out, 3, b, 3) == fmi3OK,
+          "read");
+    CHECK(memcmp(a, b, sizeof a) == 0, "the request changed the results");
+    CHECK(n_intermediate_calls == 0, "intermediateUpdate called %d times", n_intermediate_calls);
+    fmi3FreeInstance(c);
+    fmi3FreeInstance(plain);
+    CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 0, 0, NULL, 2, NULL, logger, NULL) ==
+              NULL, "NULL list with a count accepted");
+}
+
 int main(void) {
     CHECK(strcmp(fmi3GetVersion(), "3.0") == 0, "version");
     test_rejects();
     test_types_and_states();
     test_derivatives();
     test_state_into_fresh_instance();
+    test_intermediate_variables_requested();
     return oc_report();
 }
