@@ -336,8 +336,11 @@ fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     return FMU_OK;
 }
 
-/* Layout: tag[4], format u32, total length u32, phase u32, time f64, model. */
-enum { STATE_FORMAT = 2, STATE_HEADER = 4 + 4 + 4 + 4 + 8 };
+/* Layout: tag[4], format u32, total length u32, phase u32, time f64, model.
+ * Format 3 (0.4.0) added the contact's initial slip; a state of another
+ * format is refused with a message that says so (its meaning differs: no
+ * conversion guesses it). */
+enum { STATE_FORMAT = 3, STATE_HEADER = 4 + 4 + 4 + 4 + 8 };
 
 size_t fmu_state_size(void) { return STATE_HEADER + fmu_model_state_size(); }
 
@@ -353,21 +356,25 @@ void fmu_state_write(const fmu_instance *I, unsigned char *buf) {
 
 fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size, fmu_msg *msg) {
     if (!buf) return fmu_fail(msg, "the state is NULL");
-    if (size != fmu_state_size())
-        return fmu_fail(msg, "a serialized %s state has %zu bytes, got %zu",
-                        FMU_MODEL_INFO.model_identifier, fmu_state_size(), size);
     uint32_t format, length, phase;
     double time;
     const unsigned char *p = buf;
-    if (memcmp(p, FMU_MODEL_INFO.tag, 4) != 0)
-        return fmu_fail(msg, "not a serialized %s state (wrong tag)", FMU_MODEL_INFO.model_identifier);
+    /* Tag and format first, so that a state of an older FMU is told as such
+     * rather than as a wrong size. */
+    if (size < 8 || memcmp(p, FMU_MODEL_INFO.tag, 4) != 0)
+        return fmu_fail(msg, "not a serialized %s state (%s)", FMU_MODEL_INFO.model_identifier,
+                        size < 8 ? "too short" : "wrong tag");
     p = fmu_get_u32(p + 4, &format);
+    if (format != STATE_FORMAT)
+        return fmu_fail(msg, "serialized state of format %u, this FMU reads format %d only "
+                             "(states are not carried across FMU versions: save them again "
+                             "with this one)", (unsigned)format, STATE_FORMAT);
+    if (size != fmu_state_size())
+        return fmu_fail(msg, "a serialized %s state has %zu bytes, got %zu",
+                        FMU_MODEL_INFO.model_identifier, fmu_state_size(), size);
     p = fmu_get_u32(p, &length);
     p = fmu_get_u32(p, &phase);
     p = fmu_get_f64(p, &time);
-    if (format != STATE_FORMAT)
-        return fmu_fail(msg, "serialized state of format %u, this FMU reads format %d",
-                        (unsigned)format, STATE_FORMAT);
     if (length != fmu_state_size())
         return fmu_fail(msg, "serialized state says it has %u bytes, expected %zu",
                         (unsigned)length, fmu_state_size());

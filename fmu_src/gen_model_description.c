@@ -35,16 +35,21 @@ typedef struct {
     const char *name, *desc;
     int value;
 } item;
-#ifdef FMU_ENUM_TYPE
+typedef struct {
+    const char *name;
+    const item *items;
+    int n;
+} enum_type;
+#ifdef FMU_ENUM_TYPES
 #define ITEM(name, value, desc) {#name, desc, value},
-static const item ITEMS[] = {FMU_ENUM_ITEMS(ITEM)};
-#undef ITEM
-enum { NITEMS = sizeof ITEMS / sizeof ITEMS[0] };
-#define ENUM_NAME XSTR(FMU_ENUM_TYPE)
+#define ENUM_ITEMS(type, ITEMS) static const item ITEMS_##type[] = {ITEMS(ITEM)};
+FMU_ENUM_TYPES(ENUM_ITEMS)
+#define ENUM_ROW(type, ITEMS) {#type, ITEMS_##type, (int)(sizeof ITEMS_##type / sizeof(item))},
+static const enum_type ENUMS[] = {FMU_ENUM_TYPES(ENUM_ROW)};
+enum { NENUMS = sizeof ENUMS / sizeof ENUMS[0] };
 #else
-static const item ITEMS[1];
-enum { NITEMS = 0 };
-#define ENUM_NAME ""
+static const enum_type ENUMS[1];
+enum { NENUMS = 0 };
 #endif
 
 #define SRC(f) #f,
@@ -90,6 +95,7 @@ static void num(char *buf, size_t n, double x) {
 
 static int is(const char *a, const char *b) { return strcmp(a, b) == 0; }
 static int is_int(const row *r) { return !is(r->type, "Float64"); }
+static int is_enum(const row *r) { return is_int(r) && !is(r->type, "Int32"); }
 static int has_start(const row *r) {
     return !is(r->initial, "calculated") && !is(r->causality, "independent");
 }
@@ -245,23 +251,27 @@ static void fmi3(FILE *f) {
                "    providesAdjointDerivatives=\"%s\"\n    hasEventMode=\"false\"/>\n\n",
             FMU_MODEL_IDENTIFIER, TF(FMU_PROVIDES_DERIVATIVES), TF(FMU_PROVIDES_DERIVATIVES));
     unit_definitions(f);
-    if (NITEMS > 0) {
-        fprintf(f, "  <TypeDefinitions>\n    <EnumerationType name=\"%s\">\n", ENUM_NAME);
-        for (int k = 0; k < NITEMS; ++k) {
-            fprintf(f, "      <Item name=\"%s\" value=\"%d\" description=\"", ITEMS[k].name,
-                    ITEMS[k].value);
-            esc(f, ITEMS[k].desc);
-            fputs("\"/>\n", f);
+    if (NENUMS > 0) {
+        fputs("  <TypeDefinitions>\n", f);
+        for (int e = 0; e < NENUMS; ++e) {
+            fprintf(f, "    <EnumerationType name=\"%s\">\n", ENUMS[e].name);
+            for (int k = 0; k < ENUMS[e].n; ++k) {
+                fprintf(f, "      <Item name=\"%s\" value=\"%d\" description=\"",
+                        ENUMS[e].items[k].name, ENUMS[e].items[k].value);
+                esc(f, ENUMS[e].items[k].desc);
+                fputs("\"/>\n", f);
+            }
+            fputs("    </EnumerationType>\n", f);
         }
-        fputs("    </EnumerationType>\n  </TypeDefinitions>\n\n", f);
+        fputs("  </TypeDefinitions>\n\n", f);
     }
     log_categories(f);
     fputs("  <ModelVariables>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
-        const char *el = is(r->type, "Enum") ? "Enumeration" : r->type;
+        const char *el = is_enum(r) ? "Enumeration" : r->type;
         fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\"", el, r->name, r->vr);
-        if (is(r->type, "Enum")) fprintf(f, " declaredType=\"%s\"", ENUM_NAME);
+        if (is_enum(r)) fprintf(f, " declaredType=\"%s\"", r->type);
         fprintf(f, " causality=\"%s\" variability=\"%s\"", r->causality, r->variability);
         if (*r->initial) fprintf(f, " initial=\"%s\"", r->initial);
         fputs(" description=\"", f);
@@ -313,25 +323,27 @@ static void html(FILE *f) {
           "<th>description</th></tr>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
-        char s[64] = "", lo[64] = "", hi[64] = "";
+        char s[64] = "", lo[64] = "", hi[64] = "", type[96];
+        if (is_enum(r)) snprintf(type, sizeof type, "Enumeration %s (FMI 2.0: Integer)", r->type);
+        else snprintf(type, sizeof type, "%s", r->type);
         if (has_start(r)) num(s, sizeof s, r->start);
         if (isfinite(r->min)) num(lo, sizeof lo, r->min);
         if (isfinite(r->max)) num(hi, sizeof hi, r->max);
         fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>%s</td><td>%s</td><td>%s</td>"
                    "<td>%s%s%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>",
                 r->name, r->vr, r->causality, r->variability,
-                is(r->type, "Enum") ? "Enumeration (FMI 2.0: Integer)" : r->type,
+                type,
                 is(r->unit, "1") ? "" : r->unit, *r->display ? " (display " : "", r->display,
                 *r->display ? ")" : "", s, lo, hi);
         esc(f, r->desc);
         fputs("</td></tr>\n", f);
     }
     fputs("</table>\n", f);
-    if (NITEMS > 0) {
-        fprintf(f, "<h2>Enumeration %s</h2>\n<ul>\n", ENUM_NAME);
-        for (int k = 0; k < NITEMS; ++k) {
-            fprintf(f, "<li><code>%d</code> %s: ", ITEMS[k].value, ITEMS[k].name);
-            esc(f, ITEMS[k].desc);
+    for (int e = 0; e < NENUMS; ++e) {
+        fprintf(f, "<h2>Enumeration %s (FMI 2.0: Integer)</h2>\n<ul>\n", ENUMS[e].name);
+        for (int k = 0; k < ENUMS[e].n; ++k) {
+            fprintf(f, "<li><code>%d</code> %s: ", ENUMS[e].items[k].value, ENUMS[e].items[k].name);
+            esc(f, ENUMS[e].items[k].desc);
             fputs("</li>\n", f);
         }
         fputs("</ul>\n", f);

@@ -26,27 +26,39 @@
 #define FMU_SLOT_s2 offsetof(oc_model, result.next.s[1])
 #define FMU_SLOT_contactState offsetof(oc_model, result.contact)
 #define FMU_SLOT_dissipatedEnergy offsetof(oc_model, result.next.energy)
+#define FMU_SLOT_initialSlip offsetof(oc_model, initial_slip)
+#define FMU_SLOT_s1Start offsetof(oc_model, s_start[0])
+#define FMU_SLOT_s2Start offsetof(oc_model, s_start[1])
+
+enum { FMU_ENUM_TYPES(FMU_ENUM_KIND) OC_ENUM_KINDS_END };
 
 static const fmu_var VARS[OC_VR_COUNT_PLUS_ONE] = {FMU_VARIABLES(FMU_VAR_ROW)};
 
 static fmu_status derivative(const oc_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
                              double out[], int adjoint, fmu_msg *msg);
+static fmu_status exit_init(oc_model *m, fmu_msg *msg);
 
 const fmu_model_info FMU_MODEL_INFO = {
     FMU_MODEL_IDENTIFIER, FMU_GUID, FMU_STATE_TAG, VARS, OC_VR_COUNT_PLUS_ONE, sizeof(oc_model),
-    NULL /* the outputs live in their slots */, NULL, derivative};
+    NULL /* the outputs live in their slots */, exit_init, derivative};
 
 static const oc_state *committed(const oc_model *m) {
     return m->result_committed ? &m->result.next : &m->start;
 }
 
-/* Computes the pending step for the inputs in m from the committed state,
- * with `law`, into m; or fails and changes nothing. */
-static fmu_status evaluate(oc_model *m, const oc_law *law, fmu_msg *msg) {
+/* The committed state before the first step (see oc_model.h). */
+static oc_state initial_state(const oc_model *m) {
+    return m->initial_slip == OC_INITIAL_EXPLICIT ? oc_state_unloaded(m->s_start[0], m->s_start[1], 0.0)
+                                                  : oc_state_unloaded(m->u[0], m->u[1], 0.0);
+}
+
+/* Computes the pending step for the inputs in m from the committed state
+ * `from` with `law` into m (which commits neither); or fails and changes
+ * nothing. */
+static fmu_status evaluate(oc_model *m, const oc_law *law, const oc_state *from, fmu_msg *msg) {
     oc_step st;
-    const oc_state *from = committed(m); /* read in place: no copy unless it moves */
-    oc_law_step(law, from, m->u, m->N, &st);
+    oc_law_step(law, from, m->u, m->N, &st); /* from read in place: no copy unless it moves */
     if (!oc_step_is_finite(&st))
         return fmu_fail(msg, "inputs u1=%g m, u2=%g m, N=%g N overflow the force or slip", m->u[0],
                         m->u[1], m->N);
@@ -61,20 +73,36 @@ static fmu_status evaluate(oc_model *m, const oc_law *law, fmu_msg *msg) {
 }
 
 fmu_status fmu_model_update(oc_model *m, int changed, int allow, fmu_msg *msg) {
-    (void)allow;
-    if (!(changed & FMU_CHANGED_PARAMETERS)) return evaluate(m, &m->law, msg);
+    /* Before the end of initialization the start follows the inputs or the
+     * explicit slip; afterwards it is whatever was committed. */
+    oc_state init;
+    const oc_state *from = committed(m);
+    if (allow & FMU_ALLOW_PARAMETERS) {
+        init = initial_state(m);
+        from = &init;
+    }
+    if (!(changed & FMU_CHANGED_PARAMETERS)) return evaluate(m, &m->law, from, msg);
     const char *why = oc_params_check(&m->params);
     if (why) return fmu_fail(msg, "%s", why);
     oc_law law;
     if (oc_law_init(&law, &m->params) != 0)
         return fmu_fail(msg, "parameters mu=(%g, %g) eps=(%g, %g) give non-finite tensors",
                         m->params.mu1, m->params.mu2, m->params.eps1, m->params.eps2);
-    return evaluate(m, &law, msg);
+    return evaluate(m, &law, from, msg);
+}
+
+/* Every set in initialization already derived the start from the values it
+ * left; deriving it once more here makes the end of initialization the
+ * moment that counts, whatever was restored before it. */
+static fmu_status exit_init(oc_model *m, fmu_msg *msg) {
+    const oc_state init = initial_state(m);
+    return evaluate(m, &m->law, &init, msg);
 }
 
 fmu_status fmu_model_do_step(oc_model *m, double h, fmu_msg *msg) {
     (void)h; /* rate-independent: the step size does not enter the law */
-    if (m->result_committed && evaluate(m, &m->law, msg) != FMU_OK) return FMU_ERR;
+    if (m->result_committed && evaluate(m, &m->law, &m->result.next, msg) != FMU_OK)
+        return FMU_ERR;
     m->result_committed = 1;
     return FMU_OK;
 }
@@ -136,7 +164,11 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
 /* ---- serialized state: field by field, little-endian --------------------- */
 
 enum { N_PARAM_F64 = 6, N_STATE_F64 = 8 };
-static size_t state_bytes(void) { return 8 * N_PARAM_F64 + 4 + 8 * 3 + 8 * N_STATE_F64 + 4; }
+/* parameters, rule, inputs, committed state, initial slip (kind, s1, s2),
+ * commit flag */
+static size_t state_bytes(void) {
+    return 8 * N_PARAM_F64 + 4 + 8 * 3 + 8 * N_STATE_F64 + 4 + 8 * 2 + 4;
+}
 size_t fmu_model_state_size(void) { return state_bytes(); }
 
 static unsigned char *put_state(unsigned char *p, const oc_state *s) {
@@ -162,6 +194,9 @@ void fmu_model_state_write(const oc_model *m, unsigned char *p) {
     p = fmu_put_f64(p, m->u[1]);
     p = fmu_put_f64(p, m->N);
     p = put_state(p, &m->start);
+    p = fmu_put_u32(p, (uint32_t)m->initial_slip);
+    p = fmu_put_f64(p, m->s_start[0]);
+    p = fmu_put_f64(p, m->s_start[1]);
     fmu_put_u32(p, (uint32_t)m->result_committed);
 }
 
@@ -169,13 +204,16 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
     oc_model t;
     memset(&t, 0, sizeof t);
     double pf[N_PARAM_F64];
-    uint32_t rule, done;
+    uint32_t rule, done, initial;
     for (int i = 0; i < N_PARAM_F64; ++i) p = fmu_get_f64(p, &pf[i]);
     p = fmu_get_u32(p, &rule);
     p = fmu_get_f64(p, &t.u[0]);
     p = fmu_get_f64(p, &t.u[1]);
     p = fmu_get_f64(p, &t.N);
     p = get_state(p, &t.start);
+    p = fmu_get_u32(p, &initial);
+    p = fmu_get_f64(p, &t.s_start[0]);
+    p = fmu_get_f64(p, &t.s_start[1]);
     fmu_get_u32(p, &done);
     t.params = (oc_params){pf[0], pf[1], pf[2], pf[3], pf[4], pf[5], (int)rule};
     static const unsigned pvr[N_PARAM_F64] = {OC_VR_mu1, OC_VR_mu2, OC_VR_eps1, OC_VR_eps2,
@@ -185,6 +223,12 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
             return FMU_ERR;
     if (rule < 1 || rule > 3)
         return fmu_fail(msg, "serialized state: slidingRule = %u is not 1, 2 or 3", (unsigned)rule);
+    if (initial != OC_INITIAL_AT_INPUTS && initial != OC_INITIAL_EXPLICIT)
+        return fmu_fail(msg, "serialized state: initialSlip = %u is not 1 or 2", (unsigned)initial);
+    t.initial_slip = (int)initial;
+    if (fmu_model_check_range(OC_VR_s1Start, t.s_start[0], "serialized state", msg) != FMU_OK ||
+        fmu_model_check_range(OC_VR_s2Start, t.s_start[1], "serialized state", msg) != FMU_OK)
+        return FMU_ERR;
     /* A master that saves and restores every step restores the parameters
      * it already has: keep their tensors instead of recomputing them. */
     /* Bit patterns, not ==: -0.0 and +0.0 give tensors that differ in the
