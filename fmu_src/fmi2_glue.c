@@ -48,7 +48,6 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                               fmi2String fmuResourceLocation,
                               const fmi2CallbackFunctions *functions, fmi2Boolean visible,
                               fmi2Boolean loggingOn) {
-    (void)fmuResourceLocation;
     (void)visible;
     if (!functions) return NULL;
     const char *name = instanceName ? instanceName : "";
@@ -82,6 +81,11 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         return NULL;
     }
     fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi2Instantiate");
+    if (fmu_load_start_values(I, "fmi2Instantiate", fmuResourceLocation, 1) != 0) {
+        fmu_instance_free(I);
+        release(cb);
+        return NULL;
+    }
     return I;
 }
 

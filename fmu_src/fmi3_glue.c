@@ -56,7 +56,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                          fmi3InstanceEnvironment instanceEnvironment,
                                          fmi3LogMessageCallback logMessage,
                                          fmi3IntermediateUpdateCallback intermediateUpdate) {
-    (void)resourcePath; (void)visible; (void)earlyReturnAllowed;
+    (void)visible; (void)earlyReturnAllowed;
     (void)requiredIntermediateVariables; (void)intermediateUpdate;
     const char *why = NULL;
     if (!instanceName || !*instanceName) why = "fmi3InstantiateCoSimulation: instanceName is empty";
@@ -88,6 +88,11 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         return NULL;
     }
     fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi3InstantiateCoSimulation");
+    if (fmu_load_start_values(I, "fmi3InstantiateCoSimulation", resourcePath, 0) != 0) {
+        fmu_instance_free(I);
+        free(g);
+        return NULL;
+    }
     return I;
 }
 
