@@ -24,8 +24,14 @@
 
 #define FMU_MODEL_NAME "OrthotropicContact"
 #define FMU_MODEL_IDENTIFIER "OrthotropicContact"
-#define FMU_GUID "{8c6e3f52-4d1a-4b7e-9a35-0f1473db3a02}"
-#define FMU_VERSION "0.2.0"
+/* The guid / instantiationToken is a hash of the generated model
+ * descriptions (gen_model_description writes it into fmu_token.h as
+ * FMU_TOKEN, alias FMU_GUID): it changes whenever the description does, and
+ * the binary and the description agree by construction.  The version is the
+ * build's (CMake, from the file VERSION). */
+#ifndef FMU_GENERATOR
+#include "fmu_token.h"
+#endif
 #define FMU_STATE_TAG {'O', 'C', 'S', 'T'}
 #define FMU_DESCRIPTION                                                                      \
     "Coupled orthotropic adhesion-friction contact interface (Konyukhov and Schweizerhof "   \
@@ -34,7 +40,7 @@
 /* Sources of the binary besides the version's glue (fmi2_glue.c / fmi3_glue.c). */
 #define FMU_SOURCES(S) S(contact_law.c) S(oc_model.c) S(fmu_instance.c)
 #define FMU_HEADERS(S) \
-    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(model_variables.h)
+    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(model_variables.h) S(fmu_token.h)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 
 /* The law in short, for documentation/index.html. */

@@ -40,7 +40,7 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
 static fmu_status exit_init(oc_model *m, fmu_msg *msg);
 
 const fmu_model_info FMU_MODEL_INFO = {
-    FMU_MODEL_IDENTIFIER, FMU_GUID, FMU_STATE_TAG, VARS, OC_VR_COUNT_PLUS_ONE, sizeof(oc_model),
+    FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS, OC_VR_COUNT_PLUS_ONE, sizeof(oc_model),
     NULL /* the outputs live in their slots */, exit_init, derivative};
 
 static const oc_state *committed(const oc_model *m) {

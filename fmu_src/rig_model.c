@@ -44,7 +44,7 @@ static void refresh(fmu_model *m) {
 }
 
 /* No derivatives (providesDirectionalDerivative = false): the glue's default. */
-const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER, FMU_GUID, FMU_STATE_TAG, VARS,
+const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS,
                                        RIG_VR_COUNT_PLUS_ONE, sizeof(struct fmu_model), refresh,
                                        NULL, NULL};
 
