@@ -209,11 +209,127 @@ static void test_state_into_fresh_instance(void) {
     fmi2FreeInstance(b);
 }
 
+/* Every output finite before OK (issue 19 point 3): x1 = u1 = velocity time
+ * can overflow from a velocity and a time each inside its range.  Each way
+ * in is refused with an error and a logged reason, and changes nothing. */
+static void all_outputs(fmi2Component c, double out[RIG_VR_COUNT_PLUS_ONE]) {
+    for (fmi2ValueReference vr = 0; vr < RIG_VR_COUNT_PLUS_ONE; ++vr) out[vr] = get(c, vr);
+}
+
+static void same_outputs(const double a[RIG_VR_COUNT_PLUS_ONE],
+                         const double b[RIG_VR_COUNT_PLUS_ONE], const char *what) {
+    for (fmi2ValueReference vr = 0; vr < RIG_VR_COUNT_PLUS_ONE; ++vr)
+        CHECK(memcmp(&a[vr], &b[vr], sizeof a[vr]) == 0, "%s changed vr %u: %.17g -> %.17g",
+              what, vr, a[vr], b[vr]);
+}
+
+static void test_outputs_stay_finite(void) {
+    const fmi2ValueReference vr_v = RIG_VR_velocity;
+    const double fast = 1e6; /* the range's maximum */
+
+    /* A start time whose x1 overflows. */
+    fmi2Component c = make("start time");
+    set(c, RIG_VR_velocity, fast);
+    last_message[0] = '\0';
+    CHECK(fmi2SetupExperiment(c, 0, 0, 1e303, 0, 0) == fmi2Error &&
+              strstr(last_message, "overflows"), "start time 1e303 at 1e6 m/s: %s", last_message);
+    CHECK(fmi2EnterInitializationMode(c) == fmi2OK, "enter after the refusal");
+    CHECK(get(c, RIG_VR_time) == 0.0 && get(c, RIG_VR_x1) == 0.0, "the refused time was kept");
+    fmi2FreeInstance(c);
+
+    /* A velocity whose x1 overflows at the start time; x1 was finite. */
+    c = make("velocity");
+    CHECK(fmi2SetupExperiment(c, 0, 0, 1e303, 0, 0) == fmi2OK, "start time 1e303 at 0.244 m/s");
+    CHECK(fmi2EnterInitializationMode(c) == fmi2OK, "enter");
+    double before[RIG_VR_COUNT_PLUS_ONE], after[RIG_VR_COUNT_PLUS_ONE];
+    all_outputs(c, before);
+    CHECK(before[RIG_VR_x1] == 0.244 * 1e303, "x1 at the start time");
+    CHECK(fmi2SetReal(c, &vr_v, 1, &fast) == fmi2Error && strstr(last_message, "overflows"),
+          "velocity 1e6 at 1e303 s: %s", last_message);
+    all_outputs(c, after);
+    same_outputs(before, after, "a refused velocity");
+    /* In a batch with a value that was accepted before it: all or nothing. */
+    const fmi2ValueReference batch[2] = {RIG_VR_mass, RIG_VR_velocity};
+    const double values[2] = {3.0, fast};
+    CHECK(fmi2SetReal(c, batch, 2, values) == fmi2Error, "batch with an overflowing velocity");
+    all_outputs(c, after);
+    same_outputs(before, after, "a refused batch");
+    fmi2FreeInstance(c);
+
+    /* A step whose end time overflows x1; an ordinary step still goes. */
+    c = make("step");
+    set(c, RIG_VR_velocity, fast);
+    const double t0 = 1.7e302; /* x1 = 1.7e308, just below the largest double */
+    CHECK(fmi2SetupExperiment(c, 0, 0, t0, 0, 0) == fmi2OK, "start at %g", t0);
+    CHECK(fmi2EnterInitializationMode(c) == fmi2OK && fmi2ExitInitializationMode(c) == fmi2OK,
+          "init");
+    set(c, RIG_VR_T1, -5.0);
+    set(c, RIG_VR_T2, 1.0);
+    all_outputs(c, before);
+    CHECK(isfinite(before[RIG_VR_x1]), "x1 finite at the start");
+    CHECK(fmi2DoStep(c, t0, 1e301, 1) == fmi2Error && strstr(last_message, "overflows"),
+          "step to x1 = inf: %s", last_message);
+    all_outputs(c, after);
+    same_outputs(before, after, "a refused step");
+    /* The lateral motion overflowing is refused alike, and the time moved
+     * for it goes back (t0 + 5e300: x1 = 1.75e308 still finite). */
+    set(c, RIG_VR_T2, 1.7e308);
+    all_outputs(c, before);
+    CHECK(fmi2DoStep(c, t0, 5e300, 1) == fmi2Error && strstr(last_message, "lateral motion"),
+          "lateral overflow: %s", last_message);
+    all_outputs(c, after);
+    same_outputs(before, after, "a refused lateral step");
+    set(c, RIG_VR_T2, 1.0);
+    CHECK(fmi2DoStep(c, t0, 1.0, 1) == fmi2OK, "an ordinary step: %s", last_message);
+    CHECK(get(c, RIG_VR_time) == t0 + 1.0 && get(c, RIG_VR_x1) == fast * (t0 + 1.0),
+          "time and x1 after it");
+    fmi2FreeInstance(c);
+
+    /* A restored state whose time overflows x1: refused by deserialization,
+     * and by fmi2SetFMUstate given the same bytes as a state. */
+    c = make("state");
+    set(c, RIG_VR_velocity, fast);
+    start(c);
+    set(c, RIG_VR_T1, -5.0);
+    set(c, RIG_VR_T2, 1.0);
+    CHECK(fmi2DoStep(c, 0.0, 1e-3, 1) == fmi2OK, "step");
+    fmi2FMUstate st = NULL;
+    size_t n = 0;
+    CHECK(fmi2GetFMUstate(c, &st) == fmi2OK && fmi2SerializedFMUstateSize(c, st, &n) == fmi2OK,
+          "get state");
+    unsigned char *bytes = malloc(n);
+    CHECK(fmi2SerializeFMUstate(c, st, (fmi2Byte *)bytes, n) == fmi2OK, "serialize");
+    double t_state;
+    fmu_get_f64(bytes + 16, &t_state); /* after tag, format, length and phase */
+    CHECK(t_state == 1e-3, "the header's time is at byte 16: %g", t_state);
+    fmu_put_f64(bytes + 16, 1e303);
+    set(c, RIG_VR_T2, -2.0);
+    CHECK(fmi2DoStep(c, 1e-3, 1e-3, 1) == fmi2OK, "a second step, so the state differs");
+    all_outputs(c, before);
+    fmi2FMUstate forged = NULL;
+    CHECK(fmi2DeSerializeFMUstate(c, (const fmi2Byte *)bytes, n, &forged) == fmi2Error &&
+              forged == NULL && strstr(last_message, "overflows") &&
+              strstr(last_message, "1e+303"), "deserialize: %s", last_message);
+    memcpy(st, bytes, n); /* the glue's state is its serialized bytes */
+    CHECK(fmi2SetFMUstate(c, st) == fmi2Error && strstr(last_message, "overflows"),
+          "set a state at t = 1e303: %s", last_message);
+    all_outputs(c, after);
+    same_outputs(before, after, "a refused state");
+    fmu_put_f64(bytes + 16, 1e-3);
+    memcpy(st, bytes, n);
+    CHECK(fmi2SetFMUstate(c, st) == fmi2OK, "the untouched state restores: %s", last_message);
+    CHECK(get(c, RIG_VR_time) == 1e-3 && get(c, RIG_VR_x1) == fast * 1e-3, "restored time, x1");
+    free(bytes);
+    fmi2FreeFMUstate(c, &st);
+    fmi2FreeInstance(c);
+}
+
 int main(void) {
     test_table_and_errors();
     test_outputs_closed_forms();
     test_free_motion_closed_form();
     test_strip();
     test_state_into_fresh_instance();
+    test_outputs_stay_finite();
     return oc_report();
 }
