@@ -48,7 +48,6 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                               fmi2String fmuResourceLocation,
                               const fmi2CallbackFunctions *functions, fmi2Boolean visible,
                               fmi2Boolean loggingOn) {
-    (void)fmuResourceLocation;
     (void)visible;
     if (!functions) return NULL;
     const char *name = instanceName ? instanceName : "";
@@ -82,6 +81,11 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         return NULL;
     }
     fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi2Instantiate");
+    if (fmu_load_start_values(I, "fmi2Instantiate", fmuResourceLocation, 1) != 0) {
+        fmu_instance_free(I);
+        release(cb);
+        return NULL;
+    }
     return I;
 }
 
@@ -132,8 +136,8 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
 fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2ExitInitializationMode", FMU_INIT)) return fmi2Error;
-    I->phase = FMU_STEP;
-    return fmi2OK;
+    fmu_msg msg;
+    return status2(fmu_result(I, fmu_exit_init(I, &msg), &msg, "fmi2ExitInitializationMode"));
 }
 
 fmi2Status fmi2Terminate(fmi2Component c) {
@@ -146,8 +150,7 @@ fmi2Status fmi2Terminate(fmi2Component c) {
 fmi2Status fmi2Reset(fmi2Component c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi2Reset", FMU_ALIVE)) return fmi2Error;
-    fmu_model_init(I->model);
-    I->phase = FMU_INSTANTIATED;
+    fmu_reset(I);
     return fmi2OK;
 }
 

@@ -56,7 +56,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
                                          fmi3InstanceEnvironment instanceEnvironment,
                                          fmi3LogMessageCallback logMessage,
                                          fmi3IntermediateUpdateCallback intermediateUpdate) {
-    (void)resourcePath; (void)visible; (void)earlyReturnAllowed;
+    (void)visible; (void)earlyReturnAllowed;
     (void)requiredIntermediateVariables; (void)intermediateUpdate;
     const char *why = NULL;
     if (!instanceName || !*instanceName) why = "fmi3InstantiateCoSimulation: instanceName is empty";
@@ -65,8 +65,12 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
               "modelDescription.xml";
     else if (eventModeUsed)
         why = "fmi3InstantiateCoSimulation: this FMU has no event mode (hasEventMode = false)";
-    else if (nRequiredIntermediateVariables > 0)
-        why = "fmi3InstantiateCoSimulation: this FMU provides no intermediate variables";
+    /* A request for intermediate variables is allowed and answered by
+     * providing none (as the Reference-FMUs do): intermediateUpdate is never
+     * called, since doStep never returns early or stops between points. */
+    else if (nRequiredIntermediateVariables > 0 && !requiredIntermediateVariables)
+        why = "fmi3InstantiateCoSimulation: requiredIntermediateVariables is NULL with "
+              "nRequiredIntermediateVariables > 0";
     if (why) {
         if (logMessage) logMessage(instanceEnvironment, fmi3Error, "logStatusError", why);
         return NULL;
@@ -84,6 +88,11 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
         return NULL;
     }
     fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi3InstantiateCoSimulation");
+    if (fmu_load_start_values(I, "fmi3InstantiateCoSimulation", resourcePath, 0) != 0) {
+        fmu_instance_free(I);
+        free(g);
+        return NULL;
+    }
     return I;
 }
 
@@ -155,8 +164,8 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3ExitInitializationMode", FMU_INIT)) return fmi3Error;
-    I->phase = FMU_STEP;
-    return fmi3OK;
+    fmu_msg msg;
+    return status3(fmu_result(I, fmu_exit_init(I, &msg), &msg, "fmi3ExitInitializationMode"));
 }
 
 fmi3Status fmi3Terminate(fmi3Instance c) {
@@ -169,8 +178,7 @@ fmi3Status fmi3Terminate(fmi3Instance c) {
 fmi3Status fmi3Reset(fmi3Instance c) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, "fmi3Reset", FMU_ALIVE)) return fmi3Error;
-    fmu_model_init(I->model);
-    I->phase = FMU_INSTANTIATED;
+    fmu_reset(I);
     return fmi3OK;
 }
 

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "fmu_bytes.h"
@@ -19,6 +20,190 @@ fmu_status fmu_fail(fmu_msg *msg, const char *fmt, ...) {
     return FMU_ERR;
 }
 
+/* ---- the table-driven variable access, once for every model ------------- */
+
+#define INFO FMU_MODEL_INFO
+#define SLOT_D(m, x) ((double *)((char *)(m) + (x)->slot))
+#define SLOT_I(m, x) ((int *)((char *)(m) + (x)->slot))
+#define CSLOT_D(m, x) ((const double *)((const char *)(m) + (x)->slot))
+#define CSLOT_I(m, x) ((const int *)((const char *)(m) + (x)->slot))
+
+/* Direct indexing: no search, no string work on the way of a value. */
+static inline const fmu_var *var_of(unsigned int vr) {
+    return vr < INFO.n_vars && INFO.vars[vr].name ? &INFO.vars[vr] : NULL;
+}
+
+const fmu_var *fmu_model_var(unsigned int vr) { return var_of(vr); }
+
+const char *fmu_model_variable_name(unsigned int vr) {
+    const fmu_var *x = var_of(vr);
+    return x ? x->name : NULL;
+}
+
+size_t fmu_model_size(void) { return INFO.size; }
+double *fmu_model_time(fmu_model *m) { return SLOT_D(m, &INFO.vars[0]); }
+
+/* The outputs that follow from the time, parameters and inputs, or why one
+ * is not finite (then nothing has changed): fmu_model.h. */
+static inline fmu_status refresh(fmu_model *m, fmu_msg *msg) {
+    return INFO.refresh ? INFO.refresh(m, msg) : FMU_OK;
+}
+
+static const char *type_name(int type) {
+    return type == FMU_T_Float64 ? "Float64 (Real)" : type == FMU_T_Int32 ? "Int32 (Integer)"
+                                                                         : "Enumeration (Integer)";
+}
+
+/* The message for a value the fast check refused: only here is anything
+ * formatted. */
+static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int type_ok, double value,
+                                   int allow, fmu_msg *msg) {
+    if (!x) return fmu_fail(msg, "unknown value reference %u", vr);
+    if (!type_ok)
+        return fmu_fail(msg, "variable %s (vr %u) is of type %s", x->name, vr, type_name(x->type));
+    if (x->causality == FMU_C_output)
+        return fmu_fail(msg, "variable %s is an output and cannot be set", x->name);
+    if (x->causality == FMU_C_independent)
+        return fmu_fail(msg, "variable %s is the independent variable: doStep advances it", x->name);
+    if (x->causality == FMU_C_parameter && !(allow & FMU_ALLOW_PARAMETERS))
+        return fmu_fail(msg, "parameter %s is fixed: it can be set only before the end of "
+                             "initialization (reset the FMU to change it)", x->name);
+    if (x->causality == FMU_C_input && !(allow & FMU_ALLOW_INPUTS))
+        return fmu_fail(msg, "input %s cannot be set in this state", x->name);
+    if (!isfinite(value))
+        return fmu_fail(msg, "%s = %g rejected: values must be finite", x->name, value);
+    return fmu_fail(msg, "%s = %g rejected: outside [%g, %g]", x->name, value, x->min, x->max);
+}
+
+/* In range and finite (v - v is NaN for an infinity and for NaN). */
+static inline int in_range(const fmu_var *x, double v) {
+    return v >= x->min && v <= x->max && v - v == 0.0;
+}
+
+fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context,
+                                 fmu_msg *msg) {
+    const fmu_var *x = var_of(vr);
+    if (x && in_range(x, value)) return FMU_OK;
+    return fmu_fail(msg, "%s: %s = %g is outside [%g, %g]", context, x ? x->name : "?", value,
+                    x ? x->min : NAN, x ? x->max : NAN);
+}
+
+/* One pass: each value is checked, its old value saved and the new one
+ * written; then refresh (before update, which may derive from its outputs)
+ * and update.  A refused value or a refusing model puts the old ones back
+ * (last first, so that a value reference named twice ends as it was) and,
+ * if refresh had already rewritten its outputs, has it derive them again
+ * from the old values (which it accepted before).  Only the refusal formats
+ * a message. */
+enum { SAVED_ON_STACK = 16 };
+
+#define SET_BATCH(CTYPE, TYPE_OK, VALUE, SLOT)                                                  \
+    const fmu_var *const vars = INFO.vars;                                                      \
+    const unsigned int nv = INFO.n_vars;                                                        \
+    CTYPE stack[SAVED_ON_STACK], *saved = stack;                                                \
+    if (n > SAVED_ON_STACK && !(saved = malloc(n * sizeof *saved)))                             \
+        return fmu_fail(msg, "out of memory");                                                  \
+    int changed = 0;                                                                            \
+    fmu_status st = FMU_OK;                                                                     \
+    size_t i = 0;                                                                               \
+    for (; i < n; ++i) {                                                                        \
+        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;                \
+        const double d = (double)(VALUE);                                                       \
+        if (!x || !(TYPE_OK) || !(x->settable & allow) || !in_range(x, d)) {                    \
+            st = why_not_settable(x, vr[i], x && (TYPE_OK), d, allow, msg);                     \
+            break;                                                                              \
+        }                                                                                       \
+        CTYPE *slot = SLOT(m, x);                                                               \
+        saved[i] = *slot;                                                                       \
+        *slot = (CTYPE)(VALUE);                                                                 \
+        changed |= x->settable;                                                                 \
+    }                                                                                           \
+    int refreshed = 0;                                                                          \
+    if (st == FMU_OK && n > 0 && (st = refresh(m, msg)) == FMU_OK) {                            \
+        refreshed = 1;                                                                          \
+        st = fmu_model_update(m, changed, allow, msg);                                          \
+    }                                                                                           \
+    if (st != FMU_OK) {                                                                         \
+        while (i-- > 0) *SLOT(m, &vars[vr[i]]) = saved[i];                                      \
+        if (refreshed) (void)refresh(m, NULL);                                                  \
+    }                                                                                           \
+    if (saved != stack) free(saved);                                                            \
+    return st;
+
+fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
+                                 int allow, fmu_msg *msg) {
+    SET_BATCH(double, x->type == FMU_T_Float64, v[i], SLOT_D)
+}
+
+fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, const void *v,
+                             size_t width, int kinds, int allow, fmu_msg *msg) {
+    /* In [min, max] (checked before the write): the int slot holds it. */
+    SET_BATCH(int, x->type & kinds, fmu_int_at(v, width, i), SLOT_I)
+}
+
+static fmu_status not_of_type(unsigned int vr, const char *asked, fmu_msg *msg) {
+    const fmu_var *x = var_of(vr);
+    if (x)
+        return fmu_fail(msg, "variable %s (vr %u) is of type %s, not %s", x->name, vr,
+                        type_name(x->type), asked);
+    return fmu_fail(msg, "unknown value reference %u", vr);
+}
+
+fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
+                                 fmu_msg *msg) {
+    const fmu_var *const vars = INFO.vars;
+    const unsigned int nv = INFO.n_vars;
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;
+        if (!x || x->type != FMU_T_Float64) return not_of_type(vr[i], "Float64 (Real)", msg);
+        v[i] = *CSLOT_D(m, x);
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
+                             size_t width, int kinds, fmu_msg *msg) {
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_var *x = var_of(vr[i]);
+        if (!x || !(x->type & kinds))
+            return not_of_type(vr[i], kinds == FMU_ENUM ? "Enumeration (Int64)"
+                                      : kinds == FMU_INT32 ? "Int32" : "Integer", msg);
+        fmu_int_put(v, width, i, *CSLOT_I(m, x));
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[],
+                                size_t n_unknown, const unsigned int known[], size_t n_known,
+                                const double seed[], double out[], int adjoint, fmu_msg *msg) {
+    if (!INFO.derivative)
+        return fmu_fail(msg, "this FMU provides no derivatives (providesDirectionalDerivative = "
+                             "false)");
+    return INFO.derivative(m, unknown, n_unknown, known, n_known, seed, out, adjoint, msg);
+}
+
+fmu_status fmu_model_init_from(fmu_model *m, const double start[], fmu_msg *msg) {
+    memset(m, 0, INFO.size);
+    for (unsigned int vr = 0; vr < INFO.n_vars; ++vr) {
+        const fmu_var *x = var_of(vr);
+        if (!x || !(x->settable || x->causality == FMU_C_independent)) continue;
+        const double s = start ? start[vr] : x->start;
+        if (x->type == FMU_T_Float64) *SLOT_D(m, x) = s;
+        else *SLOT_I(m, x) = (int)s;
+    }
+    if (refresh(m, msg) != FMU_OK) return FMU_ERR;
+    return fmu_model_update(m, FMU_CHANGED_PARAMETERS | FMU_CHANGED_INPUTS,
+                            FMU_ALLOW_PARAMETERS | FMU_ALLOW_INPUTS, msg);
+}
+
+void fmu_model_init(fmu_model *m) {
+    fmu_msg msg;
+    /* The table's start values are admissible (the C tests check it). */
+    (void)fmu_model_init_from(m, NULL, &msg);
+}
+
+/* ---- the instance ------------------------------------------------------- */
+
 fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
                                void (*release)(void *), fmu_log_fn log, void *glue,
                                int logging_on) {
@@ -28,9 +213,11 @@ fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
     const size_t len = strlen(name) + 1;
     I->name = alloc(len, 1);
     I->model = alloc(1, fmu_model_size());
-    if (!I->name || !I->model) {
+    I->start = alloc(FMU_MODEL_INFO.n_vars, sizeof *I->start);
+    if (!I->name || !I->model || !I->start) {
         if (I->name) release(I->name);
         if (I->model) release(I->model);
+        if (I->start) release(I->start);
         release(I);
         return NULL;
     }
@@ -41,6 +228,8 @@ fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
     I->glue = glue;
     I->log_on[FMU_LOG_ERROR] = I->log_on[FMU_LOG_WARNING] = 1;
     I->log_on[FMU_LOG_CALLS] = logging_on ? 1 : 0;
+    for (unsigned int vr = 0; vr < FMU_MODEL_INFO.n_vars; ++vr)
+        I->start[vr] = FMU_MODEL_INFO.vars[vr].start;
     fmu_model_init(I->model);
     I->phase = FMU_INSTANTIATED;
     return I;
@@ -50,6 +239,7 @@ void fmu_instance_free(fmu_instance *I) {
     if (!I) return;
     void (*release)(void *) = I->release;
     release(I->model);
+    release(I->start);
     release(I->name);
     release(I);
 }
@@ -119,14 +309,250 @@ int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
     return 0;
 }
 
+/* ---- start values from the resources (format: fmu_instance.h) ---------- */
+
+static int hex_digit(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+static int lower(int c) { return c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c; }
+
+char *fmu_path_from_uri(const char *uri) {
+    if (!uri) return NULL;
+    static const char scheme[] = "file:";
+    for (int i = 0; i < 5; ++i)
+        if (lower((unsigned char)uri[i]) != scheme[i]) return NULL;
+    const char *p = uri + 5;
+    if (p[0] == '/' && p[1] == '/') { /* an authority: empty or localhost, else a UNC host */
+        p += 2;
+        if (strncmp(p, "localhost/", 10) == 0) p += 9;
+        else if (*p != '/') p -= 2; /* keep //host/share */
+    }
+    char *out = malloc(strlen(p) + 1);
+    if (!out) return NULL;
+    size_t n = 0;
+    for (; *p; ++p) {
+        int hi, lo;
+        if (*p == '%' && (hi = hex_digit(p[1])) >= 0 && (lo = hex_digit(p[2])) >= 0) {
+            out[n++] = (char)(hi * 16 + lo);
+            p += 2;
+        } else {
+            out[n++] = *p;
+        }
+    }
+    out[n] = '\0';
+    /* /C:/dir or /C|/dir: a Windows drive letter */
+    if (out[0] == '/' && ((out[1] >= 'A' && out[1] <= 'Z') || (out[1] >= 'a' && out[1] <= 'z')) &&
+        (out[2] == ':' || out[2] == '|') && (out[3] == '/' || out[3] == '\0')) {
+        memmove(out, out + 1, n);
+        out[1] = ':';
+    }
+    return out;
+}
+
+/* A C99 hexadecimal floating constant, exactly: NULL, or what is wrong. */
+static const char *parse_hex_float(const char *s, double *value) {
+    int neg = 0;
+    if (*s == '+' || *s == '-') neg = *s++ == '-';
+    if (!(s[0] == '0' && (s[1] == 'x' || s[1] == 'X'))) return "no 0x";
+    s += 2;
+    uint64_t mant = 0;
+    long e2 = 0;
+    int digits = 0, point = 0, d;
+    for (;; ++s) {
+        if (*s == '.' && !point) {
+            point = 1;
+            continue;
+        }
+        if ((d = hex_digit(*s)) < 0) break;
+        ++digits;
+        if (mant >> 56) { /* more would not fit: only zeros may follow */
+            if (d != 0) return "more digits than a double holds";
+            if (!point) e2 += 4;
+        } else {
+            mant = mant * 16 + (uint64_t)d;
+            if (point) e2 -= 4;
+        }
+    }
+    if (digits == 0) return "no hexadecimal digits";
+    if (*s != 'p' && *s != 'P') return "no binary exponent (p)";
+    ++s;
+    int eneg = 0;
+    if (*s == '+' || *s == '-') eneg = *s++ == '-';
+    long e = 0;
+    int edigits = 0;
+    for (; *s >= '0' && *s <= '9'; ++s, ++edigits)
+        if (e < 100000) e = e * 10 + (*s - '0');
+    if (edigits == 0) return "no exponent digits";
+    if (*s) return "characters after the number";
+    e2 += eneg ? -e : e;
+    while (mant && !(mant & 1)) {
+        mant >>= 1;
+        ++e2;
+    }
+    if (mant >> 53) return "more digits than a double holds";
+    const double m = (double)mant; /* exact: < 2^53 */
+    const double v = mant ? ldexp(m, (int)(e2 < -100000 ? -100000 : e2 > 100000 ? 100000 : e2)) : 0.0;
+    if (mant && (!isfinite(v) || v == 0.0 || ldexp(v, (int)-e2) != m))
+        return "not representable exactly as a double";
+    *value = neg ? -v : v;
+    return NULL;
+}
+
+/* A decimal integer of at most 15 digits (exact as a double): NULL, or why not. */
+static const char *parse_decimal_integer(const char *s, double *value) {
+    int neg = 0;
+    if (*s == '+' || *s == '-') neg = *s++ == '-';
+    double v = 0;
+    int digits = 0;
+    for (; *s >= '0' && *s <= '9'; ++s)
+        if (++digits <= 15) v = v * 10 + (*s - '0');
+    if (digits == 0 || *s) return "not a decimal integer";
+    if (digits > 15) return "more than 15 digits";
+    *value = neg ? -v : v;
+    return NULL;
+}
+
+static int is_blank(char c) { return c == ' ' || c == '\t'; }
+
+static int load_fail(fmu_instance *I, const char *fn, const char *path, int line, FILE *f,
+                     char *freeme, double *start, const char *fmt, ...) {
+    char text[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    if (line > 0) FMU_ERROR(I, "%s: %s, line %d: %s", fn, path, line, text);
+    else FMU_ERROR(I, "%s: %s: %s", fn, path, text);
+    if (f) fclose(f);
+    free(start);
+    free(freeme);
+    return -1;
+}
+
+int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources, int is_uri) {
+    if (!resources || !*resources) return 0;
+    char *dir = is_uri ? fmu_path_from_uri(resources) : NULL;
+    const char *base = is_uri ? dir : resources;
+    if (!base) return 0; /* not a file URI: no file this FMU can read */
+    const size_t len = strlen(base);
+    const int sep = len > 0 && (base[len - 1] == '/' || base[len - 1] == '\\');
+    char *path = malloc(len + 1 + sizeof FMU_START_VALUES_FILE);
+    if (!path) {
+        free(dir);
+        FMU_ERROR(I, "%s: out of memory", fn);
+        return -1;
+    }
+    memcpy(path, base, len);
+    if (!sep) path[len] = '/';
+    memcpy(path + len + !sep, FMU_START_VALUES_FILE, sizeof FMU_START_VALUES_FILE);
+    free(dir);
+    FILE *f = fopen(path, "rb");
+    if (!f) { /* no file: the compiled start values */
+        free(path);
+        return 0;
+    }
+    const unsigned int nv = INFO.n_vars;
+    double *start = malloc(nv * sizeof *start);
+    unsigned char *seen = calloc(nv ? nv : 1, 1);
+    if (!start || !seen) {
+        free(seen);
+        return load_fail(I, fn, path, 0, f, path, start, "out of memory");
+    }
+    memcpy(start, I->start, nv * sizeof *start);
+    char buf[1002];
+    int line = 0;
+#define FAIL(...)                                                                        \
+    do {                                                                                 \
+        free(seen);                                                                      \
+        return load_fail(I, fn, path, line, f, path, start, __VA_ARGS__);                \
+    } while (0)
+    while (fgets(buf, sizeof buf, f)) {
+        ++line;
+        size_t n = strlen(buf);
+        if (n > 0 && buf[n - 1] == '\n') buf[--n] = '\0';
+        else if (!feof(f)) FAIL("longer than 1000 characters");
+        if (n > 0 && buf[n - 1] == '\r') buf[--n] = '\0';
+        while (n > 0 && is_blank(buf[n - 1])) buf[--n] = '\0';
+        char *p = buf;
+        while (is_blank(*p)) ++p;
+        if (*p == '\0' || *p == '#') continue;
+        char *name = p;
+        while (*p && !is_blank(*p) && *p != '=') ++p;
+        char *name_end = p;
+        while (is_blank(*p)) ++p;
+        if (*p != '=') FAIL("expected `name = value`");
+        *name_end = '\0';
+        ++p;
+        while (is_blank(*p)) ++p;
+        unsigned int vr = nv;
+        for (unsigned int k = 0; k < nv; ++k)
+            if (INFO.vars[k].name && strcmp(INFO.vars[k].name, name) == 0) vr = k;
+        if (vr == nv) FAIL("no variable named \"%s\"", name);
+        const fmu_var *x = &INFO.vars[vr];
+        if (x->causality != FMU_C_parameter) FAIL("%s is not a parameter", name);
+        if (seen[vr]) FAIL("%s is given twice", name);
+        seen[vr] = 1;
+        double v;
+        const char *why;
+        if (x->type == FMU_T_Float64) {
+            why = (p[0] == '0' || ((p[0] == '-' || p[0] == '+') && p[1] == '0')) &&
+                          (strchr(p, 'x') || strchr(p, 'X'))
+                      ? parse_hex_float(p, &v)
+                      : parse_decimal_integer(p, &v);
+            if (why)
+                FAIL("%s = \"%s\": %s; expected a hexadecimal float such as 0x1.8p+3 "
+                     "(printf %%a, Python float.hex()) or a decimal integer", name, p, why);
+        } else if ((why = parse_decimal_integer(p, &v)) != NULL) {
+            FAIL("%s = \"%s\": %s; expected a decimal integer", name, p, why);
+        }
+        if (!in_range(x, v))
+            FAIL("%s = %.17g is outside [%g, %g]", name, v, x->min, x->max);
+        start[vr] = v;
+    }
+    if (ferror(f)) FAIL("read error");
+#undef FAIL
+    fmu_msg msg;
+    if (fmu_model_init_from(I->model, start, &msg) != FMU_OK) {
+        free(seen);
+        line = 0;
+        return load_fail(I, fn, path, 0, f, path, start, "the values are not admissible: %s",
+                         msg.text);
+    }
+    memcpy(I->start, start, nv * sizeof *start);
+    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "%s: start values from %s", fn, path);
+    fclose(f);
+    free(seen);
+    free(start);
+    free(path);
+    return 0;
+}
+
 fmu_status fmu_set_start_time(fmu_instance *I, double t, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
     const double before = *time;
     *time = t;
-    if (fmu_model_check(I->model, msg) != FMU_OK) {
+    if (refresh(I->model, msg) != FMU_OK) {
         *time = before;
         return FMU_ERR;
     }
+    return FMU_OK;
+}
+
+void fmu_reset(fmu_instance *I) {
+    fmu_msg msg;
+    /* The start values were accepted at instantiation: they are again. */
+    (void)fmu_model_init_from(I->model, I->start, &msg);
+    I->phase = FMU_INSTANTIATED;
+}
+
+fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg) {
+    /* exit_init changes no time, parameter or input: refresh's outputs stand. */
+    if (INFO.exit_init && INFO.exit_init(I->model, msg) != FMU_OK) return FMU_ERR;
+    I->phase = FMU_STEP;
     return FMU_OK;
 }
 
@@ -140,17 +566,27 @@ fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     if (fabs(t - *time) > 1e-9 * fmax(fabs(*time), h))
         return fmu_fail(msg, "currentCommunicationPoint=%.17g but the FMU is at time %.17g", t,
                         *time);
+    /* The time moves first: the outputs at the step's end are checked (and
+     * the model steps) there, and the time goes back if either refuses. */
     const double before = *time;
     *time = t + h;
+    if (refresh(I->model, msg) != FMU_OK) {
+        *time = before;
+        return FMU_ERR;
+    }
     if (fmu_model_do_step(I->model, h, msg) != FMU_OK) {
         *time = before;
+        (void)refresh(I->model, NULL); /* the outputs it had, accepted before */
         return FMU_ERR;
     }
     return FMU_OK;
 }
 
-/* Layout: tag[4], format u32, total length u32, phase u32, time f64, model. */
-enum { STATE_FORMAT = 2, STATE_HEADER = 4 + 4 + 4 + 4 + 8 };
+/* Layout: tag[4], format u32, total length u32, phase u32, time f64, model.
+ * Format 3 (0.4.0) added the contact's initial slip; a state of another
+ * format is refused with a message that says so (its meaning differs: no
+ * conversion guesses it). */
+enum { STATE_FORMAT = 3, STATE_HEADER = 4 + 4 + 4 + 4 + 8 };
 
 size_t fmu_state_size(void) { return STATE_HEADER + fmu_model_state_size(); }
 
@@ -166,21 +602,25 @@ void fmu_state_write(const fmu_instance *I, unsigned char *buf) {
 
 fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size, fmu_msg *msg) {
     if (!buf) return fmu_fail(msg, "the state is NULL");
-    if (size != fmu_state_size())
-        return fmu_fail(msg, "a serialized %s state has %zu bytes, got %zu",
-                        FMU_MODEL_INFO.model_identifier, fmu_state_size(), size);
     uint32_t format, length, phase;
     double time;
     const unsigned char *p = buf;
-    if (memcmp(p, FMU_MODEL_INFO.tag, 4) != 0)
-        return fmu_fail(msg, "not a serialized %s state (wrong tag)", FMU_MODEL_INFO.model_identifier);
+    /* Tag and format first, so that a state of an older FMU is told as such
+     * rather than as a wrong size. */
+    if (size < 8 || memcmp(p, FMU_MODEL_INFO.tag, 4) != 0)
+        return fmu_fail(msg, "not a serialized %s state (%s)", FMU_MODEL_INFO.model_identifier,
+                        size < 8 ? "too short" : "wrong tag");
     p = fmu_get_u32(p + 4, &format);
+    if (format != STATE_FORMAT)
+        return fmu_fail(msg, "serialized state of format %u, this FMU reads format %d only "
+                             "(states are not carried across FMU versions: save them again "
+                             "with this one)", (unsigned)format, STATE_FORMAT);
+    if (size != fmu_state_size())
+        return fmu_fail(msg, "a serialized %s state has %zu bytes, got %zu",
+                        FMU_MODEL_INFO.model_identifier, fmu_state_size(), size);
     p = fmu_get_u32(p, &length);
     p = fmu_get_u32(p, &phase);
     p = fmu_get_f64(p, &time);
-    if (format != STATE_FORMAT)
-        return fmu_fail(msg, "serialized state of format %u, this FMU reads format %d",
-                        (unsigned)format, STATE_FORMAT);
     if (length != fmu_state_size())
         return fmu_fail(msg, "serialized state says it has %u bytes, expected %zu",
                         (unsigned)length, fmu_state_size());
@@ -188,15 +628,30 @@ fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size
         phase != FMU_TERMINATED)
         return fmu_fail(msg, "serialized state holds an unknown phase %u", (unsigned)phase);
     if (!isfinite(time)) return fmu_fail(msg, "serialized state holds a non-finite time");
-    double *model_time = fmu_model_time(I->model);
-    const double before = *model_time;
-    *model_time = time;
-    if (fmu_model_state_read(I->model, p, msg) != FMU_OK) {
-        *model_time = before;
-        return FMU_ERR;
+    if (!INFO.refresh) { /* the model's read checks all it keeps, and changes m only on success */
+        if (fmu_model_state_read(I->model, p, msg) != FMU_OK) return FMU_ERR;
+        *fmu_model_time(I->model) = time;
+        I->phase = (int)phase;
+        return FMU_OK;
     }
-    I->phase = (int)phase;
-    return FMU_OK;
+    /* refresh can refuse only after the model's read has succeeded: read
+     * into a copy, so that a refused state changes nothing. */
+    fmu_model *next = I->alloc(1, fmu_model_size());
+    if (!next) return fmu_fail(msg, "out of memory");
+    memcpy(next, I->model, fmu_model_size());
+    fmu_status st = fmu_model_state_read(next, p, msg);
+    if (st == FMU_OK) {
+        *fmu_model_time(next) = time;
+        fmu_msg why;
+        if ((st = refresh(next, &why)) != FMU_OK)
+            fmu_fail(msg, "serialized state at t = %g s: %s", time, why.text);
+    }
+    if (st == FMU_OK) {
+        memcpy(I->model, next, fmu_model_size());
+        I->phase = (int)phase;
+    }
+    I->release(next);
+    return st;
 }
 
 int fmu_state_get(fmu_instance *I, const char *fn, void **state) {
@@ -261,8 +716,8 @@ int fmu_state_deserialize(fmu_instance *I, const char *fn, const unsigned char *
         FMU_ERROR(I, "%s: out of memory", fn);
         return FMU_S_ERROR;
     }
-    fmu_model_init(scratch.model);
     fmu_msg msg;
+    fmu_model_init(scratch.model);
     const fmu_status st = fmu_state_read(&scratch, bytes, size, &msg);
     I->release(scratch.model);
     if (st != FMU_OK) return fmu_result(I, st, &msg, fn);

@@ -36,6 +36,7 @@ struct fmu_instance {
     int phase;
     int log_on[FMU_LOG_N];
     char *name;
+    double *start; /* start values by value reference: the table's, or the resources' */
     fmu_log_fn log;
     void *(*alloc)(size_t n, size_t size);
     void (*release)(void *p);
@@ -64,8 +65,46 @@ int fmu_result(fmu_instance *I, fmu_status st, const fmu_msg *msg, const char *f
 int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
                           const char *const categories[]);
 
-/* Refused, unchanged, if the model's outputs are not finite at time t. */
+/*
+ * Start values from the FMU's resources: <resources>/start_values.txt.
+ *
+ * A writer that changes parameters' start values in modelDescription.xml
+ * writes the same values into this file, so that the binary's defaults equal
+ * the description's start values even when the importer sets nothing.
+ * Format (UTF-8/ASCII text, one assignment a line):
+ *   - blank lines and lines whose first non-blank character is '#' are ignored;
+ *   - otherwise `name = value`, blanks (space, tab) allowed around both; `name`
+ *     is the name of a *parameter* of the model's table, each at most once;
+ *   - a Float64 value is a C99 hexadecimal floating constant as printf's %a
+ *     and Python's float.hex() write it, [+-]0x<hex digits>[.<hex digits>]p[+-]<decimal
+ *     exponent> (e.g. 0x1.a1cac083126e9p-2 for 0.408), read exactly and
+ *     independently of the locale; or a decimal integer of at most 15 digits;
+ *   - an Int32 or Enumeration value is a decimal integer;
+ *   - every value must lie in the variable's [min, max] and be finite, and
+ *     the parameters together must be admissible for the model;
+ *   - lines end with LF or CRLF and are at most 1000 characters long.
+ * Any other line makes instantiation fail with a logged message naming the
+ * file, the line and what was expected.  No file: the compiled start values,
+ * silently.  fmi2Reset / fmi3Reset return to the file's values.
+ */
+#define FMU_START_VALUES_FILE "start_values.txt"
+
+/* Reads the file under `resources` (an FMI 2.0 file URI when is_uri, else an
+ * FMI 3.0 native path; NULL or empty: no file) into the instance's start
+ * values and re-initializes the model with them.  0, or -1 (logged under fn). */
+int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources, int is_uri);
+/* The native path of a file URI (file:///, file:/, file://localhost/,
+ * percent-escapes, Windows drive letters), allocated with malloc; NULL if
+ * `uri` is not a file URI or out of memory. */
+char *fmu_path_from_uri(const char *uri);
+
+/* Refused, unchanged, if the model's outputs at time t are not finite
+ * (its refresh hook). */
 fmu_status fmu_set_start_time(fmu_instance *I, double t, fmu_msg *msg);
+/* Back to the instantiated state at the instance's start values. */
+void fmu_reset(fmu_instance *I);
+/* Ends initialization: the model's exit hook, then step mode. */
+fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg);
 /* Checks and commits a communication step [t, t + h]. */
 fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg);
 

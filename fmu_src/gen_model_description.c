@@ -3,13 +3,26 @@
  * so that the XML, the documentation and the C value references cannot drift
  * apart.  Compiled once per model with -DFMU_TABLE_HEADER="<table header>".
  *
- * Usage: gen_model_description fmi2|fmi3|build|html [OUTPUT]   (stdout without OUTPUT) */
+ * The guid / instantiationToken is computed here from the content of both
+ * model descriptions written without it (FNV-1a, 128 bits as two 64-bit
+ * lanes, formatted as a GUID), and `token` writes it as the header
+ * fmu_token.h that the binary is compiled with: description and binary agree
+ * by construction, and any change of the description changes the token.
+ * The version comes from the build (-DFMU_VERSION="...").
+ *
+ * Usage: gen_model_description fmi2|fmi3|build|html|token [OUTPUT]   (stdout without OUTPUT) */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#define FMU_GENERATOR 1 /* the table header must not include the token this computes */
 #include FMU_TABLE_HEADER
+
+#ifndef FMU_VERSION
+#error "compile with -DFMU_VERSION=\"x.y.z\" (CMake passes the version of the file VERSION)"
+#endif
 
 #define STR(x) #x
 #define XSTR(x) STR(x)
@@ -35,16 +48,21 @@ typedef struct {
     const char *name, *desc;
     int value;
 } item;
-#ifdef FMU_ENUM_TYPE
+typedef struct {
+    const char *name;
+    const item *items;
+    int n;
+} enum_type;
+#ifdef FMU_ENUM_TYPES
 #define ITEM(name, value, desc) {#name, desc, value},
-static const item ITEMS[] = {FMU_ENUM_ITEMS(ITEM)};
-#undef ITEM
-enum { NITEMS = sizeof ITEMS / sizeof ITEMS[0] };
-#define ENUM_NAME XSTR(FMU_ENUM_TYPE)
+#define ENUM_ITEMS(type, ITEMS) static const item ITEMS_##type[] = {ITEMS(ITEM)};
+FMU_ENUM_TYPES(ENUM_ITEMS)
+#define ENUM_ROW(type, ITEMS) {#type, ITEMS_##type, (int)(sizeof ITEMS_##type / sizeof(item))},
+static const enum_type ENUMS[] = {FMU_ENUM_TYPES(ENUM_ROW)};
+enum { NENUMS = sizeof ENUMS / sizeof ENUMS[0] };
 #else
-static const item ITEMS[1];
-enum { NITEMS = 0 };
-#define ENUM_NAME ""
+static const enum_type ENUMS[1];
+enum { NENUMS = 0 };
 #endif
 
 #define SRC(f) #f,
@@ -90,6 +108,7 @@ static void num(char *buf, size_t n, double x) {
 
 static int is(const char *a, const char *b) { return strcmp(a, b) == 0; }
 static int is_int(const row *r) { return !is(r->type, "Float64"); }
+static int is_enum(const row *r) { return is_int(r) && !is(r->type, "Int32"); }
 static int has_start(const row *r) {
     return !is(r->initial, "calculated") && !is(r->causality, "independent");
 }
@@ -192,9 +211,9 @@ static void inputs_of(FILE *f, const char *output, int by_index) {
         }
 }
 
-static void fmi2(FILE *f) {
+static void fmi2(FILE *f, const char *token) {
     header(f, "2.0");
-    fprintf(f, "  guid=\"%s\"\n", FMU_GUID);
+    fprintf(f, "  guid=\"%s\"\n", token);
     common_attrs(f, "documentation/LICENSE.txt");
     fprintf(f, "\n  numberOfEventIndicators=\"0\">\n\n"
                "  <CoSimulation\n    modelIdentifier=\"%s\"\n"
@@ -234,9 +253,9 @@ static void fmi2(FILE *f) {
     fputs("    </InitialUnknowns>\n  </ModelStructure>\n\n</fmiModelDescription>\n", f);
 }
 
-static void fmi3(FILE *f) {
+static void fmi3(FILE *f, const char *token) {
     header(f, "3.0");
-    fprintf(f, "  instantiationToken=\"%s\"\n", FMU_GUID);
+    fprintf(f, "  instantiationToken=\"%s\"\n", token);
     common_attrs(f, "documentation/licenses/LICENSE.txt");
     fprintf(f, ">\n\n  <CoSimulation\n    modelIdentifier=\"%s\"\n"
                "    canHandleVariableCommunicationStepSize=\"true\"\n"
@@ -245,23 +264,27 @@ static void fmi3(FILE *f) {
                "    providesAdjointDerivatives=\"%s\"\n    hasEventMode=\"false\"/>\n\n",
             FMU_MODEL_IDENTIFIER, TF(FMU_PROVIDES_DERIVATIVES), TF(FMU_PROVIDES_DERIVATIVES));
     unit_definitions(f);
-    if (NITEMS > 0) {
-        fprintf(f, "  <TypeDefinitions>\n    <EnumerationType name=\"%s\">\n", ENUM_NAME);
-        for (int k = 0; k < NITEMS; ++k) {
-            fprintf(f, "      <Item name=\"%s\" value=\"%d\" description=\"", ITEMS[k].name,
-                    ITEMS[k].value);
-            esc(f, ITEMS[k].desc);
-            fputs("\"/>\n", f);
+    if (NENUMS > 0) {
+        fputs("  <TypeDefinitions>\n", f);
+        for (int e = 0; e < NENUMS; ++e) {
+            fprintf(f, "    <EnumerationType name=\"%s\">\n", ENUMS[e].name);
+            for (int k = 0; k < ENUMS[e].n; ++k) {
+                fprintf(f, "      <Item name=\"%s\" value=\"%d\" description=\"",
+                        ENUMS[e].items[k].name, ENUMS[e].items[k].value);
+                esc(f, ENUMS[e].items[k].desc);
+                fputs("\"/>\n", f);
+            }
+            fputs("    </EnumerationType>\n", f);
         }
-        fputs("    </EnumerationType>\n  </TypeDefinitions>\n\n", f);
+        fputs("  </TypeDefinitions>\n\n", f);
     }
     log_categories(f);
     fputs("  <ModelVariables>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
-        const char *el = is(r->type, "Enum") ? "Enumeration" : r->type;
+        const char *el = is_enum(r) ? "Enumeration" : r->type;
         fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\"", el, r->name, r->vr);
-        if (is(r->type, "Enum")) fprintf(f, " declaredType=\"%s\"", ENUM_NAME);
+        if (is_enum(r)) fprintf(f, " declaredType=\"%s\"", r->type);
         fprintf(f, " causality=\"%s\" variability=\"%s\"", r->causality, r->variability);
         if (*r->initial) fprintf(f, " initial=\"%s\"", r->initial);
         fputs(" description=\"", f);
@@ -313,25 +336,27 @@ static void html(FILE *f) {
           "<th>description</th></tr>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
-        char s[64] = "", lo[64] = "", hi[64] = "";
+        char s[64] = "", lo[64] = "", hi[64] = "", type[96];
+        if (is_enum(r)) snprintf(type, sizeof type, "Enumeration %s (FMI 2.0: Integer)", r->type);
+        else snprintf(type, sizeof type, "%s", r->type);
         if (has_start(r)) num(s, sizeof s, r->start);
         if (isfinite(r->min)) num(lo, sizeof lo, r->min);
         if (isfinite(r->max)) num(hi, sizeof hi, r->max);
         fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>%s</td><td>%s</td><td>%s</td>"
                    "<td>%s%s%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>",
                 r->name, r->vr, r->causality, r->variability,
-                is(r->type, "Enum") ? "Enumeration (FMI 2.0: Integer)" : r->type,
+                type,
                 is(r->unit, "1") ? "" : r->unit, *r->display ? " (display " : "", r->display,
                 *r->display ? ")" : "", s, lo, hi);
         esc(f, r->desc);
         fputs("</td></tr>\n", f);
     }
     fputs("</table>\n", f);
-    if (NITEMS > 0) {
-        fprintf(f, "<h2>Enumeration %s</h2>\n<ul>\n", ENUM_NAME);
-        for (int k = 0; k < NITEMS; ++k) {
-            fprintf(f, "<li><code>%d</code> %s: ", ITEMS[k].value, ITEMS[k].name);
-            esc(f, ITEMS[k].desc);
+    for (int e = 0; e < NENUMS; ++e) {
+        fprintf(f, "<h2>Enumeration %s (FMI 2.0: Integer)</h2>\n<ul>\n", ENUMS[e].name);
+        for (int k = 0; k < ENUMS[e].n; ++k) {
+            fprintf(f, "<li><code>%d</code> %s: ", ENUMS[e].items[k].value, ENUMS[e].items[k].name);
+            esc(f, ENUMS[e].items[k].desc);
             fputs("</li>\n", f);
         }
         fputs("</ul>\n", f);
@@ -340,18 +365,49 @@ static void html(FILE *f) {
           "(FMI 2.0) or <code>licenses/LICENSE.txt</code> (FMI 3.0).</p>\n</body>\n</html>\n", f);
 }
 
+/* FNV-1a over everything written to f, in two lanes with different bases. */
+static void hash_file(FILE *f, uint64_t h[2]) {
+    rewind(f);
+    int c;
+    while ((c = fgetc(f)) != EOF)
+        for (int k = 0; k < 2; ++k) h[k] = (h[k] ^ (uint64_t)(unsigned char)c) * 0x100000001b3ull;
+}
+
+static void compute_token(char token[39]) {
+    uint64_t h[2] = {0xcbf29ce484222325ull, 0x84222325cbf29ce4ull};
+    FILE *t = tmpfile();
+    if (!t) {
+        perror("tmpfile");
+        exit(1);
+    }
+    fmi2(t, "");
+    fmi3(t, "");
+    hash_file(t, h);
+    fclose(t);
+    snprintf(token, 39, "{%08x-%04x-%04x-%04x-%012llx}", (unsigned)(h[0] >> 32),
+             (unsigned)(h[0] >> 16) & 0xffffu, (unsigned)h[0] & 0xffffu,
+             (unsigned)(h[1] >> 48) & 0xffffu,
+             (unsigned long long)(h[1] & 0xffffffffffffull));
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) {
-        fprintf(stderr, "usage: %s fmi2|fmi3|build|html [OUTPUT]\n", argv[0]);
+        fprintf(stderr, "usage: %s fmi2|fmi3|build|html|token [OUTPUT]\n", argv[0]);
         return 2;
     }
+    char token[39];
+    compute_token(token);
     FILE *f = stdout;
     if (argc > 2 && !(f = fopen(argv[2], "w"))) {
         perror(argv[2]);
         return 1;
     }
-    if (is(argv[1], "fmi2")) fmi2(f);
-    else if (is(argv[1], "fmi3")) fmi3(f);
+    if (is(argv[1], "fmi2")) fmi2(f, token);
+    else if (is(argv[1], "fmi3")) fmi3(f, token);
+    else if (is(argv[1], "token"))
+        fprintf(f, "/* Generated by gen_model_description from the model descriptions' content. */\n"
+                   "#ifndef FMU_TOKEN_H\n#define FMU_TOKEN_H\n"
+                   "#define FMU_TOKEN \"%s\"\n#define FMU_GUID FMU_TOKEN\n#endif\n", token);
     else if (is(argv[1], "build")) build(f);
     else if (is(argv[1], "html")) html(f);
     else {

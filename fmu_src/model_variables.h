@@ -7,8 +7,8 @@
  *
  * X(name, vr, type, causality, variability, initial, start, min, max, unit,
  *   displayUnit, description)
- *   type: Float64, Int32 or Enum (the declared type FMU_ENUM_TYPE; an Integer
- *         with min/max in FMI 2.0, an Enumeration in FMI 3.0);
+ *   type: Float64, Int32 or the name of an enumeration type of FMU_ENUM_TYPES
+ *         (an Integer with min/max in FMI 2.0, an Enumeration in FMI 3.0);
  *   initial: exact or calculated ("calculated" entries have no start);
  *   min, max: numbers (NO_MIN / NO_MAX for none); the model refuses values
  *         outside them.
@@ -24,8 +24,14 @@
 
 #define FMU_MODEL_NAME "OrthotropicContact"
 #define FMU_MODEL_IDENTIFIER "OrthotropicContact"
-#define FMU_GUID "{8c6e3f52-4d1a-4b7e-9a35-0f1473db3a02}"
-#define FMU_VERSION "0.2.0"
+/* The guid / instantiationToken is a hash of the generated model
+ * descriptions (gen_model_description writes it into fmu_token.h as
+ * FMU_TOKEN, alias FMU_GUID): it changes whenever the description does, and
+ * the binary and the description agree by construction.  The version is the
+ * build's (CMake, from the file VERSION). */
+#ifndef FMU_GENERATOR
+#include "fmu_token.h"
+#endif
 #define FMU_STATE_TAG {'O', 'C', 'S', 'T'}
 #define FMU_DESCRIPTION                                                                      \
     "Coupled orthotropic adhesion-friction contact interface (Konyukhov and Schweizerhof "   \
@@ -34,7 +40,7 @@
 /* Sources of the binary besides the version's glue (fmi2_glue.c / fmi3_glue.c). */
 #define FMU_SOURCES(S) S(contact_law.c) S(oc_model.c) S(fmu_instance.c)
 #define FMU_HEADERS(S) \
-    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(model_variables.h)
+    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(model_variables.h) S(fmu_token.h)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 
 /* The law in short, for documentation/index.html. */
@@ -54,13 +60,24 @@
     "from the committed state without committing it (a master may iterate, with the "         \
     "directional derivative); doStep commits it.  The FMU state (get/set/serialize) holds "   \
     "everything, the FMI mode included: it restores into a freshly instantiated instance."   \
-    "</p>\n"
+    "</p>\n"                                                                                 \
+    "<h2>Initial condition</h2>\n<p>The committed state before the first step is an "          \
+    "unloaded contact with slip s.  With <code>initialSlip = atInputs</code> (default) s is "   \
+    "the displacement u the FMU has when initialization ends (<code>ExitInitializationMode"  \
+    "</code>): inputs wired to absolute positions give no force and no dissipation until the " \
+    "body moves.  With <code>initialSlip = explicit</code>, s = (s1Start, s2Start); explicit " \
+    "with s = 0 is the behaviour of versions before 0.4.  A path that starts at u = 0 gives "  \
+    "the same results either way.</p>\n"
 
-#define FMU_ENUM_TYPE SlidingRule
-#define FMU_ENUM_ITEMS(E)                                                                      \
+/* Enumeration types: T(type name, items), items E(name, value, description). */
+#define FMU_ENUM_TYPES(T) T(SlidingRule, OC_SLIDING_RULE_ITEMS) T(InitialSlip, OC_INITIAL_SLIP_ITEMS)
+#define OC_SLIDING_RULE_ITEMS(E)                                                               \
     E(associated, 1, "G = F: classical orthotropic Coulomb friction (paper Case 1)")           \
     E(coupled, 2, "G = (B F B)^-1: the coupled law of Konyukhov and Schweizerhof")             \
     E(eq20, 3, "the paper's explicit eq. (20), step-size dependent: for reproduction only")
+#define OC_INITIAL_SLIP_ITEMS(E)                                                               \
+    E(atInputs, 1, "s = u at the end of initialization: no force until the body moves")        \
+    E(explicit, 2, "s = (s1Start, s2Start): the body is loaded by B (u - s) at once")
 
 #define FMU_VARIABLES(X)                                                                       \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "", "Simulation time")     \
@@ -76,7 +93,7 @@
       12.566370614359172, "rad", "deg", "Angle of adhesion axis 1, counterclockwise from X1") \
     X(beta, 6, Float64, parameter, fixed, exact, 0.0, -12.566370614359172,                    \
       12.566370614359172, "rad", "deg", "Angle of friction axis 1, counterclockwise from X1") \
-    X(slidingRule, 7, Enum, parameter, fixed, exact, 2, 1, 3, "", "",                      \
+    X(slidingRule, 7, SlidingRule, parameter, fixed, exact, 2, 1, 3, "", "",                      \
       "Sliding rule: 1 associated (G = F), 2 coupled (G = (B F B)^-1), "                       \
       "3 literal eq. (20) of the paper (step-size dependent, for reproduction only)")         \
     X(u1, 8, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                               \
@@ -96,7 +113,14 @@
     X(contactState, 15, Int32, output, discrete, calculated, 0, 0, 2, "", "",              \
       "State of the step: 0 open, 1 stick, 2 slip")                                            \
     X(dissipatedEnergy, 16, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J", "",     \
-      "Frictional energy dissipated over the committed steps (never decreases)")
+      "Frictional energy dissipated over the committed steps (never decreases)")                \
+    X(initialSlip, 17, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                  \
+      "Initial slip: 1 atInputs (s = u when initialization ends: the contact starts unloaded "  \
+      "wherever the body is), 2 explicit (s = (s1Start, s2Start))")                           \
+    X(s1Start, 18, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",              \
+      "Initial slip along X1 when initialSlip = explicit")                                     \
+    X(s2Start, 19, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",              \
+      "Initial slip along X2 when initialSlip = explicit")
 
 #define OC_VR_ENUM_ENTRY(name, vr, ...) OC_VR_##name = vr,
 enum { FMU_VARIABLES(OC_VR_ENUM_ENTRY) OC_VR_COUNT_PLUS_ONE };

@@ -8,6 +8,11 @@
  * it.  After a commit the outputs read the step just committed until the
  * inputs are set again; a further commit with held inputs takes a new step
  * from the new committed state.
+ *
+ * Initial condition: until initialization ends, the committed state is an
+ * unloaded contact with slip s = u (initialSlip = atInputs) or s = (s1Start,
+ * s2Start) (explicit), rederived whenever an input or parameter is set; so
+ * ExitInitializationMode starts the first step from it.
  */
 #ifndef OC_MODEL_H
 #define OC_MODEL_H
@@ -23,12 +28,18 @@ struct fmu_model {
     oc_params params;
     oc_law law;
     double u[2], N;       /* the current inputs */
+    int initial_slip;     /* OC_INITIAL_AT_INPUTS or OC_INITIAL_EXPLICIT */
+    double s_start[2];    /* the explicit initial slip [m] */
     oc_state start;       /* the state the shown result was computed from */
     oc_step result;       /* the shown result */
+    double T[2];          /* its force on the body, -result.q: the outputs T1, T2 */
     int result_committed; /* 0: pending, committed state = start; 1: = result.next */
     double time;
 };
 typedef struct fmu_model oc_model;
+
+/* The values of the parameter initialSlip (model_variables.h). */
+enum { OC_INITIAL_AT_INPUTS = 1, OC_INITIAL_EXPLICIT = 2 };
 
 #ifdef __cplusplus
 }

@@ -17,8 +17,14 @@
 
 #define FMU_MODEL_NAME "CarriageBlock"
 #define FMU_MODEL_IDENTIFIER "CarriageBlock"
-#define FMU_GUID "{5b7c1e90-2f4a-4c3d-8e61-0f1473db3b01}"
-#define FMU_VERSION "0.2.0"
+/* The guid / instantiationToken is a hash of the generated model
+ * descriptions (gen_model_description writes it into fmu_token.h as
+ * FMU_TOKEN, alias FMU_GUID): it changes whenever the description does, and
+ * the binary and the description agree by construction.  The version is the
+ * build's (CMake, from the file VERSION). */
+#ifndef FMU_GENERATOR
+#include "fmu_token.h"
+#endif
 #define FMU_STATE_TAG {'C', 'B', 'S', 'T'}
 #define FMU_DESCRIPTION                                                                      \
     "Carriage/block rig of Konyukhov and Schweizerhof's experiment: a block pushed along X1 " \

@@ -92,7 +92,7 @@ def test_state_restores_into_a_freshly_instantiated_instance_in_another_process(
 
 @pytest.mark.parametrize("version", [2, 3])
 def test_serialized_state_layout_and_equal_bytes(version):
-    """Little-endian header: tag OCST, format 2, length, FMI phase, time; equal
+    """Little-endian header: tag OCST, format 3, length, FMI phase, time; equal
     states give equal bytes however they were reached."""
     with ContactFMU(fmi_version=version, instance_name="a") as a, \
             ContactFMU(fmi_version=version, instance_name="b") as b:
@@ -104,7 +104,7 @@ def test_serialized_state_layout_and_equal_bytes(version):
         assert data[:4] == b"OCST"
         fmt, length, phase = struct.unpack_from("<III", data, 4)
         time, = struct.unpack_from("<d", data, 16)
-        assert (fmt, length, phase) == (2, len(data), 4) and time == pytest.approx(a.time)
+        assert (fmt, length, phase) == (3, len(data), 4) and time == pytest.approx(a.time)
         b.set_state(b.deserialize(data))  # b never initialized
         st2 = b.get_state()
         assert b.serialize(st2) == data

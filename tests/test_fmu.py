@@ -66,7 +66,9 @@ def test_archive_layout_and_capabilities(fmu_path, fmi_version):
     assert v["time"].causality == "independent"
     assert {n for n, x in v.items() if x.causality == "input"} == {"u1", "u2", "N"}
     params = [x for x in v.values() if x.causality == "parameter"]
-    assert len(params) == 7 and all(x.min is not None and x.max is not None for x in params)
+    assert {x.name for x in params} == {"mu1", "mu2", "eps1", "eps2", "alpha", "beta",
+                                        "slidingRule", "initialSlip", "s1Start", "s2Start"}
+    assert all(x.min is not None and x.max is not None for x in params)
     rule = v["slidingRule"]
     if fmi_version == 2:
         assert rule.type == "Integer" and (rule.min, rule.max) == ("1", "3")

@@ -154,11 +154,95 @@ static void test_state_into_fresh_instance(void) {
     fmi3FreeInstance(b);
 }
 
+/* As test_fmi2_glue.c's test_initial_slip, through the FMI 3.0 calls. */
+static void first_step(int64_t rule, int64_t initial, double s0, int inputs_in_init, double y[5],
+                       int *state) {
+    fmi3Instance c = make("initial");
+    const fmi3ValueReference vr_rule = OC_VR_slidingRule, vr_init = OC_VR_initialSlip;
+    const fmi3ValueReference vr_s[2] = {OC_VR_s1Start, OC_VR_s2Start};
+    const double s_start[2] = {s0, 0.5 * s0};
+    CHECK(fmi3SetInt64(c, &vr_rule, 1, &rule, 1) == fmi3OK, "rule");
+    CHECK(fmi3SetInt64(c, &vr_init, 1, &initial, 1) == fmi3OK, "initialSlip");
+    CHECK(fmi3SetFloat64(c, vr_s, 2, s_start, 2) == fmi3OK, "s1Start, s2Start");
+    const fmi3ValueReference in[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+    const double u[3] = {1.0, 0.5, 18.39};
+    CHECK(fmi3EnterInitializationMode(c, 0, 0, 0, 0, 0) == fmi3OK, "enter");
+    if (inputs_in_init) CHECK(fmi3SetFloat64(c, in, 3, u, 3) == fmi3OK, "inputs in init");
+    CHECK(fmi3ExitInitializationMode(c) == fmi3OK, "exit");
+    CHECK(fmi3SetFloat64(c, in, 3, u, 3) == fmi3OK, "inputs");
+    fmi3Boolean ev, term, early;
+    double last;
+    CHECK(fmi3DoStep(c, 0, 1e-3, 1, &ev, &term, &early, &last) == fmi3OK, "step");
+    const fmi3ValueReference out[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2,
+                                       OC_VR_dissipatedEnergy};
+    const fmi3ValueReference vr_state = OC_VR_contactState;
+    fmi3Int32 st;
+    CHECK(fmi3GetFloat64(c, out, 5, y, 5) == fmi3OK && fmi3GetInt32(c, &vr_state, 1, &st, 1) == fmi3OK,
+          "read");
+    *state = st;
+    fmi3FreeInstance(c);
+}
+
+static void test_initial_slip(void) {
+    for (int rule = 1; rule <= 3; ++rule) {
+        double y[5], old[5], expl[5];
+        int state, old_state, expl_state;
+        first_step(rule, 1, 0.0, 1, y, &state);
+        CHECK(state == 1 && y[0] == 0 && y[1] == 0 && y[2] == 1.0 && y[3] == 0.5 && y[4] == 0,
+              "rule %d, atInputs: state %d energy %g", rule, state, y[4]);
+        first_step(rule, 1, 0.0, 0, old, &old_state);
+        first_step(rule, 2, 0.0, 1, expl, &expl_state);
+        CHECK(old_state == 2 && expl_state == 2 && memcmp(old, expl, sizeof old) == 0,
+              "rule %d: explicit s = 0 differs from the start at u = 0", rule);
+        if (rule == 2) CHECK(fabs(expl[4] - 8.55) < 0.005, "8.55 J, got %.4f", expl[4]);
+    }
+}
+
+/* An importer may list required intermediate variables (fmusim
+ * --record-intermediate-values does): the FMU accepts and provides none,
+ * and runs as without the request. */
+static int n_intermediate_calls;
+static void intermediate(fmi3InstanceEnvironment env, fmi3Float64 t, fmi3Boolean setRequested,
+                         fmi3Boolean getAllowed, fmi3Boolean stepFinished,
+                         fmi3Boolean canReturnEarly, fmi3Boolean *returnEarly,
+                         fmi3Float64 *earlyReturnTime) {
+    (void)env; (void)t; (void)setRequested; (void)getAllowed; (void)stepFinished;
+    (void)canReturnEarly; (void)returnEarly; (void)earlyReturnTime;
+    ++n_intermediate_calls;
+}
+
+static void test_intermediate_variables_requested(void) {
+    const fmi3ValueReference wanted[3] = {OC_VR_T1, OC_VR_T2, OC_VR_s1};
+    fmi3Instance c = fmi3InstantiateCoSimulation("inter", FMU_GUID, "", 0, 0, 0, 0, wanted, 3,
+                                                 NULL, logger, intermediate);
+    CHECK(c != NULL, "a request for intermediate variables refused: %s", last_message);
+    fmi3Instance plain = make("plain");
+    start(c);
+    start(plain);
+    double t = 0, tp = 0;
+    for (int k = 1; k <= 20; ++k) {
+        drive(c, 3e-4 * k, 1e-4 * k, 18.0, &t);
+        drive(plain, 3e-4 * k, 1e-4 * k, 18.0, &tp);
+    }
+    const fmi3ValueReference out[3] = {OC_VR_T1, OC_VR_T2, OC_VR_s1};
+    double a[3], b[3];
+    CHECK(fmi3GetFloat64(c, out, 3, a, 3) == fmi3OK && fmi3GetFloat64(plain, out, 3, b, 3) == fmi3OK,
+          "read");
+    CHECK(memcmp(a, b, sizeof a) == 0, "the request changed the results");
+    CHECK(n_intermediate_calls == 0, "intermediateUpdate called %d times", n_intermediate_calls);
+    fmi3FreeInstance(c);
+    fmi3FreeInstance(plain);
+    CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 0, 0, NULL, 2, NULL, logger, NULL) ==
+              NULL, "NULL list with a count accepted");
+}
+
 int main(void) {
     CHECK(strcmp(fmi3GetVersion(), "3.0") == 0, "version");
     test_rejects();
     test_types_and_states();
     test_derivatives();
     test_state_into_fresh_instance();
+    test_intermediate_variables_requested();
+    test_initial_slip();
     return oc_report();
 }
