@@ -136,3 +136,14 @@ def test_the_plausibility_table_itself():
     # every quantity's usual range lies inside its hard range
     for key, q in plausibility.QUANTITIES.items():
         assert q.hard[0] <= q.usual[0] <= q.usual[1] <= q.hard[1], key
+
+
+def test_the_readme_lists_every_range_as_the_code_has_it():
+    readme = (ROOT / "README.md").read_text()
+    fmt = lambda x: f"{x:g}"
+    for key, q in plausibility.QUANTITIES.items():
+        lo, hi = q.hard
+        hard = f"[{fmt(lo)}, {fmt(hi)}]" if (q.zero_allowed or lo != 0) else f"({fmt(lo)}, {fmt(hi)}]"
+        row = (f"| `{key}` | {q.unit} | {hard} | [{fmt(q.usual[0])}, {fmt(q.usual[1])}] | "
+               f"{', '.join(u for _, u in q.slips) or '–'} |")
+        assert row in readme, row

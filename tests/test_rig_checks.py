@@ -29,7 +29,7 @@ eps2 = 1.0e4
 closed_form = "eq31"
 [sweep]
 start_deg = 0.0
-stop_deg = 40.0
+stop_deg = 90.0
 step_deg = 1.0
 """
 
@@ -60,6 +60,8 @@ def test_a_dynamic_rig_that_never_settled_is_flagged_everywhere(tmp_path):
     assert "c2dyn:" in line and "not steady sliding" in line and "1-31 deg" in line
     assert "departs from the steady closed form by up to 36.2 deg" in line
     assert 'rig.mode = "quasistatic"' in line and "rig.travel_m >=" in line
+    # the README shows this very line
+    assert line in (Path(__file__).resolve().parents[1] / "README.md").read_text()
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     checks = summary["checks"]
     assert checks["ok"] is False and checks["warning"] == line.split("warning: ", 1)[1]
