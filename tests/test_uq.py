@@ -79,7 +79,7 @@ def test_band_matches_the_delta_method_on_the_closed_form(identified, tmp_path):
     v = dict(zip(est.names, est.mean))
 
     def phi(p, a):
-        al, be = math.radians(a) + sc.alpha_offset, math.radians(a) + sc.beta_offset
+        al, be = sc.geometry.axes(a)
         return math.degrees(math.atan(cf.steady_tan_phi(p[0], p[1], p[2] * p[3], p[3], al, be, "coupled")))
     p0 = [v["mu1"], v["mu2"], v["eps_ratio"], v["eps2"]]
     for k, a in enumerate(res.angles_deg):

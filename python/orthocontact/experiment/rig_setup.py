@@ -9,9 +9,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import closed_forms as cf
-from .. import plausibility
 from ..errors import InputError
 from ..fmu.params import RULES, ContactParams
+from .geometry import AxisGeometry
+from .keys import ANGLE_DEG, POSITIVE, REQUIRED, choice, read_table, rig_spec
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -44,10 +45,13 @@ class RigSetup:
     def normal_force(self) -> float:
         return self.mass_kg * self.g
 
+    @property
+    def geometry(self) -> AxisGeometry:
+        return AxisGeometry(self.alpha_offset_deg, self.beta_offset_deg)
+
     def axes(self, angle_deg: float) -> tuple[float, float]:
         """(alpha, beta) [rad] at a data orientation angle [deg]."""
-        return (math.radians(angle_deg + self.alpha_offset_deg),
-                math.radians(angle_deg + self.beta_offset_deg))
+        return self.geometry.axes(angle_deg)
 
     def params_at(self, law: ContactParams, angle_deg: float) -> ContactParams:
         """The law's parameters with the tensors' axes of this orientation and rig.rule."""
@@ -69,52 +73,24 @@ class RigSetup:
         return math.radians(self.beta_offset_deg - self.alpha_offset_deg)
 
 
-_RIG_KEYS = {
-    "mass_kg": ("pos", None), "g": ("pos", cf.G_STANDARD), "f_int_N": ("nonneg", 0.0),
-    "velocity_m_s": ("pos", 0.244), "rule": (tuple(RULES), "coupled"),
-    "alpha_offset_deg": ("angle", 90.0), "beta_offset_deg": ("angle", 0.0),
-    "phi_convention": (("counterclockwise", "paper"), "counterclockwise"),
-    "ramp_angle_deg": ("angle", 0.0), "mode": (("dynamic", "quasistatic"), "quasistatic"),
-    "travel_m": ("pos", 0.5), "step_s": ("pos", 2e-4), "eps2_nominal_N_m": ("pos", 1e4),
-    "mu_strip": ("nonneg", 0.0), "c_strip": ("nonneg", "unset"),
+RIG_TOML = {
+    **rig_spec(mode="quasistatic", mass_kg=REQUIRED, g=cf.G_STANDARD, f_int_N=0.0, velocity_m_s=0.244,
+               travel_m=0.5, mu_strip=0.0, c_strip=None, step_s=2e-4),
+    "rule": (choice(tuple(RULES)), "coupled"),
+    "alpha_offset_deg": (ANGLE_DEG, 90.0), "beta_offset_deg": (ANGLE_DEG, 0.0),
+    "phi_convention": (choice(("counterclockwise", "paper")), "counterclockwise"),
+    "ramp_angle_deg": (ANGLE_DEG, 0.0), "eps2_nominal_N_m": (POSITIVE, 1e4),
 }
 
 
 def load_rig_toml(path: Path) -> RigSetup:
+    """Reads and validates rig.toml (experiment.keys); raises InputError."""
     try:
         raw = tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise InputError(f"{path}: expected a rig.toml in the data folder (mass_kg, f_int_N, ...)") from None
     except tomllib.TOMLDecodeError as e:
         raise InputError(f"{path}: expected valid TOML ({e})") from None
-    out, warnings = {}, []
-    for key, value in raw.items():
-        if key not in _RIG_KEYS:
-            raise InputError(f"{path}: {key}: expected one of the known keys {', '.join(sorted(_RIG_KEYS))}")
-    for key, (kind, default) in _RIG_KEYS.items():
-        if key not in raw:
-            if default is None:
-                raise InputError(f"{path}: {key}: expected a value (the key is required)")
-            out[key] = None if default == "unset" else default
-            continue
-        v = raw[key]
-        if isinstance(kind, tuple):
-            if v not in kind:
-                raise InputError(f"{path}: {key}: expected one of {', '.join(map(repr, kind))}, got {v!r}")
-        else:
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise InputError(f"{path}: {key}: expected a finite number, got {v!r}")
-            if (kind == "pos" and v <= 0) or (kind == "nonneg" and v < 0) or \
-                    (kind == "angle" and abs(v) > 360):
-                what = {"pos": "> 0", "nonneg": ">= 0", "angle": "in [-360, 360]"}[kind]
-                raise InputError(f"{path}: {key}: expected a number {what}, got {v!r}")
-            v = float(v)
-            found = plausibility.check(key, v) or \
-                (plausibility.check_angle_deg(key, v) if key.endswith("_deg") else None)
-            if found is not None:
-                level, message = found
-                if level == "error":
-                    raise InputError(f"{path}: {message}")
-                warnings.append(f"{path}: {message}")
-        out[key] = v
-    return RigSetup(**out, warnings=tuple(warnings))
+    values, warnings = read_table(path, "", raw, RIG_TOML, InputError)
+    values = {k: float(v) if isinstance(v, int) and not isinstance(v, bool) else v for k, v in values.items()}
+    return RigSetup(**values, warnings=tuple(warnings))

@@ -12,10 +12,12 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .. import plausibility
 from ..closed_forms.paper import G_STANDARD, isotropic_eps_ratio
 from ..fmu.params import RULES, ContactParams
-from ..rig.harness import MODES, Rig
+from ..rig.harness import Rig
+from .geometry import AxisGeometry
+from .keys import (ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, list_of, number, read_table,
+                   rig_spec, text)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -30,23 +32,15 @@ CLOSED_FORMS = ("general", "eq11", "eq25", "eq31", "eq33", "mat")
 
 
 class ScenarioError(Exception):
-    """A bad scenario: str(e) is the one-line message for the user."""
+    """A bad scenario: str(e) is the one-line message for the user.
+    ScenarioError(path, key, expected[, got]), or ScenarioError(message) with
+    a message that names the file already (experiment.keys)."""
 
-    def __init__(self, path, key: str, expected: str, got=None):
-        msg = f"{path}: {key}: expected {expected}"
+    def __init__(self, path, key: str | None = None, expected: str | None = None, got=None):
+        msg = str(path) if key is None else f"{path}: {key}: expected {expected}"
         if got is not None:
             msg += f", got {got!r}"
         super().__init__(msg)
-
-    @classmethod
-    def implausible(cls, path, section: str, message: str) -> "ScenarioError":
-        """An error of plausibility.check: '<path>: <section>.<key> = ...'."""
-        err = cls.__new__(cls)
-        Exception.__init__(err, f"{path}: {section}.{message}")
-        return err
-
-
-_REQ = object()  # marks a required key
 
 
 # Where the quasi-static rig has settled: over 300 random laws with strip
@@ -55,52 +49,10 @@ _REQ = object()  # marks a required key
 ELASTIC_LENGTHS = 10.0
 
 
-def _num(lo=None, hi=None, lo_open=False):
-    def check(v):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            return "a finite number"
-        if lo is not None and (v <= lo if lo_open else v < lo):
-            return f"a number {'>' if lo_open else '>='} {lo}"
-        if hi is not None and v > hi:
-            return f"a number <= {hi}"
-        return None
-    desc = "a finite number" + (f" {'>' if lo_open else '>='} {lo}" if lo is not None else "") + \
-        (f" and <= {hi}" if hi is not None else "")
-    check.desc = desc
-    return check
-
-
-def _choice(options):
-    def check(v):
-        return None if v in options else "one of " + ", ".join(repr(o) for o in options)
-    return check
-
-
-def _str(v):
-    return None if isinstance(v, str) else "a string"
-
-
-def _bool(v):
-    return None if isinstance(v, bool) else "true or false"
-
-
-def _list(item_check, min_len=1):
-    def check(v):
-        if not isinstance(v, list) or len(v) < min_len:
-            return f"a list of at least {min_len} item(s)"
-        for x in v:
-            why = item_check(x)
-            if why:
-                return f"a list whose items are {why}"
-        return None
-    return check
-
-
 def _eps_ratio(v):
     if v == "isotropic":
         return None
-    why = _num(0, lo_open=True)(v)
-    return None if why is None else 'a number > 0 or "isotropic"'
+    return None if POSITIVE(v) is None else 'a number > 0 or "isotropic"'
 
 
 # What a comparison with a published number is evidence of (report.md):
@@ -115,38 +67,28 @@ PAPER_NUMBERS = ("extremum_angle_deg", "extremum_phi_deg", "max_abs_phi_deg", "d
                  "drive_90_N", "mu1", "mu2", "phi_max_deg")
 
 
-POS = _num(0, lo_open=True)
-
-
-NONNEG = _num(0)
-
-
-ANGLE = _num(-360, 360)
-
-
 SCHEMA = {
-    "": {"name": (_str, _REQ), "title": (_str, ""), "kind": (_choice(KINDS), _REQ),
-         "fmu": (_str, None), "description": (_str, "")},
-    "law": {"rule": (_choice(tuple(RULES)), "coupled"), "mu1": (POS, _REQ), "mu2": (POS, _REQ),
-            "eps1": (POS, None), "eps2": (POS, _REQ), "eps_ratio": (_eps_ratio, None)},
-    "geometry": {"alpha_offset_deg": (ANGLE, 0.0), "beta_offset_deg": (ANGLE, 0.0),
-                 "closed_form": (_choice(CLOSED_FORMS), "general")},
-    "sweep": {"start_deg": (ANGLE, 0.0), "stop_deg": (ANGLE, 90.0),
-              "step_deg": (_num(0, lo_open=True), 1.0), "refine_extremum": (_bool, True),
-              "trajectory_angles_deg": (_list(ANGLE), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0])},
-    "study": {"angle_deg": (ANGLE, _REQ), "rules": (_list(_choice(tuple(RULES))), _REQ),
-              "steps_s": (_list(POS), _REQ)},
-    "rig": {"mode": (_choice(MODES), "quasistatic"), "mass_kg": (POS, 1.875), "g": (POS, G_STANDARD),
-            "f_int_N": (NONNEG, 5.0), "velocity_m_s": (POS, 0.244), "travel_m": (POS, 0.5),
-            "mu_strip": (NONNEG, 0.0), "c_strip": (NONNEG, 0.0),
-            "step_s": (_num(0, 0.1, lo_open=True), 2e-4),
-            "fit_from": (_num(0, 0.95), 0.5)},
-    "paper": {"extremum_angle_deg": (ANGLE, None), "extremum_phi_deg": (ANGLE, None),
-              "phi_sign_differs": (_bool, False), "max_abs_phi_deg": (NONNEG, None),
-              "drive_0_N": (POS, None), "drive_90_N": (POS, None), "mu1": (POS, None),
-              "mu2": (POS, None), "phi_max_deg": (NONNEG, None), "eps_ratio": (POS, None),
-              "source": (_str, ""), "evidence": (_choice(EVIDENCE), "prediction"),
-              "calibrated_on": (_list(_choice(PAPER_NUMBERS), min_len=0), [])},
+    "": {"name": (text, REQUIRED), "title": (text, ""), "kind": (choice(KINDS), REQUIRED),
+         "fmu": (text, None), "description": (text, "")},
+    "law": {"rule": (choice(tuple(RULES)), "coupled"), "mu1": (POSITIVE, REQUIRED),
+            "mu2": (POSITIVE, REQUIRED), "eps1": (POSITIVE, None), "eps2": (POSITIVE, REQUIRED),
+            "eps_ratio": (_eps_ratio, None)},
+    "geometry": {"alpha_offset_deg": (ANGLE_DEG, 0.0), "beta_offset_deg": (ANGLE_DEG, 0.0),
+                 "closed_form": (choice(CLOSED_FORMS), "general")},
+    "sweep": {"start_deg": (ANGLE_DEG, 0.0), "stop_deg": (ANGLE_DEG, 90.0),
+              "step_deg": (POSITIVE, 1.0), "refine_extremum": (boolean, True),
+              "trajectory_angles_deg": (list_of(ANGLE_DEG), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0])},
+    "study": {"angle_deg": (ANGLE_DEG, REQUIRED), "rules": (list_of(choice(tuple(RULES))), REQUIRED),
+              "steps_s": (list_of(POSITIVE), REQUIRED)},
+    "rig": {**rig_spec(mode="quasistatic", mass_kg=1.875, g=G_STANDARD, f_int_N=5.0, velocity_m_s=0.244,
+                       travel_m=0.5, mu_strip=0.0, c_strip=0.0, step_s=2e-4),
+            "fit_from": (number(0, 0.95), 0.5)},
+    "paper": {"extremum_angle_deg": (ANGLE_DEG, None), "extremum_phi_deg": (ANGLE_DEG, None),
+              "phi_sign_differs": (boolean, False), "max_abs_phi_deg": (NON_NEGATIVE, None),
+              "drive_0_N": (POSITIVE, None), "drive_90_N": (POSITIVE, None), "mu1": (POSITIVE, None),
+              "mu2": (POSITIVE, None), "phi_max_deg": (NON_NEGATIVE, None), "eps_ratio": (POSITIVE, None),
+              "source": (text, ""), "evidence": (choice(EVIDENCE), "prediction"),
+              "calibrated_on": (list_of(choice(PAPER_NUMBERS), min_len=0), [])},
 }
 
 
@@ -160,9 +102,8 @@ class Scenario:
     title: str
     kind: str
     description: str
-    law: ContactParams            # alpha, beta are the offsets here; see params_at
-    alpha_offset: float           # rad
-    beta_offset: float            # rad
+    law: ContactParams            # alpha, beta are 0 here; see params_at
+    geometry: AxisGeometry        # the axes' offsets from the swept angle [deg]
     closed_form: str
     rig: Rig
     sweep: dict = field(default_factory=dict)
@@ -173,35 +114,12 @@ class Scenario:
 
     def params_at(self, angle_deg: float, rule: str | None = None) -> ContactParams:
         """The law's parameters with the swept angle [deg] set."""
-        a = math.radians(angle_deg)
-        return self.law.replace(alpha=a + self.alpha_offset, beta=a + self.beta_offset,
-                                rule=rule or self.law.rule)
+        return self.geometry.params_at(self.law, angle_deg, rule)
 
     def sweep_angles(self) -> list[float]:
         s = self.sweep
         n = int(math.floor((s["stop_deg"] - s["start_deg"]) / s["step_deg"] + 1e-9))
         return [s["start_deg"] + k * s["step_deg"] for k in range(n + 1)]
-
-
-def _section(path, data: dict, name: str) -> dict:
-    spec = SCHEMA[name]
-    where = (name + ".") if name else ""
-    for key in data:
-        if key not in spec:
-            raise ScenarioError(path, where + key, "one of the known keys " + ", ".join(sorted(spec)),
-                                None)
-    out = {}
-    for key, (check, default) in spec.items():
-        if key in data:
-            why = check(data[key])
-            if why:
-                raise ScenarioError(path, where + key, why, data[key])
-            out[key] = data[key]
-        elif default is _REQ:
-            raise ScenarioError(path, where + key, "a value (the key is required)")
-        else:
-            out[key] = default
-    return out
 
 
 def load(path) -> Scenario:
@@ -220,7 +138,13 @@ def load(path) -> Scenario:
     for t in tables:
         if t not in SCHEMA:
             raise ScenarioError(path, t, "a known table: " + ", ".join(sorted(k for k in SCHEMA if k)))
-    top = _section(path, {k: v for k, v in raw.items() if k not in tables}, "")
+    warnings = []
+
+    def section(name, data):
+        values, said = read_table(path, name + "." if name else "", data, SCHEMA[name], ScenarioError)
+        warnings.extend(said)
+        return values
+    top = section("", {k: v for k, v in raw.items() if k not in tables})
     needed = SECTION_FOR_KIND[top["kind"]]
     for t in ("sweep", "study"):
         if t in tables and t not in needed:
@@ -230,18 +154,15 @@ def load(path) -> Scenario:
             raise ScenarioError(path, t, f"a [{t}] table for kind {top['kind']!r}")
     if "law" not in tables:
         raise ScenarioError(path, "law", "a [law] table")
-    law = _section(path, raw["law"], "law")
-    geo = _section(path, raw.get("geometry", {}), "geometry")
-    rig = _section(path, raw.get("rig", {}), "rig")
-    paper = {k: v for k, v in _section(path, raw.get("paper", {}), "paper").items() if v is not None}
-    sweep = _section(path, raw["sweep"], "sweep") if "sweep" in needed else {}
-    study = _section(path, raw["study"], "study") if "study" in needed else {}
+    law = section("law", raw["law"])
+    geo = section("geometry", raw.get("geometry", {}))
+    rig = section("rig", raw.get("rig", {}))
+    paper = {k: v for k, v in section("paper", raw.get("paper", {})).items() if v is not None}
+    sweep = section("sweep", raw["sweep"]) if "sweep" in needed else {}
+    study = section("study", raw["study"]) if "study" in needed else {}
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:
         raise ScenarioError(path, "sweep.stop_deg", f"a value >= sweep.start_deg = {sweep['start_deg']}",
                             sweep["stop_deg"])
-
-    warnings = _plausibility(path, {"law": law, "rig": rig, "geometry": geo, "sweep": sweep,
-                                    "study": study})
 
     if law["eps1"] is not None and law["eps_ratio"] is not None:
         raise ScenarioError(path, "law.eps_ratio", "either law.eps1 or law.eps_ratio, not both")
@@ -277,30 +198,10 @@ def load(path) -> Scenario:
         path=path, name=top["name"], title=top["title"] or top["name"], kind=top["kind"],
         description=top["description"],
         law=ContactParams(law["mu1"], law["mu2"], float(eps1), float(law["eps2"]), 0.0, 0.0, law["rule"]),
-        alpha_offset=math.radians(geo["alpha_offset_deg"]),
-        beta_offset=math.radians(geo["beta_offset_deg"]), closed_form=geo["closed_form"],
+        geometry=AxisGeometry(float(geo["alpha_offset_deg"]), float(geo["beta_offset_deg"])),
+        closed_form=geo["closed_form"],
         rig=Rig(mass_kg=rig["mass_kg"], g=rig["g"], f_int_N=rig["f_int_N"],
                 velocity_m_s=rig["velocity_m_s"], travel_m=rig["travel_m"], mu_strip=rig["mu_strip"],
                 c_strip=rig["c_strip"],
                 mode=rig["mode"], step_s=rig["step_s"], fit_from=rig["fit_from"]),
         sweep=sweep, study=study, paper=paper, fmu=fmu, warnings=warnings)
-
-
-def _plausibility(path, sections: dict) -> list[str]:
-    """Raises ScenarioError for a value that cannot be right for this kind
-    of rig and law; returns the warnings for unusual ones (plausibility)."""
-    warnings = []
-    for name, values in sections.items():
-        for key, value in values.items():
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                continue
-            found = plausibility.check(key, value)
-            if found is None and key.endswith("_deg") and key != "step_deg":
-                found = plausibility.check_angle_deg(key, value)
-            if found is None:
-                continue
-            level, message = found
-            if level == "error":
-                raise ScenarioError.implausible(path, name, message)
-            warnings.append(f"{path}: {name}.{message}")
-    return warnings

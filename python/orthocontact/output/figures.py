@@ -2,7 +2,6 @@
 (matplotlib off-screen), and a pool that draws them in worker processes."""
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from ..experiment.scenario import Scenario
@@ -55,10 +54,9 @@ def curve_style(i: int, n_points: int, n_lines: int = 8) -> dict:
 
 def swept_label(sc: Scenario) -> str:
     """What the swept angle a is, in terms of the law's axes."""
-    def rel(off):
-        d = math.degrees(off)
+    def rel(d):
         return "a" if abs(d) < 1e-12 else f"a {d:+g}°"
-    return f"swept angle a: α = {rel(sc.alpha_offset)}, β = {rel(sc.beta_offset)}"
+    return f"swept angle a: α = {rel(sc.geometry.alpha_offset_deg)}, β = {rel(sc.geometry.beta_offset_deg)}"
 
 
 def draw_here(fn, *args):

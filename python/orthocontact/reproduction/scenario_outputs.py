@@ -77,7 +77,7 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
             drives[f"{target:g}"] = float(res.drive_mean_N[hit[0]])
     if drives:
         summary["drive_mean_N"] = drives
-        if math.isclose(math.degrees(sc.beta_offset) % 180.0, 0.0, abs_tol=1e-9) and len(drives) == 2:
+        if math.isclose(sc.geometry.beta_offset_deg % 180.0, 0.0, abs_tol=1e-9) and len(drives) == 2:
             # Sliding along a friction axis at 0 and 90 deg: eq. (1).
             r = sc.rig
             summary["mu_from_drive"] = {

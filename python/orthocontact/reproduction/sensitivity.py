@@ -56,11 +56,10 @@ def phi_closed_deg(sc: Scenario, angles_deg, mu_strip=0.0, c_strip=0.0, velocity
     strip terms, optionally with another eps1/eps2."""
     law = sc.law
     eps1 = law.eps1 if eps_ratio is None else eps_ratio * law.eps2
-    a = np.radians(np.asarray(angles_deg, dtype=float))
+    alpha, beta = sc.geometry.axes(np.asarray(angles_deg, dtype=float))
     v = sc.rig.velocity_m_s if velocity is None else velocity
-    t = cf.steady_tan_phi_with_strip_array(law.mu1, law.mu2, eps1, law.eps2, a + sc.alpha_offset,
-                                           a + sc.beta_offset, law.rule, mu_strip, c_strip, v,
-                                           sc.rig.normal_force)
+    t = cf.steady_tan_phi_with_strip_array(law.mu1, law.mu2, eps1, law.eps2, alpha, beta, law.rule,
+                                           mu_strip, c_strip, v, sc.rig.normal_force)
     return np.degrees(np.arctan(t))
 
 
@@ -167,7 +166,8 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
         tasks += [(s.params_at(a), rig) for a in angles]
     res = run_many(tasks, workers, fmu_path or sc.fmu, f"sensitivity {sc.name}", progress, master, dask)
     checks = check_runs(tasks, res)
-    line = warning_line(f"sensitivity {sc.name}", [math.degrees(p.beta - sc.beta_offset) for p, _ in tasks],
+    line = warning_line(f"sensitivity {sc.name}", [math.degrees(p.beta) - sc.geometry.beta_offset_deg
+                                                   for p, _ in tasks],
                         checks, [r.phi_deg for r in res], tasks)
     strip_rows = []
     peaks = {}

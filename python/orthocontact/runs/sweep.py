@@ -48,7 +48,7 @@ def closed_form_phi_deg_array(sc: Scenario, angles_deg, rule: str | None = None)
     fine scans of the report: tens of thousands of points)."""
     a = np.radians(np.asarray(angles_deg, dtype=float))
     law, form = sc.law, sc.closed_form
-    alpha, beta = a + sc.alpha_offset, a + sc.beta_offset
+    alpha, beta = sc.geometry.axes(np.asarray(angles_deg, dtype=float))
     if form == "general" or rule not in (None, law.rule):
         t = cf.steady_tan_phi(law.mu1, law.mu2, law.eps1, law.eps2, alpha, beta, rule or law.rule)
     elif form == "eq11":
@@ -70,13 +70,13 @@ def _eq25_eigenvalues(sc: Scenario) -> tuple[float, float]:
     """(lambda1, lambda2) of eq. (25) for the scenario's axis geometry: Case 4
     (beta = alpha) or Case 5 (beta = alpha + 90 deg)."""
     law = sc.law
-    shift = math.degrees(sc.beta_offset - sc.alpha_offset) % 180.0
+    shift = sc.geometry.beta_minus_alpha_deg % 180.0
     if abs(shift) < 1e-9 or abs(shift - 180.0) < 1e-9:
         return cf.eigen_ratio_case4(law.mu1, law.mu2, law.eps1, law.eps2)
     if abs(shift - 90.0) < 1e-9:
         return cf.eigen_ratio_case5(law.mu1, law.mu2, law.eps1, law.eps2)
     raise ScenarioError(sc.path, "geometry.closed_form",
-                        "eq25 only with beta_offset - alpha_offset = 0 or 90 deg")
+                        "eq25 only with beta_offset_deg - alpha_offset_deg = 0 or 90")
 
 
 # -- sweeps ------------------------------------------------------------------------

@@ -62,8 +62,8 @@ def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: P
 
 
 def _same_geometry(sc: Scenario, est: Estimates) -> bool:
-    return (math.isclose(math.degrees(sc.alpha_offset), est.alpha_offset_deg, abs_tol=1e-9)
-            and math.isclose(math.degrees(sc.beta_offset), est.beta_offset_deg, abs_tol=1e-9))
+    return (math.isclose(sc.geometry.alpha_offset_deg, est.alpha_offset_deg, abs_tol=1e-9)
+            and math.isclose(sc.geometry.beta_offset_deg, est.beta_offset_deg, abs_tol=1e-9))
 
 
 def _inside(angles, bm, est: Estimates, sc: Scenario) -> dict | None:

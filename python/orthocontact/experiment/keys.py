@@ -1,0 +1,106 @@
+"""One validator for the experiment's files: the keys of a scenario's tables
+and of a lab's rig.toml are checked here, each against its type and range,
+then against the plausible range of its unit (orthocontact.plausibility), with
+one message style: '<file>: <key>: expected <what>, got <value>'.
+
+The rig's keys (RIG_KEYS) are shared by both files; each file gives its own
+defaults.  Angles are in degrees at this boundary, as the files write them
+(experiment.geometry turns them into the law's radians)."""
+from __future__ import annotations
+
+import math
+
+from .. import plausibility
+from ..rig.harness import MODES
+
+REQUIRED = object()  # a spec's default for a key that must be given
+
+
+def number(lo=None, hi=None, lo_open=False):
+    """A checker for a finite number in [lo, hi] ((lo, hi] with lo_open)."""
+    def check(v):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            return "a finite number"
+        if lo is not None and (v <= lo if lo_open else v < lo):
+            return f"a number {'>' if lo_open else '>='} {lo}"
+        if hi is not None and v > hi:
+            return f"a number <= {hi}"
+        return None
+    return check
+
+
+def choice(options):
+    def check(v):
+        return None if v in options else "one of " + ", ".join(repr(o) for o in options)
+    return check
+
+
+def text(v):
+    return None if isinstance(v, str) else "a string"
+
+
+def boolean(v):
+    return None if isinstance(v, bool) else "true or false"
+
+
+def list_of(item_check, min_len=1):
+    def check(v):
+        if not isinstance(v, list) or len(v) < min_len:
+            return f"a list of at least {min_len} item(s)"
+        for x in v:
+            why = item_check(x)
+            if why:
+                return f"a list whose items are {why}"
+        return None
+    return check
+
+
+POSITIVE = number(0, lo_open=True)
+NON_NEGATIVE = number(0)
+ANGLE_DEG = number(-360, 360)
+
+# The rig, as both files describe it: mass [kg], g [m/s^2], F_int [N],
+# velocity [m/s], travel [m], the strip's friction [-] and viscosity
+# [N s/m], the communication step [s].
+RIG_KEYS = {
+    "mode": choice(MODES), "mass_kg": POSITIVE, "g": POSITIVE, "f_int_N": NON_NEGATIVE,
+    "velocity_m_s": POSITIVE, "travel_m": POSITIVE, "mu_strip": NON_NEGATIVE,
+    "c_strip": NON_NEGATIVE, "step_s": number(0, 0.1, lo_open=True),
+}
+
+
+def rig_spec(**defaults) -> dict:
+    """{key: (checker, default)} of the rig's keys with a file's defaults."""
+    return {k: (RIG_KEYS[k], defaults[k]) for k in RIG_KEYS if k in defaults}
+
+
+def read_table(path, where: str, data: dict, spec: dict, error) -> tuple[dict, list[str]]:
+    """The table's values (defaults filled in) and its warnings.  Raises
+    error(message) for an unknown key, a missing required one, a value of the
+    wrong type or range, or one that cannot be right for its unit; `where` is
+    the table's prefix in messages ('rig.' or '')."""
+    for key in data:
+        if key not in spec:
+            raise error(f"{path}: {where}{key}: expected one of the known keys {', '.join(sorted(spec))}")
+    out, warnings = {}, []
+    for key, (check, default) in spec.items():
+        if key not in data:
+            if default is REQUIRED:
+                raise error(f"{path}: {where}{key}: expected a value (the key is required)")
+            out[key] = default
+            continue
+        v = data[key]
+        why = check(v)
+        if why:
+            raise error(f"{path}: {where}{key}: expected {why}, got {v!r}")
+        if isinstance(v, (int, float)) and not isinstance(v, bool):
+            found = plausibility.check(key, v)
+            if found is None and key.endswith("_deg") and key != "step_deg":
+                found = plausibility.check_angle_deg(key, v)
+            if found is not None:
+                level, message = found
+                if level == "error":
+                    raise error(f"{path}: {where}{message}")
+                warnings.append(f"{path}: {where}{message}")
+        out[key] = v
+    return out, warnings
