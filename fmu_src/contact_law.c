@@ -118,22 +118,32 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     rotated_diag(p->alpha, p->eps1, p->eps2, L.B);
     rotated_diag(p->alpha, 1.0 / p->eps1, 1.0 / p->eps2, L.Binv);
     rotated_diag(p->beta, 1.0 / (p->mu1 * p->mu1), 1.0 / (p->mu2 * p->mu2), L.F);
-    double Fh[2][2], Fhinv[2][2], S[2][2];
-    rotated_diag(p->beta, 1.0 / p->mu1, 1.0 / p->mu2, Fh);
-    rotated_diag(p->beta, p->mu1, p->mu2, Fhinv);
-
     /* With p = F^(1/2) q the slip step reads p = (I + dgamma S)^-1 p_tr for a
-     * symmetric positive definite S, whatever the rule. */
-    if (p->rule == OC_RULE_ASSOCIATED) {
-        matmul(Fh, L.B, S);
-        matmul(S, Fh, S);
-    } else {
-        matmul(Fhinv, L.Binv, S);
-        matmul(S, Fhinv, S);
-    }
+     * symmetric positive definite S, whatever the rule:
+     * S = F^(1/2) B F^(1/2) (associated) or F^(-1/2) B^-1 F^(-1/2) (coupled).
+     * Both are formed in the friction axes, S = Q(beta) S' Q(beta)^T with
+     * S' = D Q(gamma) E Q(gamma)^T D, gamma = alpha - beta, D = diag(1/mu) or
+     * diag(mu), E = diag(eps) or diag(1/eps): every entry of S' is one product
+     * of the parameters with a rotated diagonal, so nothing cancels however
+     * different mu1, mu2, eps1, eps2 are.  Formed from rotated factors
+     * instead, S loses its small part to the cancellation of its large ones,
+     * and its eigenbasis (exactly the shared axes when alpha = beta) comes out
+     * off by DBL_EPSILON times the contrast, which then moves the strong-axis
+     * part of the force onto the weak axis. */
+    const int assoc = p->rule == OC_RULE_ASSOCIATED;
+    const double gamma = p->alpha - p->beta;
+    const double D[2] = {assoc ? 1.0 / p->mu1 : p->mu1, assoc ? 1.0 / p->mu2 : p->mu2};
+    double S[2][2];
+    rotated_diag(gamma, assoc ? p->eps1 : 1.0 / p->eps1, assoc ? p->eps2 : 1.0 / p->eps2, S);
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) S[i][j] = (D[i] * S[i][j]) * D[j];
     /* One Jacobi rotation diagonalises a symmetric 2x2 matrix exactly,
-     * without the cancellation of the characteristic-polynomial formula. */
-    const double th = 0.5 * atan2(S[0][1] + S[1][0], S[0][0] - S[1][1]);
+     * without the cancellation of the characteristic-polynomial formula.  Its
+     * angle is taken in [-pi/4, pi/4]: a diagonal S' then gives exactly the
+     * identity, not a quarter turn whose cos(pi/2) = 6e-17 would mix the axes. */
+    double th = 0.5 * atan2(S[0][1] + S[1][0], S[0][0] - S[1][1]);
+    if (th > 0.25 * 3.14159265358979323846) th -= 0.5 * 3.14159265358979323846;
+    else if (th < -0.25 * 3.14159265358979323846) th += 0.5 * 3.14159265358979323846;
     const double c = cos(th), s = sin(th);
     const double V[2][2] = {{c, -s}, {s, c}};
     const double Vt[2][2] = {{c, s}, {-s, c}};
@@ -145,26 +155,41 @@ int oc_law_init(oc_law *out, const oc_params *p) {
      * factors are ordered so that no intermediate product overflows. */
     const int big = L.sigma[0] >= L.sigma[1] ? 0 : 1;
     const double mm = p->mu1 * p->mu2, sb = L.sigma[big];
-    L.sigma[1 - big] = p->rule == OC_RULE_ASSOCIATED ? ((p->eps1 / mm) / sb) * (p->eps2 / mm)
-                                                      : ((mm / p->eps1) / sb) * (mm / p->eps2);
+    L.sigma[1 - big] = assoc ? ((p->eps1 / mm) / sb) * (p->eps2 / mm)
+                             : ((mm / p->eps1) / sb) * (mm / p->eps2);
     L.sigma_ref = sb;
     L.inv_sigma_ref = 1.0 / sb;
     L.sig_hat[big] = 1.0;
     L.sig_hat[1 - big] = L.sigma[1 - big] / sb;
     L.kappa = sb / L.sigma[1 - big];
 
+    /* The eigenbasis of S is Q(beta) V, so every map between forces and
+     * yield coordinates is a product of factors with at most one sum of two
+     * terms per entry (none when alpha = beta and V = I):
+     *   q = G R a,  G = Q(beta) diag(mu), R = V
+     *   a = Y q,    Y = V^T diag(1/mu) Q(beta)^T
+     *   a = P du,   P = Y B = V^T diag(1/mu) Q(gamma) diag(eps) Q(alpha)^T
+     *   B^-1 q = K a, K = Q(alpha) diag(1/eps) Q(gamma)^T diag(mu) V. */
+    const double ca = cos(p->alpha), sa = sin(p->alpha);
     const double cb = cos(p->beta), sb_ = sin(p->beta);
-    const double Qbt[2][2] = {{cb, sb_}, {-sb_, cb}};
+    const double cg = cos(gamma), sg = sin(gamma);
+    const double Qa[2][2] = {{ca, -sa}, {sa, ca}}, Qat[2][2] = {{ca, sa}, {-sa, ca}};
     L.G[0][0] = cb * p->mu1;
     L.G[0][1] = -sb_ * p->mu2;
     L.G[1][0] = sb_ * p->mu1;
     L.G[1][1] = cb * p->mu2;
-    matmul(Qbt, V, L.R);
-    matmul(L.Binv, L.G, L.K);
-    matmul(L.K, L.R, L.K);
-    matmul(Vt, Fh, L.Y);
-    matmul(L.Y, L.B, L.P);
-    matmul(Fhinv, V, L.Minv);
+    memcpy(L.R, V, sizeof L.R);
+    matmul(L.G, L.R, L.Minv);
+    const double Ymu[2][2] = {{cb / p->mu1, sb_ / p->mu1}, {-sb_ / p->mu2, cb / p->mu2}};
+    matmul(Vt, Ymu, L.Y);
+    const double Pmu[2][2] = {{(cg / p->mu1) * p->eps1, (-sg / p->mu1) * p->eps2},
+                              {(sg / p->mu2) * p->eps1, (cg / p->mu2) * p->eps2}};
+    matmul(Pmu, Qat, L.P);
+    matmul(Vt, L.P, L.P);
+    const double Keps[2][2] = {{(cg / p->eps1) * p->mu1, (sg / p->eps1) * p->mu2},
+                               {(-sg / p->eps2) * p->mu1, (cg / p->eps2) * p->mu2}};
+    matmul(Keps, V, L.K);
+    matmul(Qa, L.K, L.K);
     /* eq. (20) needs only the direction of B F q: B F / max|B F|, formed
      * from normalized factors so that it cannot overflow or underflow. */
     {
@@ -247,8 +272,13 @@ static inline double solve_dgamma(const double a_raw[2], double sq, double n_tr,
             const double C = G0 * u0 + G1 * u1;
             int last;
             if (res > 0) { /* left of the root: Halley, in one division */
-                const double D2 = G0 * u0 * u0 + G1 * u1 * u1;
-                dx = res * m2 * W * C / (rho * W * C * C + 1.5 * res * (m2 * D2 - C * C));
+                /* dx = -(k / k') / (1 - k k'' / (2 k'^2)): k < 0 and k'' <= 0
+                 * make the bracket < 1, a step longer than Newton's.  Where
+                 * the bracket falls below 1/2 (far from the root) the step is
+                 * held at twice Newton's: overshooting the root is harmless
+                 * (Newton from the right lands left of it). */
+                const double D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
+                dx = res * m2 * W * C / fmax(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2);
                 last = fabs(dx) <= 5e-6 * x;
             } else {
                 dx = res * m2 * inv_rho / C;
