@@ -462,13 +462,14 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
         /* Dissipation dgamma q.Gq = sum_i dgamma c_i a_i^2 with c_i = 1
          * (associated) or sigma_i^2 (coupled): a sum of products of equal
          * signs, so it is >= 0 by construction, in an order that does not
-         * overflow where the result does not. */
+         * overflow where the result does not: (dgamma c_i a_i), of the size
+         * of the slip in yield coordinates, times a_i, the force. */
         double dE;
         if (L->p.rule == OC_RULE_ASSOCIATED)
             dE = (yp[0] * L->inv_sigma_ref) * ap[0] + (yp[1] * L->inv_sigma_ref) * ap[1];
         else
-            dE = (L->sig_hat[0] * yp[0]) * (L->sigma[0] * ap[0]) +
-                 (L->sig_hat[1] * yp[1]) * (L->sigma[1] * ap[1]);
+            dE = ((L->sig_hat[0] * yp[0]) * L->sigma[0]) * ap[0] +
+                 ((L->sig_hat[1] * yp[1]) * L->sigma[1]) * ap[1];
         out->next.energy = start->energy + dE;
     } else {
         /* The explicit rule is not derived from a dissipation potential:
