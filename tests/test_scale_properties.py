@@ -17,8 +17,9 @@ Accuracy: with the friction and stiffness axes shared (alpha = beta), the
 return map is diagonal in those axes, and an independent reference solves it
 in long double (aligned_return_map).  The FMU's force and energy must agree
 with it to a few units of what the inputs' own rounding allows: eps |T| plus
-the change of the exact T when the displacement moves by 4 eps |u| in the
-axes (at a contrast of 1e20 an ulp of the rotation is a different force)."""
+the largest change of the exact T when the displacement moves by up to 4 eps
+|u| along an axis (at a contrast of 1e20 an ulp of the rotation is a
+different force)."""
 import math
 
 import numpy as np
@@ -209,8 +210,13 @@ def test_accuracy_against_the_exact_aligned_return_map(case):
     d = (c * LD(du[0]) + s * LD(du[1]), -s * LD(du[0]) + c * LD(du[1]))
     T_ref, E_ref = aligned_return_map(rule, mu, eps, th, d, N)
     dl = 4 * LD(EPS) * np.hypot(d[0], d[1])
-    near = [(d[0] + dl, d[1]), (d[0] - dl, d[1]), (d[0], d[1] + dl), (d[0], d[1] - dl),
-            (0 if abs(d[0]) <= dl else d[0], d[1]), (d[0], 0 if abs(d[1]) <= dl else d[1])]
+    # the exact result over a grid of displacements within 4 eps |u| along each
+    # axis (and with a component that small set to 0): what the rounding of the
+    # inputs alone can change (near the point where the weak axis alone reaches
+    # the yield surface the exact map is that steep)
+    near = [(d[0] + j * dl / 4, d[1]) for j in range(-4, 5) if j]
+    near += [(d[0], d[1] + j * dl / 4) for j in range(-4, 5) if j]
+    near += [(0 if abs(d[0]) <= dl else d[0], d[1]), (d[0], 0 if abs(d[1]) <= dl else d[1])]
     sens_T = sens_E = LD(0)
     for dn in near:
         T2, E2 = aligned_return_map(rule, mu, eps, th, dn, N)
@@ -220,4 +226,4 @@ def test_accuracy_against_the_exact_aligned_return_map(case):
     assert err_T <= 4, (float(err_T), [float(x) for x in T], [float(x) for x in T_ref])
     if E_ref > 0:
         err_E = abs(E - E_ref) / (LD(EPS) * E_ref + sens_E)
-        assert err_E <= 8, (float(err_E), float(E), float(E_ref))
+        assert err_E <= 4, (float(err_E), float(E), float(E_ref))

@@ -545,10 +545,13 @@ static void aligned_reference(int rule, const double mu[2], const double eps[2],
     *E = l * (q[0] * q[0] * k[0] / eps[0] + q[1] * q[1] * k[1] / eps[1]);
 }
 
-/* |T - T_ref| / (eps |T_ref| + the change of T_ref when the displacement
- * moves by 4 eps |d| in the axes): how far the law is from exact, in units
- * of what the rounding of its inputs alone can cause (0 or 1 ulp of the
- * rotation already amounts to that when the contrast is large). */
+/* |T - T_ref| / (eps |T_ref| + the largest change of T_ref when the
+ * displacement moves along an axis by up to 4 eps |d|, on a grid of steps
+ * eps |d|, or a component that small becomes 0): how far the law is from
+ * exact, in units of what the rounding of its inputs alone can cause (at a
+ * contrast of 1e20 an ulp of the rotation is a different force; near the
+ * point where the weak axis alone reaches the yield surface the exact map is
+ * that steep). */
 static double aligned_error(int rule, double mu1, double mu2, double e1, double e2, double th,
                             const double du[2], double N, double *energy_error) {
     const double mu[2] = {mu1, mu2}, eps[2] = {e1, e2};
@@ -563,11 +566,21 @@ static double aligned_error(int rule, double mu1, double mu2, double e1, double 
     long double T[2], E;
     aligned_reference(rule, mu, eps, th, d, N, T, &E);
     const long double dl = 4 * DBL_EPSILON * sqrtl(d[0] * d[0] + d[1] * d[1]);
-    const long double near[6][2] = {{d[0] + dl, d[1]}, {d[0] - dl, d[1]}, {d[0], d[1] + dl},
-                                    {d[0], d[1] - dl}, {fabsl(d[0]) <= dl ? 0 : d[0], d[1]},
-                                    {d[0], fabsl(d[1]) <= dl ? 0 : d[1]}};
+    long double near[18][2];
+    int nn = 0;
+    for (int j = -4; j <= 4; ++j) {
+        if (j == 0) continue;
+        near[nn][0] = d[0] + j * dl / 4;
+        near[nn++][1] = d[1];
+        near[nn][0] = d[0];
+        near[nn++][1] = d[1] + j * dl / 4;
+    }
+    near[nn][0] = fabsl(d[0]) <= dl ? 0 : d[0];
+    near[nn++][1] = d[1];
+    near[nn][0] = d[0];
+    near[nn++][1] = fabsl(d[1]) <= dl ? 0 : d[1];
     long double sT = 0, sE = 0;
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < nn; ++k) {
         long double T2[2], E2;
         aligned_reference(rule, mu, eps, th, near[k], N, T2, &E2);
         sT = fmaxl(sT, hypotl(T2[0] - T[0], T2[1] - T[1]));
@@ -614,7 +627,7 @@ static void test_accuracy_aligned_axes(void) {
      * each, any shared axes, trials from inside to 1e4 times outside. */
     rng_state = 0x19u;
     worst = worstE = 0;
-    for (int n = 0; n < 4000; ++n) {
+    for (int n = 0; n < 3000; ++n) {
         const int rule = 1 + (int)pick(2);
         const double mu1 = pow(10, -1.3 + 1.3 * uniform()), mu2 = mu1 * pow(10, 20 * uniform() - 10);
         const double e1 = pow(10, 2 + 4 * uniform()), e2 = e1 * pow(10, 20 * uniform() - 10);
@@ -628,7 +641,7 @@ static void test_accuracy_aligned_axes(void) {
         worstE = fmax(worstE, eE);
     }
     CHECK(worst <= 4, "aligned axes, random: force error %.3g x bound", worst);
-    CHECK(worstE <= 8, "aligned axes, random: energy error %.3g x bound", worstE);
+    CHECK(worstE <= 4, "aligned axes, random: energy error %.3g x bound", worstE);
 }
 
 /* Point 2: a trial at the top of the exponent range is seen as what it is. */
