@@ -65,7 +65,9 @@ static double pow2_of(double x, double *inverse) {
     double out, inv;
     memcpy(&out, &p, 8);
     memcpy(&inv, &r, 8);
-    *inverse = inv;
+    /* At the top exponent the inverse 2^-1023 is subnormal (biased exponent
+     * 0, which the bits above would read as +0.0); it is still exact. */
+    *inverse = e == 2046 ? 0x1p-1023 : inv;
     return out;
 }
 
@@ -118,22 +120,32 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     rotated_diag(p->alpha, p->eps1, p->eps2, L.B);
     rotated_diag(p->alpha, 1.0 / p->eps1, 1.0 / p->eps2, L.Binv);
     rotated_diag(p->beta, 1.0 / (p->mu1 * p->mu1), 1.0 / (p->mu2 * p->mu2), L.F);
-    double Fh[2][2], Fhinv[2][2], S[2][2];
-    rotated_diag(p->beta, 1.0 / p->mu1, 1.0 / p->mu2, Fh);
-    rotated_diag(p->beta, p->mu1, p->mu2, Fhinv);
-
     /* With p = F^(1/2) q the slip step reads p = (I + dgamma S)^-1 p_tr for a
-     * symmetric positive definite S, whatever the rule. */
-    if (p->rule == OC_RULE_ASSOCIATED) {
-        matmul(Fh, L.B, S);
-        matmul(S, Fh, S);
-    } else {
-        matmul(Fhinv, L.Binv, S);
-        matmul(S, Fhinv, S);
-    }
+     * symmetric positive definite S, whatever the rule:
+     * S = F^(1/2) B F^(1/2) (associated) or F^(-1/2) B^-1 F^(-1/2) (coupled).
+     * Both are formed in the friction axes, S = Q(beta) S' Q(beta)^T with
+     * S' = D Q(gamma) E Q(gamma)^T D, gamma = alpha - beta, D = diag(1/mu) or
+     * diag(mu), E = diag(eps) or diag(1/eps): every entry of S' is one product
+     * of the parameters with a rotated diagonal, so nothing cancels however
+     * different mu1, mu2, eps1, eps2 are.  Formed from rotated factors
+     * instead, S loses its small part to the cancellation of its large ones,
+     * and its eigenbasis (exactly the shared axes when alpha = beta) comes out
+     * off by DBL_EPSILON times the contrast, which then moves the strong-axis
+     * part of the force onto the weak axis. */
+    const int assoc = p->rule == OC_RULE_ASSOCIATED;
+    const double gamma = p->alpha - p->beta;
+    const double D[2] = {assoc ? 1.0 / p->mu1 : p->mu1, assoc ? 1.0 / p->mu2 : p->mu2};
+    double S[2][2];
+    rotated_diag(gamma, assoc ? p->eps1 : 1.0 / p->eps1, assoc ? p->eps2 : 1.0 / p->eps2, S);
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) S[i][j] = (D[i] * S[i][j]) * D[j];
     /* One Jacobi rotation diagonalises a symmetric 2x2 matrix exactly,
-     * without the cancellation of the characteristic-polynomial formula. */
-    const double th = 0.5 * atan2(S[0][1] + S[1][0], S[0][0] - S[1][1]);
+     * without the cancellation of the characteristic-polynomial formula.  Its
+     * angle is taken in [-pi/4, pi/4]: a diagonal S' then gives exactly the
+     * identity, not a quarter turn whose cos(pi/2) = 6e-17 would mix the axes. */
+    double th = 0.5 * atan2(S[0][1] + S[1][0], S[0][0] - S[1][1]);
+    if (th > 0.25 * 3.14159265358979323846) th -= 0.5 * 3.14159265358979323846;
+    else if (th < -0.25 * 3.14159265358979323846) th += 0.5 * 3.14159265358979323846;
     const double c = cos(th), s = sin(th);
     const double V[2][2] = {{c, -s}, {s, c}};
     const double Vt[2][2] = {{c, s}, {-s, c}};
@@ -145,49 +157,67 @@ int oc_law_init(oc_law *out, const oc_params *p) {
      * factors are ordered so that no intermediate product overflows. */
     const int big = L.sigma[0] >= L.sigma[1] ? 0 : 1;
     const double mm = p->mu1 * p->mu2, sb = L.sigma[big];
-    L.sigma[1 - big] = p->rule == OC_RULE_ASSOCIATED ? ((p->eps1 / mm) / sb) * (p->eps2 / mm)
-                                                      : ((mm / p->eps1) / sb) * (mm / p->eps2);
+    L.sigma[1 - big] = assoc ? ((p->eps1 / mm) / sb) * (p->eps2 / mm)
+                             : ((mm / p->eps1) / sb) * (mm / p->eps2);
     L.sigma_ref = sb;
     L.inv_sigma_ref = 1.0 / sb;
     L.sig_hat[big] = 1.0;
     L.sig_hat[1 - big] = L.sigma[1 - big] / sb;
     L.kappa = sb / L.sigma[1 - big];
 
+    /* The eigenbasis of S is Q(beta) V, so every map between forces and
+     * yield coordinates is a product of factors with at most one sum of two
+     * terms per entry (none when alpha = beta and V = I):
+     *   q = G R a,  G = Q(beta) diag(mu), R = V
+     *   a = Y q,    Y = V^T diag(1/mu) Q(beta)^T
+     *   a = P du,   P = Y B = V^T diag(1/mu) Q(gamma) diag(eps) Q(alpha)^T
+     *   B^-1 q = K a, K = Q(alpha) diag(1/eps) Q(gamma)^T diag(mu) V. */
+    const double ca = cos(p->alpha), sa = sin(p->alpha);
     const double cb = cos(p->beta), sb_ = sin(p->beta);
-    const double Qbt[2][2] = {{cb, sb_}, {-sb_, cb}};
+    const double cg = cos(gamma), sg = sin(gamma);
+    const double Qa[2][2] = {{ca, -sa}, {sa, ca}}, Qat[2][2] = {{ca, sa}, {-sa, ca}};
     L.G[0][0] = cb * p->mu1;
     L.G[0][1] = -sb_ * p->mu2;
     L.G[1][0] = sb_ * p->mu1;
     L.G[1][1] = cb * p->mu2;
-    matmul(Qbt, V, L.R);
-    matmul(L.Binv, L.G, L.K);
-    matmul(L.K, L.R, L.K);
-    matmul(Vt, Fh, L.Y);
-    matmul(L.Y, L.B, L.P);
-    matmul(Fhinv, V, L.Minv);
-    /* eq. (20) needs only the direction of B F q: B F / max|B F|, formed
-     * from normalized factors so that it cannot overflow or underflow. */
+    memcpy(L.R, V, sizeof L.R);
+    matmul(L.G, L.R, L.Minv);
+    const double Ymu[2][2] = {{cb / p->mu1, sb_ / p->mu1}, {-sb_ / p->mu2, cb / p->mu2}};
+    matmul(Vt, Ymu, L.Y);
+    const double Pmu[2][2] = {{(cg / p->mu1) * p->eps1, (-sg / p->mu1) * p->eps2},
+                              {(sg / p->mu2) * p->eps1, (cg / p->mu2) * p->eps2}};
+    matmul(Pmu, Qat, L.P);
+    matmul(Vt, L.P, L.P);
+    const double Keps[2][2] = {{(cg / p->eps1) * p->mu1, (sg / p->eps1) * p->mu2},
+                               {(-sg / p->eps2) * p->mu1, (cg / p->eps2) * p->mu2}};
+    matmul(Keps, V, L.K);
+    matmul(Qa, L.K, L.K);
+    /* eq. (20) needs only the direction of E t: E is formed from factors
+     * scaled to at most 1 (the C of eps / its largest entry, mu_min / mu_i),
+     * so that it can neither overflow nor cancel (every entry is a product),
+     * and then scaled to max|E| = 1.  Scaling by a power of two of eps
+     * leaves it unchanged bit for bit. */
     {
-        double Bn[2][2], Fn[2][2];
-        const double bm = fmax(fmax(fabs(L.B[0][0]), fabs(L.B[1][1])), fabs(L.B[0][1]));
-        const double fm = fmax(fmax(fabs(L.F[0][0]), fabs(L.F[1][1])), fabs(L.F[0][1]));
+        double C[2][2];
+        rotated_diag(gamma, p->eps1, p->eps2, C);
+        const double cm = fmax(fmax(C[0][0], C[1][1]), fabs(C[0][1]));
+        const double mmin = fmin(p->mu1, p->mu2);
+        const double f[2] = {mmin / p->mu1, mmin / p->mu2};
+        double m = 0.0;
         for (int i = 0; i < 2; ++i)
             for (int j = 0; j < 2; ++j) {
-                Bn[i][j] = L.B[i][j] / bm;
-                Fn[i][j] = L.F[i][j] / fm;
+                L.E20[i][j] = ((C[i][j] / cm) * f[i]) * f[j];
+                m = fmax(m, fabs(L.E20[i][j]));
             }
-        matmul(Bn, Fn, L.BFn);
-        const double m = fmax(fmax(fabs(L.BFn[0][0]), fabs(L.BFn[1][1])),
-                              fmax(fabs(L.BFn[0][1]), fabs(L.BFn[1][0])));
         for (int i = 0; i < 2; ++i)
-            for (int j = 0; j < 2; ++j) L.BFn[i][j] /= m;
+            for (int j = 0; j < 2; ++j) L.E20[i][j] /= m;
     }
 
     if (!all_finite(&L.B[0][0], 4) || !all_finite(&L.Binv[0][0], 4) ||
         !all_finite(&L.F[0][0], 4) || !all_finite(&L.P[0][0], 4) ||
         !all_finite(&L.Minv[0][0], 4) || !all_finite(&L.Y[0][0], 4) || !all_finite(L.sigma, 2) ||
         !all_finite(&L.R[0][0], 4) || !all_finite(&L.G[0][0], 4) || !all_finite(&L.K[0][0], 4) ||
-        !all_finite(&L.BFn[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
+        !all_finite(&L.E20[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
         !(L.sig_hat[1 - big] > 0) || !isfinite(L.kappa) || !isfinite(L.inv_sigma_ref))
         return -1;
     *out = L;
@@ -247,8 +277,13 @@ static inline double solve_dgamma(const double a_raw[2], double sq, double n_tr,
             const double C = G0 * u0 + G1 * u1;
             int last;
             if (res > 0) { /* left of the root: Halley, in one division */
-                const double D2 = G0 * u0 * u0 + G1 * u1 * u1;
-                dx = res * m2 * W * C / (rho * W * C * C + 1.5 * res * (m2 * D2 - C * C));
+                /* dx = -(k / k') / (1 - k k'' / (2 k'^2)): k < 0 and k'' <= 0
+                 * make the bracket < 1, a step longer than Newton's.  Where
+                 * the bracket falls below 1/2 (far from the root) the step is
+                 * held at twice Newton's: overshooting the root is harmless
+                 * (Newton from the right lands left of it). */
+                const double D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
+                dx = res * m2 * W * C / fmax(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2);
                 last = fabs(dx) <= 5e-6 * x;
             } else {
                 dx = res * m2 * inv_rho / C;
@@ -272,37 +307,42 @@ static inline double solve_dgamma(const double a_raw[2], double sq, double n_tr,
     }
 }
 
-/* The same root for a trial far outside the yield surface, in a form whose
- * every quantity is bounded (p_i = a_i / w_i, ratios to |p|): two divisions
- * an iteration, taken only where the fast form could overflow. */
+/* The same root for a trial far outside the yield surface or a large
+ * kappa, in v = y rho: with wt_i = rho + v s_i (= rho w_i) the yield
+ * condition reads |b| = 1 for b_i = a_i / wt_i, and 1 / |b| - 1 is concave and
+ * increasing in v (as k is in y), so Newton from the left climbs to the root
+ * and from the right lands left of it.  The root lies in [1 - rho, |a / s|]
+ * (s_i <= 1 and wt_i >= v s_i): v is bounded however small rho is, even
+ * subnormal, where y = v / rho overflows.  b is kept as c = wmin b (|c| <= 1)
+ * so that nothing overflows.  Returns v; p = c with *inv_norm = 1 / |c|. */
 static double solve_dgamma_far(const double a[2], const double sh[2], double rho, double p[2],
                                double *inv_norm) {
-    double y = 0.0, p0 = a[0], p1 = a[1], n = 1.0;
+    const double vmax = oc_norm2(a[0] / sh[0], a[1] / sh[1]);
+    double v = rho < 1.0 ? 1.0 - rho : 0.0, c0 = a[0], c1 = a[1], n = 1.0;
     for (int it = 0; it < 200; ++it) {
-        const double w0 = 1.0 + y * sh[0], w1 = 1.0 + y * sh[1];
-        p0 = a[0] / w0;
-        p1 = a[1] / w1;
-        n = oc_norm2(p0, p1);
-        const double r0 = p0 / n, r1 = p1 / n;
-        /* k = rho / n - 1, k' = (rho / n) kp with kp = sum_i r_i^2 s_i / w_i;
-         * the Newton step -k / k' = (n / rho - 1) / kp is formed so that
-         * neither rho kp nor n / rho leaves the range where the result is
-         * representable. */
+        const double w0 = rho + v * sh[0], w1 = rho + v * sh[1], wmin = fmin(w0, w1);
+        c0 = a[0] * (wmin / w0);
+        c1 = a[1] * (wmin / w1);
+        n = oc_norm2(c0, c1);
+        const double r0 = c0 / n, r1 = c1 / n;
+        /* Newton: dv = (|b| - 1) / kp, kp = sum_i r_i^2 s_i / wt_i */
         const double kp = r0 * r0 * (sh[0] / w0) + r1 * r1 * (sh[1] / w1);
-        const double dy = (n / rho - 1.0) / kp;
-        if (!(dy > 1e-15 * y) || !isfinite(dy)) break; /* monotone from the left: stalls at the root */
-        y += dy;
+        double dv = (n / wmin - 1.0) / kp;
+        if (!(fabs(dv) > 1e-15 * v)) break; /* stalls at the root (or NaN: stop) */
+        if (!(v + dv <= vmax)) dv = vmax - v; /* also for dv = inf */
+        if (dv == 0.0) break;
+        v += dv;
     }
-    p[0] = p0;
-    p[1] = p1;
+    p[0] = c0;
+    p[1] = c1;
     *inv_norm = 1.0 / n;
-    return y;
+    return v;
 }
 
 void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], double N,
                  oc_step *out) {
     out->dgamma = 0.0;
-    out->w[0] = out->w[1] = 1.0;
+    out->w[0] = out->w[1] = out->inv_wmax = 1.0;
     out->next = *start;
     out->next.u[0] = u[0];
     out->next.u[1] = u[1];
@@ -342,80 +382,104 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
     /* Both rules end in a direction p in yield coordinates and the radial
      * scale that puts it on the yield surface; the elastic displacement is
      * formed from p while the scale is being computed. */
-    double p[2], scale, qtr20[2] = {0.0, 0.0}, y = 0.0;
+    double p[2], scale, yp[2] = {0.0, 0.0};
     if (L->p.rule == OC_RULE_EQ20) {
-        /* q = N y / |y|_F, y = B F q_tr; y is scaled to unit size first so
-         * that its F-norm cannot overflow (q is homogeneous of degree 0 in y). */
-        double qn[2], yv[2], Fy[2];
-        force_of(L, a, qtr20);
-        const double iqm = 1.0 / fmax(fabs(qtr20[0]), fabs(qtr20[1]));
-        qn[0] = qtr20[0] * iqm;
-        qn[1] = qtr20[1] * iqm;
-        matvec(L->BFn, qn, yv);
-        const double iym = 1.0 / fmax(fabs(yv[0]), fabs(yv[1]));
-        yv[0] *= iym;
-        yv[1] *= iym;
-        matvec(L->F, yv, Fy);
-        const double Nny = N / sqrt(yv[0] * Fy[0] + yv[1] * Fy[1]);
-        const double q[2] = {Nny * yv[0], Nny * yv[1]};
-        matvec(L->Y, q, p);
+        /* t = N z / |z|, z = E t_tr, t_tr = R a (see oc_law.E20), on a trial
+         * scaled to |t_tr| in [1, 2) by a power of two: the direction of z
+         * is the same in any units.  Back in yield coordinates, p = R^T z. */
+        double sc;
+        pow2_of(n_tr, &sc);
+        const double as[2] = {a[0] * sc, a[1] * sc};
+        double t[2], z[2];
+        matvec(L->R, as, t);
+        matvec(L->E20, t, z);
+        p[0] = L->R[0][0] * z[0] + L->R[1][0] * z[1];
+        p[1] = L->R[0][1] * z[0] + L->R[1][1] * z[1];
         /* on the yield surface exactly, like the implicit rules' states */
-        scale = N / oc_norm2(p[0], p[1]);
+        scale = N / norm2(p[0], p[1]);
     } else {
-        /* The fast solve needs W <= kappa / rho^2 < 1e40 and |a|^2 in range;
-         * outside that range it runs on the trial scaled by a power of two,
-         * which gives the same bits as the unscaled one would without
-         * overflow: the result does not depend on the units. */
-        double inv_np;
+        /* The fast solve needs W <= kappa / rho^2 < 1e40.  It runs on the
+         * trial scaled by the power of two that brings |a| to [1, 2): the
+         * same numbers in any units, down to which squares of a small
+         * component underflow (scaled only where |a|^2 left a range, the
+         * units decided whether a_i^2 was subnormal). */
+        double inv_np, w[2], wfac; /* w = wfac (1 + dgamma sigma) */
         if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
-            const double sq = a[0] * a[0] + a[1] * a[1];
-            double sc = 1.0;
-            if (!(sq >= 0x1p-900 && sq <= 0x1p900)) pow2_of(n_tr, &sc);
+            double sc;
+            pow2_of(n_tr, &sc);
             const double as[2] = {a[0] * sc, a[1] * sc};
-            y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc, L->sig_hat,
-                             p, &inv_np);
+            const double y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc,
+                                          L->sig_hat, p, &inv_np);
+            w[0] = 1.0 + y * L->sig_hat[0];
+            w[1] = 1.0 + y * L->sig_hat[1];
+            scale = N * inv_np;
+            /* y a_i with a = p scale, as the energy needs it */
+            yp[0] = y * (p[0] * scale);
+            yp[1] = y * (p[1] * scale);
+            out->dgamma = y * L->inv_sigma_ref;
+            wfac = 1.0;
         } else {
-            const double an[2] = {a[0] / n_tr, a[1] / n_tr};
-            y = solve_dgamma_far(an, L->sig_hat, N / n_tr, p, &inv_np);
+            const double an[2] = {a[0] / n_tr, a[1] / n_tr}, rho = N / n_tr;
+            const double v = solve_dgamma_far(an, L->sig_hat, rho, p, &inv_np);
+            /* wt_i = rho w_i; y a_i = v (p_i / |p|) n_tr, without y = v / rho */
+            w[0] = rho + v * L->sig_hat[0];
+            w[1] = rho + v * L->sig_hat[1];
+            scale = N * inv_np;
+            yp[0] = v * (p[0] * inv_np) * n_tr;
+            yp[1] = v * (p[1] * inv_np) * n_tr;
+            out->dgamma = (v / rho) * L->inv_sigma_ref;
+            wfac = rho;
         }
-        out->dgamma = y * L->inv_sigma_ref;
-        out->w[0] = 1.0 + y * L->sig_hat[0];
-        out->w[1] = 1.0 + y * L->sig_hat[1];
-        /* The solve stops within an ulp or two of the yield surface; the
-         * radial scaling puts the force on it to rounding. */
-        scale = N * inv_np;
+        const double wmax = fmax(w[0], w[1]);
+        out->w[0] = w[0] / wmax;
+        out->w[1] = w[1] / wmax;
+        out->inv_wmax = wfac / wmax;
     }
+    double ap[2] = {p[0] * scale, p[1] * scale};
+    if (N < 0x1p-1016) {
+        /* Near the subnormal range ap is rounded to a multiple of 2^-1074,
+         * which can put it a unit outside the stick test, so that the state
+         * would slip again with held inputs (and be refused on restore):
+         * shrink it to inside, a unit at a time. */
+        while (norm2(ap[0], ap[1]) > N * (1.0 + 8 * DBL_EPSILON)) {
+            const int i = fabs(ap[0]) >= fabs(ap[1]) ? 0 : 1;
+            ap[i] = nextafter(ap[i], 0.0);
+        }
+    }
+    /* The elastic displacement from the committed force, not from p: K p
+     * is a product of a scale-dependent K with a scale-free p, whose small
+     * terms underflow in some units only. */
     double ge[2];
-    matvec(L->K, p, ge);
-    const double ap[2] = {p[0] * scale, p[1] * scale};
+    matvec(L->K, ap, ge);
     out->next.a[0] = ap[0];
     out->next.a[1] = ap[1];
     /* The force exactly as a stick step from this committed state forms it,
      * so that held inputs reproduce it bit for bit. */
     force_of(L, ap, out->q);
-    out->next.s[0] = u[0] - ge[0] * scale;
-    out->next.s[1] = u[1] - ge[1] * scale;
+    out->next.s[0] = u[0] - ge[0];
+    out->next.s[1] = u[1] - ge[1];
     if (L->p.rule != OC_RULE_EQ20) {
         /* Dissipation dgamma q.Gq = sum_i dgamma c_i a_i^2 with c_i = 1
          * (associated) or sigma_i^2 (coupled): a sum of products of equal
          * signs, so it is >= 0 by construction, in an order that does not
-         * overflow where the result does not. */
+         * overflow where the result does not: (dgamma c_i a_i), of the size
+         * of the slip in yield coordinates, times a_i, the force. */
         double dE;
         if (L->p.rule == OC_RULE_ASSOCIATED)
-            dE = (out->dgamma * ap[0]) * ap[0] + (out->dgamma * ap[1]) * ap[1];
+            dE = (yp[0] * L->inv_sigma_ref) * ap[0] + (yp[1] * L->inv_sigma_ref) * ap[1];
         else
-            dE = ((y * L->sig_hat[0]) * ap[0]) * (L->sigma[0] * ap[0]) +
-                 ((y * L->sig_hat[1]) * ap[1]) * (L->sigma[1] * ap[1]);
+            dE = ((L->sig_hat[0] * yp[0]) * L->sigma[0]) * ap[0] +
+                 ((L->sig_hat[1] * yp[1]) * L->sigma[1]) * ap[1];
         out->next.energy = start->energy + dE;
     } else {
         /* The explicit rule is not derived from a dissipation potential:
          * its q . ds can come out negative; dissipated energy never does.
-         * ds = B^-1 (q_tr - q), formed from forces rather than as a
-         * difference of slips, which may be large and nearly equal. */
-        double dq[2], ds[2];
-        dq[0] = qtr20[0] - out->q[0];
-        dq[1] = qtr20[1] - out->q[1];
-        matvec(L->Binv, dq, ds);
+         * ds = B^-1 (q_tr - q) = K (a_tr - a), formed from yield coordinates
+         * rather than as a difference of slips, which may be large and
+         * nearly equal. */
+        const double da[2] = {a[0] - ap[0], a[1] - ap[1]};
+        double ds[2];
+        matvec(L->K, da, ds);
         const double dE = out->q[0] * ds[0] + out->q[1] * ds[1];
         out->next.energy = start->energy + (dE > 0 ? dE : 0.0);
     }
@@ -436,35 +500,34 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
             for (int j = 0; j < 2; ++j) dq_du[i][j] = L->B[i][j];
     } else {
         if (L->p.rule == OC_RULE_EQ20) {
-            /* q = N y / |y|_F with y = B F q_tr, dq_tr/du = B.  The
-             * derivative of y/|y|_F is homogeneous of degree -1 in y: taken at
-             * the normalized y'' = BFn (q_tr / qm) / ym, and divided by the
-             * scales qm ym (the scale of BFn cancels). */
+            /* q = G t, t = N z / |z|, z = E t_tr, t_tr = R a_tr, a_tr = P du
+             * + a_start (see oc_law.E20): dq/du = G D E R P with
+             * D = N (I - zh zh^T) / |z|, zh = z / |z|.  D E is homogeneous
+             * of degree 0 in the scale of E and -1 in t_tr: it is formed at
+             * t_tr scaled to [1, 2) and then divided by that scale. */
             const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
-            double a[2], qtr[2], y[2], Fy[2];
+            double a[2], t[2], z[2];
             matvec(L->P, du, a);
             a[0] += start->a[0];
             a[1] += start->a[1];
-            force_of(L, a, qtr);
-            const double qm = fmax(fabs(qtr[0]), fabs(qtr[1]));
-            qtr[0] /= qm;
-            qtr[1] /= qm;
-            matvec(L->BFn, qtr, y);
-            const double ym = fmax(fabs(y[0]), fabs(y[1]));
-            y[0] /= ym;
-            y[1] /= ym;
-            matvec(L->F, y, Fy);
-            const double ny = sqrt(y[0] * Fy[0] + y[1] * Fy[1]);
+            double sc;
+            pow2_of(oc_norm2(a[0], a[1]), &sc);
+            a[0] *= sc;
+            a[1] *= sc;
+            matvec(L->R, a, t);
+            matvec(L->E20, t, z);
+            const double nz = oc_norm2(z[0], z[1]);
+            const double zh[2] = {z[0] / nz, z[1] / nz};
             double D[2][2], M[2][2];
             for (int i = 0; i < 2; ++i)
                 for (int j = 0; j < 2; ++j)
-                    D[i][j] = N * ((i == j ? 1.0 : 0.0) - y[i] * Fy[j] / (ny * ny)) / ny;
-            matmul(L->BFn, L->B, M);
-            for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 2; ++j) M[i][j] = M[i][j] / qm / ym;
-            matmul(D, M, dq_du);
-            dq_dN[0] = y[0] / ny;
-            dq_dN[1] = y[1] / ny;
+                    D[i][j] = ((i == j ? 1.0 : 0.0) - zh[i] * zh[j]) * ((N * sc) / nz);
+            matmul(D, L->E20, M);
+            matmul(M, L->R, M);
+            matmul(M, L->P, M);
+            matmul(L->G, M, dq_du);
+            dq_dN[0] = L->G[0][0] * zh[0] + L->G[0][1] * zh[1];
+            dq_dN[1] = L->G[1][0] * zh[0] + L->G[1][1] * zh[1];
             const double dE = st->q[0] * (st->next.s[0] - start->s[0]) +
                               st->q[1] * (st->next.s[1] - start->s[1]);
             eq20_clamped = !(dE > 0);
@@ -474,6 +537,8 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
              * g_i = a_i / w_i, v_i = sigma_i a_i / w_i, c = a . v.  v g^T / c
              * and v N / c are homogeneous of degree 0 in sigma and in a, so
              * they are formed from sig_hat and a / N: no overflow. */
+            /* Da is homogeneous of degree -1 in w: formed from w / max w
+             * and multiplied by 1 / max w (see oc_step.w). */
             const double *w = st->w, *sh = L->sig_hat;
             const double ah[2] = {st->next.a[0] / N, st->next.a[1] / N};
             const double g[2] = {ah[0] / w[0], ah[1] / w[1]};
@@ -482,7 +547,7 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
             double Da[2][2];
             for (int i = 0; i < 2; ++i)
                 for (int j = 0; j < 2; ++j)
-                    Da[i][j] = (i == j ? 1.0 / w[i] : 0.0) - (v[i] / c) * g[j];
+                    Da[i][j] = ((i == j ? 1.0 / w[i] : 0.0) - (v[i] / c) * g[j]) * st->inv_wmax;
             double T[2][2];
             matmul(Da, L->P, T);
             matmul(L->Minv, T, dq_du);
@@ -523,7 +588,7 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
 
 int oc_step_is_finite(const oc_step *st) {
     return all_finite(st->q, 2) && all_finite(st->next.a, 2) && all_finite(st->next.s, 2) &&
-           isfinite(st->next.energy) && isfinite(st->dgamma) && all_finite(st->w, 2);
+           isfinite(st->next.energy);
 }
 
 const char *oc_state_check(const oc_law *L, const oc_state *st) {

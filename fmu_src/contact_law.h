@@ -43,7 +43,10 @@ typedef struct {
     double P[2][2];
     double Minv[2][2]; /* q = Minv a */
     double sigma[2];   /* eigenvalues of S */
-    double BFn[2][2];  /* B F / max|B F|: the direction of eq. (20) */
+    /* eq. (20), q ~ B F q_tr, in the friction axes: with t = diag(1/mu)
+     * Q(beta)^T q (so that |t| = |q|_F), t ~ E t_tr for E = diag(1/mu)
+     * Q(gamma) diag(eps) Q(gamma)^T diag(1/mu), scaled to max|E| = 1 */
+    double E20[2][2];
     double Y[2][2];    /* a = Y q: yield coordinates of a force */
     /* q = Minv a, factored as G R a with the rotation R = Q(beta)^T V and
      * G = Q(beta) diag(mu1, mu2): each friction-axis component of q is then
@@ -78,8 +81,13 @@ typedef struct {
     double q[2];     /* elastic force [N]; T = -q */
     oc_state next;   /* state after the step (next.a: yield coordinates of q) */
     int contact;     /* an oc_contact */
-    double dgamma;   /* plastic multiplier of the step (0 unless slipping) */
-    double w[2];     /* 1 + dgamma sigma_i */
+    /* What the tangent needs of a slip: w_i = 1 + dgamma sigma_i, kept as
+     * w_i / max w and 1 / max w, which stay representable where dgamma and
+     * w overflow (a trial far outside a tiny yield surface).  Not outputs:
+     * nothing here may refuse a step. */
+    double dgamma;   /* plastic multiplier of the step (0 unless slipping; may be inf) */
+    double w[2];     /* (1 + dgamma sigma_i) / max_j (1 + dgamma sigma_j), in (0, 1] */
+    double inv_wmax; /* 1 / max_j (1 + dgamma sigma_j), in [0, 1] */
 } oc_step;
 
 /* NULL if the parameters are admissible, otherwise why not. */
@@ -102,7 +110,8 @@ void oc_law_jacobian(const oc_law *law, const oc_state *start,
                      const double u[2], double N, const oc_step *st,
                      double J[OC_JAC_ROWS][OC_JAC_COLS]);
 
-/* 1 if every number in the step is finite. */
+/* 1 if every output and committed number of the step is finite (q, the
+ * committed state); the tangent's internals (dgamma, w) are not checked. */
 int oc_step_is_finite(const oc_step *st);
 
 /* NULL if `st` can be a committed state of `law` (finite, energy >= 0,

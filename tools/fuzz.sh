@@ -1,0 +1,49 @@
+#!/bin/sh
+# Builds the libFuzzer targets over FMI call sequences (both FMUs, FMI 2.0 and
+# 3.0; tests/fuzz/fuzz_fmi.c) with clang, ASan and UBSan, and runs each in
+# turn for SECONDS (default 600), niced, on one core.  Corpora and findings
+# stay in build/fuzz (corpus/<target>, artifacts/).  Exit status 1 if any
+# target found something.
+# FUZZ_KEEP_GOING=1 runs libFuzzer's fork mode past findings (-fork=1
+# -ignore_crashes=1), to collect them all in artifacts/.
+#   tools/fuzz.sh [SECONDS] [TARGET...]   e.g. tools/fuzz.sh 60 fuzz_CarriageBlock_fmi3
+# Needs clang with libFuzzer (Debian: apt-get install clang libfuzzer-14-dev)
+# and the FMI headers (fmpy's c-code, or FMI_HEADERS_DIR).
+set -eu
+secs=${1:-600}
+[ $# -gt 0 ] && shift
+root=$(cd "$(dirname "$0")/.." && pwd)
+build="$root/build/fuzz"
+if [ -z "${FMI_HEADERS_DIR:-}" ]; then
+    py=python3
+    [ -x "$root/.venv/bin/python" ] && py="$root/.venv/bin/python"
+    FMI_HEADERS_DIR=$("$py" -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
+fi
+CC=${CC:-clang} cmake -S "$root" -B "$build" -DOC_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DFMI_HEADERS_DIR="$FMI_HEADERS_DIR" >/dev/null
+targets=${*:-"fuzz_OrthotropicContact_fmi2 fuzz_OrthotropicContact_fmi3 fuzz_CarriageBlock_fmi2 fuzz_CarriageBlock_fmi3"}
+# shellcheck disable=SC2086
+cmake --build "$build" -j2 --target $targets
+mkdir -p "$build/artifacts"
+status=0
+for t in $targets; do
+    corpus="$build/corpus/$t"
+    mkdir -p "$corpus"
+    # Seeds, generated: instantiate, initialize, set inputs, step, save and restore.
+    printf '\000\010\001\010\002\000\001\010\200\005\001\002\005\001\014' > "$corpus/seed-steps"
+    printf '\000\010\001\000\004\010\030\011\030\012\002\010\002\005\001\005\001\014\015\000\000\000' \
+        > "$corpus/seed-slide"
+    echo "== $t: $secs s"
+    rm -f "$build/artifacts/$t-"*
+    keep=""
+    [ "${FUZZ_KEEP_GOING:-0}" = 1 ] && keep="-fork=1 -ignore_crashes=1"
+    # shellcheck disable=SC2086
+    if ! nice -n 10 "$build/$t" "$corpus" -max_total_time="$secs" -print_final_stats=1 $keep \
+            -artifact_prefix="$build/artifacts/$t-" 2> "$build/$t.log" ||
+            ls "$build/artifacts/$t-"* >/dev/null 2>&1; then
+        status=1
+        echo "   FINDING: see $build/$t.log and $build/artifacts/"
+    fi
+    grep -E "^#[0-9]+[[:space:]]+DONE|stat::number_of_executed_units|stat::new_units_added" "$build/$t.log" | sed 's/^/   /'
+done
+exit $status
