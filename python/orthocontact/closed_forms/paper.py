@@ -157,16 +157,6 @@ def eq1_mu(force_N: float, f_int_N: float, mass_kg: float, g: float = G_STANDARD
     return (force_N - f_int_N) / (mass_kg * g)
 
 
-def driving_force(mu: float, f_int_N: float, mass_kg: float, g: float = G_STANDARD) -> float:
-    """Inverse of eq. (1): driving force [N] when sliding along a friction axis."""
-    return f_int_N + mu * mass_kg * g
-
-
-def mat_geometry(theta: float) -> tuple[float, float]:
-    """(alpha, beta) [rad] of the paper's mat at mat angle theta [rad]."""
-    return theta + math.pi / 2, theta
-
-
 def mat_ratio(eps_ratio: float, mu1: float, mu2: float) -> float:
     """r = lambda1/lambda2 = (eps1/eps2)(mu1/mu2), eq. (37)."""
     return eps_ratio * mu1 / mu2
@@ -182,14 +172,6 @@ def mat_tan_phi(r, theta):
 def mat_extremum(r) -> tuple[float, float]:
     """(theta_ext, phi_ext) [rad]: at tan theta = r, tan phi = (r^2 - 1)/(2 r)."""
     return math.atan(r), math.atan((r**2 - 1) / (2 * r))
-
-
-def mat_ratio_from_extremum(phi_ext: float) -> float:
-    """r = lambda1/lambda2 from the mat's extremal trajectory angle [rad]
-    (eq. 29 in this convention: tan phi_ext = (r^2 - 1)/(2r), so phi < 0
-    gives r < 1 as for the paper's aged mat)."""
-    tp = math.tan(phi_ext)
-    return tp + math.sqrt(tp * tp + 1)
 
 
 def eps_ratio_from_r(r: float, mu1: float, mu2: float) -> float:

@@ -74,7 +74,7 @@ def _eps_ratio_from_l(ratio, mu1, mu2, rig: RigSetup):
     """eps1/eps2 from l1/l2: Case 5 geometry l = eps1 mu1/(eps2 mu2) (eq. 37, 39),
     Case 4 l = eps1 mu2/(eps2 mu1)."""
     d = math.degrees(rig.beta_minus_alpha) % 180.0
-    return ratio * mu2 / mu1 if abs(d - 90.0) < 1e-9 else ratio * mu1 / mu2
+    return cf.eps_ratio_from_r(ratio, mu1, mu2) if abs(d - 90.0) < 1e-9 else ratio * mu1 / mu2
 
 
 def eq40_fit(data: MeasurementSet, mu1=None, mu2=None) -> dict | None:
