@@ -75,6 +75,21 @@ def _component(name, source, connectors, reals, integers=()):
     return lines
 
 
+def parameter_values_file(values: dict, name: str, description: str = "") -> str:
+    """An SSP parameter values file (.ssv) of one FMU's parameters (floats as
+    Real, ints as Integer), for tools that apply such a file to a component."""
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
+             '<ssv:ParameterSet xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues" '
+             f'version="1.0" name={quoteattr(name)}'
+             + (f" description={quoteattr(description)}" if description else "") + ">",
+             "  <ssv:Parameters>"]
+    for k, v in values.items():
+        value = f'<ssv:Real value="{_fmt(v)}"/>' if isinstance(v, float) else f'<ssv:Integer value="{int(v)}"/>'
+        lines.append(f'    <ssv:Parameter name={quoteattr(k)}>{value}</ssv:Parameter>')
+    lines += ["  </ssv:Parameters>", "</ssv:ParameterSet>", ""]
+    return "\n".join(lines)
+
+
 def rig_values(sc: Scenario) -> dict:
     """The CarriageBlock FMU's parameters for the scenario's rig."""
     rig = sc.rig
