@@ -77,8 +77,9 @@ def _checked(fmu_name: str, params: dict, values: dict) -> dict:
         else:
             raise StartValueError(f"{fmu_name}: {name} is a {kind}: only numbers can be rewritten")
         if (lo is not None and value < lo) or (hi is not None and value > hi):
-            raise StartValueError(f"{fmu_name}: {name} = {value!r} is outside [{lo:g}, {hi:g}], "
-                                  f"the FMU's range")
+            bound = lambda b, none: none if b is None else f"{b:g}"
+            raise StartValueError(f"{fmu_name}: {name} = {value!r} is outside [{bound(lo, '-inf')}, "
+                                  f"{bound(hi, 'inf')}], the FMU's range")
         out[name] = value
     return out
 
