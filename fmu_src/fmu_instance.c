@@ -54,6 +54,13 @@ static const char *type_name(int type) {
                                                                          : "Enumeration (Integer)";
 }
 
+/* A range in a message names its unit, so that "alpha = 90" outside
+ * [-12.5664, 12.5664] rad says what was wrong (degrees); none for "1" and "". */
+static const char *unit_of(const fmu_var *x) {
+    return x && x->unit && *x->unit && strcmp(x->unit, "1") != 0 ? x->unit : "";
+}
+static const char *unit_sep(const fmu_var *x) { return *unit_of(x) ? " " : ""; }
+
 /* The message for a value the fast check refused: only here is anything
  * formatted. */
 static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int type_ok, double value,
@@ -72,7 +79,8 @@ static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int type_o
         return fmu_fail(msg, "input %s cannot be set in this state", x->name);
     if (!isfinite(value))
         return fmu_fail(msg, "%s = %g rejected: values must be finite", x->name, value);
-    return fmu_fail(msg, "%s = %g rejected: outside [%g, %g]", x->name, value, x->min, x->max);
+    return fmu_fail(msg, "%s = %g rejected: outside [%g, %g]%s%s", x->name, value, x->min, x->max,
+                    unit_sep(x), unit_of(x));
 }
 
 /* In range and finite (v - v is NaN for an infinity and for NaN). */
@@ -84,8 +92,8 @@ fmu_status fmu_model_check_range(unsigned int vr, double value, const char *cont
                                  fmu_msg *msg) {
     const fmu_var *x = var_of(vr);
     if (x && in_range(x, value)) return FMU_OK;
-    return fmu_fail(msg, "%s: %s = %g is outside [%g, %g]", context, x ? x->name : "?", value,
-                    x ? x->min : NAN, x ? x->max : NAN);
+    return fmu_fail(msg, "%s: %s = %g is outside [%g, %g]%s%s", context, x ? x->name : "?", value,
+                    x ? x->min : NAN, x ? x->max : NAN, unit_sep(x), unit_of(x));
 }
 
 /* One pass: each value is checked, its old value saved and the new one
@@ -510,7 +518,8 @@ int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources
             FAIL("%s = \"%s\": %s; expected a decimal integer", name, p, why);
         }
         if (!in_range(x, v))
-            FAIL("%s = %.17g is outside [%g, %g]", name, v, x->min, x->max);
+            FAIL("%s = %.17g is outside [%g, %g]%s%s", name, v, x->min, x->max, unit_sep(x),
+                 unit_of(x));
         start[vr] = v;
     }
     if (ferror(f)) FAIL("read error");

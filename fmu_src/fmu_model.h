@@ -63,13 +63,14 @@ typedef struct {
     unsigned char settable; /* FMU_ALLOW_* bit needed to set it, 0: never */
     double start, min, max; /* min/max may be infinite: values must also be finite */
     size_t slot;            /* byte offset of the value in struct fmu_model */
+    const char *unit;       /* the table's unit ("rad", "N/m"; "1" or "" for none), for messages */
 } fmu_var;
 
 /* The row of a table entry X(name, vr, type, causality, ...); the model
  * defines FMU_SLOT_<name> for every variable and, for a table with
  * enumeration types, FMU_T_<EnumType> = FMU_T_Enum (FMU_ENUM_KIND). */
-#define FMU_VAR_ROW(name, vr, type, caus, var, init, start, lo, hi, ...) \
-    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus, start, lo, hi, FMU_SLOT_##name},
+#define FMU_VAR_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...) \
+    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus, start, lo, hi, FMU_SLOT_##name, unit},
 #define FMU_ENUM_KIND(type, items) FMU_T_##type = FMU_T_Enum,
 
 typedef struct fmu_model fmu_model;

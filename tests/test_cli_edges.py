@@ -91,7 +91,7 @@ def test_version_names_the_package_and_both_fmus(tmp_path):
 def test_every_command_and_argument_has_help():
     parser = build_parser()
     sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
-    assert set(sub.choices) == {"run", "reproduce", "identify", "ssp", "uq", "sensitivity"}
+    assert set(sub.choices) == {"run", "reproduce", "identify", "ssp", "uq", "sensitivity", "export"}
     for name, p in sub.choices.items():
         for action in p._actions:
             assert action.help, f"{name}: {action.option_strings or action.dest} has no help"

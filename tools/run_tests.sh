@@ -4,9 +4,19 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/bootstrap.sh
-# What only the tests need: a second FMU importer (libcosim), property-based
-# testing, and qemu-user with the arm64 C library to run the aarch64 binary.
-.venv/bin/python -m pip install -q --disable-pip-version-check "hypothesis>=6" "libcosimpy>=0.0.6"
+# What only the tests need: the other FMU/SSP importers (libcosim, Ecos,
+# fmu-manipulation-toolbox's container), property-based testing, and
+# qemu-user with the arm64 C library to run the aarch64 binary.
+.venv/bin/python -m pip install -q --disable-pip-version-check "hypothesis>=6" "libcosimpy>=0.0.6" \
+  "ecospy>=0.7" "fmu-manipulation-toolbox>=2.0"
+# Ecos's library links against oneTBB (Debian's libtbb12).
+if ! /sbin/ldconfig -p 2>/dev/null | grep -q 'libtbb\.so\.12'; then
+  echo "run_tests: installing libtbb12 for Ecos (apt)"
+  SUDO=""
+  [ "$(id -u)" = 0 ] || SUDO="sudo"
+  { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq \
+      libtbb12 >/dev/null; } || echo "run_tests: libtbb12 not installed; the Ecos runs are skipped"
+fi
 if ! command -v qemu-aarch64 >/dev/null 2>&1 || [ ! -e /usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1 ]; then
   echo "run_tests: installing qemu-user and libc6-arm64-cross (apt)"
   SUDO=""

@@ -268,12 +268,32 @@ static void test_initial_slip(void) {
     }
 }
 
+/* A range in the refusal names the variable's unit: alpha = 90 is degrees
+ * given to a variable in rad. */
+static void test_range_message_names_the_unit(void) {
+    fmi2Component c = make("unit");
+    const fmi2ValueReference alpha = OC_VR_alpha, eps1 = OC_VR_eps1, mu1 = OC_VR_mu1;
+    double v = 90.0;
+    CHECK(fmi2SetReal(c, &alpha, 1, &v) == fmi2Error, "alpha = 90 accepted");
+    CHECK(strstr(last_message, "alpha = 90 rejected: outside [-12.5664, 12.5664] rad") != NULL,
+          "unit not named: %s", last_message);
+    v = -1.0;
+    CHECK(fmi2SetReal(c, &eps1, 1, &v) == fmi2Error, "eps1 = -1 accepted");
+    CHECK(strstr(last_message, "1e+300] N/m") != NULL, "unit not named: %s", last_message);
+    v = -1.0; /* dimensionless ("1"): no unit after the range */
+    CHECK(fmi2SetReal(c, &mu1, 1, &v) == fmi2Error, "mu1 = -1 accepted");
+    CHECK(strstr(last_message, "1e+150]") != NULL && strstr(last_message, "] 1") == NULL,
+          "dimensionless unit printed: %s", last_message);
+    fmi2FreeInstance(c);
+}
+
 int main(void) {
     CHECK(strcmp(fmi2GetVersion(), "2.0") == 0, "version");
     CHECK(strcmp(fmi2GetTypesPlatform(), "default") == 0, "types platform");
     test_instantiate_rejects();
     test_state_machine();
     test_logging_filter();
+    test_range_message_names_the_unit();
     test_instances_and_state();
     test_initial_slip();
     return oc_report();

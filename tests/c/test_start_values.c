@@ -120,6 +120,7 @@ static void test_bad_files_refused(void) {
         {"T1 = 0x1p0\n", "not a parameter", 1},
         {"u1 = 0x1p0\n", "not a parameter", 1},
         {"mu1 = -0x1p0\n", "outside", 1},
+        {"alpha = 0x1.68p+6\n", "outside [-12.5664, 12.5664] rad", 1},
         {"mu1 = 0x1p0 x\n", "characters after the number", 1},
         {"mu1 0x1p0\n", "name = value", 1},
         {"mu1 = 0x1p0\nmu1 = 0x1p0\n", "given twice", 2},

@@ -1,4 +1,4 @@
-"""The subcommands: run, reproduce, identify, sensitivity, uq, ssp."""
+"""The subcommands: run, reproduce, identify, sensitivity, uq, ssp, export."""
 from __future__ import annotations
 
 import contextlib
@@ -204,4 +204,19 @@ def cmd_ssp(args) -> int:
     path = write_ssp(sc, args.angle, args.out)
     print(f"wrote {path}: rig + contact at {args.angle:g} deg "
           f"(run it with libcosim: CosimExecution.from_ssp_file)")
+    return 0
+
+
+def cmd_export(args) -> int:
+    from ..identification.export import export, load_calibration
+    cal = load_calibration(args.identification)
+    with staged_output(args.out) as stage:
+        res = export(cal, stage, args.angle, args.scenario)
+    v = res["values"]
+    print(f"calibrated: mu1 = {v['mu1']:.6g}, mu2 = {v['mu2']:.6g}, eps1 = {v['eps1']:.6g} N/m, "
+          f"eps2 = {v['eps2']:.6g} N/m{'' if cal.eps2_identified else ' (nominal: not identified)'}, "
+          f"{cal.law.rule} rule; data sha256 {res['digest'][:12]}...")
+    print(f"predicted trajectory angle at {args.angle:g} deg: {res['predicted_phi_deg']:.4f} deg")
+    print(f"wrote {args.out}/fmi2/OrthotropicContact.fmu, fmi3/OrthotropicContact.fmu, calibration.ssv, "
+          f"{res['ssp'].name}")
     return 0

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .commands import cmd_identify, cmd_reproduce, cmd_run, cmd_sensitivity, cmd_ssp, cmd_uq
+from .commands import cmd_export, cmd_identify, cmd_reproduce, cmd_run, cmd_sensitivity, cmd_ssp, cmd_uq
 
 
 def _positive_int(what):
@@ -133,6 +133,27 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", type=Path, required=True, metavar="FILE.ssp",
                    help="the package to write (replaced if it exists)")
     s.set_defaults(func=cmd_ssp)
+    x = sub.add_parser("export", help="write both contact FMUs calibrated with an identification's "
+                                      "estimates, an SSV file and an SSP of the rig",
+                       description="Write DIR/fmi2/ and DIR/fmi3/OrthotropicContact.fmu whose parameters' "
+                                   "start values are identified.json's estimates (used by the FMU itself "
+                                   "when an importer sets nothing), with the intervals, the data's SHA-256, "
+                                   "the date and the version in documentation/calibration.html; "
+                                   "DIR/calibration.ssv; and DIR/rig_<angle>.ssp, the rig at --angle on "
+                                   "the calibrated FMU.")
+    x.add_argument("identification", type=Path, metavar="IDENTIFIED.json",
+                   help="identified.json written by `orthocontact identify` (its data folder must be "
+                        "readable: the export names the data's digest)")
+    x.add_argument("--out", type=Path, required=True, metavar="DIR",
+                   help="output folder: created if missing, files replaced; written only when "
+                        "everything completes")
+    x.add_argument("--angle", type=float, default=45.0, metavar="DEG",
+                   help="orientation [deg] in the measurement's geometry that the FMUs' axes alpha, "
+                        "beta are set for and the SSP's rig runs at (default 45)")
+    x.add_argument("--scenario", type=Path, default=None, metavar="SCENARIO",
+                   help="sweep scenario file (TOML) whose rig the SSP uses (default: the data's "
+                        "rig.toml)")
+    x.set_defaults(func=cmd_export)
     v = sub.add_parser("sensitivity", help="how the rig's unmeasured strip friction and viscosity, "
                                            "and the velocity, move the peak angle and the identified "
                                            "eps1/eps2",

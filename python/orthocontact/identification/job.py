@@ -16,7 +16,7 @@ import numpy as np
 from ..experiment.rig_setup import RigSetup
 from ..fmu.params import ContactParams
 from .estimators import REPORTED, JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
-from .measurements import MeasurementSet, load_data, write_measurements
+from .measurements import MeasurementSet, data_digest, load_data, write_measurements
 from .statistics import json_dof, res_stats
 
 # The whole job here; its parts importable from here as before.
@@ -134,10 +134,11 @@ class Identification:
                          [[float(a), float(F)] for a, F in d.forces]}
         out["ramp_stick_points"] = f.stick_points
         out["validation_fmu"] = self.validation
-        out["data"] = {"folder": str(d.folder),
+        out["data"] = {"folder": str(d.folder), "absolute_folder": str(Path(d.folder).resolve()),
                        "forces": 0 if d.forces is None else len(d.forces),
                        "angles": 0 if d.angles is None else len(d.angles),
-                       "ramp": 0 if d.ramp is None else len(d.ramp)}
+                       "ramp": 0 if d.ramp is None else len(d.ramp),
+                       "sha256": data_digest(d.folder)}
         r = d.rig
         out["assumptions"] = {"rule": r.rule, "alpha_offset_deg": r.alpha_offset_deg,
                               "beta_offset_deg": r.beta_offset_deg, "mass_kg": r.mass_kg, "g": r.g,

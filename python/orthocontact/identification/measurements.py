@@ -12,6 +12,7 @@ Units: N, m, deg."""
 from __future__ import annotations
 
 import csv
+import hashlib
 import math
 import sys
 from dataclasses import dataclass
@@ -128,6 +129,20 @@ def load_data(folder) -> MeasurementSet:
         raise InputError(f"{folder / 'forces.csv'}: expected forces at two or more orientations "
                          "with different friction directions (mu1 and mu2 are two parameters)")
     return MeasurementSet(folder, rig, forces, angles, ramp, velocities, tuple(warnings))
+
+
+DATA_FILES = ("angles.csv", "forces.csv", "ramp.csv", "rig.toml")   # sorted by name
+
+
+def data_digest(folder) -> str:
+    """The measurement set's SHA-256: of the listing `sha256sum` prints for
+    its files present, sorted by name (`cd DATA && sha256sum angles.csv
+    forces.csv ramp.csv rig.toml | sha256sum` gives the same, for a set with
+    all four), so that a calibration names exactly the data it came from."""
+    folder = Path(folder)
+    listing = "".join(f"{hashlib.sha256((folder / n).read_bytes()).hexdigest()}  {n}\n"
+                      for n in DATA_FILES if (folder / n).is_file())
+    return hashlib.sha256(listing.encode()).hexdigest()
 
 
 RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |orientation| [deg] of a sweep typed in rad

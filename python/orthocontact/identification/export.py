@@ -1,0 +1,232 @@
+"""Calibrated FMUs out (`orthocontact export`): both contact FMUs with the
+identification's estimates as their parameters' start values, in the model
+description and in the binary's resources (fmu.start_values), so that an
+importer that sets nothing runs the calibrated model; the estimates, their
+95 % intervals, the data set's digest, the date and the package version in
+documentation/calibration.html and in the description; beside them an SSV
+parameter file and an SSP of the rig at one angle built on the calibrated
+FMU (experiment.ssp), whose FMUs carry the values too.
+
+The FMUs' axis angles alpha, beta are those of the chosen angle in the
+measurement's geometry (alpha = angle + alpha offset, beta = angle + beta
+offset), so that the calibrated FMU alone, run in the rig, predicts the
+trajectory angle at that orientation."""
+from __future__ import annotations
+
+import dataclasses
+import html
+import json
+import math
+from datetime import datetime, timezone
+from pathlib import Path
+
+from .. import closed_forms as cf
+from ..errors import InputError
+from ..experiment.rig_setup import RigSetup, load_rig_toml
+from ..experiment.scenario import Scenario, load
+from ..experiment.ssp import parameter_values_file, write_ssp
+from ..fmu.files import MODEL_IDENTIFIER, find_fmu
+from ..fmu.params import RULES, ContactParams
+from ..fmu.start_values import write_with_start_values
+from .measurements import data_digest
+
+ESTIMATED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
+
+
+@dataclasses.dataclass
+class Calibration:
+    """What identified.json says, checked: the law (alpha = beta = 0),
+    the 95 % intervals of what was identified, the rig of the data."""
+    path: Path
+    law: ContactParams
+    intervals: dict          # name -> (lo, hi) of each identified parameter
+    eps2_identified: bool
+    rig: RigSetup            # rig.toml of the data, with the identification's rule and offsets
+    c_strip: float           # N s/m, as the identification used it
+    data_folder: Path
+    digest: str
+
+
+def _field(path, d, name, key="value"):
+    entry = d.get(name)
+    if not isinstance(entry, dict):
+        raise InputError(f"{path}: {name}: expected an object written by `orthocontact identify`")
+    v = entry.get(key)
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        why = f" ({name} was not identified: {entry['reason']})" if "reason" in entry else ""
+        raise InputError(f"{path}: {name}.{key}: expected a finite number > 0, got {v!r}{why}")
+    return float(v)
+
+
+def _data_folder(path: Path, d: dict) -> Path:
+    data = d.get("data") or {}
+    folder = data.get("folder")
+    if not isinstance(folder, str) or not folder:
+        raise InputError(f"{path}: data.folder: expected the measurement folder's path")
+    absolute = data.get("absolute_folder")
+    for candidate in (Path(folder), path.parent / folder) + ((Path(absolute),) if absolute else ()):
+        if (candidate / "rig.toml").is_file():
+            return candidate
+    raise InputError(f"{path}: data.folder: {folder} not found (relative to the working folder or "
+                     f"to {path.parent}): the calibration names the data it came from")
+
+
+def load_calibration(path) -> Calibration:
+    """identified.json -> Calibration; InputError naming the file and the field."""
+    path = Path(path)
+    try:
+        d = json.loads(path.read_text())
+    except OSError as e:
+        raise InputError(f"{path}: cannot read ({e.strerror})") from None
+    except ValueError as e:
+        raise InputError(f"{path}: expected JSON written by `orthocontact identify` ({e})") from None
+    if not isinstance(d, dict):
+        raise InputError(f"{path}: expected a JSON object written by `orthocontact identify`")
+    mu1, mu2 = _field(path, d, "mu1"), _field(path, d, "mu2")
+    a = d.get("assumptions")
+    if not isinstance(a, dict):
+        raise InputError(f"{path}: assumptions: expected an object written by `orthocontact identify`")
+    rule = a.get("rule")
+    if rule not in RULES:
+        raise InputError(f"{path}: assumptions.rule: expected one of {', '.join(RULES)}, got {rule!r}")
+    offsets = {}
+    for k in ("alpha_offset_deg", "beta_offset_deg"):
+        v = a.get(k)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise InputError(f"{path}: assumptions.{k}: expected a finite number [deg], got {v!r}")
+        offsets[k] = float(v)
+    folder = _data_folder(path, d)
+    digest = data_digest(folder)
+    stated = (d.get("data") or {}).get("sha256")
+    if stated is not None and stated != digest:
+        raise InputError(f"{path}: data.sha256: the files in {folder} changed since the identification "
+                         f"(now {digest[:12]}..., identified on {str(stated)[:12]}...)")
+    rig = dataclasses.replace(load_rig_toml(folder / "rig.toml"), rule=rule, **offsets)
+    eps2_identified = isinstance(d.get("eps2"), dict) and "value" in d["eps2"]
+    eps2 = _field(path, d, "eps2") if eps2_identified else rig.eps2_nominal_N_m
+    eps1 = _field(path, d, "eps1") if eps2_identified else _field(path, d, "eps_ratio") * eps2
+    intervals = {}
+    for n in ESTIMATED:
+        ci = (d.get(n) or {}).get("ci95") if isinstance(d.get(n), dict) else None
+        if ci is not None:
+            if not (isinstance(ci, list) and len(ci) == 2 and all(isinstance(x, (int, float)) for x in ci)):
+                raise InputError(f"{path}: {n}.ci95: expected [low, high], got {ci!r}")
+            intervals[n] = (float(ci[0]), float(ci[1]))
+    c = a.get("c_strip_N_s_m", 0.0)
+    c_strip = _field(path, d, "c_strip") if c == "estimated" else c
+    if isinstance(c_strip, bool) or not isinstance(c_strip, (int, float)) or not c_strip >= 0:
+        raise InputError(f"{path}: assumptions.c_strip_N_s_m: expected a number >= 0 or \"estimated\", "
+                         f"got {c!r}")
+    try:
+        law = ContactParams(mu1, mu2, eps1, eps2, rule=rule)
+    except ValueError as e:
+        raise InputError(f"{path}: {e}") from None
+    return Calibration(path, law, intervals, eps2_identified, rig, float(c_strip), folder, digest)
+
+
+def contact_start_values(cal: Calibration, angle_deg: float) -> dict:
+    """The contact FMU's parameters at the orientation `angle_deg`."""
+    try:
+        p = cal.rig.params_at(cal.law, angle_deg)
+    except ValueError as e:
+        raise InputError(f"--angle {angle_deg:g}: {e}") from None
+    return {"mu1": p.mu1, "mu2": p.mu2, "eps1": p.eps1, "eps2": p.eps2, "alpha": p.alpha,
+            "beta": p.beta, "slidingRule": RULES[p.rule]}
+
+
+def predicted_phi_deg(cal: Calibration, angle_deg: float, rig=None) -> float:
+    """The identified model's steady trajectory angle [deg] at `angle_deg`
+    in the rig (the data's unless given), strip terms included."""
+    rig = rig or cal.rig.harness(c_strip=cal.c_strip)
+    p = cal.rig.params_at(cal.law, angle_deg)
+    t = cf.steady_tan_phi_with_strip(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, p.rule,
+                                     rig.mu_strip, rig.c_strip, rig.velocity_m_s, rig.mass_kg * rig.g)
+    return math.degrees(math.atan(t))
+
+
+def rig_scenario(cal: Calibration, scenario=None) -> Scenario:
+    """The calibrated law in a scenario: the given scenario file's rig, or the
+    data's rig.toml (its velocity, travel and step; the CarriageBlock FMU
+    integrates the block's lateral inertia whatever the rig's mode)."""
+    law = cal.law
+    offsets = dict(alpha_offset=math.radians(cal.rig.alpha_offset_deg),
+                   beta_offset=math.radians(cal.rig.beta_offset_deg))
+    if scenario is not None:
+        sc = load(scenario)
+        if sc.kind != "sweep":
+            raise InputError(f"{scenario}: kind: expected a sweep scenario for an SSP, got {sc.kind!r}")
+        return dataclasses.replace(sc, name=f"calibrated_{sc.name}", law=law, fmu=None, **offsets)
+    return Scenario(path=cal.path, name="calibrated", title=f"Calibrated contact on the rig of {cal.data_folder}",
+                    kind="sweep", description="", law=law, closed_form="mat",
+                    rig=cal.rig.harness(c_strip=cal.c_strip), **offsets)
+
+
+def _documentation(cal: Calibration, values: dict, angle_deg: float, version: str, date: str,
+                   phi_deg: float) -> str:
+    units = {"mu1": "", "mu2": "", "eps_ratio": "", "eps1": "N/m", "eps2": "N/m"}
+    rows = []
+    for n in ("mu1", "mu2", "eps1", "eps2"):
+        ci = cal.intervals.get(n)
+        interval = f"{ci[0]:.6g} .. {ci[1]:.6g}" if ci else "not identified"
+        rows.append(f"<tr><td>{n}</td><td>{values[n]!r}</td><td>{units[n]}</td><td>{interval}</td></tr>")
+    if "eps_ratio" in cal.intervals:
+        ci = cal.intervals["eps_ratio"]
+        rows.append(f"<tr><td>eps1/eps2</td><td>{values['eps1'] / values['eps2']!r}</td><td></td>"
+                    f"<td>{ci[0]:.6g} .. {ci[1]:.6g}</td></tr>")
+    eps2 = ("eps2 was identified (from the stick branch of the pull)." if cal.eps2_identified else
+            f"eps2 was <b>not</b> identified: the nominal eps2 = {cal.rig.eps2_nominal_N_m!r} N/m of the "
+            f"data's rig.toml (eps2_nominal_N_m) is used and eps1 = eps1/eps2 &times; eps2. The trajectory "
+            f"angle depends on the ratio only; forces before sliding depend on the absolute value.")
+    e = html.escape
+    return f"""<!DOCTYPE html>
+<html><head><meta charset="utf-8"><title>OrthotropicContact: calibration</title></head>
+<body>
+<h1>Calibration</h1>
+<p>The start values of this FMU's parameters are an identification's estimates: the FMU uses them
+when an importer sets nothing (they are in <code>resources/start_values.txt</code> too).</p>
+<table border="1"><tr><th>parameter</th><th>start value</th><th>unit</th><th>95 % interval</th></tr>
+{chr(10).join(rows)}
+</table>
+<p>{eps2}</p>
+<p>slidingRule = {values['slidingRule']} ({e(cal.law.rule)}), the rule the identification assumed.
+alpha = {values['alpha']!r} rad, beta = {values['beta']!r} rad: the axes at the orientation
+{angle_deg:g} deg of the measurement's geometry (alpha = orientation + {cal.rig.alpha_offset_deg:g} deg,
+beta = orientation + {cal.rig.beta_offset_deg:g} deg); set them for another orientation.
+The identified model predicts a steady trajectory angle of {phi_deg:.4f} deg (counterclockwise)
+there on the data's rig (strip: mu_strip = {cal.rig.mu_strip:g}, c_strip = {cal.c_strip:g} N s/m).</p>
+<h2>Provenance</h2>
+<ul>
+<li>identification: <code>{e(str(cal.path))}</code> (<code>orthocontact identify</code>)</li>
+<li>data: <code>{e(str(cal.data_folder))}</code>, SHA-256 {cal.digest}
+(<code>sha256sum angles.csv forces.csv ramp.csv rig.toml | sha256sum</code> over the files present, sorted)</li>
+<li>intervals: 95 %, Student t with Welch-Satterthwaite degrees of freedom, Gauss-Newton covariance</li>
+<li>exported {date} by orthocontact {e(version)}</li>
+</ul>
+</body></html>
+"""
+
+
+def export(cal: Calibration, out: Path, angle_deg: float, scenario=None) -> dict:
+    """Writes into the folder `out` fmi2/ and fmi3/OrthotropicContact.fmu
+    (calibrated), calibration.ssv and rig_<angle>.ssp; returns what was written."""
+    from .. import __version__
+    if not math.isfinite(angle_deg):
+        raise InputError(f"--angle: expected a finite angle [deg], got {angle_deg!r}")
+    sc = rig_scenario(cal, scenario)
+    values = contact_start_values(cal, angle_deg)
+    date = datetime.now(timezone.utc).strftime("%Y-%m-%d")
+    phi = predicted_phi_deg(cal, angle_deg, sc.rig)
+    doc = _documentation(cal, values, angle_deg, __version__, date, phi)
+    note = (f"Calibrated: mu1 = {values['mu1']:.6g}, mu2 = {values['mu2']:.6g}, eps1 = {values['eps1']:.6g} "
+            f"N/m, eps2 = {values['eps2']:.6g} N/m{'' if cal.eps2_identified else ' (nominal)'}, "
+            f"{cal.law.rule} rule, axes at {angle_deg:g} deg; data sha256 {cal.digest}; {date}; "
+            f"orthocontact {__version__}; 95 % intervals in documentation/calibration.html.")
+    fmus = {}
+    for v in (2, 3):
+        fmus[v] = write_with_start_values(find_fmu(fmi_version=v), out / f"fmi{v}" / f"{MODEL_IDENTIFIER}.fmu",
+                                          values, documentation={"calibration.html": doc},
+                                          description_note=note)
+    (out / "calibration.ssv").write_text(parameter_values_file(values, "calibration", note))
+    ssp = write_ssp(sc, angle_deg, out / f"rig_{angle_deg:g}.ssp", contact_fmu=fmus[2])
+    return {"fmus": fmus, "ssv": out / "calibration.ssv", "ssp": ssp, "values": values,
+            "predicted_phi_deg": phi, "digest": cal.digest}
