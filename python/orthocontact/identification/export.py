@@ -149,8 +149,7 @@ def rig_scenario(cal: Calibration, scenario=None) -> Scenario:
     data's rig.toml (its velocity, travel and step; the CarriageBlock FMU
     integrates the block's lateral inertia whatever the rig's mode)."""
     law = cal.law
-    offsets = dict(alpha_offset=math.radians(cal.rig.alpha_offset_deg),
-                   beta_offset=math.radians(cal.rig.beta_offset_deg))
+    offsets = dict(geometry=cal.rig.geometry)
     if scenario is not None:
         sc = load(scenario)
         if sc.kind != "sweep":
