@@ -208,3 +208,19 @@ def test_ssp_runs_as_fmu_manipulation_toolbox_container_with_the_harness_angle(p
     fit = fitted(aged, x1, x2, drive)
     assert abs(fit.angle_deg() - harness.phi_deg) <= TOLERANCE_DEG   # measured 6e-11 deg
     assert fit.mean_drive() == pytest.approx(harness.drive_mean_N, rel=1e-9)
+
+
+def test_the_ssp_command_says_when_its_dynamic_rig_would_not_settle(tmp_path):
+    """The SSP's CarriageBlock integrates the block's lateral inertia whatever
+    the scenario's mode: Case 2 at its extremum settles over 0.40 m (the
+    model notes' figure), far beyond its 0.2 m travel."""
+    root = Path(__file__).resolve().parents[1]
+    cmd = [sys.executable, "-m", "orthocontact", "ssp"]
+    p = subprocess.run(cmd + [str(root / "scenarios/case2.toml"), "--angle", "11.31", "--out", "c2.ssp"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0 and (tmp_path / "c2.ssp").is_file()
+    assert p.stderr.startswith("orthocontact: warning: case2 at 11.31 deg: the system's dynamic rig settles "
+                               "over 0.403 m") and "rig.travel_m >=" in p.stderr
+    p = subprocess.run(cmd + [str(root / "scenarios/mat_aged.toml"), "--angle", "39.2", "--out", "a.ssp"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0 and p.stderr == ""

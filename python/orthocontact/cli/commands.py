@@ -201,6 +201,10 @@ def cmd_ssp(args) -> int:
     sc = load_scenario(args.scenario)
     if sc.kind != "sweep":
         raise InputError(f"{args.scenario}: kind: expected a sweep scenario for an SSP, got {sc.kind!r}")
+    from ..rig.checks import system_settling_warning
+    line = system_settling_warning(f"{sc.name} at {args.angle:g} deg", sc.params_at(args.angle), sc.rig)
+    if line:
+        warn(line)
     path = write_ssp(sc, args.angle, args.out)
     print(f"wrote {path}: rig + contact at {args.angle:g} deg "
           f"(run it with libcosim: CosimExecution.from_ssp_file)")
@@ -212,6 +216,10 @@ def cmd_export(args) -> int:
     cal = load_calibration(args.identification)
     with staged_output(args.out) as stage:
         res = export(cal, stage, args.angle, args.scenario)
+    from ..rig.checks import system_settling_warning
+    line = system_settling_warning(f"{res['ssp'].name}", res["ssp_params"], res["ssp_rig"])
+    if line:
+        warn(line)
     v = res["values"]
     print(f"calibrated: mu1 = {v['mu1']:.6g}, mu2 = {v['mu2']:.6g}, eps1 = {v['eps1']:.6g} N/m, "
           f"eps2 = {v['eps2']:.6g} N/m{'' if cal.eps2_identified else ' (nominal: not identified)'}, "

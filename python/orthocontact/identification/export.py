@@ -228,4 +228,5 @@ def export(cal: Calibration, out: Path, angle_deg: float, scenario=None) -> dict
     (out / "calibration.ssv").write_text(parameter_values_file(values, "calibration", note))
     ssp = write_ssp(sc, angle_deg, out / f"rig_{angle_deg:g}.ssp", contact_fmu=fmus[2])
     return {"fmus": fmus, "ssv": out / "calibration.ssv", "ssp": ssp, "values": values,
-            "predicted_phi_deg": phi, "digest": cal.digest}
+            "predicted_phi_deg": phi, "digest": cal.digest, "ssp_params": sc.params_at(angle_deg),
+            "ssp_rig": sc.rig}

@@ -152,3 +152,21 @@ def angle_list(a) -> str:
             parts.append(f"{start:g}" if prev == start else f"{start:g}-{prev:g}")
             start = x
     return ", ".join(parts)
+
+
+def system_settling_warning(label: str, params, rig) -> str | None:
+    """A warning line if the dynamic rig (the CarriageBlock FMU of an SSP,
+    which integrates the block's lateral inertia whatever the scenario's
+    mode) does not settle before the fitted part of its path starts: that
+    part must start SETTLING_LENGTHS settling lengths in."""
+    from dataclasses import replace
+    dynamic = replace(rig, mode="dynamic")
+    L = settling_lengths([(params, dynamic)])[0]
+    start = rig.fit_from * rig.travel_m
+    if np.isfinite(L) and start >= SETTLING_LENGTHS * L:
+        return None
+    need = f"rig.travel_m >= {SETTLING_LENGTHS * L / rig.fit_from:.3g} m" if np.isfinite(L) else \
+        "a quasi-static rig (there is no restoring lateral force here)"
+    mode = "" if rig.mode == "dynamic" else f" (the scenario's rig is {rig.mode}; the SSP's is dynamic)"
+    return (f"{label}: the system's dynamic rig settles over {L:.3g} m{mode}, and the fit of its path "
+            f"would start at {start:.3g} m: its angle is not steady sliding; remedy: {need}")
