@@ -6,6 +6,8 @@
 # target found something.
 # FUZZ_KEEP_GOING=1 runs libFuzzer's fork mode past findings (-fork=1
 # -ignore_crashes=1), to collect them all in artifacts/.
+# FUZZ_COVERAGE=1 then replays each corpus through a build with clang's
+# source-based coverage and prints the line coverage of fmu_src (llvm-cov).
 #   tools/fuzz.sh [SECONDS] [TARGET...]   e.g. tools/fuzz.sh 60 fuzz_CarriageBlock_fmi3
 # Needs clang with libFuzzer (Debian: apt-get install clang libfuzzer-14-dev)
 # and the FMI headers (fmpy's c-code, or FMI_HEADERS_DIR).
@@ -44,6 +46,26 @@ for t in $targets; do
         status=1
         echo "   FINDING: see $build/$t.log and $build/artifacts/"
     fi
-    grep -E "^#[0-9]+[[:space:]]+DONE|stat::number_of_executed_units|stat::new_units_added" "$build/$t.log" | sed 's/^/   /'
+    # the last status line (executions, coverage; in fork mode also the count of findings)
+    grep -E "^#[0-9]+" "$build/$t.log" | tail -n 1 | sed 's/^/   /'
+    ls "$build/artifacts/$t-"* 2>/dev/null | sed 's/^/   finding: /'
 done
+if [ "${FUZZ_COVERAGE:-0}" = 1 ]; then
+    cov="$root/build/fuzz-cov"
+    CC=${CC:-clang} cmake -S "$root" -B "$cov" -DOC_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DFMI_HEADERS_DIR="$FMI_HEADERS_DIR" -DCMAKE_C_FLAGS="-fprofile-instr-generate -fcoverage-mapping" \
+        -DCMAKE_EXE_LINKER_FLAGS="-fprofile-instr-generate" >/dev/null
+    # shellcheck disable=SC2086
+    cmake --build "$cov" -j2 --target $targets >/dev/null
+    for t in $targets; do
+        rm -f "$cov/$t.profraw"
+        LLVM_PROFILE_FILE="$cov/$t.profraw" nice -n 10 "$cov/$t" "$build/corpus/$t" -runs=0 \
+            >/dev/null 2>&1 || true
+        llvm-profdata merge -sparse "$cov/$t.profraw" -o "$cov/$t.profdata"
+        echo "== $t: line coverage of fmu_src by its corpus"
+        llvm-cov report "$cov/$t" -instr-profile="$cov/$t.profdata" \
+            $(cd "$root" && ls fmu_src/*.c | grep -v gen_model_description | sed "s|^|$root/|") |
+            awk 'NR == 1 || /fmu_src|TOTAL/' | sed 's/^/   /'
+    done
+fi
 exit $status

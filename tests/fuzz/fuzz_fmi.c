@@ -118,6 +118,7 @@ static int st_ok(status s) { return s == fmi2OK; }
 static int st_defined(status s) {
     return s == fmi2OK || s == fmi2Warning || s == fmi2Discard || s == fmi2Error || s == fmi2Fatal;
 }
+static void forget_setup(void) {}
 static status set_f64(inst c, const unsigned *vr, size_t n, const double *v) {
     return fmi2SetReal(c, vr, n, v);
 }
@@ -216,8 +217,15 @@ static status other_type(inst c, unsigned vr, unsigned how) {
     default: return fmi3GetBoolean(c, &vr, 1, &b, 1);
     }
 }
+/* FMI 3.0 takes the experiment's times with fmi3EnterInitializationMode;
+ * "setup" keeps them here until then (reset for every input, so that each
+ * input replays alone). */
 static double start_time, stop_time;
 static int has_stop_time;
+static void forget_setup(void) {
+    start_time = stop_time = 0.0;
+    has_stop_time = 0;
+}
 static status setup(inst c, double t0, double stop, int has_stop) {
     (void)c;
     start_time = t0;
@@ -322,6 +330,7 @@ static void rejected_changes_nothing(inst c, status s, const char *what) {
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     reader r = {data, size};
+    forget_setup();
     inst c = make(byte(&r) & 1);
     if (!c) return 0;
     double t = 0.0, energy = 0.0;
@@ -459,6 +468,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         }
         default: { /* a new instance */
             destroy(c);
+            forget_setup();
             c = make(byte(&r) & 1);
             if (!c) return 0;
             t = 0.0;
