@@ -29,8 +29,26 @@ fi
 # Build requirements too, so that the package builds without isolation
 # (faster, and incremental through build/); ziglang cross-compiles the FMU
 # binaries for Linux, Windows and macOS.
+echo "bootstrap: Python packages into .venv (fmpy, ziglang, numpy, casadi, matplotlib, dask, pytest;" \
+     "downloaded the first time)"
 .venv/bin/python -m pip install -q --disable-pip-version-check \
   "scikit-build-core>=0.9" "fmpy>=0.3.20" "ziglang>=0.13" "numpy>=1.22" "casadi>=3.6" \
   "matplotlib>=3.5" "dask>=2024.1" "distributed>=2024.1" "pytest>=7"
-echo "bootstrap: building and installing orthocontact (both FMUs, all platforms, via CMake)"
-.venv/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation .
+echo "bootstrap: building both models' FMUs (FMI 2.0 and 3.0; zig cross-compiles 16 binaries" \
+     "for 5 platforms, a few minutes the first time, only what changed later) and installing orthocontact"
+# pip shows a build's output only with -v, and then its own chatter too: the
+# build's progress lines (one per compiled file or binary) are shown, the
+# whole log kept in build/setup.log and shown in full if the install fails.
+mkdir -p build
+status=0
+.venv/bin/python -m pip install -v --disable-pip-version-check --no-build-isolation . >build/setup.log 2>&1 &
+pip_pid=$!
+tail -n +1 -f --pid=$pip_pid build/setup.log 2>/dev/null \
+  | grep --line-buffered -E '^ *\[ *[0-9]+/[0-9]+\]|\*\*\* (Configuring|Building|Installing|Created)|^Successfully installed' \
+  | sed -u -e 's/^ *//' -e 's/^/  /' || true
+wait $pip_pid || status=$?
+if [ $status -ne 0 ]; then
+  echo "bootstrap: installing orthocontact failed (exit $status); the build log, build/setup.log:" >&2
+  cat build/setup.log >&2
+  exit $status
+fi

@@ -1,13 +1,23 @@
 #!/usr/bin/env bash
-# The whole test suite: C unit tests under CTest (plain and with
-# AddressSanitizer + UBSan), then pytest on the installed package and FMU.
+# The whole test suite (`make test`, what CI runs): C unit tests under CTest
+# (plain and with AddressSanitizer + UBSan), then pytest on the installed
+# package and FMUs.
+# --fast (`make check`): the release C tests and the tests not marked slow
+# (tests/tiers.py): the law, the FMUs, the rig and the CLI's core, under
+# 2 minutes after setup.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+fast=0
+if [ "${1:-}" = --fast ]; then
+  fast=1
+  shift
+fi
 tools/bootstrap.sh
 # What only the tests need: a second FMU importer (libcosim), property-based
 # testing, and qemu-user with the arm64 C library to run the aarch64 binary.
 .venv/bin/python -m pip install -q --disable-pip-version-check "hypothesis>=6" "libcosimpy>=0.0.6"
-if ! command -v qemu-aarch64 >/dev/null 2>&1 || [ ! -e /usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1 ]; then
+if [ $fast = 0 ] && { ! command -v qemu-aarch64 >/dev/null 2>&1 ||
+                      [ ! -e /usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1 ]; }; then
   echo "run_tests: installing qemu-user and libc6-arm64-cross (apt)"
   SUDO=""
   [ "$(id -u)" = 0 ] || SUDO="sudo"
@@ -15,7 +25,9 @@ if ! command -v qemu-aarch64 >/dev/null 2>&1 || [ ! -e /usr/aarch64-linux-gnu/li
       qemu-user libc6-arm64-cross >/dev/null; } || echo "run_tests: qemu-user not installed; the aarch64 run is skipped"
 fi
 FMI_DIR=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
-for variant in release asan; do
+variants=(release asan)
+[ $fast = 0 ] || variants=(release)
+for variant in "${variants[@]}"; do
   flags=(-DOC_BUILD_TESTS=ON -DFMI_HEADERS_DIR="$FMI_DIR")
   if [ "$variant" = asan ]; then
     flags+=(-DOC_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug)
@@ -27,5 +39,10 @@ for variant in release asan; do
   cmake --build "build/ctest-$variant" -j2 >/dev/null
   (cd "build/ctest-$variant" && ctest --output-on-failure)
 done
-echo "== pytest =="
-.venv/bin/python -m pytest tests -q -p no:cacheprovider "$@"
+if [ $fast = 1 ]; then
+  echo "== pytest, fast tier (-m 'not slow') =="
+  .venv/bin/python -m pytest tests -q -p no:cacheprovider -m "not slow" "$@"
+else
+  echo "== pytest =="
+  .venv/bin/python -m pytest tests -q -p no:cacheprovider "$@"
+fi
