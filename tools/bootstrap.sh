@@ -34,8 +34,10 @@ echo "bootstrap: Python packages into .venv (fmpy, ziglang, numpy, casadi, matpl
 .venv/bin/python -m pip install -q --disable-pip-version-check \
   "scikit-build-core>=0.9" "fmpy>=0.3.20" "ziglang>=0.13" "numpy>=1.22" "casadi>=3.6" \
   "matplotlib>=3.5" "dask>=2024.1" "distributed>=2024.1" "pytest>=7"
-echo "bootstrap: building both models' FMUs (FMI 2.0 and 3.0; zig cross-compiles 16 binaries" \
-     "for 5 platforms, a few minutes the first time, only what changed later) and installing orthocontact"
+echo "bootstrap: building both models' FMUs (FMI 2.0 and 3.0) and installing orthocontact:" \
+     "zig cross-compiles the binaries for 5 platforms; the first time zig also builds each" \
+     "platform's C runtime (cached in ~/.cache/zig), which takes minutes: the Windows binaries" \
+     "come last, after up to 2-3 minutes without a line. Later builds redo only what changed."
 # pip shows a build's output only with -v, and then its own chatter too: the
 # build's progress lines (one per compiled file or binary) are shown, the
 # whole log kept in build/setup.log and shown in full if the install fails.

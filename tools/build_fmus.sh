@@ -8,6 +8,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-2}"
+# Run from `make fmus`, the build's own make would print every directory it enters.
+unset MAKEFLAGS MFLAGS MAKELEVEL
 has_tools() { [ -x "$1" ] && "$1" -c "import importlib.util as u; assert u.find_spec('fmpy') and u.find_spec('ziglang')" 2>/dev/null; }
 py=.venv/bin/python
 if ! has_tools "$py"; then
@@ -20,6 +22,6 @@ if ! has_tools "$py"; then
 fi
 echo "fmus: configuring build/fmus (cross build with zig)"
 cmake -S . -B build/fmus -DOC_CROSS=ON -DPython3_EXECUTABLE="$PWD/$py" >/dev/null
-echo "fmus: building (first time: a few minutes, one line per binary)"
+echo "fmus: building (one line per step; the first time zig also builds each platform's C runtime: minutes)"
 cmake --build build/fmus --target dist
 ls -l dist/fmi2/*.fmu dist/fmi3/*.fmu
