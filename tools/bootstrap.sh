@@ -42,13 +42,13 @@ echo "bootstrap: building both models' FMUs (FMI 2.0 and 3.0) and installing ort
 # build's progress lines (one per compiled file or binary) are shown, the
 # whole log kept in build/setup.log and shown in full if the install fails.
 mkdir -p build
-status=0
-.venv/bin/python -m pip install -v --disable-pip-version-check --no-build-isolation . >build/setup.log 2>&1 &
-pip_pid=$!
-tail -n +1 -f --pid=$pip_pid build/setup.log 2>/dev/null \
-  | grep --line-buffered -E '^ *\[ *[0-9]+/[0-9]+\]|\*\*\* (Configuring|Building|Installing|Created)|^Successfully installed' \
-  | sed -u -e 's/^ *//' -e 's/^/  /' || true
-wait $pip_pid || status=$?
+set +e
+.venv/bin/python -m pip install -v --disable-pip-version-check --no-build-isolation . 2>&1 \
+  | tee build/setup.log \
+  | { grep --line-buffered -E '^ *\[ *[0-9]+/[0-9]+\]|\*\*\* (Configuring|Building|Installing|Created)|^Successfully installed' \
+      | sed -u -e 's/^ */  /'; true; }
+status=${PIPESTATUS[0]}
+set -e
 if [ $status -ne 0 ]; then
   echo "bootstrap: installing orthocontact failed (exit $status); the build log, build/setup.log:" >&2
   cat build/setup.log >&2
