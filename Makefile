@@ -1,7 +1,10 @@
 # The two commands of the README:
 #   make reproduce   set up (.venv, FMU build) and reproduce the paper into results/
-#   make test        set up and run every test (CTest, sanitizers, pytest)
-.PHONY: setup reproduce test bench fmus crosscheck clean
+#   make test        set up and run every test (CTest, sanitizers, pytest): what CI runs
+# and the fast tier for every change:
+#   make check       set up and run the law, the FMUs, the rig and the CLI's core
+#                    (release C tests, pytest -m "not slow"): under 2 minutes
+.PHONY: setup reproduce test check bench fmus crosscheck clean
 
 setup:
 	tools/bootstrap.sh
@@ -12,12 +15,16 @@ reproduce: setup
 test:
 	tools/run_tests.sh
 
+check:
+	tools/run_tests.sh --fast
+
 bench: setup
 	tools/bench.sh
 
-# Both FMUs (FMI 2.0 and 3.0, binaries for every desktop platform) into dist/.
-fmus: setup
-	cmake --build build/wheel-* --target dist
+# Both models' FMUs (FMI 2.0 and 3.0, binaries for every desktop platform)
+# into dist/, without the Python analysis stack (tools/build_fmus.sh).
+fmus:
+	tools/build_fmus.sh
 
 # Regenerates the cross-check files under cross-check/ from the FMUs.
 crosscheck: setup

@@ -13,6 +13,7 @@ class Binary:
     arch: str                        # "x86_64" or "aarch64"
     exports: set = field(default_factory=set)
     glibc_needed: list = field(default_factory=list)  # e.g. ["2.2.5", "2.14"]
+    install_name: str | None = None  # Mach-O: the library's own name (LC_ID_DYLIB)
 
 
 def read(data: bytes) -> Binary:
@@ -96,6 +97,9 @@ def _macho(d: bytes) -> Binary:
     off = 32
     for _ in range(ncmds):
         cmd, size = struct.unpack_from("<II", d, off)
+        if cmd == 0xD:  # LC_ID_DYLIB: the name offset, then timestamp and versions
+            name_off, = struct.unpack_from("<I", d, off + 8)
+            out.install_name = _cstr(d, off + name_off)
         if cmd == 2:  # LC_SYMTAB
             symoff, nsyms, stroff, _ = struct.unpack_from("<IIII", d, off + 8)
             for k in range(nsyms):

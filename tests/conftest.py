@@ -40,5 +40,15 @@ def make(fmu_path):
         f.close()
 
 
+def pytest_configure(config):
+    config.addinivalue_line("markers", "slow: not in the fast tier (`make check`); listed in tests/tiers.py")
+
+
+@pytest.hookimpl(tryfirst=True)   # before -m deselects by marker
+def pytest_collection_modifyitems(config, items):
+    from tiers import mark_slow
+    mark_slow(config, items)
+
+
 def deg(x):
     return math.radians(x)

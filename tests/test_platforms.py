@@ -95,3 +95,34 @@ def test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one(tmp_path):
     # Both are built without FMA contraction (-ffp-contract=off) and use only
     # IEEE-exact operations on the hot path; measured: bit for bit the same.
     np.testing.assert_array_equal(arm[:, 1:6], ref[:, :5])
+
+
+def _builder_paths():
+    """Absolute paths of this build machine, as bytes: the repository, the home
+    and temporary folders, the Python environment, and the usual roots of
+    build machines on any system."""
+    import tempfile
+    mine = {str(ROOT), str(Path.home()), tempfile.gettempdir(), sys.prefix}
+    generic = {"/root/", "/home/", "/tmp/", "/work/", "/Users/", "/private/var/"}
+    return sorted(p.encode() for p in mine | generic if len(p) > 1)
+
+
+def test_no_builder_path_in_any_binary():
+    """A shipped binary names nothing of the machine that built it (the macOS
+    ones would carry their output path as install name otherwise)."""
+    drive = re.compile(rb"[A-Za-z]:\\[\x20-\x7e]")   # a Windows absolute path
+    checked = 0
+    for model in ("OrthotropicContact", "CarriageBlock"):
+        for version in (2, 3):
+            z = zipfile.ZipFile(find_fmu(fmi_version=version, model=model))
+            for name in z.namelist():
+                if not name.startswith("binaries/") or name.endswith("/"):
+                    continue
+                data = z.read(name)
+                found = [p for p in _builder_paths() if p in data] + drive.findall(data)
+                assert not found, f"{model} FMI {version}.0 {name} contains {found}"
+                b = binformat.read(data)
+                if b.format == "Mach-O":
+                    assert b.install_name == f"@rpath/{model}.dylib", name
+                checked += 1
+    assert checked == 2 * sum(len(PLATFORMS[v]) for v in PLATFORMS)  # every platform, both models

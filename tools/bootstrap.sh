@@ -29,8 +29,28 @@ fi
 # Build requirements too, so that the package builds without isolation
 # (faster, and incremental through build/); ziglang cross-compiles the FMU
 # binaries for Linux, Windows and macOS.
+echo "bootstrap: Python packages into .venv (fmpy, ziglang, numpy, casadi, matplotlib, dask, pytest;" \
+     "downloaded the first time)"
 .venv/bin/python -m pip install -q --disable-pip-version-check \
   "scikit-build-core>=0.9" "fmpy>=0.3.20" "ziglang>=0.13" "numpy>=1.22" "casadi>=3.6" \
   "matplotlib>=3.5" "dask>=2024.1" "distributed>=2024.1" "pytest>=7"
-echo "bootstrap: building and installing orthocontact (both FMUs, all platforms, via CMake)"
-.venv/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation .
+echo "bootstrap: building both models' FMUs (FMI 2.0 and 3.0) and installing orthocontact:" \
+     "zig cross-compiles the binaries for 5 platforms; the first time zig also builds each" \
+     "platform's C runtime (cached in ~/.cache/zig), which takes minutes: the Windows binaries" \
+     "come last, after up to 2-3 minutes without a line. Later builds redo only what changed."
+# pip shows a build's output only with -v, and then its own chatter too: the
+# build's progress lines (one per compiled file or binary) are shown, the
+# whole log kept in build/setup.log and shown in full if the install fails.
+mkdir -p build
+set +e
+.venv/bin/python -m pip install -v --disable-pip-version-check --no-build-isolation . 2>&1 \
+  | tee build/setup.log \
+  | { grep --line-buffered -E '^ *\[ *[0-9]+/[0-9]+\]|\*\*\* (Configuring|Building|Installing|Created)|^Successfully installed' \
+      | sed -u -e 's/^ */  /'; true; }
+status=${PIPESTATUS[0]}
+set -e
+if [ $status -ne 0 ]; then
+  echo "bootstrap: installing orthocontact failed (exit $status); the build log, build/setup.log:" >&2
+  cat build/setup.log >&2
+  exit $status
+fi

@@ -27,7 +27,21 @@ import going down):
     cli            -- the `orthocontact` command
 """
 
-__version__ = "0.3.0"
+
+
+def _version() -> str:
+    """The version of the file VERSION: read from it in a source tree (an
+    editable install, or the package run from the repository), else the
+    installed package's metadata, which the build took from it."""
+    from pathlib import Path
+    source_tree = Path(__file__).resolve().parents[2]
+    if (source_tree / "pyproject.toml").is_file() and (source_tree / "VERSION").is_file():
+        return (source_tree / "VERSION").read_text().strip()
+    from importlib.metadata import version
+    return version("orthocontact")
+
+
+__version__ = _version()
 
 from .experiment.scenario import load as load_scenario  # noqa: E402
 from .fmu import ContactFMU, ContactParams, find_fmu  # noqa: E402

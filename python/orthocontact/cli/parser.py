@@ -33,15 +33,24 @@ _workers = _positive_int("worker processes")
 
 
 def _version_text() -> str:
+    """The package's version and every installed FMU with the `version` its
+    model description states; an FMU of another version is named as such (a
+    stale install), not passed over."""
     from .. import __version__
-    from ..fmu.files import find_fmu, fmi_version_of
+    from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu, model_description
     lines = [f"orthocontact {__version__}"]
-    for v in (2, 3):
-        try:
-            path = find_fmu(fmi_version=v)
-            lines.append(f"  FMI {fmi_version_of(path)}.0 FMU: {path}")
-        except (FileNotFoundError, OSError, ValueError) as e:
-            lines.append(f"  FMI {v}.0 FMU: not found ({e})")
+    for model in (MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER):
+        for v in (2, 3):
+            try:
+                path = find_fmu(fmi_version=v, model=model)
+                md = model_description(path)
+                note = "" if md.version == __version__ else \
+                    f" -- differs from the package's {__version__}: reinstall (pip install .)"
+                lines.append(f"  FMI {md.fmiVersion} FMU: {model} {md.version} ({path}){note}")
+            except FileNotFoundError as e:
+                lines.append(f"  FMI {v}.0 FMU: {model} not found ({e})")
+            except Exception as e:  # fmpy raises plain Exception for a broken FMU
+                lines.append(f"  FMI {v}.0 FMU: {model} unreadable ({e})")
     return "\n".join(lines)
 
 

@@ -1,0 +1,75 @@
+"""The test tiers.  `make check` (tools/run_tests.sh --fast) runs every test not
+marked `slow`: the law, both FMUs, the rig (harness, compiled master,
+CarriageBlock) and the CLI's core, under 2 minutes with the release C tests.
+`make test` runs everything, and is what CI runs.
+
+SLOW lists the slow tests by file and function name (every parametrization of
+a function; "*" for a whole file), measured with `pytest --durations=0`:
+installs into fresh environments, the FMU rebuilt from its sources, qemu, the
+long random and reference comparisons, identification, uncertainty
+propagation and sensitivity.  The list is kept in one place, not spread as
+decorators, so that moving tests between files means moving names here; an
+entry naming a file that does not exist, or a function its file no longer
+has, is an error (conftest.py), so the list cannot go stale silently.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+SLOW = {
+    "test_identify.py": "*",          # identification: coverage over 200 replicates, CLI runs
+    "test_uq.py": "*",                # uncertainty propagation, Dask clusters
+    "test_sensitivity.py": "*",       # the rig's assumptions, 168 rig runs
+    "test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
+    "test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
+    "test_fmu.py": {"test_sources_compile_into_a_working_binary"},           # builds from sources/
+    "test_closed_forms.py": {
+        "test_strip_steady_state_matches_the_independent_reference_simulator",
+        "test_no_nan_and_no_exception_in_any_regime",
+        "test_array_form_equals_the_scalar_form",
+        "test_strip_steady_state_matches_the_rig_on_1000_random_laws",
+    },
+    "test_rig_checks.py": {
+        "test_the_identifications_validation_runs_the_fitted_strip",
+        "test_a_dynamic_rig_that_never_settled_is_flagged_everywhere",
+        "test_a_new_scenario_gets_a_rig_that_settles",
+        "test_a_default_travel_the_law_cannot_settle_in_is_refused",
+        "test_identify_no_longer_ends_in_a_traceback_on_case5_material_with_a_viscous_strip",
+        "test_eq20_runs_are_marked_but_not_warned_about",
+    },
+}
+
+HERE = Path(__file__).resolve().parent
+
+
+def mark_slow(config, items) -> None:
+    """Marks the items SLOW names; raises pytest.UsageError for a stale entry."""
+    missing = sorted(f for f in SLOW if not (HERE / f).is_file())
+    if missing:
+        raise pytest.UsageError(f"tests/tiers.py names files that do not exist: {missing}")
+    seen: dict[str, set] = {}
+    for item in items:
+        path = Path(str(item.fspath))
+        if path.parent != HERE or path.name not in SLOW:
+            continue
+        name = getattr(item, "originalname", item.name)
+        seen.setdefault(path.name, set()).add(name)
+        names = SLOW[path.name]
+        if names == "*" or name in names:
+            item.add_marker(pytest.mark.slow)
+    if _collected_in_part(config):
+        return
+    for f, names in SLOW.items():
+        if names != "*" and f in seen:   # the file was collected: all its entries must exist
+            stale = sorted(set(names) - seen[f])
+            if stale:
+                raise pytest.UsageError(f"tests/tiers.py: {f} has no test {stale}")
+
+
+def _collected_in_part(config) -> bool:
+    """Files collected only in part (file.py::name, --lf, --sw), where a name
+    not collected says nothing."""
+    return (any("::" in str(a) for a in config.args)
+            or any(config.getoption(o, False) for o in ("lf", "failedfirst", "stepwise")))
