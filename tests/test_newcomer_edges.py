@@ -254,3 +254,10 @@ def test_a_long_run_says_how_far_it_is_within_2_s_and_stops_on_ctrl_c(tmp_path):
         out, err = proc.communicate(timeout=60)
     assert first < 6.0  # the interpreter's start (~1-2 s) and the 2 s of the first line
     assert proc.returncode == 130 and err.strip().splitlines()[-1].startswith("orthocontact: interrupted")
+
+
+def test_a_scenario_saved_with_a_byte_order_mark_is_read(tmp_path):
+    sc = tmp_path / "bom.toml"
+    sc.write_bytes(b"\xef\xbb\xbf" + (SCEN / "case4.toml").read_bytes())
+    p = run(["run", sc, "--out", tmp_path / "out", "--workers", "1"], tmp_path)
+    assert p.returncode == 0, p.stderr

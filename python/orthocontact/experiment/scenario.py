@@ -130,7 +130,7 @@ def load(path) -> Scenario:
     """Reads and validates a scenario file; raises ScenarioError."""
     path = Path(path)
     try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        raw = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # -sig: a byte-order mark, as Notepad writes
     except FileNotFoundError:
         raise ScenarioError(path, "(file)", "an existing scenario file") from None
     except (OSError, UnicodeDecodeError) as e:
