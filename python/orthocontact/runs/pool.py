@@ -95,6 +95,30 @@ class Progress:
                 self._show()
 
 
+class Heartbeat(Progress):
+    """Progress of work whose run count is not known ahead (a sweep's
+    refinement and recordings): only the lines at 2 s and every 10 s after,
+    with the runs done so far."""
+
+    def __init__(self, label: str, enabled: bool = True):
+        super().__init__(1 << 62, label, enabled)
+
+    def _show(self, still=False):
+        self._said = time.time()
+        print(f"{self.label}: {self.done} runs done ({time.time() - self.t0:.1f}s, running)",
+              file=sys.stderr, flush=True)
+
+    def update(self, n: int = 1):
+        self.done += n
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+
 def default_workers() -> int:
     return max(1, min(os.cpu_count() or 1, 8))
 
