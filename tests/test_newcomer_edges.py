@@ -267,7 +267,7 @@ def test_the_sweeps_refinement_and_recordings_say_they_are_running(tmp_path):
     """After the sweep's last run, the extremum's refinement and the recorded
     trajectories are more runs: a line within 2 s of them too."""
     sc = _aged_with(tmp_path, "step_deg = 1.0", "step_deg = 45.0")
-    sc.write_text(sc.read_text().replace("step_s = 2.0e-4", "step_s = 2.0e-6"))  # ~1 s a recorded run
+    sc.write_text(sc.read_text().replace("step_s = 2.0e-4", "step_s = 5.0e-7"))  # seconds a run
     p = run(["run", sc, "--out", tmp_path / "out", "--workers", "2"], tmp_path, timeout=300)
     assert p.returncode == 0, p.stderr
     assert "mat_aged extremum and trajectories: " in p.stderr and "runs done" in p.stderr
