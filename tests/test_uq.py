@@ -223,9 +223,11 @@ def test_on_a_real_scheduler_with_a_worker_killed_mid_run(identified, tmp_path):
         assert not list((tmp_path / "w0").glob("orthocontact-fmu-*"))  # the archive: removed at once
     finally:
         _stop(procs)
-    # The other worker, stopped cleanly, leaves nothing of ours in its temporary
-    # folder (dask-scratch-space is the user's `dask worker`'s own).
-    assert [x for x in os.listdir(tmp_path / "w1") if x != "dask-scratch-space"] == []
+    # The other worker, if it stopped on SIGTERM within _stop's 20 s (on a busy
+    # machine it may not, and is killed), leaves nothing of ours in its
+    # temporary folder (dask-scratch-space is the user's `dask worker`'s own).
+    if workers[1].returncode != -signal.SIGKILL:
+        assert [x for x in os.listdir(tmp_path / "w1") if x != "dask-scratch-space"] == []
     p = _uq(identified, sc, tmp_path / "serial", *args, "--scheduler", "none")
     assert p.returncode == 0, p.stderr
     _same_results(tmp_path / "serial", tmp_path / "cluster")
