@@ -134,7 +134,6 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     """The rig over the scenario's angles for `samples` parameter sets.
     scheduler None runs here, in this process; "local" or an address on Dask."""
     from ..fmu.files import find_fmu
-    from ..rig.compiled import CMaster
     from ..runs.pool import Progress
     t0 = time.time()
     check_geometry(sc, est)
