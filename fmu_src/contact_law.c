@@ -472,8 +472,9 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
                  ((L->sig_hat[1] * yp[1]) * L->sigma[1]) * ap[1];
         out->next.energy = start->energy + dE;
     } else {
-        /* The explicit rule is not derived from a dissipation potential:
-         * its q . ds can come out negative; dissipated energy never does.
+        /* The explicit rule is not derived from a dissipation potential,
+         * yet its q . ds is positive (docs/law.md: Cauchy-Schwarz, since
+         * N < |t| when it slides); the clip only catches rounding.
          * ds = B^-1 (q_tr - q) = K (a_tr - a), formed from yield coordinates
          * rather than as a difference of slips, which may be large and
          * nearly equal. */

@@ -10,7 +10,7 @@
  * by construction, and any change of the description changes the token.
  * The version comes from the build (-DFMU_VERSION="...").
  *
- * Usage: gen_model_description fmi2|fmi3|build|html|token [OUTPUT]   (stdout without OUTPUT) */
+ * Usage: gen_model_description fmi2|fmi3|build|html2|html3|token [OUTPUT]   (stdout without OUTPUT) */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -319,33 +319,72 @@ static void build(FILE *f) {
           "  </BuildConfiguration>\n</fmiBuildDescription>\n", f);
 }
 
-static void html(FILE *f) {
+/* Model documentation text with the FMI version's names put in: @SET@,
+ * @GET@, @DOSTEP@, @REAL@ (the Float64 functions and type of FMI 2.0 or 3.0). */
+static void doc(FILE *f, const char *text, int v) {
+    static const char *const KEYS[][3] = {{"@SET@", "fmi2SetReal", "fmi3SetFloat64"},
+                                          {"@GET@", "fmi2GetReal", "fmi3GetFloat64"},
+                                          {"@DOSTEP@", "fmi2DoStep", "fmi3DoStep"},
+                                          {"@REAL@", "Real", "Float64"}};
+    while (*text) {
+        int done = 0;
+        for (size_t k = 0; k < sizeof KEYS / sizeof KEYS[0] && !done; ++k) {
+            const size_t n = strlen(KEYS[k][0]);
+            if (strncmp(text, KEYS[k][0], n) == 0) {
+                fputs(KEYS[k][v == 2 ? 1 : 2], f);
+                text += n;
+                done = 1;
+            }
+        }
+        if (!done) fputc(*text++, f);
+    }
+}
+
+/* A value with its display unit beside it: rad also in degrees. */
+static void value_cell(char *buf, size_t n, const row *r, double x) {
+    char v[64];
+    num(v, sizeof v, x);
+    if (is(r->unit, "rad")) snprintf(buf, n, "%s (%.10g&deg;)", v, x * 57.29577951308232);
+    else snprintf(buf, n, "%s", v);
+}
+
+/* The type of a variable as FMI version v names it. */
+static const char *type_name(const row *r, int v, char *buf, size_t n) {
+    if (v == 2) {
+        snprintf(buf, n, "%s", is(r->type, "Float64") ? "Real" : is_enum(r) ? "Integer (see below)" : "Integer");
+    } else {
+        snprintf(buf, n, "%s%s", is_enum(r) ? "Enumeration " : "", r->type);
+    }
+    return buf;
+}
+
+static void html(FILE *f, int v) {
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\">"
-               "<title>%s</title>\n<style>body{font-family:sans-serif;max-width:80em;margin:2em auto}"
+               "<title>%s (FMI %d.0)</title>\n<style>body{font-family:sans-serif;max-width:80em;margin:2em auto}"
                "table{border-collapse:collapse;font-size:90%%}td,th{border:1px solid #999;padding:2px 6px;"
                "text-align:left;vertical-align:top}code{background:#eee}</style></head>\n<body>\n"
                "<!-- Generated from the variable table by gen_model_description. -->\n"
-               "<h1>%s %s</h1>\n<p>", FMU_MODEL_NAME, FMU_MODEL_NAME, FMU_VERSION);
+               "<h1>%s %s: FMI %d.0 Co-Simulation</h1>\n<p>", FMU_MODEL_NAME, v, FMU_MODEL_NAME,
+            FMU_VERSION, v);
     esc(f, FMU_DESCRIPTION);
-    fputs(".</p>\n", f);
+    fprintf(f, ".</p>\n<p>This page describes the FMI %d.0 FMU; the FMI %d.0 one of the same "
+               "version is built from the same sources and gives the same outputs bit for bit.</p>\n",
+            v, v == 2 ? 3 : 2);
 #ifdef FMU_DOC_HTML
-    fputs(FMU_DOC_HTML, f);
+    doc(f, FMU_DOC_HTML, v);
 #endif
     fputs("<h2>Variables</h2>\n<table>\n<tr><th>name</th><th>vr</th><th>causality</th>"
           "<th>variability</th><th>type</th><th>unit</th><th>start</th><th>min</th><th>max</th>"
           "<th>description</th></tr>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
-        char s[64] = "", lo[64] = "", hi[64] = "", type[96];
-        if (is_enum(r)) snprintf(type, sizeof type, "Enumeration %s (FMI 2.0: Integer)", r->type);
-        else snprintf(type, sizeof type, "%s", r->type);
-        if (has_start(r)) num(s, sizeof s, r->start);
-        if (isfinite(r->min)) num(lo, sizeof lo, r->min);
-        if (isfinite(r->max)) num(hi, sizeof hi, r->max);
+        char s[96] = "", lo[96] = "", hi[96] = "", type[96];
+        if (has_start(r)) value_cell(s, sizeof s, r, r->start);
+        if (isfinite(r->min)) value_cell(lo, sizeof lo, r, r->min);
+        if (isfinite(r->max)) value_cell(hi, sizeof hi, r, r->max);
         fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>%s</td><td>%s</td><td>%s</td>"
                    "<td>%s%s%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>",
-                r->name, r->vr, r->causality, r->variability,
-                type,
+                r->name, r->vr, r->causality, r->variability, type_name(r, v, type, sizeof type),
                 is(r->unit, "1") ? "" : r->unit, *r->display ? " (display " : "", r->display,
                 *r->display ? ")" : "", s, lo, hi);
         esc(f, r->desc);
@@ -353,7 +392,11 @@ static void html(FILE *f) {
     }
     fputs("</table>\n", f);
     for (int e = 0; e < NENUMS; ++e) {
-        fprintf(f, "<h2>Enumeration %s (FMI 2.0: Integer)</h2>\n<ul>\n", ENUMS[e].name);
+        const char *var = "";
+        for (int i = 0; i < NROWS; ++i)
+            if (is(ROWS[i].type, ENUMS[e].name)) var = ROWS[i].name;
+        if (v == 2) fprintf(f, "<h2>The Integer values of <code>%s</code></h2>\n<ul>\n", var);
+        else fprintf(f, "<h2>Enumeration %s (<code>%s</code>)</h2>\n<ul>\n", ENUMS[e].name, var);
         for (int k = 0; k < ENUMS[e].n; ++k) {
             fprintf(f, "<li><code>%d</code> %s: ", ENUMS[e].items[k].value, ENUMS[e].items[k].name);
             esc(f, ENUMS[e].items[k].desc);
@@ -361,8 +404,14 @@ static void html(FILE *f) {
         }
         fputs("</ul>\n", f);
     }
-    fputs("<h2>License</h2>\n<p>BSD-2-Clause: see <code>LICENSE.txt</code> beside this page "
-          "(FMI 2.0) or <code>licenses/LICENSE.txt</code> (FMI 3.0).</p>\n</body>\n</html>\n", f);
+    fputs("<h2>How to cite</h2>\n<p>The law and the rig are those of A. Konyukhov, K. Schweizerhof, "
+          "<i>On coupled models of anisotropic contact surfaces and their experimental validation</i>, "
+          "report, Institut f&uuml;r Mechanik, Universit&auml;t Karlsruhe, 2007.  This FMU: the "
+          "orthocontact developers, <i>orthocontact</i>, version ", f);
+    fputs(FMU_VERSION, f);
+    fputs(" (the repository's <code>CITATION.cff</code> holds both).</p>\n", f);
+    fprintf(f, "<h2>License</h2>\n<p>BSD-2-Clause: see <code>%s</code> beside this page.</p>\n"
+               "</body>\n</html>\n", v == 2 ? "LICENSE.txt" : "licenses/LICENSE.txt");
 }
 
 /* FNV-1a over everything written to f, in two lanes with different bases. */
@@ -392,7 +441,7 @@ static void compute_token(char token[39]) {
 
 int main(int argc, char **argv) {
     if (argc < 2) {
-        fprintf(stderr, "usage: %s fmi2|fmi3|build|html|token [OUTPUT]\n", argv[0]);
+        fprintf(stderr, "usage: %s fmi2|fmi3|build|html2|html3|token [OUTPUT]\n", argv[0]);
         return 2;
     }
     char token[39];
@@ -409,7 +458,8 @@ int main(int argc, char **argv) {
                    "#ifndef FMU_TOKEN_H\n#define FMU_TOKEN_H\n"
                    "#define FMU_TOKEN \"%s\"\n#define FMU_GUID FMU_TOKEN\n#endif\n", token);
     else if (is(argv[1], "build")) build(f);
-    else if (is(argv[1], "html")) html(f);
+    else if (is(argv[1], "html2")) html(f, 2);
+    else if (is(argv[1], "html3")) html(f, 3);
     else {
         fprintf(stderr, "unknown output %s\n", argv[1]);
         return 2;

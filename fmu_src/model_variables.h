@@ -52,7 +52,7 @@
     "<li>Elastic force q = B (u - s), force on the body T = -q, yield function "              \
     "&Phi; = sqrt(q &middot; F q) - N.</li>\n"                                                \
     "<li>Stick if &Phi;(trial) &le; 0; otherwise slip s = s<sub>n</sub> + &Delta;&gamma; G q "  \
-    "with &Phi;(q) = 0, solved implicitly to machine precision; G = F (associated) or "        \
+    "with &Phi;(q) = 0, solved implicitly (a monotone scalar iteration); G = F (associated) or " \
     "(B F B)<sup>-1</sup> (coupled).  N &le; 0 opens the contact (T = 0, s follows u).</li>\n" \
     "<li>Dissipated energy: the sum of q &middot; &Delta;s over committed steps, never "       \
     "negative.  Rate-independent: the step size does not enter.</li>\n"                       \
@@ -67,7 +67,30 @@
     "</code>): inputs wired to absolute positions give no force and no dissipation until the " \
     "body moves.  With <code>initialSlip = explicit</code>, s = (s1Start, s2Start); explicit " \
     "with s = 0 is the behaviour of versions before 0.4.  A path that starts at u = 0 gives "  \
-    "the same results either way.</p>\n"
+    "the same results either way.</p>\n"                                                      \
+    "<h2>Wiring it into a system</h2>\n<ul>\n"                                                 \
+    "<li><code>u1, u2</code> [m]: the displacement of the body relative to the surface in the " \
+    "global frame (the body's position minus the surface's, where the surface moves).</li>\n"  \
+    "<li><code>N</code> [N]: the normal force pressing the body on the surface (m g for a "     \
+    "block on a level floor); N &le; 0 is an open contact.</li>\n"                             \
+    "<li><code>T1, T2</code> [N]: the force of the surface on the body: add it to the body's " \
+    "equation of motion (and -T to the surface's, if it is a body too).</li>\n"                \
+    "<li>Direct feedthrough: T depends on u and N of the same step, T(u, N).  A loop body "     \
+    "&rarr; contact &rarr; body is algebraic: a master either iterates on it (the outputs "     \
+    "before @DOSTEP@ are the pending step's) or closes it through a body whose positions "      \
+    "have no direct feedthrough, as the CarriageBlock FMU of this package:</li>\n</ul>\n"      \
+    "<pre>for each communication step t &rarr; t + h:\n"                                       \
+    "    body.@DOSTEP@(t, h)                        positions at t + h\n"                       \
+    "    contact.@SET@([u1, u2, N], [x1 - xs1, x2 - xs2, m g])\n"                              \
+    "    T1, T2 = contact.@GET@([T1, T2])          the force for these inputs (pending)\n"     \
+    "    contact.@DOSTEP@(t, h)                     commit it\n"                                \
+    "    body.@SET@([T1, T2], [T1, T2])             acts on the body over its next step</pre>\n" \
+    "<h2>What an importer prints</h2>\n<p>An importer that sets the inputs at t, calls "      \
+    "@DOSTEP@(t, h) and then reads the outputs records at t + h the outputs of the step taken " \
+    "with the inputs of t (inputs are held over a step): a ramp u = v t reads one step behind, " \
+    "T(t + h) = T(u(t)).  <code>fmpy simulate</code> does exactly this.  Its default "         \
+    "experiment, with no input file, prints zeros: N starts at 0, an open contact (T = 0, s "  \
+    "follows u); give N and a path of u1, u2 as inputs.</p>\n"
 
 /* Enumeration types: T(type name, items), items E(name, value, description). */
 #define FMU_ENUM_TYPES(T) T(SlidingRule, OC_SLIDING_RULE_ITEMS) T(InitialSlip, OC_INITIAL_SLIP_ITEMS)

@@ -19,9 +19,13 @@ def _fmu_for(sc, args) -> str:
     return sc.fmu or str(find_fmu(fmi_version=args.fmi))
 
 
-def load_scenario(path):
-    """The scenario file, its unusual values said as warnings."""
+def load_scenario(path, yes: bool | None = None):
+    """The scenario file, its unusual values said as warnings; with `yes`
+    given, its size checked (runs.size: refused above the limits unless yes)."""
+    from ..runs.size import check_scenario_size
     sc = load(path)
+    if yes is not None:
+        check_scenario_size(sc, yes)
     for line in sc.warnings:
         warn(line)
     return sc
@@ -56,7 +60,7 @@ def packaged_scenarios() -> Path:
 
 def cmd_run(args) -> int:
     from ..output.figures import FigureDrawer
-    sc = load_scenario(args.scenario)
+    sc = load_scenario(args.scenario, args.yes)
     with staged_output(args.out) as stage, _dask_for(args) as dask, \
             FigureDrawer(args.workers or _default_workers()) as draw:
         summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
@@ -75,7 +79,14 @@ def cmd_reproduce(args) -> int:
     files = sorted(folder.glob("*.toml"))
     if not files:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
-    scenarios = [load_scenario(f) for f in files]  # all validated before anything runs
+    scenarios = [load_scenario(f, args.yes) for f in files]  # all validated before anything runs
+    taken = {"sensitivity": "the report's sensitivity folder", "report.md": "the report",
+             "summary.json": "the report's summary"}
+    for sc in scenarios:
+        if sc.name in taken:
+            raise InputError(f"{sc.path}: name: expected a name of its own, got {sc.name!r}, "
+                             f"already {taken[sc.name]} (each scenario is written to --out/<name>/)")
+        taken[sc.name] = f"the name of {sc.path}"
     t0 = time.time()
     runs, rows = [], []
     with staged_output(args.out) as stage:
@@ -155,9 +166,12 @@ def cmd_sensitivity(args) -> int:
 
 def cmd_uq(args) -> int:
     from .. import uq
+    from ..runs.size import check_scenario_size
     est = uq.load_estimates(args.identification)
-    sc = load_scenario(args.scenario)
+    sc = load_scenario(args.scenario, args.yes)  # the check at the scenario's own step
     uq.check_geometry(sc, est)  # before any work
+    check_scenario_size(sc, args.yes, args.samples, uq.uq_step(sc, args.step_s), "--samples",
+                        "--step-s or rig.travel_m")
     with staged_output(args.out) as stage:
         res = uq.propagate(est, sc, args.samples, args.seed, None,
                            scheduler=None if args.scheduler == "none" else args.scheduler,

@@ -68,6 +68,8 @@ def entry() -> None:
     sys.unraisablehook = quiet_interrupts
     status = main()
     if status == 130:
+        from ..fmu.files import remove_unzipped
+        remove_unzipped()  # os._exit skips atexit
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(130)

@@ -72,13 +72,23 @@ def staged_output(out: Path):
             with contextlib.suppress(OSError):
                 parent.rmdir()
         raise
-    out.mkdir(exist_ok=True)
-    for item in stage.iterdir():
-        target = out / item.name
-        if target.is_dir() and not target.is_symlink():
-            shutil.rmtree(target)
-        os.replace(item, target)
+    _move_into(stage, out)
     shutil.rmtree(stage, ignore_errors=True)
+
+
+def _move_into(src: Path, dst: Path) -> None:
+    """Every file under `src` to the same place under `dst`, replacing only
+    the files written: what else the user keeps in `dst` (and in its
+    subfolders, e.g. reproduce's <out>/<scenario>/) stays."""
+    dst.mkdir(exist_ok=True)
+    for item in src.iterdir():
+        target = dst / item.name
+        if item.is_dir() and target.is_dir() and not target.is_symlink():
+            _move_into(item, target)
+            continue
+        if target.is_dir() and not target.is_symlink():
+            shutil.rmtree(target)  # a folder where this command writes a file
+        os.replace(item, target)
 
 
 _warnings: list[str] = []

@@ -29,6 +29,35 @@ def _positive_float(text):
     return x
 
 
+def _angle_deg(text):
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an angle in degrees, got {text!r}")
+    if not -360.0 <= x <= 360.0:  # nan and inf fail this too
+        raise argparse.ArgumentTypeError(f"expected a finite angle in [-360, 360] degrees, got {text}")
+    return x
+
+
+def _seed(text):
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
+    if n < 0:  # numpy's generators take no negative seed
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {n}")
+    return n
+
+
+def _out_path(text):
+    # Path("") is the current folder: an unset shell variable ($OUT) would
+    # scatter the results into wherever the command was started.
+    if not text.strip():
+        raise argparse.ArgumentTypeError("expected a path, got an empty one (an unset shell variable?); "
+                                         "write . for the current folder")
+    return Path(text)
+
+
 _workers = _positive_int("worker processes")
 
 
@@ -63,8 +92,16 @@ class _Version(argparse.Action):
         parser.exit(0)
 
 
+class _Parser(argparse.ArgumentParser):
+    """Bad arguments are one line, as every other input error (exit 2); the
+    usage is one --help away."""
+
+    def error(self, message):
+        self.exit(2, f"orthocontact: error: {self.prog}: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(
+    ap = _Parser(
         prog="orthocontact",
         description="The coupled orthotropic adhesion-friction contact law (Konyukhov & "
                     "Schweizerhof 2007) as FMI 2.0/3.0 FMUs: run the paper's carriage/block rig "
@@ -82,9 +119,16 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--strict", action="store_true",
                        help="exit with status 1 if any warning was printed (an implausible input, a "
                             "rig run that is not steady sliding); the results are written all the same")
+        yes(p)
+
+    def yes(p):
+        p.add_argument("--yes", action="store_true",
+                       help="run even if the work is above the limits said before any run "
+                            "(2e6 rig runs or 2e9 rig steps, about 5 minutes on 2 cores): a "
+                            "sweep.step_deg or rig.step_s that small is usually a typo")
 
     def common(p, out_help, scheduler=True):
-        p.add_argument("--out", required=True, type=Path, metavar="DIR", help=out_help)
+        p.add_argument("--out", required=True, type=_out_path, metavar="DIR", help=out_help)
         p.add_argument("--workers", type=_workers, default=None, metavar="N",
                        help="worker processes for sweeps (default: the number of cores, at most 8)")
         p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
@@ -92,7 +136,7 @@ def build_parser() -> argparse.ArgumentParser:
                             "both give the same results bit for bit")
         p.add_argument("--master", choices=("auto", "c", "fmpy"), default="auto",
                        help="who runs the rig loop: c, the compiled master (FMI 2.0 FMUs, about "
-                            "25-55x faster), fmpy, the Python harness, or auto (default: c where "
+                            "25-37x faster), fmpy, the Python harness, or auto (default: c where "
                             "it applies); both give the same angles")
         strict(p)
         if scheduler:
@@ -125,8 +169,9 @@ def build_parser() -> argparse.ArgumentParser:
                                    "identified.json, identified.md, fit.png into DIR.")
     i.add_argument("data", type=Path, metavar="DATA_DIR",
                    help="measurement folder: rig.toml and any of forces.csv (alpha_deg,force_N), "
-                        "angles.csv (alpha_deg,phi_deg), ramp.csv (x1_m,force_N); angles in "
-                        "degrees, forces in N, travel in m")
+                        "angles.csv (alpha_deg,phi_deg, optionally velocity_m_s per row), ramp.csv "
+                        "(x1_m,force_N); angles in degrees, forces in N, travel in m, velocity in "
+                        "m/s")
     common(i, "output folder: created if missing; written only when the fit completes", scheduler=False)
     i.add_argument("--no-validate", action="store_true",
                    help="skip the validation runs of the identified parameters on the FMU")
@@ -137,9 +182,9 @@ def build_parser() -> argparse.ArgumentParser:
                                    "OrthotropicContact) with the scenario's parameters as an .ssp.")
     s.add_argument("scenario", metavar="SCENARIO", help="sweep scenario file (TOML); angles in "
                    "degrees, forces in N, lengths in m")
-    s.add_argument("--angle", type=float, required=True, metavar="DEG",
+    s.add_argument("--angle", type=_angle_deg, required=True, metavar="DEG",
                    help="the swept angle [deg] (the mat angle for the experiment's scenarios)")
-    s.add_argument("--out", type=Path, required=True, metavar="FILE.ssp",
+    s.add_argument("--out", type=_out_path, required=True, metavar="FILE.ssp",
                    help="the package to write (replaced if it exists)")
     s.set_defaults(func=cmd_ssp)
     x = sub.add_parser("export", help="write both contact FMUs calibrated with an identification's "
@@ -190,9 +235,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "must be the identification's")
     u.add_argument("--samples", required=True, type=_positive_int("parameter sets"), metavar="N",
                    help="parameter sets to draw; rig runs = N x the scenario's angles")
-    u.add_argument("--out", required=True, type=Path, metavar="DIR",
+    u.add_argument("--out", required=True, type=_out_path, metavar="DIR",
                    help="output folder: created if missing; written only when all runs complete")
-    u.add_argument("--seed", type=int, default=0, metavar="S",
+    u.add_argument("--seed", type=_seed, default=0, metavar="S",
                    help="seed of the draws (default 0): the same seed gives the same files, "
                         "serial or on any cluster")
     u.add_argument("--scheduler", default="local", metavar="ADDRESS",

@@ -39,6 +39,17 @@ def text(v):
     return None if isinstance(v, str) else "a string"
 
 
+def file_name(v):
+    """A plain file name: what is written as <out>/<name>/ stays inside <out>."""
+    if not isinstance(v, str):
+        return "a string"
+    bad = set('/\\:*?"<>|') | {chr(c) for c in range(32)}
+    if not v.strip() or v in (".", "..") or v != v.strip() or any(c in bad for c in v):
+        return ("a plain file name (letters, digits, - _ . and spaces inside; no path separator, "
+                "no '..', none of : * ? \" < > |)")
+    return None
+
+
 def boolean(v):
     return None if isinstance(v, bool) else "true or false"
 

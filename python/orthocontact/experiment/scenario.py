@@ -16,8 +16,8 @@ from ..closed_forms.paper import G_STANDARD, isotropic_eps_ratio
 from ..fmu.params import RULES, ContactParams
 from ..rig.harness import Rig
 from .geometry import AxisGeometry
-from .keys import (ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, list_of, number, read_table,
-                   rig_spec, text)
+from .keys import (ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, file_name, list_of,
+                   number, read_table, rig_spec, text)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -68,7 +68,7 @@ PAPER_NUMBERS = ("extremum_angle_deg", "extremum_phi_deg", "max_abs_phi_deg", "d
 
 
 SCHEMA = {
-    "": {"name": (text, REQUIRED), "title": (text, ""), "kind": (choice(KINDS), REQUIRED),
+    "": {"name": (file_name, REQUIRED), "title": (text, ""), "kind": (choice(KINDS), REQUIRED),
          "fmu": (text, None), "description": (text, "")},
     "law": {"rule": (choice(tuple(RULES)), "coupled"), "mu1": (POSITIVE, REQUIRED),
             "mu2": (POSITIVE, REQUIRED), "eps1": (POSITIVE, None), "eps2": (POSITIVE, REQUIRED),
@@ -116,17 +116,21 @@ class Scenario:
         """The law's parameters with the swept angle [deg] set."""
         return self.geometry.params_at(self.law, angle_deg, rule)
 
+    def angle_count(self) -> int:
+        """len(sweep_angles()), without making the list."""
+        s = self.sweep
+        return int(math.floor((s["stop_deg"] - s["start_deg"]) / s["step_deg"] + 1e-9)) + 1
+
     def sweep_angles(self) -> list[float]:
         s = self.sweep
-        n = int(math.floor((s["stop_deg"] - s["start_deg"]) / s["step_deg"] + 1e-9))
-        return [s["start_deg"] + k * s["step_deg"] for k in range(n + 1)]
+        return [s["start_deg"] + k * s["step_deg"] for k in range(self.angle_count())]
 
 
 def load(path) -> Scenario:
     """Reads and validates a scenario file; raises ScenarioError."""
     path = Path(path)
     try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        raw = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # -sig: a byte-order mark, as Notepad writes
     except FileNotFoundError:
         raise ScenarioError(path, "(file)", "an existing scenario file") from None
     except (OSError, UnicodeDecodeError) as e:

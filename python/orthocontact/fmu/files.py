@@ -69,15 +69,34 @@ def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
         + (f", or set {env}" if env else ""))
 
 
-_extracted: dict[Path, str] = {}
+_extracted: dict[Path, tuple[str, int]] = {}  # FMU -> (its unpacked folder, the pid that made it)
 
 
 def unzipped(path: Path) -> str:
-    """One extraction per FMU file and process (instances share it)."""
+    """One extraction per FMU file and process (instances share it; forked
+    workers share the parent's).  Removed when the process that made it ends
+    (remove_unzipped), so no run leaves an unpacked FMU in the temp folder."""
     key = path.resolve()
     if key not in _extracted:
-        _extracted[key] = extract(str(key))
-    return _extracted[key]
+        if not _extracted:
+            import atexit
+            from multiprocessing import util
+            atexit.register(remove_unzipped)
+            # A multiprocessing child (a Dask worker, a spawned pool worker)
+            # ends by os._exit, which skips atexit but runs these.
+            util.Finalize(None, remove_unzipped, exitpriority=0)
+        _extracted[key] = (extract(str(key)), os.getpid())
+    return _extracted[key][0]
+
+
+def remove_unzipped() -> None:
+    """Removes the unpacked FMUs this process made (not those of a parent it
+    was forked from, which the parent still uses)."""
+    import shutil
+    for key, (folder, pid) in list(_extracted.items()):
+        if pid == os.getpid():
+            shutil.rmtree(folder, ignore_errors=True)
+            del _extracted[key]
 
 
 _descriptions: dict = {}

@@ -52,6 +52,12 @@ def friction_axis_key(rig: RigSetup, angles_deg):
     return np.cos(np.radians(np.asarray(angles_deg) + rig.beta_offset_deg)) ** 2
 
 
+def visible(text: str) -> str:
+    """text with every character a reader cannot see (a byte-order mark, a
+    zero-width or no-break space, a control character) written as \\uXXXX."""
+    return "".join(c if c.isprintable() or c == " " else f"\\u{ord(c):04x}" for c in text)
+
+
 def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: str,
               optional: dict | None = None) -> np.ndarray | None:
     """Rows of the numeric columns (then the optional ones, their default
@@ -60,7 +66,8 @@ def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: 
     if not path.exists():
         return None
     try:
-        with open(path, newline="", encoding="utf-8") as fh:
+        # utf-8-sig: Excel's "CSV UTF-8" starts with a byte-order mark.
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             rows = list(csv.reader(fh))
     except (OSError, UnicodeDecodeError) as e:
         raise InputError(f"{path}: expected a readable UTF-8 CSV file ({e})") from None
@@ -73,7 +80,8 @@ def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: 
     idx = []
     for c in columns:
         if c not in header:
-            raise InputError(f"{path}: line {line0}: expected column {c!r} (header has {','.join(header)})")
+            raise InputError(f"{path}: line {line0}: expected column {c!r} (header has "
+                             f"{','.join(map(visible, header))})")
         idx.append(header.index(c))
     present = [c for c in optional if c in header]
     columns = tuple(columns) + tuple(present)

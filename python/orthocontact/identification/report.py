@@ -56,10 +56,11 @@ def fit_figure(res, path: Path):
         if p != "ramp":
             ax.set_xlabel("orientation angle [deg]")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        # below the panel: inside, it covered data points
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.22))
     fig.suptitle(f"orthocontact identify: {d.folder.name}", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
 
 

@@ -118,6 +118,12 @@ def _figure_phi(sc: Scenario, res: SweepResult, path: Path, flat: bool) -> None:
     if not flat:
         ax.plot([e["angle_deg"]], [e["phi_deg"]], "*", ms=12, color="C3",
                 label=f"extremum {e['phi_deg']:.2f}° at {e['angle_deg']:.2f}°")
+    if flat:
+        # Autoscaled, rounding of 1e-10 deg would look like a curve.
+        top = float(np.nanmax(np.abs(res.phi_deg)))
+        ax.set_ylim(-1.0, 1.0)
+        ax.text(0.02, 0.04, f"flat: |φ| ≤ {top:.1g}° at every angle (rounding)", transform=ax.transAxes,
+                fontsize=8)
     ax.set_xlabel(f"{swept_label(sc)} [deg]")
     ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
     finish(fig, ax, path, sc.title)
@@ -182,8 +188,13 @@ def _figure_step_study(sc: Scenario, res: StepStudyResult, path: Path) -> None:
         st = curve_style(i, len(rs))
         ax.plot([r["step_s"] for r in rs], [r["phi_deg"] for r in rs], color=st["color"],
                 marker=st["marker"], ls="-", label=f"{rule}: FMU in the rig")
-        ax.axhline(rs[0]["phi_closed_deg"], color=st["color"], ls=":", lw=1.2,
-                   label=f"{rule}: closed form")
+        # Rules with the same closed form (eq. 20's is the coupled rule's
+        # eq. 25) share one line, named for both: drawn twice, one hid the other.
+        same = [r2 for r2 in rules if abs(next(r["phi_closed_deg"] for r in res.rows if r["rule"] == r2)
+                                          - rs[0]["phi_closed_deg"]) <= 1e-9]
+        if same[0] == rule:
+            ax.axhline(rs[0]["phi_closed_deg"], color=st["color"], ls=":", lw=1.2,
+                       label=f"{'+'.join(same)}: closed form")
     ax.set_xscale("log")
     ax.set_xlabel("communication step [s]")
     ax.set_ylabel("steady trajectory angle φ [deg] (counterclockwise)")

@@ -143,7 +143,8 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
         raise InputError(f"{sc.path}: geometry.closed_form: expected \"mat\" (the experiment's "
                          "geometry) for a sensitivity study")
     measured = abs(sc.paper.get("extremum_phi_deg", sc.paper.get("phi_max_deg", 11.5)))
-    lo, hi = min(sc.sweep_angles()), max(sc.sweep_angles())
+    lo = sc.sweep["start_deg"]  # not sweep_angles(): a fine sweep's list is large and unused here
+    hi = lo + (sc.angle_count() - 1) * sc.sweep["step_deg"]
     rig0 = replace(sc.rig, step_s=RIG_STEP_S)
     viscous = []
     for c in C_STRIPS:

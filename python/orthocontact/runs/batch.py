@@ -74,8 +74,15 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
     "auto" (c where it applies); both give the same angles.  dask: a
     cluster.DaskRunner to run the compiled master's chunks on (else local
     processes)."""
-    out: list = [None] * len(tasks)
     bar = Progress(len(tasks), label, progress)
+    try:
+        return _run_many(tasks, workers, fmu_path, bar, master, dask)
+    finally:
+        bar.close()
+
+
+def _run_many(tasks, workers, fmu_path, bar, master, dask):
+    out: list = [None] * len(tasks)
     indexed = [(i, p, r) for i, (p, r) in enumerate(tasks)]
     use_c = resolve_master(master, fmu_path) == "c"
     if dask is not None:
@@ -113,6 +120,8 @@ def run_many(tasks: list[tuple[ContactParams, Rig]], workers: int, fmu_path, lab
         finally:
             fmu.close()
         return out
+    from ..fmu.files import find_fmu, unzipped
+    unzipped(find_fmu(fmu_path))  # once, here: forked workers share it, and this process removes it
     ex = process_pool(workers, _init_cworker if use_c else _init_worker, fmu_path)
     try:
         if use_c:

@@ -14,7 +14,11 @@ The workers need this package installed (the compiled master ships with it)."""
 from __future__ import annotations
 
 import hashlib
+import logging
 import os
+import shutil
+import signal
+import sys
 import tempfile
 from pathlib import Path
 
@@ -31,15 +35,24 @@ def _master_for(fmu):
     digest, name, blob = fmu
     if digest not in _masters:
         from ..rig.compiled import CMaster
-        folder = Path(tempfile.gettempdir()) / f"orthocontact-fmu-{digest[:16]}-{os.getpid()}"
-        folder.mkdir(exist_ok=True)
-        path = folder / name
-        if not path.exists():
-            tmp = path.with_suffix(".partial")
-            tmp.write_bytes(blob)
-            os.replace(tmp, path)
-        _masters[digest] = CMaster(path)
+        folder = Path(tempfile.mkdtemp(prefix=f"orthocontact-fmu-{digest[:16]}-{os.getpid()}-"))
+        try:
+            path = folder / name
+            path.write_bytes(blob)
+            # CMaster unpacks the FMU (removed when this process ends:
+            # fmu.files.remove_unzipped); the archive is not needed after.
+            _masters[digest] = CMaster(path)
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
     return _masters[digest]
+
+
+def dask_setup(worker):
+    """A local cluster's worker (this module is its preload): Ctrl-C reaches
+    the whole process group, and the command, not the worker, decides."""
+    import threading
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def fmu_payload(fmu_path) -> tuple:
@@ -75,7 +88,7 @@ class DaskRunner:
     def __init__(self, scheduler: str, workers: int):
         check_address(scheduler)
         self.scheduler, self.workers = scheduler, workers
-        self._client = self._cluster = None
+        self._client = self._cluster = self._scratch = None
         self._scattered = {}  # FMU path -> future of its payload
 
     @property
@@ -86,13 +99,19 @@ class DaskRunner:
 
     def __enter__(self):
         try:
+            return self._enter()
+        except BaseException:  # an error or Ctrl-C while it starts: stop what started
+            self.__exit__(None, None, None)
+            raise
+
+    def _enter(self):
+        try:
             from distributed import Client, LocalCluster
         except ImportError:
             raise InputError("--scheduler: Dask is not installed; pip install 'dask[distributed]'") \
                 from None
         if self.scheduler == "local":
-            self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
-                                         dashboard_address=None, silence_logs=40)
+            self._cluster = self._local_cluster(LocalCluster)
             self._client = Client(self._cluster)
         else:
             try:
@@ -101,6 +120,34 @@ class DaskRunner:
                 raise InputError(f"--scheduler {self.scheduler}: cannot reach the scheduler ({e})") \
                     from None
         return self
+
+    def _local_cluster(self, LocalCluster):
+        import dask
+        self._scratch = tempfile.mkdtemp(prefix="orthocontact-dask-")
+        # Ctrl-C reaches the whole process group; the command decides (it
+        # stops the cluster and says one line).  A worker ignores SIGINT from
+        # its preload on (dask_setup); one interrupted while it starts would
+        # print tracebacks, so the workers' stderr is the null device (a
+        # task's error reaches the command through its future, not there).
+        sys.stderr.flush()
+        saved = os.dup(2)
+        try:
+            with open(os.devnull, "w") as null:
+                os.dup2(null.fileno(), 2)
+            # Every scratch folder of the cluster (the scheduler's too) in
+            # one of ours, removed when the cluster stops.  No dashboard:
+            # nobody looks at it during a command; the scheduler's HTTP
+            # server (health, metrics) listens anyway, on a free port, as
+            # 8787 may be busy (a UserWarning).
+            with dask.config.set({"temporary-directory": self._scratch}):
+                return LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
+                                    dashboard_address=None,
+                                    scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
+                                    silence_logs=logging.CRITICAL + 1, local_directory=self._scratch,
+                                    preload=[__name__])
+        finally:
+            os.dup2(saved, 2)
+            os.close(saved)
 
     def _fmu(self, fmu_path):
         key = str(Path(fmu_path).resolve())
@@ -134,4 +181,6 @@ class DaskRunner:
             self._client.close()
         if self._cluster is not None:
             self._cluster.close()
+        if self._scratch is not None:
+            shutil.rmtree(self._scratch, ignore_errors=True)
         return False

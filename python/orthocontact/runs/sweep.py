@@ -15,7 +15,7 @@ from ..fmu.contact import ContactFMU
 from ..rig.checks import RunChecks, check_runs, warning_line
 from ..rig.harness import run
 from .batch import resolve_master, run_many
-from .pool import default_workers
+from .pool import Heartbeat, default_workers
 
 # -- closed form for a scenario --------------------------------------------------
 
@@ -165,6 +165,7 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     k = int(np.argmax(np.abs(phi)))
     grid_ext = {"angle_deg": float(angles[k]), "phi_deg": float(phi[k])}
     extremum = dict(grid_ext, refined=False)
+    beat = Heartbeat(f"{sc.name} extremum and trajectories", progress)
     if resolve_master(master, fmu_path) == "c":
         from ..fmu.files import find_fmu
         from ..rig.compiled import CMaster
@@ -176,6 +177,15 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
         one = lambda a, rule=None: run(sc.params_at(a, rule), sc.rig, fmu=engine,
                                        record_every=1 << 30).phi_deg
         record = lambda a, every: run(sc.params_at(a), sc.rig, fmu=engine, record_every=every)
+    one_run, record_run = one, record
+
+    def one(a, rule=None):
+        beat.update()
+        return one_run(a, rule)
+
+    def record(a, every):
+        beat.update()
+        return record_run(a, every)
     try:
         if sc.sweep["refine_extremum"] and len(angles) >= 3 and abs(phi[k]) > 1e-6:
             sign = 1.0 if phi[k] > 0 else -1.0
@@ -209,6 +219,7 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
         n_rec = max(1, int(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) / 400))
         traj = {float(a): record(a, n_rec) for a in sc.sweep["trajectory_angles_deg"]}
     finally:
+        beat.close()
         engine.close()
     return SweepResult(np.array(angles, dtype=float), phi, closed, drive, extremum, grid_ext, workers,
                        time.time() - t0, traj, list(res), checks)

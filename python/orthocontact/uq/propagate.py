@@ -112,6 +112,14 @@ class UQResult:
         return "; ".join(parts) or None
 
 
+def uq_step(sc: Scenario, step_s: float | None = None) -> float:
+    """The communication step [s] of uq's runs: `step_s` if given, else
+    DEFAULT_STEP_S for the implicit rules and the scenario's for eq20."""
+    if step_s is not None:
+        return step_s
+    return DEFAULT_STEP_S if sc.law.rule in IMPLICIT_RULES else sc.rig.step_s
+
+
 def check_geometry(sc: Scenario, est: Estimates) -> None:
     if sc.kind != "sweep":
         raise InputError(f"{sc.path}: kind: expected a sweep scenario for uq, got {sc.kind!r}")
@@ -126,13 +134,11 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     """The rig over the scenario's angles for `samples` parameter sets.
     scheduler None runs here, in this process; "local" or an address on Dask."""
     from ..fmu.files import find_fmu
-    from ..rig.compiled import CMaster
     from ..runs.pool import Progress
     t0 = time.time()
     check_geometry(sc, est)
     fmu_path = find_fmu(fmu_path)
-    if step_s is None:
-        step_s = DEFAULT_STEP_S if sc.law.rule in IMPLICIT_RULES else sc.rig.step_s
+    step_s = uq_step(sc, step_s)
     rig = replace(sc.rig, step_s=step_s)
     x, accepted = draw(est, samples, seed)
     angles = sc.sweep_angles()
@@ -140,6 +146,16 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     per = max(1, chunk_runs // len(angles))
     chunks = [(sc, rig, est.names, x[i:i + per]) for i in range(0, samples, per)]
     bar = Progress(samples * len(angles), f"uq {sc.name}", progress)
+    try:
+        return _propagate(est, sc, samples, seed, fmu_path, scheduler, workers, step_s, x, accepted,
+                          angles, nominal, chunks, rig, bar, t0)
+    finally:
+        bar.close()
+
+
+def _propagate(est, sc, samples, seed, fmu_path, scheduler, workers, step_s, x, accepted, angles,
+               nominal, chunks, rig, bar, t0) -> UQResult:
+    from ..rig.compiled import CMaster
     cm = CMaster(fmu_path)
     try:
         # The step check: the estimates at the scenario's own step and at the UQ step.
