@@ -4,6 +4,7 @@ documentation), the repository's copies of the descriptions, the cross-check
 folder and `orthocontact --version` say; and the GUID / instantiationToken
 changes whenever a model description does."""
 import re
+import importlib.util
 import shutil
 import subprocess
 import sys
@@ -69,9 +70,7 @@ def _compiler():
     cc = shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
     if cc:
         return [cc]
-    try:
-        import ziglang  # noqa: F401
-    except ImportError:
+    if importlib.util.find_spec("ziglang") is None:
         pytest.skip("no C compiler")
     return [sys.executable, "-m", "ziglang", "cc"]
 
