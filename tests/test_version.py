@@ -48,7 +48,8 @@ def test_package_fmus_documentation_crosscheck_and_cli_agree():
             z = zipfile.ZipFile(find_fmu(fmi_version=v, model=model))
             md = z.read("modelDescription.xml").decode()
             assert _attr(md, "version") == VERSION, (model, v)
-            assert f"<h1>{model} {VERSION}</h1>" in z.read("documentation/index.html").decode()
+            assert f"<h1>{model} {VERSION}: FMI {v}.0 Co-Simulation</h1>" in \
+                z.read("documentation/index.html").decode()
     for copy in ("modelDescription.xml", "modelDescription-fmi3.xml"):
         assert _attr((ROOT / copy).read_text(), "version") == VERSION, copy
     for fmi, platform in (("2.0", "linux64"), ("3.0", "x86_64-linux")):
