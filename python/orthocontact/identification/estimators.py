@@ -17,7 +17,7 @@ from .. import closed_forms as cf
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
 from .measurements import MeasurementSet, friction_axis_key
-from .noise_model import between_run_variance
+from .noise_model import between_run_tau2, tau_summary
 from .statistics import t975
 from .strip_model import strip_regimes, strip_steady_state
 
@@ -291,14 +291,16 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
                         "ipopt.sb": "yes", "ipopt.max_iter": 500})
     fres = ca.Function("res", [x], [r_all, J_all])
     x0 = np.array([start.get(n, 1.0) / scale[n] for n in free])
-    # noise_model: each value's variance is its group's between-run tau^2
-    # plus its within-run se^2.  Prior tau; a group with no residual degrees
-    # of freedom (e.g. two forces for mu1, mu2) keeps its prior, flagged as
-    # assumed.
+    # noise_model: each value's variance is its group's between-run tau^2 plus its within-run
+    # se^2.  A group with no residual dof (two forces for mu1, mu2) keeps its prior, flagged.
+    # One between-run variance per velocity: a tracker's drift shows as drift / velocity.
+    components = {} if data.angle_se is None else {
+        "angles": data.velocities_of_angles(), "forces": data.velocities_of_forces()}
     se2 = {g: (np.zeros(n) if se2.get(g) is None else np.asarray(se2[g], float) ** 2)
            for g, n in zip(names, sizes)}
-    tau2 = {"forces": 0.05**2, "angles": 0.5**2, "ramp": 0.05**2, "carriage": 0.05**2,
-            "stiffness": (0.01 * start.get("eps2", 1e4)) ** 2}
+    prior = {"forces": 0.05**2, "angles": 0.5**2, "ramp": 0.05**2, "carriage": 0.05**2,
+             "stiffness": (0.01 * start.get("eps2", 1e4)) ** 2}
+    tau2 = {g: np.full(n, prior[g]) for g, n in zip(names, sizes)}
     floor = 1e-24
     assumed = [g for g, n in zip(names, sizes) if n - groups[g][1] <= 0]
     for _round in range(4):
@@ -310,11 +312,11 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
         parts = np.split(r, np.cumsum(sizes)[:-1])
         for g, part in zip(names, parts):
             if g not in assumed:
-                tau2[g] = between_run_variance(part, se2[g], len(part) - groups[g][1])
+                tau2[g] = between_run_tau2(part, se2[g], groups[g][1], components.get(g))
     r, J = fres(x0)
     r, J = np.array(r).ravel(), np.array(J)
     wdiag = np.concatenate([1.0 / np.maximum(tau2[g] + se2[g], floor) for g in names])
-    sigma = {g: math.sqrt(tau2[g] + float(np.mean(se2[g]))) for g in names}
+    sigma = {g: math.sqrt(float(np.mean(tau2[g] + se2[g]))) for g in names}
     info = J.T @ (wdiag[:, None] * J)
     cov_scaled = np.linalg.pinv(info)
     S = np.diag([scale[n] for n in free])
@@ -360,7 +362,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     parts = np.split(r, np.cumsum(sizes)[:-1])
     return JointFit(free, values, cov, stderr, ci, dof, {g: sigma[g] for g in names},
                     dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof,
-                    {g: math.sqrt(tau2[g]) for g in names},
+                    {g: tau_summary(tau2[g], components.get(g)) for g in names},
                     {g: math.sqrt(float(np.mean(se2[g]))) for g in names})
 
 

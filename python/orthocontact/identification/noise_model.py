@@ -37,3 +37,32 @@ def between_run_variance(r: np.ndarray, se2: np.ndarray, dof: float) -> float:
         if hi - lo <= 1e-14 * hi:
             break
     return 0.5 * (lo + hi)
+
+
+def between_run_tau2(r, se2, charged: int, labels=None) -> np.ndarray:
+    """Per value, its component's tau^2: one component per distinct label
+    (e.g. the velocity), each with its share of the `charged` parameters'
+    degrees of freedom; one for the whole group without labels, or when a
+    component would have under one degree of freedom."""
+    r, se2 = np.asarray(r, float), np.asarray(se2, float)
+    n = len(r)
+    whole = between_run_variance(r, se2, n - charged)
+    if labels is None:
+        return np.full(n, whole)
+    labels = np.asarray(labels)
+    out = np.full(n, whole)
+    for c in np.unique(labels):
+        m = labels == c
+        dof = m.sum() * (1 - charged / n)
+        if dof >= 1:
+            out[m] = between_run_variance(r[m], se2[m], dof)
+    return out
+
+
+def tau_summary(tau2: np.ndarray, labels=None):
+    """tau of a group: a number, or {label: tau} with several components."""
+    tau2 = np.asarray(tau2, float)
+    if labels is None or len(np.unique(labels)) < 2:
+        return float(np.sqrt(tau2.mean()))
+    labels = np.asarray(labels)
+    return {f"{c:g}": float(np.sqrt(tau2[labels == c].mean())) for c in np.unique(labels)}

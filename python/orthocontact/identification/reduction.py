@@ -91,7 +91,9 @@ def _longest_true(mask: np.ndarray) -> tuple[int, int]:
 
 
 def _speed(t, x):
-    k = 2
+    # central differences over about a 40th of the run: the tracker's noise
+    # then moves the speed by well under the cruise tolerance
+    k = max(2, len(t) // 40)
     v = np.full(len(t), np.nan)
     v[k:-k] = (x[2 * k:] - x[:-2 * k]) / (t[2 * k:] - t[:-2 * k])
     return v
@@ -247,21 +249,38 @@ class Reduction:
 
 
 def _flag_outliers(runs, value, se, what, unit, warnings):
+    """Flags runs whose value lies more than OUTLIER_Z robust scales from
+    the median of the other runs at its angle and velocity (leave-one-out:
+    an outlier does not pull its own reference); the scale is pooled over
+    the groups of its velocity (the larger of 1.4826 x their median and their inner rms),
+    since a group of a few runs cannot give its own."""
     groups = {}
     for r in runs:
         groups.setdefault((r.mat_angle_deg, r.velocity_m_s), []).append(r)
-    for (a, v), rs in groups.items():
-        if len(rs) < 4:
+    dev = {}
+    for k, rs in groups.items():
+        if len(rs) >= 3:
+            vals = np.array([value(r) for r in rs])
+            for i, r in enumerate(rs):
+                ref = float(np.median(np.delete(vals, i)))
+                dev[r.run] = (vals[i] - ref, ref)
+    for v in {k[1] for k in groups}:       # the scatter differs with velocity (drift / v)
+        mine = [r for k, rs in groups.items() if k[1] == v for r in rs if r.run in dev]
+        if len(mine) < 6:
             continue
-        vals = np.array([value(r) for r in rs])
-        med = float(np.median(vals))
-        scale = 1.4826 * float(np.median(np.abs(vals - med)))
-        for r, x in zip(rs, vals):
-            if abs(x - med) > OUTLIER_Z * max(scale, 3 * se(r)):
+        d = np.sort(np.abs([dev[r.run][0] for r in mine]))
+        # the larger of two robust scales: the MAD alone is itself noisy from
+        # a few small groups; the rms of the inner 90 % / 0.79 (normal)
+        inner = d[: max(int(0.9 * len(d)), 1)]
+        scale = max(1.4826 * float(np.median(d)), float(np.sqrt(np.mean(inner ** 2))) / 0.79)
+        for r in mine:
+            d, ref = dev[r.run]
+            if abs(d) > OUTLIER_Z * max(scale, 3 * se(r)):
                 r.flags.append("outlier")
-                warnings.append(f"run {r.run}: outlying {what} {x:.4g} {unit} against the median "
-                                f"{med:.4g} {unit} of its {len(rs)} runs at {a:g} deg, {v:g} m/s; kept "
-                                "in the fit (remove its row from runs.csv to leave it out)")
+                warnings.append(f"run {r.run}: outlying {what} {value(r):.4g} {unit} against the median "
+                                f"{ref:.4g} {unit} of the other runs at {r.mat_angle_deg:g} deg, {v:g} m/s "
+                                f"(robust scale {scale:.2g} {unit}); kept in the fit (remove its row from "
+                                "runs.csv to leave it out)")
 
 
 def reduce_recordings(rec: Recordings) -> Reduction:

@@ -94,9 +94,10 @@ def write_table(red: Reduction, out: Path):
 
 
 def write_figures(rec: Recordings, red: Reduction, out: Path) -> list:
-    """reduction_<angle>deg.png per mat angle: each run's path (x2 less its
-    fitted line's intercept) against x1, the window bold, the fitted line
-    dashed.  Returns the files written."""
+    """reduction_<angle>deg.png per mat angle: each run's path against x1
+    as its deviation from the mean fitted line of the runs at its velocity
+    (a run's slope then shows as a tilt), the window bold, the run's fitted
+    line dashed.  Returns the files written."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -109,16 +110,18 @@ def write_figures(rec: Recordings, red: Reduction, out: Path) -> list:
     for angle, reds in sorted(by_angle.items()):
         fig, ax = plt.subplots(figsize=(7, 4.2))
         velocities = sorted({r.velocity_m_s for r in reds})
+        mean_slope = {v: np.mean([r.line[1] for r in reds if r.velocity_m_s == v]) for v in velocities}
         for r in reds:
             tr = runs[r.run].trajectory
             ok = np.isfinite(tr[:, 1]) & np.isfinite(tr[:, 2])
-            x1, x2 = tr[ok, 1], tr[ok, 2] - r.line[0]
+            b0 = mean_slope[r.velocity_m_s]
+            x1, x2 = tr[ok, 1], tr[ok, 2] - r.line[0] - b0 * tr[ok, 1]
             c = f"C{velocities.index(r.velocity_m_s)}"
             ax.plot(x1, 1e3 * x2, "-", color=c, lw=0.6, alpha=0.5)
             win = (x1 >= r.window_x1_m[0]) & (x1 <= r.window_x1_m[1])
             ax.plot(x1[win], 1e3 * x2[win], "-", color=c, lw=1.6)
             xs = np.array(r.window_x1_m)
-            ax.plot(xs, 1e3 * r.line[1] * xs, "--", color="k", lw=0.8)
+            ax.plot(xs, 1e3 * (r.line[1] - b0) * xs, "--", color="k", lw=0.8)
             if r.flags:
                 ax.annotate(f"{r.run}: {' '.join(r.flags)}", (x1[-1], 1e3 * x2[-1]), fontsize=7)
         for i, v in enumerate(velocities):
@@ -127,7 +130,7 @@ def write_figures(rec: Recordings, red: Reduction, out: Path) -> list:
                                                           f"{np.mean(phis):.2f} ± {np.std(phis, ddof=1) if len(phis) > 1 else 0:.2f}° (sd)")
         ax.plot([], [], "--", color="k", label="fitted line over the steady window (bold)")
         ax.set_xlabel("x1 [m]")
-        ax.set_ylabel("x2 less the fit's intercept [mm]")
+        ax.set_ylabel("x2 less the mean fitted line at its velocity [mm]")
         ax.set_title(f"{rec.folder.name}: mat angle {angle:g}°", fontsize=10)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
