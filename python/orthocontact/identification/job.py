@@ -128,6 +128,10 @@ class Identification:
         unit = {"forces": "forces_N", "angles": "angles_deg", "ramp": "ramp_N", "carriage": "carriage_N",
                 "stiffness": "stiffness_N_m"}
         out["noise_estimate"] = {unit[g]: s for g, s in f.sigma.items()}
+        tau = f.between_runs.get("angles")
+        if isinstance(tau, dict):   # a measured angle's noise at each velocity, for uq
+            out["noise_estimate"]["angles_deg_by_velocity"] = {
+                v: (t * t + f.within_run["angles"] ** 2) ** 0.5 for v, t in tau.items()}
         out["noise_model"] = {unit[g]: {"between_runs": f.between_runs.get(g), "within_run_rms":
                                         f.within_run.get(g), "values": int(len(f.residuals[g]))}
                               for g in f.sigma}
@@ -150,6 +154,8 @@ class Identification:
                                        "matrix": [[float(c) for c in row] for row in sym]}
         out["points"] = {"angles": None if d.angles is None else
                          [[float(a), float(p)] for a, p in d.angles],
+                         "angle_velocities": None if d.angles is None or d.angle_velocities is None
+                         else [float(v) for v in d.angle_velocities],
                          "forces": None if d.forces is None else
                          [[float(a), float(F)] for a, F in d.forces]}
         out["ramp_stick_points"] = f.stick_points
@@ -209,17 +215,23 @@ def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
     res = identify(data, validate, workers, fmu_path)
     j = res.as_json()
     if recordings is not None:
-        from .reduction_output import write_figures, write_table
+        from .reduction_output import write_figures, write_rig_scenario, write_table
         rec, red = recordings
         write_table(red, out)
         figures = write_figures(rec, red, out)
+        scenario = write_rig_scenario(data, res.fit.values, out)
         j["reduction"] = {"runs": {k: sum(r.kind == k for r in red.runs) for k in ("slide", "carriage", "ramp")},
                           "left_out": [r.run for r in red.runs if not r.used],
                           "flagged": {r.run: r.flags for r in red.runs if r.flags},
-                          "table": "reduction.csv", "figures": [f.name for f in figures]}
+                          "table": "reduction.csv", "figures": [f.name for f in figures],
+                          "scenario": scenario.name if scenario else None}
     write_json(out / "identified.json", j)
     fit_figure(res, out / "fit.png")
-    (out / "identified.md").write_text(markdown_text(res))
+    md = markdown_text(res)
+    if recordings is not None:
+        from .report import reduction_markdown
+        md += "\n" + reduction_markdown(j)
+    (out / "identified.md").write_text(md)
     return res
 
 

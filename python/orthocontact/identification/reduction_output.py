@@ -140,3 +140,51 @@ def write_figures(rec: Recordings, red: Reduction, out: Path) -> list:
         plt.close(fig)
         written.append(path)
     return written
+
+
+def write_rig_scenario(data: MeasurementSet, values: dict, out: Path) -> Path | None:
+    """rig_scenario.toml: the identified law on the lab's rig (its mass, the
+    estimated F_int and strip viscosity) at the velocity with the most slide
+    runs, swept over the runs' mat angles: the scenario `orthocontact uq`
+    draws bands on, against the runs at that velocity.  None if the law's
+    parameters were not all identified."""
+    if not {"mu1", "mu2", "eps_ratio"} <= set(values):
+        return None
+    rig = data.rig
+    v, counts = np.unique(data.velocities_of_angles(), return_counts=True)
+    velocity = float(v[np.argmax(counts)])
+    a = data.angles[:, 0]
+    eps2 = values.get("eps2", rig.eps2_nominal_N_m)
+    text = f'''name = "{data.folder.name}_identified"
+title = "The identified law on the rig of {data.folder.name} at {velocity:g} m/s"
+kind = "sweep"
+description = "Written by orthocontact identify from the recordings' estimates: the law, F_int and the strip's viscosity as identified (identified.json has their intervals)."
+
+[law]
+rule = "{rig.rule}"
+mu1 = {values["mu1"]!r}
+mu2 = {values["mu2"]!r}
+eps2 = {float(eps2)!r}
+eps_ratio = {values["eps_ratio"]!r}
+
+[geometry]
+alpha_offset_deg = {rig.alpha_offset_deg!r}
+beta_offset_deg = {rig.beta_offset_deg!r}
+
+[sweep]
+start_deg = {float(a.min())!r}
+stop_deg = {float(a.max())!r}
+step_deg = 1.0
+
+[rig]
+mode = "quasistatic"
+mass_kg = {rig.mass_kg!r}
+g = {rig.g!r}
+f_int_N = {float(values.get("f_int", rig.f_int_N))!r}
+velocity_m_s = {velocity!r}
+mu_strip = {rig.mu_strip!r}
+c_strip = {float(values.get("c_strip", rig.c_strip or 0.0))!r}
+'''
+    path = out / "rig_scenario.toml"
+    path.write_text(text)
+    return path
