@@ -80,7 +80,7 @@ def test_bundled_recordings_identify_and_uq_by_the_readme_commands(tmp_path):
     uq = json.loads((tmp_path / "uq" / "uq.json").read_text())
     band = uq["data_inside_measurement_band"]
     assert band["points"] == 42          # the runs at the scenario's velocity, 0.244 m/s
-    assert band["inside"] >= 36, band    # ~95 % of them; 36 of 42 is the binomial 1 % bound
+    assert band["inside"] >= 36, band    # ~95 % of them: a true 95 % gives under 36 of 42 with probability 0.45 %
 
 
 def test_the_noise_model_separates_run_to_run_scatter(tmp_path, small_physics):
@@ -97,15 +97,15 @@ def test_the_noise_model_separates_run_to_run_scatter(tmp_path, small_physics):
 
 
 def test_intervals_cover_on_synthetic_recordings(small_physics, tmp_path):
-    """30 fresh sets of recordings of the small design: each parameter's
-    95 % interval covers the truth in at least 23 of 30 (a true 95 %
+    """20 fresh sets of recordings of the small design: each parameter's
+    95 % interval covers the truth in at least 16 of 20 (a true 95 %
     coverage falls below that with probability 0.3 %; the benchmark
     benchmarks/bench_recordings_coverage.py measures it on 200-400)."""
     t = SMALL_TRUTH
     tv = {"mu1": t.mu1, "mu2": t.mu2, "eps_ratio": t.eps_ratio, "eps1": t.eps1, "eps2": t.eps2,
           "f_int": t.f_int_N}
     hits = {k: 0 for k in tv}
-    n = 30
+    n = 20
     for i in range(n):
         folder = small_set(tmp_path / f"r{i}", 500 + i, small_physics)
         data, _ = load_folder(folder)
@@ -114,7 +114,7 @@ def test_intervals_cover_on_synthetic_recordings(small_physics, tmp_path):
             lo, hi = fit.ci95[k]
             hits[k] += lo <= v <= hi
         shutil.rmtree(folder)
-    assert all(h >= 23 for h in hits.values()), hits
+    assert all(h >= 16 for h in hits.values()), hits
 
 
 def _edit(path: Path, fn):

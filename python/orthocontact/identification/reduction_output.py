@@ -174,7 +174,7 @@ beta_offset_deg = {rig.beta_offset_deg!r}
 [sweep]
 start_deg = {float(a.min())!r}
 stop_deg = {float(a.max())!r}
-step_deg = 1.0
+step_deg = 2.5
 
 [rig]
 mode = "quasistatic"
