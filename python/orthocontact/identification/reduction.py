@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import plausibility
 from ..errors import InputError
 from .recordings import Recordings, Run
 
@@ -28,7 +29,6 @@ SETTLE_Z = 4.0           # a piece's slope off the rest's by more than this many
 HALVES_Z = 5.0           # never settled: the window's halves disagree by this many standard errors
 HALVES_DEG = 0.05        #   and by this many degrees
 OUTLIER_Z = 5.0          # robust z of an outlying run within its group
-UNIT_SLIPS = ((1000.0, "mm"), (100.0, "cm"))
 
 
 @dataclass
@@ -101,10 +101,10 @@ def _speed(t, x):
 
 def _check_units(run: Run, speed_ref: float):
     ratio = speed_ref / run.velocity_m_s
-    for factor, unit in UNIT_SLIPS:
-        if 0.5 * factor < ratio < 2 * factor:
-            raise InputError(f"{_where(run)}: x1_m moves at {speed_ref:.4g} 'm/s', {ratio:.0f} times "
-                             f"velocity_m_s = {run.velocity_m_s:g}: positions in {unit}? the columns are in m")
+    unit = plausibility.scale_slip(ratio)
+    if unit:
+        raise InputError(f"{_where(run)}: x1_m moves at {speed_ref:.4g} 'm/s', {ratio:.0f} times "
+                         f"velocity_m_s = {run.velocity_m_s:g}: positions in {unit}? the columns are in m")
     if not 0.5 < ratio < 2:
         raise InputError(f"{_where(run)}: x1_m moves at {speed_ref:.4g} m/s, expected about "
                          f"velocity_m_s = {run.velocity_m_s:g} of runs.csv line {run.line}")
@@ -132,6 +132,10 @@ def reduce_slide(run: Run, warnings: list) -> RunReduction:
     speed_ref = float(np.percentile(np.abs(v[fin]), 90))
     _check_units(run, speed_ref)
     vc = float(np.median(v[fin & (v > 0.5 * speed_ref)]))
+    if abs(vc / run.velocity_m_s - 1) > 0.05:
+        warnings.append(f"{_where(run)}: the tracked cruise speed {vc:.4g} m/s is "
+                        f"{100 * (vc / run.velocity_m_s - 1):+.0f} % off velocity_m_s = {run.velocity_m_s:g} "
+                        f"(runs.csv line {run.line}), which the fit uses")
     lo, hi = _longest_true(fin & (np.abs(v / vc - 1) < CRUISE_TOL))
     if hi - lo < 4 * SEGMENTS:
         raise InputError(f"{_where(run)}: never moves at a steady speed: {hi - lo} samples within "
