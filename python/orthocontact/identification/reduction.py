@@ -216,6 +216,16 @@ def reduce_ramp(run: Run, warnings: list) -> RunReduction:
     if best is None or best[2][1] <= 0:
         raise InputError(f"{_where(run)}: expected the carriage to start moving from rest")
     _, t0, (x0, v) = best
+    # The hinge's corner is the carriage's acceleration, which a constant
+    # speed from t0 does not model and which biases its slope: the speed
+    # from the samples after the first fifth of the pull, t0 where that line
+    # leaves the rest position.
+    after = te > t0 + 0.2 * (te[-1] - t0)
+    rest = te < t0
+    if after.sum() >= 5 and rest.sum() >= 3:
+        a, v, _ = line_fit(te[after], xe[after])
+        x0 = float(np.median(xe[rest]))
+        t0 = (x0 - a) / v
     _check_units(run, v)
     out.speed_m_s = float(v)
     tf, F = run.forces[:, 0], run.forces[:, 1]
