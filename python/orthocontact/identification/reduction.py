@@ -203,8 +203,12 @@ def reduce_ramp(run: Run, warnings: list) -> RunReduction:
     out = RunReduction(run.name, run.kind, run.mat_angle_deg, run.velocity_m_s)
     t, x1, _, _, _, _ = _tracked(run, warnings)
     x0 = float(np.median(x1[:5]))
-    early = x1 <= x0 + 0.7 * (x1.max() - x0)
-    te, xe = t[early], x1[early]
+    # the pull's first 70 %, cut by time (a cut on the noisy x1 itself
+    # would drop the samples with positive noise near it and bias the speed)
+    smooth = np.array([np.median(x1[max(i - 4, 0):i + 5]) for i in range(len(x1))])
+    cut = int(np.argmax(smooth > x0 + 0.7 * (smooth.max() - x0)))
+    cut = max(cut - 10, 10)     # the samples next to the cut share its noise
+    te, xe = t[:cut], x1[:cut]
     best = None
     for t0 in te[2:-5]:
         h = np.maximum(te - t0, 0.0)
@@ -238,14 +242,16 @@ def reduce_ramp(run: Run, warnings: list) -> RunReduction:
     top = float(np.median(Fm[xm > 0.7 * xm.max()]))
     base = float(np.median(Fm[: max(5, len(Fm) // 50)]))
     stick = (Fm > base + 0.1 * (top - base)) & (Fm < base + 0.85 * (top - base))
+    # the stick branch is where the force has not yet reached sliding: the
+    # samples before the force stays at 85 % of the rise (five samples on;
+    # a single spike, the block's inertia as the carriage starts, is not it)
+    high = Fm >= base + 0.85 * (top - base)
+    held = np.convolve(high, np.ones(5), "valid") == 5
+    stick[int(np.argmax(held)) if held.any() else len(Fm):] = False
     if stick.sum() < 5:
         raise InputError(f"{_where(run, run.forces_path)}: expected at least 5 force samples on the "
                          f"stick branch (10-85% of the rise to sliding), got {int(stick.sum())}: "
                          "pull slower or sample faster")
-    # the stick branch is where the force has not yet reached sliding: take
-    # the samples before the first one at the plateau
-    first_top = np.argmax(Fm >= base + 0.85 * (top - base))
-    stick[first_top:] = False
     _, k, se = line_fit(xm[stick], Fm[stick])
     out.stiffness_N_m, out.stiffness_se_N_m, out.samples = k, se, int(stick.sum())
     out.window_s = (float(tf[moving][stick][0]), float(tf[moving][stick][-1]))
