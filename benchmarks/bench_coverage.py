@@ -1,7 +1,7 @@
 """Benchmark (not a test): do the identification's nominal 95 % intervals
 cover the truth 95 % of the time?
 
-Data are made by an independent simulator of the rig (tests/rig_reference.py:
+Data are made by an independent simulator of the rig (tools/rig_reference.py:
 the law from its definition in plain Python, no code of the package), once per
 truth and noise-free; each replicate adds fresh normal noise (forces 0.05 N,
 angles 0.3 deg, ramp 0.02 N) and runs the joint fit.  Three truths: the aged
@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "tools"))
 
 import rig_reference as ref  # noqa: E402
 
@@ -106,7 +106,7 @@ def main():
     summary = {"replicates": n, "noise": NOISE, "design": {"forces_deg": FA, "force_repeats": 3,
                                                           "angles_deg": AA, "angle_repeats": 2,
                                                           "ramp": "0-2 mm, every 8th of 400 steps"},
-               "simulator": "tests/rig_reference.py (independent of the package)",
+               "simulator": "tools/rig_reference.py (independent of the package)",
                "results": results, "seconds": round(time.time() - t0, 1)}
     (args.out / "coverage.json").write_text(json.dumps(summary, indent=2) + "\n")
     _figure(results, n, half, args.out / "coverage.png")

@@ -1,10 +1,16 @@
 import math
+import sys
+from pathlib import Path
 
 import pytest
 
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams
+
+# The independent reference simulator and the recordings generator live in
+# tools/ (free of package code), shared with the benchmarks.
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 CASE1 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e4, rule="associated")
 CASE5 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e3, rule="coupled")

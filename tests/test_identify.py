@@ -1,9 +1,8 @@
 """Identification against the paper's calibration numbers, against synthetic
 data made by the FMU harness (not by the closed forms the fit uses) and by an
-independent simulator of the rig (tests/rig_reference.py, none of the
+independent simulator of the rig (tools/rig_reference.py, none of the
 package's code): exact recovery, honest intervals, clear non-identifiability."""
 import json
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +17,6 @@ from orthocontact.identification.job import identify, simulate_measurements
 from orthocontact.identification.measurements import MeasurementSet, load_data, write_measurements
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "scenarios" / "example_identification"
-sys.path.insert(0, str(Path(__file__).resolve().parent))  # rig_reference
 TRUTH = ContactParams(0.408, 0.625, 12510.0, 10000.0)
 TV = {"mu1": 0.408, "mu2": 0.625, "eps_ratio": 1.251, "eps2": 1e4, "eps1": 12510.0}
 RIG = RigSetup(mass_kg=1.875, f_int_N=5.0)
@@ -90,7 +88,7 @@ def test_fmu_validation_of_noise_free_fit(fmu_data):
 @pytest.fixture(scope="module")
 def reference_data():
     """Noise-free data of the issue's truth (mu 0.30 / 0.55, eps1/eps2 0.8,
-    eps2 3e4 N/m) from the independent simulator (tests/rig_reference.py)."""
+    eps2 3e4 N/m) from the independent simulator (tools/rig_reference.py)."""
     import math
 
     import rig_reference as ref

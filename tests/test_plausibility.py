@@ -91,7 +91,7 @@ def test_angles_csv_written_in_radians_is_refused(tmp_path):
     assert p.returncode == 2 and not (tmp_path / "o").exists()
     line = p.stderr.strip()
     assert len(line.splitlines()) == 1
-    assert "angles.csv: alpha_deg: all orientations lie within +-pi/2" in line and "radians?" in line
+    assert "angles.csv: mat_angle_deg: all orientations lie within +-pi/2" in line and "radians?" in line
 
 
 def test_trajectory_angles_that_all_look_like_radians_are_a_warning(tmp_path):
@@ -108,7 +108,7 @@ def test_trajectory_angles_that_all_look_like_radians_are_a_warning(tmp_path):
 def test_forces_that_cannot_be_right_are_refused(tmp_path, force, says):
     d = measurement_set(tmp_path, forces=[[0.0, 12.5], [90.0, force]])
     p = run(["identify", str(d), "--out", "o"], tmp_path)
-    assert p.returncode == 2 and says in p.stderr and "forces.csv: row 2 (alpha_deg = 90)" in p.stderr
+    assert p.returncode == 2 and says in p.stderr and "forces.csv: row 2 (mat_angle_deg = 90)" in p.stderr
 
 
 def test_rig_toml_velocity_in_cm_s_is_refused(tmp_path):

@@ -115,3 +115,17 @@ def looks_like_radians(values_deg, limit: float) -> bool:
     all lies within +-limit: a sweep in degrees does not, one in radians does."""
     vals = [abs(v) for v in values_deg]
     return len(set(values_deg)) >= 2 and max(vals) <= limit
+
+
+# A length column typed in another unit: the factor it comes out too large by.
+LENGTH_SLIPS = ((1000.0, "mm"), (100.0, "cm"))
+
+
+def scale_slip(ratio: float, slips=LENGTH_SLIPS) -> str | None:
+    """The unit a column was likely typed in, if `ratio` (what the column
+    gives over what it should, e.g. a tracked speed over the carriage's
+    velocity) is within a factor 2 of that unit's factor."""
+    for factor, unit in slips:
+        if 0.5 * factor < ratio < 2 * factor:
+            return unit
+    return None

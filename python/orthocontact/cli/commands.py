@@ -120,13 +120,13 @@ def cmd_reproduce(args) -> int:
 
 def cmd_identify(args) -> int:
     from ..identification import job as identify
-    data = identify.load_data(args.data)
+    data, recordings = identify.load_folder(args.data)
     for line in data.warnings:
         warn(line)
     with staged_output(args.out) as stage:
         from ..fmu.files import find_fmu
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
-                              fmu_path=str(find_fmu(fmi_version=args.fmi)))
+                              fmu_path=str(find_fmu(fmi_version=args.fmi)), recordings=recordings)
     print(identify.summary_text(result))
     if result.validation and result.validation.get("warning"):
         warn(result.validation["warning"])

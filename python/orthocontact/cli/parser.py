@@ -168,10 +168,12 @@ def build_parser() -> argparse.ArgumentParser:
                                    "mu2 [-], eps1/eps2 [-], eps1, eps2 [N/m]) and write "
                                    "identified.json, identified.md, fit.png into DIR.")
     i.add_argument("data", type=Path, metavar="DATA_DIR",
-                   help="measurement folder: rig.toml and any of forces.csv (alpha_deg,force_N), "
-                        "angles.csv (alpha_deg,phi_deg, optionally velocity_m_s per row), ramp.csv "
-                        "(x1_m,force_N); angles in degrees, forces in N, travel in m, velocity in "
-                        "m/s")
+                   help="measurement folder: rig.toml and any of forces.csv (mat_angle_deg,force_N), "
+                        "angles.csv (mat_angle_deg,phi_deg, optionally velocity_m_s per row), ramp.csv "
+                        "(x1_m,force_N); or a lab's raw recordings: rig.toml, runs.csv "
+                        "(run,kind,mat_angle_deg,velocity_m_s), trajectories/RUN.csv (t_s,x1_m,x2_m), "
+                        "forces/RUN.csv (t_s,force_N); angles in degrees, forces in N, positions in m, "
+                        "times in s, velocity in m/s")
     common(i, "output folder: created if missing; written only when the fit completes", scheduler=False)
     i.add_argument("--no-validate", action="store_true",
                    help="skip the validation runs of the identified parameters on the FMU")

@@ -17,6 +17,7 @@ from .. import closed_forms as cf
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
 from .measurements import MeasurementSet, friction_axis_key
+from .noise_model import between_run_tau2, tau_summary
 from .statistics import t975
 from .strip_model import strip_regimes, strip_steady_state
 
@@ -25,8 +26,8 @@ REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
 
 def reported_names(j: dict) -> list:
     """The parameters a summary lists: the five, l1/l2 when angles alone were
-    fitted, and the strip's viscosity when it was estimated."""
-    return list(REPORTED) + [n for n in ("l1_l2_ratio", "c_strip") if n in j]
+    fitted, the strip's viscosity and F_int when they were estimated."""
+    return list(REPORTED) + [n for n in ("l1_l2_ratio", "c_strip", "f_int") if n in j]
 
 
 def eq1(data: MeasurementSet) -> dict | None:
@@ -122,6 +123,8 @@ class JointFit:
     stick_points: int = 0
     sigma_assumed: list = field(default_factory=list)      # groups whose noise is the prior
     param_dof: dict = field(default_factory=dict)  # name -> Welch-Satterthwaite dof of its interval
+    between_runs: dict = field(default_factory=dict)  # group -> tau, the run-to-run scatter
+    within_run: dict = field(default_factory=dict)    # group -> rms of the within-run errors
 
 
 def identifiability(data: MeasurementSet) -> tuple[list, dict]:
@@ -146,11 +149,12 @@ def identifiability(data: MeasurementSet) -> tuple[list, dict]:
             free.append("l1_l2_ratio")
     else:
         free.append("eps_ratio")
-    if data.ramp is None:
+    if data.ramp is None and data.stiffness is None:
         why["eps2"] = why["eps1"] = ("absolute stiffness does not show in steady sliding (forces, "
-                                     "angles); it needs the pre-sliding ramp (ramp.csv)")
+                                     "angles); it needs the pre-sliding ramp (ramp.csv, or ramp runs)")
     else:
-        alpha_r = math.radians(rig.ramp_angle_deg + rig.alpha_offset_deg)
+        ramp_angles = [rig.ramp_angle_deg] if data.stiffness is None else data.stiffness[:, 0]
+        alpha_r = math.radians(float(ramp_angles[0]) + rig.alpha_offset_deg)
         if "eps_ratio" in free or abs(math.cos(alpha_r)) < 1e-9:
             free.append("eps2")
         else:
@@ -158,6 +162,8 @@ def identifiability(data: MeasurementSet) -> tuple[list, dict]:
                            "separating them needs eps_ratio")
         if "eps_ratio" not in free:
             why["eps1"] = "eps1 = eps_ratio * eps2 needs eps_ratio"
+    if data.f_int_free and ("mu1" in free or data.ramp is not None):
+        free.append("f_int")
     if rig.c_strip is None:
         n_v = 0 if data.angles is None else len(np.unique(np.round(data.velocities_of_angles(), 9)))
         if "eps_ratio" in free and n_v >= 2:
@@ -215,7 +221,8 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
         raise InputError(f"{data.folder}: expected data that determine at least one parameter: "
                          + "; ".join(f"{k}: {v}" for k, v in why.items()))
     scale = {"mu1": 1.0, "mu2": 1.0, "eps_ratio": 1.0, "l1_l2_ratio": 1.0,
-             "eps2": max(start.get("eps2", 1e4), 1e-9), "c_strip": 10.0}
+             "eps2": max(start.get("eps2", 1e4), 1e-9), "c_strip": 10.0,
+             "f_int": max(start.get("f_int", 1.0), 1e-3)}
     c_known = rig.c_strip or 0.0
     viscous = "c_strip" in free or c_known > 0
     # A viscous strip makes each steady angle the root of an equation
@@ -224,20 +231,25 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     x = (ca.MX if viscous else ca.SX).sym("x", len(free))
     sym = {n: x[i] * scale[n] for i, n in enumerate(free)}
     val = lambda n: sym[n] if n in sym else start.get(n, 1.0)
-    groups = {}
+    f_int = val("f_int") if "f_int" in free else rig.f_int_N
+    groups, se2 = {}, {}
     if data.forces is not None and "mu1" in free:
         res = []
-        for a, f in data.forces:
+        for (a, f), v in zip(data.forces, data.velocities_of_forces()):
             al, beta = rig.axes(a)
             if (rig.mu_strip > 0 or viscous) and "eps_ratio" in free:
                 # the strip's lateral force turns the push off the friction
                 # ellipse's X1 point wherever the block drifts
-                F = rig.f_int_N + strip_steady_state(val, start, rig, al, beta, rig.velocity_m_s,
+                F = f_int + strip_steady_state(val, start, rig, al, beta, v,
                                                "c_strip" in free, c_known)[1]
             else:
-                F = cf.steady_drive_force(val("mu1"), val("mu2"), beta, rig.f_int_N, rig.mass_kg, rig.g)
+                F = f_int + cf.steady_drive_force(val("mu1"), val("mu2"), beta, 0.0, rig.mass_kg, rig.g)
             res.append(f - F)
         groups["forces"] = (ca.vertcat(*res), 2)
+        se2["forces"] = data.force_se
+    if "f_int" in free:
+        groups["carriage"] = (ca.vertcat(*[F - f_int for F in data.carriage[:, 0]]), 1)
+        se2["carriage"] = data.carriage[:, 1]
     if data.angles is not None and ("eps_ratio" in free or "l1_l2_ratio" in free):
         res = []
         strip = rig.mu_strip > 0 or viscous
@@ -251,6 +263,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
                 tp = cf.eq25_tan_phi(val("l1_l2_ratio"), 1.0, al)
             res.append(phi - ca.atan(tp) * 180 / math.pi)
         groups["angles"] = (ca.vertcat(*res), 1 + ("c_strip" in free))
+        se2["angles"] = data.angle_se
     stick = np.zeros(0, dtype=bool)
     if data.ramp is not None and "eps2" in free:
         stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
@@ -259,40 +272,51 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
                              f"branch (below 90% of the sliding force), got {int(stick.sum())}")
         al, _ = rig.axes(rig.ramp_angle_deg)
         k = cf.stick_stiffness_x1(val("eps_ratio") * val("eps2"), val("eps2"), al)
-        res = [F - (rig.f_int_N + k * x1) for x1, F in data.ramp[stick]]
+        res = [F - (f_int + k * x1) for x1, F in data.ramp[stick]]
         groups["ramp"] = (ca.vertcat(*res), 1)
+    if data.stiffness is not None and "eps2" in free:
+        res = [k - cf.stick_stiffness_x1(val("eps_ratio") * val("eps2"), val("eps2"), rig.axes(a)[0])
+               for a, k, _ in data.stiffness]
+        groups["stiffness"] = (ca.vertcat(*res), 1)
+        se2["stiffness"] = data.stiffness[:, 2]
 
     names = list(groups)
     r_all = ca.vertcat(*[groups[g][0] for g in names])
     J_all = ca.jacobian(r_all, x)
-    w = type(x).sym("w", len(names))
-    obj = 0
-    for i, g in enumerate(names):
-        obj += w[i] * ca.sumsqr(groups[g][0])
+    sizes = [groups[g][0].numel() for g in names]
+    w = type(x).sym("w", sum(sizes))
+    obj = ca.dot(w, r_all * r_all)
     solver = ca.nlpsol("joint", "ipopt", {"x": x, "p": w, "f": 0.5 * obj},
                        {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
                         "ipopt.sb": "yes", "ipopt.max_iter": 500})
     fres = ca.Function("res", [x], [r_all, J_all])
-    sizes = [groups[g][0].numel() for g in names]
     x0 = np.array([start.get(n, 1.0) / scale[n] for n in free])
-    # Prior noise levels; a group with no residual degrees of freedom (e.g.
-    # two forces for mu1, mu2) keeps its prior, flagged as assumed.
-    sigma = {"forces": 0.05, "angles": 0.5, "ramp": 0.05}
-    floors = {"forces": 1e-12, "angles": 1e-12, "ramp": 1e-12}
+    # noise_model: each value's variance is its group's between-run tau^2 plus its within-run
+    # se^2.  A group with no residual dof (two forces for mu1, mu2) keeps its prior, flagged.
+    # One between-run variance per velocity: a tracker's drift shows as drift / velocity.
+    components = {} if data.angle_se is None else {
+        "angles": data.velocities_of_angles(), "forces": data.velocities_of_forces()}
+    se2 = {g: (np.zeros(n) if se2.get(g) is None else np.asarray(se2[g], float) ** 2)
+           for g, n in zip(names, sizes)}
+    prior = {"forces": 0.05**2, "angles": 0.5**2, "ramp": 0.05**2, "carriage": 0.05**2,
+             "stiffness": (0.01 * start.get("eps2", 1e4)) ** 2}
+    tau2 = {g: np.full(n, prior[g]) for g, n in zip(names, sizes)}
+    floor = 1e-24
     assumed = [g for g, n in zip(names, sizes) if n - groups[g][1] <= 0]
-    for _round in range(3):
-        wv = [1.0 / sigma[g] ** 2 for g in names]
-        sol = solver(x0=x0, p=wv, lbx=1e-9, ubx=1e9)
+    for _round in range(4):
+        wdiag = np.concatenate([1.0 / np.maximum(tau2[g] + se2[g], floor) for g in names])
+        sol = solver(x0=x0, p=wdiag, lbx=1e-9, ubx=1e9)
         x0 = np.array(sol["x"]).ravel()
         r, _ = fres(x0)
         r = np.array(r).ravel()
         parts = np.split(r, np.cumsum(sizes)[:-1])
         for g, part in zip(names, parts):
             if g not in assumed:
-                sigma[g] = max(math.sqrt(float(part @ part) / (len(part) - groups[g][1])), floors[g])
+                tau2[g] = between_run_tau2(part, se2[g], groups[g][1], components.get(g))
     r, J = fres(x0)
     r, J = np.array(r).ravel(), np.array(J)
-    wdiag = np.concatenate([np.full(n, 1.0 / sigma[g] ** 2) for g, n in zip(names, sizes)])
+    wdiag = np.concatenate([1.0 / np.maximum(tau2[g] + se2[g], floor) for g in names])
+    sigma = {g: math.sqrt(float(np.mean(tau2[g] + se2[g]))) for g in names}
     info = J.T @ (wdiag[:, None] * J)
     cov_scaled = np.linalg.pinv(info)
     S = np.diag([scale[n] for n in free])
@@ -309,7 +333,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     rows = np.split(np.arange(len(r)), np.cumsum(sizes)[:-1])
     contrib = {}
     for g, idx in zip(names, rows):
-        Jg = J[idx] / sigma[g]
+        Jg = J[idx] * np.sqrt(wdiag[idx])[:, None]
         contrib[g] = S @ cov_scaled @ (Jg.T @ Jg) @ cov_scaled @ S
     grads = {n: np.eye(len(free))[i] for i, n in enumerate(free)}
     if "eps2" in free and "eps_ratio" in free:
@@ -337,7 +361,9 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
                          f"(information matrix singular, condition {cond:.1e})")
     parts = np.split(r, np.cumsum(sizes)[:-1])
     return JointFit(free, values, cov, stderr, ci, dof, {g: sigma[g] for g in names},
-                    dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof)
+                    dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof,
+                    {g: tau_summary(tau2[g], components.get(g)) for g in names},
+                    {g: math.sqrt(float(np.mean(se2[g]))) for g in names})
 
 
 def start_values(data: MeasurementSet) -> dict:
@@ -355,6 +381,12 @@ def start_values(data: MeasurementSet) -> dict:
     start["eps_ratio"] = mr["eps_ratio"] if mr and "eps_ratio" in mr else 1.0
     start["l1_l2_ratio"] = mr["l1_l2_ratio"] if mr else 1.0
     start["c_strip"] = rig.c_strip if rig.c_strip is not None else 0.0
+    if data.f_int_free:
+        start["f_int"] = float(np.mean(data.carriage[:, 0]))
+    if data.stiffness is not None:
+        al, _ = rig.axes(float(data.stiffness[0, 0]))
+        k = float(np.mean(data.stiffness[:, 1]))
+        start["eps2"] = max(k / cf.stick_stiffness_x1(start["eps_ratio"], 1.0, al), 1e-9)
     if data.ramp is not None:
         stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
         if stick.sum() >= 2:

@@ -8,6 +8,7 @@ identification, its validation on the FMU, its JSON) -> identify_report
 (figure, Markdown, summary).  Units: N, m, deg."""
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -20,7 +21,7 @@ from .measurements import MeasurementSet, data_digest, load_data, write_measurem
 from .statistics import json_dof, res_stats
 
 # The whole job here; its parts importable from here as before.
-__all__ = ["Identification", "identify", "run", "validate_with_fmu", "simulate_measurements",
+__all__ = ["Identification", "identify", "run", "load_folder", "validate_with_fmu", "simulate_measurements",
            "MeasurementSet", "RigSetup", "load_data", "write_measurements", "JointFit", "joint_fit",
            "identifiability", "eq1", "eq40_fit", "max_rule", "REPORTED", "summary_text"]
 
@@ -36,6 +37,8 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     from ..runs.batch import run_many
     from ..runs.pool import default_workers
     rig = data.rig
+    if "f_int" in values:
+        rig = dataclasses.replace(rig, f_int_N=values["f_int"])
     mu1, mu2 = values.get("mu1"), values.get("mu2")
     if mu1 is None:
         return {"skipped": "mu1, mu2 not identified: nothing to simulate"}
@@ -44,7 +47,8 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     law = ContactParams(mu1, mu2, ratio * eps2, eps2)
     c_strip = values.get("c_strip", rig.c_strip or 0.0)
     h = rig.harness(c_strip=c_strip)
-    points = [] if data.forces is None else [(float(a), rig.velocity_m_s) for a in data.forces[:, 0]]
+    fv = data.velocities_of_forces()
+    points = [] if data.forces is None else [(float(a), float(v)) for a, v in zip(data.forces[:, 0], fv)]
     if data.angles is not None:
         points += [(float(a), float(v)) for a, v in zip(data.angles[:, 0], data.velocities_of_angles())]
     points = sorted(set(points))
@@ -64,7 +68,7 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     if line:
         out["warning"] = line
     if data.forces is not None:
-        res = data.forces[:, 1] - np.array([sim[(float(a), rig.velocity_m_s)][1] for a in data.forces[:, 0]])
+        res = data.forces[:, 1] - np.array([sim[(float(a), float(v))][1] for a, v in zip(data.forces[:, 0], fv)])
         out["forces_N"] = res_stats(res)
     if data.angles is not None:
         res = data.angles[:, 1] - np.array([sim[(float(a), float(v))][0] for a, v in
@@ -107,6 +111,11 @@ class Identification:
                               "ci95": f.ci95["c_strip"], "dof": json_dof(f.param_dof.get("c_strip")),
                               "unit": "N s/m", "note": "the strip's lateral viscosity, from the "
                                                        "angles' change with velocity"}
+        if "f_int" in f.values:
+            out["f_int"] = {"value": f.values["f_int"], "stderr": f.stderr["f_int"],
+                            "ci95": f.ci95["f_int"], "dof": json_dof(f.param_dof.get("f_int")),
+                            "unit": "N", "note": "the carriage's internal resistance, from the "
+                                                 "carriage runs (and every force)"}
         if "l1_l2_ratio" in f.values:
             n = "l1_l2_ratio"
             out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n],
@@ -116,8 +125,16 @@ class Identification:
         out["eq40"] = {k: v for k, v in (self.eq40 or {}).items() if k != "eq41"} or None
         out["eq41"] = (self.eq40 or {}).get("eq41")
         out["eq1"] = self.eq1
-        unit = {"forces": "forces_N", "angles": "angles_deg", "ramp": "ramp_N"}
+        unit = {"forces": "forces_N", "angles": "angles_deg", "ramp": "ramp_N", "carriage": "carriage_N",
+                "stiffness": "stiffness_N_m"}
         out["noise_estimate"] = {unit[g]: s for g, s in f.sigma.items()}
+        tau = f.between_runs.get("angles")
+        if isinstance(tau, dict):   # a measured angle's noise at each velocity, for uq
+            out["noise_estimate"]["angles_deg_by_velocity"] = {
+                v: (t * t + f.within_run["angles"] ** 2) ** 0.5 for v, t in tau.items()}
+        out["noise_model"] = {unit[g]: {"between_runs": f.between_runs.get(g), "within_run_rms":
+                                        f.within_run.get(g), "values": int(len(f.residuals[g]))}
+                              for g in f.sigma}
         if f.sigma_assumed:
             out["noise_assumed"] = [unit[g] for g in f.sigma_assumed]
         out["fit_residuals"] = {g: res_stats(r) for g, r in f.residuals.items()}
@@ -125,11 +142,20 @@ class Identification:
         # What uncertainty propagation (orthocontact uq) draws from: the
         # joint Gauss-Newton covariance of the fitted parameters, and the
         # measured angles to show beside the predictions.
-        out["covariance"] = {"parameters": list(f.free),
-                             "values": [f.values[n] for n in f.free],
-                             "matrix": [[float(c) for c in row] for row in 0.5 * (f.cov + f.cov.T)]}
+        # uq draws the law's parameters: their marginal (exact for a
+        # normal); the joint one, with F_int and the strip, beside it.
+        law = [i for i, n in enumerate(f.free) if n not in ("f_int", "c_strip")]
+        sym = 0.5 * (f.cov + f.cov.T)
+        out["covariance"] = {"parameters": [f.free[i] for i in law],
+                             "values": [f.values[f.free[i]] for i in law],
+                             "matrix": [[float(sym[i, j]) for j in law] for i in law]}
+        if len(law) < len(f.free):
+            out["covariance_joint"] = {"parameters": list(f.free), "values": [f.values[n] for n in f.free],
+                                       "matrix": [[float(c) for c in row] for row in sym]}
         out["points"] = {"angles": None if d.angles is None else
                          [[float(a), float(p)] for a, p in d.angles],
+                         "angle_velocities": None if d.angles is None or d.angle_velocities is None
+                         else [float(v) for v in d.angle_velocities],
                          "forces": None if d.forces is None else
                          [[float(a), float(F)] for a, F in d.forces]}
         out["ramp_stick_points"] = f.stick_points
@@ -142,7 +168,8 @@ class Identification:
         r = d.rig
         out["assumptions"] = {"rule": r.rule, "alpha_offset_deg": r.alpha_offset_deg,
                               "beta_offset_deg": r.beta_offset_deg, "mass_kg": r.mass_kg, "g": r.g,
-                              "f_int_N": r.f_int_N, "ramp_angle_deg": r.ramp_angle_deg,
+                              "f_int_N": "estimated" if "f_int" in f.values else r.f_int_N,
+                              "ramp_angle_deg": r.ramp_angle_deg,
                               "mu_strip": r.mu_strip,
                               "c_strip_N_s_m": ("estimated" if "c_strip" in f.values else
                                                 (r.c_strip if r.c_strip is not None else 0.0)),
@@ -165,15 +192,47 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
     return Identification(data, fit, eq1(data), mr, e40, val, start)
 
 
+def load_folder(folder):
+    """(MeasurementSet, the raw recordings and their reduction or None) of a
+    measurement folder: raw recordings if it has a runs.csv, reduced data
+    otherwise.  Raises InputError (one line)."""
+    from .recordings import is_recordings, load_recordings
+    if not is_recordings(folder):
+        return load_data(folder), None
+    from .reduction import reduce_recordings
+    from .reduction_output import to_measurements
+    rec = load_recordings(folder)
+    red = reduce_recordings(rec)
+    return to_measurements(rec, red), (rec, red)
+
+
 def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
-        fmu_path=None) -> Identification:
-    """identify() and write identified.json, fit.png, identified.md into out."""
+        fmu_path=None, recordings=None) -> Identification:
+    """identify() and write identified.json, fit.png, identified.md into
+    out; with recordings (load_folder's second value) also the reduction's
+    table and figures."""
     from ..output.tables import write_json
     from .report import fit_figure, markdown_text
     res = identify(data, validate, workers, fmu_path)
-    write_json(out / "identified.json", res.as_json())
+    j = res.as_json()
+    if recordings is not None:
+        from .reduction_output import write_figures, write_rig_scenario, write_table
+        rec, red = recordings
+        write_table(red, out)
+        figures = write_figures(rec, red, out)
+        scenario = write_rig_scenario(data, res.fit.values, out)
+        j["reduction"] = {"runs": {k: sum(r.kind == k for r in red.runs) for k in ("slide", "carriage", "ramp")},
+                          "left_out": [r.run for r in red.runs if not r.used],
+                          "flagged": {r.run: r.flags for r in red.runs if r.flags},
+                          "table": "reduction.csv", "figures": [f.name for f in figures],
+                          "scenario": scenario.name if scenario else None}
+    write_json(out / "identified.json", j)
     fit_figure(res, out / "fit.png")
-    (out / "identified.md").write_text(markdown_text(res))
+    md = markdown_text(res)
+    if recordings is not None:
+        from .report import reduction_markdown
+        md += "\n" + reduction_markdown(j)
+    (out / "identified.md").write_text(md)
     return res
 
 

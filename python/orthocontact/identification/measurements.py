@@ -2,11 +2,14 @@
 
 A measurement set is a folder (see scenarios/example_identification/README.md):
   rig.toml     mass_kg, g, f_int_N, velocity_m_s, rule, geometry (required file)
-  forces.csv   alpha_deg,force_N    driving force at an orientation (repeats allowed)
-  angles.csv   alpha_deg,phi_deg    trajectory angle (repeats allowed)
-  ramp.csv     x1_m,force_N         start of a pull, before and into sliding
-`alpha_deg` is the orientation angle of the sweep (the mat angle in the
-paper's experiment); the tensors' axes follow from it by the geometry offsets.
+  forces.csv   mat_angle_deg,force_N    driving force at an orientation (repeats allowed)
+  angles.csv   mat_angle_deg,phi_deg    trajectory angle (repeats allowed)
+  ramp.csv     x1_m,force_N             start of a pull, before and into sliding
+`mat_angle_deg` is the swept angle: the mat's (the ripples') angle; the
+tensors' axes follow from it by the geometry offsets.  The column's old name
+`alpha_deg` (which read as the adhesion axis, and is not) is still read.
+A lab's raw recordings (runs.csv, trajectories/, forces/) are read by
+recordings.py and reduced to a MeasurementSet by reduction.py.
 A bad file is an InputError naming the file, the line and the column.
 Units: N, m, deg."""
 from __future__ import annotations
@@ -34,11 +37,30 @@ else:  # pragma: no cover
 class MeasurementSet:
     folder: Path
     rig: RigSetup
-    forces: np.ndarray | None = None   # (n, 2): alpha_deg, force_N
-    angles: np.ndarray | None = None   # (n, 2): alpha_deg, phi_deg (counterclockwise)
+    forces: np.ndarray | None = None   # (n, 2): mat angle [deg], force [N]
+    angles: np.ndarray | None = None   # (n, 2): mat angle [deg], phi [deg] (counterclockwise)
     ramp: np.ndarray | None = None     # (n, 2): x1_m, force_N
     angle_velocities: np.ndarray | None = None  # (n,): m/s of each angle (None: rig.velocity_m_s)
     warnings: tuple = ()               # one line each: unusual values in the files
+    # From raw recordings (one value per run): each value's within-run
+    # standard error (None: 0, the scatter is all estimated), the forces'
+    # velocities, F_int per carriage run, the ramp runs' stick stiffness.
+    force_se: np.ndarray | None = None      # (n,) N
+    angle_se: np.ndarray | None = None      # (n,) deg
+    force_velocities: np.ndarray | None = None  # (n,) m/s (None: rig.velocity_m_s)
+    carriage: np.ndarray | None = None      # (n, 2): F_int [N], its standard error
+    stiffness: np.ndarray | None = None     # (n, 3): mat angle [deg], dF/dx1 [N/m], its standard error
+
+    @property
+    def f_int_free(self) -> bool:
+        """F_int is estimated (from carriage runs), not taken from rig.toml."""
+        return self.carriage is not None
+
+    def velocities_of_forces(self) -> np.ndarray:
+        """The carriage velocity [m/s] of each measured force."""
+        if self.force_velocities is not None:
+            return self.force_velocities
+        return np.full(0 if self.forces is None else len(self.forces), self.rig.velocity_m_s)
 
     def velocities_of_angles(self) -> np.ndarray:
         """The carriage velocity [m/s] of each measured angle."""
@@ -56,6 +78,9 @@ def visible(text: str) -> str:
     """text with every character a reader cannot see (a byte-order mark, a
     zero-width or no-break space, a control character) written as \\uXXXX."""
     return "".join(c if c.isprintable() or c == " " else f"\\u{ord(c):04x}" for c in text)
+
+
+ANGLE, OLD_ANGLE = "mat_angle_deg", "alpha_deg"
 
 
 def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: str,
@@ -77,6 +102,8 @@ def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: 
         raise InputError(f"{path}: expected a header line with columns {','.join(columns)}")
     line0, header = rows[0]
     header = [h.strip() for h in header]
+    if ANGLE in columns and ANGLE not in header and OLD_ANGLE in header:
+        header[header.index(OLD_ANGLE)] = ANGLE
     idx = []
     for c in columns:
         if c not in header:
@@ -114,11 +141,11 @@ def load_data(folder) -> MeasurementSet:
         raise InputError(f"{folder}: expected a folder with rig.toml and forces.csv/angles.csv/ramp.csv")
     rig = load_rig_toml(folder / "rig.toml")
     angle = lambda v: None if -180 <= v <= 180 else "an angle in [-180, 180] deg"
-    forces = _load_csv(folder / "forces.csv", ("alpha_deg", "force_N"),
-                       {"alpha_deg": angle, "force_N": lambda v: None if v > 0 else "a force > 0"},
+    forces = _load_csv(folder / "forces.csv", (ANGLE, "force_N"),
+                       {ANGLE: angle, "force_N": lambda v: None if v > 0 else "a force > 0"},
                        2, "two parameters, mu1 and mu2")
-    angles = _load_csv(folder / "angles.csv", ("alpha_deg", "phi_deg"),
-                       {"alpha_deg": angle, "phi_deg": lambda v: None if -90 < v < 90 else "an angle in (-90, 90) deg",
+    angles = _load_csv(folder / "angles.csv", (ANGLE, "phi_deg"),
+                       {ANGLE: angle, "phi_deg": lambda v: None if -90 < v < 90 else "an angle in (-90, 90) deg",
                         "velocity_m_s": lambda v: None if v > 0 else "a velocity > 0"},
                        1, "the stiffness ratio", optional={"velocity_m_s": rig.velocity_m_s})
     velocities = None
@@ -130,7 +157,7 @@ def load_data(folder) -> MeasurementSet:
                      3, "stiffness needs points on the stick branch")
     if forces is None and angles is None and ramp is None:
         raise InputError(f"{folder}: expected at least one of forces.csv, angles.csv, ramp.csv")
-    warnings = list(rig.warnings) + _plausible_data(folder, rig, forces, angles)
+    warnings = list(rig.warnings) + plausible_data(folder, rig, forces, angles)
     if angles is not None and rig.phi_convention == "paper":
         angles[:, 1] = -angles[:, 1]
     if forces is not None and len(np.unique(np.round(friction_axis_key(rig, forces[:, 0]), 9))) < 2:
@@ -162,7 +189,7 @@ RADIAN_TRAJECTORY = 0.25                  # |phi| [deg] of angles typed in rad (
 MU_FROM_FORCE = (0.0, 5.0)                # (F - F_int) / (m g) of a plausible force
 
 
-def _plausible_data(folder: Path, rig: RigSetup, forces, angles) -> list[str]:
+def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None) -> list[str]:
     """Raises InputError for data that cannot be right (orientations in
     radians, forces below F_int or implying mu outside (0, 5)); returns
     warnings for unusual ones (trajectory angles that all look like
@@ -170,7 +197,7 @@ def _plausible_data(folder: Path, rig: RigSetup, forces, angles) -> list[str]:
     warnings = []
     for name, arr in (("forces.csv", forces), ("angles.csv", angles)):
         if arr is not None and plausibility.looks_like_radians(arr[:, 0], RADIAN_ORIENTATIONS):
-            raise InputError(f"{folder / name}: alpha_deg: all orientations lie within +-pi/2 "
+            raise InputError(f"{folder / name}: {ANGLE}: all orientations lie within +-pi/2 "
                              f"({arr[:, 0].min():g} .. {arr[:, 0].max():g}): radians? the column is "
                              "in degrees")
     if angles is not None and plausibility.looks_like_radians(angles[:, 1], RADIAN_TRAJECTORY):
@@ -184,8 +211,9 @@ def _plausible_data(folder: Path, rig: RigSetup, forces, angles) -> list[str]:
                 why = (f"below f_int_N = {rig.f_int_N:g} N (the sensor reads F_int plus the push)"
                        if F <= rig.f_int_N else
                        f"mu = (F - F_int)/(m g) = {mu:.3g}, outside (0, 5): N? (kN, or lbf?)")
-                raise InputError(f"{folder / 'forces.csv'}: row {k + 1} (alpha_deg = {a:g}): force_N = {F:g}: "
-                                 f"{why}")
+                where = f"run {names[k]}" if names else f"row {k + 1}"
+                raise InputError(f"{folder / 'forces.csv' if not names else folder}: {where} "
+                                 f"({ANGLE} = {a:g}): force_N = {F:g}: {why}")
     return warnings
 
 
@@ -206,8 +234,8 @@ def write_measurements(folder: Path, rig: RigSetup, forces=None, angles=None, ra
     (folder / "rig.toml").write_text("\n".join(lines) + "\n")
     if angles is not None and angle_velocities is not None:
         angles = [(a, p, v) for (a, p), v in zip(angles, angle_velocities)]
-    for name, header, arr in (("forces.csv", "alpha_deg,force_N", forces),
-                              ("angles.csv", "alpha_deg,phi_deg" + (",velocity_m_s" if angle_velocities
+    for name, header, arr in (("forces.csv", f"{ANGLE},force_N", forces),
+                              ("angles.csv", f"{ANGLE},phi_deg" + (",velocity_m_s" if angle_velocities
                                                                      is not None else ""), angles),
                               ("ramp.csv", "x1_m,force_N", ramp)):
         if arr is not None:

@@ -105,10 +105,28 @@ def markdown_text(res) -> str:
     if j["eq40"]:
         L.append(f"- eq. (40) by IPOPT: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f} (objective {j['eq40']['objective']:.3e}); "
                  f"the paper's eq. (41): l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} (objective {j['eq41']['objective']:.3e}) — not the minimiser")
-    L.append("- noise estimated from the residuals: " + ", ".join(f"{k} {v:.3g}" for k, v in j["noise_estimate"].items()))
+    L.append("- noise estimated from the residuals: " + ", ".join(
+        f"{k} {v:.3g}" for k, v in j["noise_estimate"].items() if not isinstance(v, dict)))
     v = j["validation_fmu"]
     if v and "skipped" not in v:
         parts = [f"{k} rms {v[k]['rms']:.3g}" for k in ("forces_N", "angles_deg", "ramp_N") if k in v]
         L.append(f"- validation with the FMU in the rig harness ({v['rig_mode']}): " + ", ".join(parts))
     L += ["", "![data and fit](fit.png)", ""]
     return "\n".join(L)
+
+
+def reduction_markdown(j: dict) -> str:
+    """identified.md's lines on the runs (raw recordings): the noise model's
+    two parts per data group, and what the reduction left out or flagged."""
+    tau = lambda t: (", ".join(f"{t_:.3g} at {v} m/s" for v, t_ in t.items()) if isinstance(t, dict)
+                     else f"{t:.3g}")
+    r = j["reduction"]
+    return "\n".join([
+        "## Runs", "",
+        "- run-to-run scatter (between runs) / within-run error (rms): " + "; ".join(
+            f"{k} {tau(m['between_runs'])} / {m['within_run_rms']:.2g}" for k, m in j["noise_model"].items()),
+        f"- runs: {r['runs']['slide']} slide, {r['runs']['carriage']} carriage, {r['runs']['ramp']} ramp; "
+        f"left out: {', '.join(r['left_out']) or 'none'}; flagged: "
+        f"{', '.join(f'{k} ({chr(32).join(v)})' for k, v in r['flagged'].items()) or 'none'}",
+        "- the reduction per run: reduction.csv; the paths per mat angle: "
+        + ", ".join(f"![{f}]({f})" for f in r["figures"]), ""])

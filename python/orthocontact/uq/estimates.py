@@ -31,6 +31,21 @@ class Estimates:
     beta_offset_deg: float
     angle_points: np.ndarray | None  # [[mat angle deg, phi deg counterclockwise]]
     angle_noise_deg: float | None    # the identification's noise estimate of a measured angle
+    angle_velocities: np.ndarray | None = None   # m/s of each measured angle (raw recordings)
+    angle_noise_by_velocity: dict | None = None  # m/s -> noise of a measured angle at it [deg]
+
+    def at_velocity(self, v: float):
+        """(measured angles, noise of a new measured angle [deg]) at the
+        carriage velocity v [m/s]: with runs at several velocities, those at
+        v and their own scatter; otherwise all of them."""
+        pts, noise = self.angle_points, self.angle_noise_deg
+        if pts is not None and self.angle_velocities is not None:
+            pts = pts[np.isclose(self.angle_velocities, v, rtol=1e-9)]
+            pts = pts if len(pts) else None
+        for key, n in (self.angle_noise_by_velocity or {}).items():
+            if math.isclose(float(key), v, rel_tol=1e-9):
+                noise = n
+        return pts, noise
 
 
 def load_estimates(path) -> Estimates:
@@ -84,9 +99,17 @@ def load_estimates(path) -> Estimates:
     noise = (d.get("noise_estimate") or {}).get("angles_deg")
     if noise is not None and not (isinstance(noise, (int, float)) and math.isfinite(noise) and noise >= 0):
         raise InputError(f"{path}: noise_estimate.angles_deg: expected a number >= 0, got {noise!r}")
+    vel = (d.get("points") or {}).get("angle_velocities")
+    by_v = (d.get("noise_estimate") or {}).get("angles_deg_by_velocity")
+    try:
+        vel = None if vel is None or points is None else np.array(vel, dtype=float).reshape(len(points))
+        by_v = None if by_v is None else {float(k): float(v) for k, v in by_v.items()}
+    except (TypeError, ValueError, AttributeError):
+        raise InputError(f"{path}: points.angle_velocities / noise_estimate.angles_deg_by_velocity: "
+                         "expected one velocity per angle and numbers") from None
     return Estimates(path, list(names), mean, 0.5 * (C + C.T), rule,
                      float(a.get("alpha_offset_deg", 0.0)), float(a.get("beta_offset_deg", 0.0)), points,
-                     None if noise is None else float(noise))
+                     None if noise is None else float(noise), vel, by_v)
 
 
 def draw(est: Estimates, n: int, seed: int) -> tuple[np.ndarray, float]:

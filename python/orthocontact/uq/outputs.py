@@ -18,8 +18,8 @@ def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: P
     from ..output.tables import write_csv, write_json
     bp, bd = bands(res.phi), bands(res.drive)
     nan = np.full(len(res.angles_deg), np.nan)
-    bm = bands(measurement_draws(res, est.angle_noise_deg, seed)) if est.angle_noise_deg is not None \
-        else {"lo": nan, "hi": nan}
+    noise = est.at_velocity(sc.rig.velocity_m_s)[1]
+    bm = bands(measurement_draws(res, noise, seed)) if noise is not None else {"lo": nan, "hi": nan}
     header = ["angle_deg", "phi_median_deg", "phi_p2.5_deg", "phi_p97.5_deg", "measured_p2.5_deg",
               "measured_p97.5_deg", "phi_at_estimates_deg", "drive_median_N", "drive_p2.5_N",
               "drive_p97.5_N"]
@@ -46,7 +46,7 @@ def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: P
                                     zip(res.angles_deg, res.nominal_checks.status())],
                    "warning": res.warning(sc)},
         "widest_band": _widest(res.angles_deg, bp),
-        "measurement_noise_deg": est.angle_noise_deg,
+        "measurement_noise_deg": noise,
         "data_inside_measurement_band": _inside(res.angles_deg, bm, est, sc),
         "bands": [dict(zip(header, r)) for r in rows],
         "band_meaning": {"phi": "2.5-97.5 % of the rig's phi over the drawn parameter sets: the "
@@ -70,9 +70,10 @@ def _inside(angles, bm, est: Estimates, sc: Scenario) -> dict | None:
     """How many of the identification's measured angles lie in the
     measurement band (interpolated at their angles): about 95 % if the
     model and its uncertainty hold."""
-    if est.angle_points is None or not _same_geometry(sc, est) or not np.all(np.isfinite(bm["lo"])):
+    points = est.at_velocity(sc.rig.velocity_m_s)[0]
+    if points is None or not _same_geometry(sc, est) or not np.all(np.isfinite(bm["lo"])):
         return None
-    a, phi = est.angle_points[:, 0], est.angle_points[:, 1]
+    a, phi = points[:, 0], points[:, 1]
     ok = (a >= angles[0]) & (a <= angles[-1])
     lo, hi = np.interp(a[ok], angles, bm["lo"]), np.interp(a[ok], angles, bm["hi"])
     inside = int(np.sum((phi[ok] >= lo) & (phi[ok] <= hi)))
@@ -97,8 +98,9 @@ def _figure(res: UQResult, est: Estimates, sc: Scenario, bp: dict, bm: dict, pat
                     label="95 %: parameters only")
     ax.plot(a, bp["median"], "-", color="C0", label="median")
     ax.plot(a, res.nominal_phi, "--", color="0.25", lw=1, label="at the estimates")
-    if est.angle_points is not None and _same_geometry(sc, est):
-        ax.plot(est.angle_points[:, 0], est.angle_points[:, 1], "o", ms=4, color="C3",
+    points = est.at_velocity(sc.rig.velocity_m_s)[0]
+    if points is not None and _same_geometry(sc, est):
+        ax.plot(points[:, 0], points[:, 1], "o", ms=4, color="C3",
                 label="identification data")
     ax.set_xlabel(f"{swept_label(sc)} [deg]")
     ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
