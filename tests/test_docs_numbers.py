@@ -65,7 +65,7 @@ def test_the_compiled_masters_speed_up_is_one_range_everywhere():
 
 def test_identify_help_names_every_column():
     text = _help("identify")
-    for column in ("alpha_deg", "force_N", "phi_deg", "velocity_m_s", "x1_m"):
+    for column in ("mat_angle_deg", "force_N", "phi_deg", "velocity_m_s", "x1_m", "runs.csv", "t_s"):
         assert column in text, column
 
 

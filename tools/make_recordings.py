@@ -164,7 +164,6 @@ def make_runs(truth: Truth, sensors: Sensors, design: Design, rng, paths=None, r
     if ramp is None:
         ramp = ramp_path(truth, design.ramp_travel_m)
     runs = {}
-    W = truth.mass_kg * truth.g
 
     def force_log(t, pushing, moving, accel):
         tare = rng.normal(0, s.force_tare_N)
