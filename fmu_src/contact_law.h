@@ -111,8 +111,17 @@ void oc_law_jacobian(const oc_law *law, const oc_state *start,
                      double J[OC_JAC_ROWS][OC_JAC_COLS]);
 
 /* 1 if every output and committed number of the step is finite (q, the
- * committed state); the tangent's internals (dgamma, w) are not checked. */
-int oc_step_is_finite(const oc_step *st);
+ * committed state); the tangent's internals (dgamma, w) are not checked.
+ * Inline: it runs on every step.  x - x is 0 for a finite x and NaN for an
+ * infinity or NaN, so the sum of the differences is 0 exactly when all are
+ * finite (sums of zeros never round away from 0). */
+static inline int oc_step_is_finite(const oc_step *st) {
+    const double z = (st->q[0] - st->q[0]) + (st->q[1] - st->q[1]) +
+                     (st->next.a[0] - st->next.a[0]) + (st->next.a[1] - st->next.a[1]) +
+                     (st->next.s[0] - st->next.s[0]) + (st->next.s[1] - st->next.s[1]) +
+                     (st->next.energy - st->next.energy);
+    return z == 0.0;
+}
 
 /* NULL if `st` can be a committed state of `law` (finite, energy >= 0,
  * open contact unloaded, force inside the yield surface up to rounding),
