@@ -482,7 +482,7 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedStat
 
 /* ---- Derivatives ------------------------------------------------------------ */
 
-static fmi3Status derivative(fmi3Instance c, const char *fn, const fmi3ValueReference unknowns[],
+static fmi3Status derivative3(fmi3Instance c, const char *fn, const fmi3ValueReference unknowns[],
                              size_t nUnknowns, const fmi3ValueReference knowns[], size_t nKnowns,
                              const fmi3Float64 seed[], size_t nSeed, fmi3Float64 sensitivity[],
                              size_t nSensitivity, int adjoint) {
@@ -508,7 +508,7 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference
                                         size_t nUnknowns, const fmi3ValueReference knowns[],
                                         size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                         fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative(c, "fmi3GetDirectionalDerivative", unknowns, nUnknowns, knowns, nKnowns,
+    return derivative3(c, "fmi3GetDirectionalDerivative", unknowns, nUnknowns, knowns, nKnowns,
                       seed, nSeed, sensitivity, nSensitivity, 0);
 }
 
@@ -516,7 +516,7 @@ fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference unk
                                     size_t nUnknowns, const fmi3ValueReference knowns[],
                                     size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                     fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative(c, "fmi3GetAdjointDerivative", unknowns, nUnknowns, knowns, nKnowns, seed,
+    return derivative3(c, "fmi3GetAdjointDerivative", unknowns, nUnknowns, knowns, nKnowns, seed,
                       nSeed, sensitivity, nSensitivity, 1);
 }
 

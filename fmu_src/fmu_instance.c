@@ -45,7 +45,7 @@ double *fmu_model_time(fmu_model *m) { return SLOT_D(m, &INFO.vars[0]); }
 
 /* The outputs that follow from the time, parameters and inputs, or why one
  * is not finite (then nothing has changed): fmu_model.h. */
-static inline fmu_status refresh(fmu_model *m, fmu_msg *msg) {
+static inline fmu_status model_refresh(fmu_model *m, fmu_msg *msg) {
     return INFO.refresh ? INFO.refresh(m, msg) : FMU_OK;
 }
 
@@ -119,18 +119,18 @@ enum { SAVED_ON_STACK = 16 };
         changed |= x->settable;                                                                 \
     }                                                                                           \
     int refreshed = 0;                                                                          \
-    if (st == FMU_OK && n > 0 && (st = refresh(m, msg)) == FMU_OK) {                            \
+    if (st == FMU_OK && n > 0 && (st = model_refresh(m, msg)) == FMU_OK) {                            \
         refreshed = 1;                                                                          \
         st = fmu_model_update(m, changed, allow, msg);                                          \
     }                                                                                           \
     if (st != FMU_OK) {                                                                         \
         while (i-- > 0) *SLOT(m, &vars[vr[i]]) = saved[i];                                      \
-        if (refreshed) (void)refresh(m, NULL);                                                  \
+        if (refreshed) (void)model_refresh(m, NULL);                                                  \
     }                                                                                           \
     if (saved != stack) free(saved);                                                            \
     return st;
 
-fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
+FMU_HOT fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
                                  int allow, fmu_msg *msg) {
     SET_BATCH(double, x->type == FMU_T_Float64, v[i], SLOT_D)
 }
@@ -149,7 +149,7 @@ static fmu_status not_of_type(unsigned int vr, const char *asked, fmu_msg *msg) 
     return fmu_fail(msg, "unknown value reference %u", vr);
 }
 
-fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
+FMU_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
                                  fmu_msg *msg) {
     const fmu_var *const vars = INFO.vars;
     const unsigned int nv = INFO.n_vars;
@@ -191,7 +191,7 @@ fmu_status fmu_model_init_from(fmu_model *m, const double start[], fmu_msg *msg)
         if (x->type == FMU_T_Float64) *SLOT_D(m, x) = s;
         else *SLOT_I(m, x) = (int)s;
     }
-    if (refresh(m, msg) != FMU_OK) return FMU_ERR;
+    if (model_refresh(m, msg) != FMU_OK) return FMU_ERR;
     return fmu_model_update(m, FMU_CHANGED_PARAMETERS | FMU_CHANGED_INPUTS,
                             FMU_ALLOW_PARAMETERS | FMU_ALLOW_INPUTS, msg);
 }
@@ -527,7 +527,7 @@ fmu_status fmu_set_start_time(fmu_instance *I, double t, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
     const double before = *time;
     *time = t;
-    if (refresh(I->model, msg) != FMU_OK) {
+    if (model_refresh(I->model, msg) != FMU_OK) {
         *time = before;
         return FMU_ERR;
     }
@@ -548,7 +548,7 @@ fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg) {
     return FMU_OK;
 }
 
-fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
+FMU_HOT fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
     if (!isfinite(t) || !isfinite(h) || !(h > 0) || !isfinite(t + h))
         return fmu_fail(msg, "currentCommunicationPoint=%g, communicationStepSize=%g: the step "
@@ -563,13 +563,13 @@ fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
      * the model steps) there, and the time goes back if either refuses. */
     const double before = *time;
     *time = t + h;
-    if (refresh(I->model, msg) != FMU_OK) {
+    if (model_refresh(I->model, msg) != FMU_OK) {
         *time = before;
         return FMU_ERR;
     }
     if (fmu_model_do_step(I->model, h, msg) != FMU_OK) {
         *time = before;
-        (void)refresh(I->model, NULL); /* the outputs it had, accepted before */
+        (void)model_refresh(I->model, NULL); /* the outputs it had, accepted before */
         return FMU_ERR;
     }
     return FMU_OK;
@@ -636,7 +636,7 @@ fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size
     if (st == FMU_OK) {
         *fmu_model_time(next) = time;
         fmu_msg why;
-        if ((st = refresh(next, &why)) != FMU_OK)
+        if ((st = model_refresh(next, &why)) != FMU_OK)
             fmu_fail(msg, "serialized state at t = %g s: %s", time, why.text);
     }
     if (st == FMU_OK) {
