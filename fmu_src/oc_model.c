@@ -161,15 +161,20 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
     double J[OC_JAC_ROWS][OC_JAC_COLS];
     oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->steps[m->shown], J);
     const size_t n_out = adjoint ? n_known : n_unknown;
+    /* Every index was checked above; as unsigned the compiler, which sees
+     * -1 among jac_row's values once the FMU is one unit, sees no index
+     * below the array either. */
+#define JAC(row_vr, col_vr) J[(unsigned)jac_row(row_vr) % OC_JAC_ROWS][(unsigned)jac_col(col_vr) % OC_JAC_COLS]
     for (size_t k = 0; k < n_out; ++k) {
         double acc = 0.0;
         if (adjoint)
-            for (size_t i = 0; i < n_unknown; ++i) acc += J[jac_row(unknown[i])][jac_col(known[k])] * seed[i];
+            for (size_t i = 0; i < n_unknown; ++i) acc += JAC(unknown[i], known[k]) * seed[i];
         else
-            for (size_t j = 0; j < n_known; ++j) acc += J[jac_row(unknown[k])][jac_col(known[j])] * seed[j];
+            for (size_t j = 0; j < n_known; ++j) acc += JAC(unknown[k], known[j]) * seed[j];
         if (!isfinite(acc)) return fmu_fail(msg, "the derivative overflows");
         out[k] = acc;
     }
+#undef JAC
     return FMU_OK;
 }
 
