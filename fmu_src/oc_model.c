@@ -111,10 +111,19 @@ static fmu_status exit_init(oc_model *m, fmu_msg *msg) {
     return evaluate(m, &m->law, &init, msg);
 }
 
+/* A further step with held inputs: rare (a master sets inputs before a
+ * step), so kept out of doStep, whose every call would otherwise pay for
+ * the registers the law needs. */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static fmu_status step_again(oc_model *m, fmu_msg *msg) {
+    return evaluate(m, &m->law, &m->steps[m->shown].next, msg);
+}
+
 FMU_HOT fmu_status fmu_model_do_step(oc_model *m, double h, fmu_msg *msg) {
     (void)h; /* rate-independent: the step size does not enter the law */
-    if (m->result_committed && evaluate(m, &m->law, &m->steps[m->shown].next, msg) != FMU_OK)
-        return FMU_ERR;
+    if (m->result_committed && step_again(m, msg) != FMU_OK) return FMU_ERR;
     m->result_committed = 1;
     return FMU_OK;
 }
