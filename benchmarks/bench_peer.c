@@ -24,6 +24,13 @@
 #include <string.h>
 
 #include "bench_peer.h"
+#include <time.h>
+
+static double now_cpu(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
 #include "fmu_token.h"
 
 /* The token a previous release checks (BENCH_PREV_FMI*): its own, given as
@@ -103,9 +110,31 @@ static int check(version *v, int nv, long steps) {
     return failed;
 }
 
+/* ns per operation of a chain in which each waits for the one before. */
+static double chain_ns(int op, long n) {
+    volatile double seed = 1.0000001;
+    double x = seed;
+    const double t0 = now_cpu();
+    if (op == 0)
+        for (long i = 0; i < n; ++i) x = sqrt(x);
+    else if (op == 1)
+        for (long i = 0; i < n; ++i) x = 1.0000001 / x;
+    else
+        for (long i = 0; i < n; ++i) x = x * 1.0000001 + 1e-300;
+    const double dt = now_cpu() - t0;
+    seed = x; /* keeps the chain */
+    return 1e9 * dt / n;
+}
+
 /* The floor of the calls: the same loop on a null FMU (benchmarks/peer/
- * null_fmi*.c), whose calls do nothing but keep and return values. */
+ * null_fmi*.c), whose calls do nothing but keep and return values; and the
+ * latencies a step's dependency chain is made of. */
 static void floor_of_calls(version *v, int nv, long steps, int rounds) {
+    double lat[3] = {1e30, 1e30, 1e30};
+    for (int r = 0; r < rounds; ++r)
+        for (int op = 0; op < 3; ++op) lat[op] = fmin(lat[op], chain_ns(op, 20000000));
+    printf("# dependent chains: sqrt %.2f ns, division %.2f ns, multiply-add %.2f ns\n", lat[0],
+           lat[1], lat[2]);
     printf("# the calls alone (null FMU: no checks, no physics), least disturbed of %d rounds\n",
            rounds);
     for (int i = 0; i < nv; ++i) {
