@@ -73,7 +73,12 @@ static FMU_HOT fmu_status evaluate(oc_model *m, const oc_law *law, const oc_stat
      * is read in place, no copy unless it moves */
     oc_step *st = &m->steps[m->shown ^ 1];
     oc_law_step(law, from, m->u, m->N, st);
-    if (!oc_step_is_finite(st))
+    /* A stick step keeps `from`'s slip and energy (finite: a committed or
+     * initial state always is) and a force inside the yield surface (finite:
+     * an infinite or NaN trial fails the stick test); only q = G R a can
+     * overflow.  Most steps stick: they check two numbers, not seven. */
+    if (st->contact == OC_STICK ? !(isfinite(st->q[0]) && isfinite(st->q[1]))
+                                : !oc_step_is_finite(st))
         return fmu_fail(msg, "inputs u1=%g m, u2=%g m, N=%g N overflow the force or slip", m->u[0],
                         m->u[1], m->N);
     if (law != &m->law) m->law = *law;
