@@ -77,7 +77,7 @@ static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int type_o
 
 /* In range and finite (v - v is NaN for an infinity and for NaN). */
 static inline int in_range(const fmu_var *x, double v) {
-    return v >= x->min && v <= x->max && v - v == 0.0;
+    return (v >= x->min) & (v <= x->max) & (v - v == 0.0); /* one branch, not three */
 }
 
 fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context,
@@ -107,9 +107,11 @@ enum { SAVED_ON_STACK = 16 };
     fmu_status st = FMU_OK;                                                                     \
     size_t i = 0;                                                                               \
     for (; i < n; ++i) {                                                                        \
-        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;                \
+        /* a row without a variable has settable 0: no name test on the way */                \
+        const fmu_var *x = vr[i] < nv ? &vars[vr[i]] : NULL;                                    \
         const double d = (double)(VALUE);                                                       \
-        if (!x || !(TYPE_OK) || !(x->settable & allow) || !in_range(x, d)) {                    \
+        if (!x || !(x->settable & allow) || !(TYPE_OK) || !in_range(x, d)) {                    \
+            if (x && !x->name) x = NULL;                                                        \
             st = why_not_settable(x, vr[i], x && (TYPE_OK), d, allow, msg);                     \
             break;                                                                              \
         }                                                                                       \
