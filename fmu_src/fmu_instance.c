@@ -156,8 +156,10 @@ FMU_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int 
     const fmu_var *const vars = INFO.vars;
     const unsigned int nv = INFO.n_vars;
     for (size_t i = 0; i < n; ++i) {
-        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;
-        if (!x || x->type != FMU_T_Float64) return not_of_type(vr[i], "Float64 (Real)", msg);
+        /* a row without a variable has type 0: no name test on the way */
+        const fmu_var *x = &vars[vr[i] < nv ? vr[i] : 0];
+        if (vr[i] >= nv || x->type != FMU_T_Float64)
+            return not_of_type(vr[i], "Float64 (Real)", msg);
         v[i] = *CSLOT_D(m, x);
     }
     return FMU_OK;
