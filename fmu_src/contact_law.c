@@ -47,6 +47,12 @@ static inline void force_of(const oc_law *L, const double a[2], double q[2]) {
     q[1] = L->G[1][0] * r0 + L->G[1][1] * r1;
 }
 
+/* fmax, NaN handling included (the other argument), without the libm call
+ * it compiles to on x86-64 (fmax is a call there: in the slip step it cost
+ * more than the arithmetic around it).  Zeros of both signs tie
+ * differently, which no caller meets (they compare positive numbers). */
+static inline double max2(double a, double b) { return a > b || b != b ? a : b; }
+
 static int all_finite(const double *v, size_t n) {
     for (size_t i = 0; i < n; ++i)
         if (!isfinite(v[i])) return 0;
@@ -283,14 +289,14 @@ static inline double solve_dgamma(const double a_raw[2], double sq, double n_tr,
                  * held at twice Newton's: overshooting the root is harmless
                  * (Newton from the right lands left of it). */
                 const double D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
-                dx = res * m2 * W * C / fmax(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2);
+                dx = res * m2 * W * C / max2(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2);
                 last = fabs(dx) <= 5e-6 * x;
             } else {
                 dx = res * m2 * inv_rho / C;
                 last = fabs(dx) <= 1e-8 * x;
             }
             if (!last) {
-                x = fmax(x + dx, 0.0);
+                x = max2(x + dx, 0.0);
                 continue;
             }
         }
@@ -366,11 +372,22 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
     matvec(L->P, du, a);
     a[0] += start->a[0];
     a[1] += start->a[1];
-    const double n_tr = norm2(a[0], a[1]);
 
     /* A committed force lies on or inside the yield surface to a few
-     * rounding errors of N; such a trial sticks, so held inputs stick. */
-    if (n_tr <= N * (1.0 + 8 * DBL_EPSILON)) {
+     * rounding errors of N; such a trial sticks, so held inputs stick:
+     * n_tr <= lim.  Most steps stick well inside, which the squares tell
+     * without the square root (a third of a stick step): sq <= lim^2
+     * exactly implies sqrt(sq) <= lim after rounding, and the factor
+     * (1 - 4 eps) covers the two roundings of lim2c, which is normal
+     * wherever sq >= 2^-900 passes.  Within it the decision is the square
+     * root's, bit for bit (sq is what norm2 takes the root of in this
+     * range), and is taken by it everywhere else. */
+    const double lim = N * (1.0 + 8 * DBL_EPSILON);
+    const double sq = a[0] * a[0] + a[1] * a[1];
+    const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
+    const int surely_inside = sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000;
+    const double n_tr = surely_inside ? 0.0 : norm2(a[0], a[1]);
+    if (surely_inside || n_tr <= lim) {
         out->contact = OC_STICK;
         force_of(L, a, out->q);
         out->next.a[0] = a[0];
@@ -430,7 +447,7 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], doub
             out->dgamma = (v / rho) * L->inv_sigma_ref;
             wfac = rho;
         }
-        const double wmax = fmax(w[0], w[1]);
+        const double wmax = max2(w[0], w[1]);
         out->w[0] = w[0] / wmax;
         out->w[1] = w[1] / wmax;
         out->inv_wmax = wfac / wmax;
@@ -585,11 +602,6 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
     J[4][2] = eq20_clamped ? 0.0
                            : dq_dN[0] * ds[0] + dq_dN[1] * ds[1] + st->q[0] * ds_dN[0] +
                                  st->q[1] * ds_dN[1];
-}
-
-int oc_step_is_finite(const oc_step *st) {
-    return all_finite(st->q, 2) && all_finite(st->next.a, 2) && all_finite(st->next.s, 2) &&
-           isfinite(st->next.energy);
 }
 
 const char *oc_state_check(const oc_law *L, const oc_state *st) {

@@ -45,7 +45,7 @@ double *fmu_model_time(fmu_model *m) { return SLOT_D(m, &INFO.vars[0]); }
 
 /* The outputs that follow from the time, parameters and inputs, or why one
  * is not finite (then nothing has changed): fmu_model.h. */
-static inline fmu_status refresh(fmu_model *m, fmu_msg *msg) {
+static inline fmu_status model_refresh(fmu_model *m, fmu_msg *msg) {
     return INFO.refresh ? INFO.refresh(m, msg) : FMU_OK;
 }
 
@@ -85,7 +85,7 @@ static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int type_o
 
 /* In range and finite (v - v is NaN for an infinity and for NaN). */
 static inline int in_range(const fmu_var *x, double v) {
-    return v >= x->min && v <= x->max && v - v == 0.0;
+    return (v >= x->min) & (v <= x->max) & (v - v == 0.0); /* one branch, not three */
 }
 
 fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context,
@@ -115,9 +115,11 @@ enum { SAVED_ON_STACK = 16 };
     fmu_status st = FMU_OK;                                                                     \
     size_t i = 0;                                                                               \
     for (; i < n; ++i) {                                                                        \
-        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;                \
+        /* a row without a variable has settable 0: no name test on the way */                \
+        const fmu_var *x = vr[i] < nv ? &vars[vr[i]] : NULL;                                    \
         const double d = (double)(VALUE);                                                       \
-        if (!x || !(TYPE_OK) || !(x->settable & allow) || !in_range(x, d)) {                    \
+        if (!x || !(x->settable & allow) || !(TYPE_OK) || !in_range(x, d)) {                    \
+            if (x && !x->name) x = NULL;                                                        \
             st = why_not_settable(x, vr[i], x && (TYPE_OK), d, allow, msg);                     \
             break;                                                                              \
         }                                                                                       \
@@ -127,18 +129,18 @@ enum { SAVED_ON_STACK = 16 };
         changed |= x->settable;                                                                 \
     }                                                                                           \
     int refreshed = 0;                                                                          \
-    if (st == FMU_OK && n > 0 && (st = refresh(m, msg)) == FMU_OK) {                            \
+    if (st == FMU_OK && n > 0 && (st = model_refresh(m, msg)) == FMU_OK) {                            \
         refreshed = 1;                                                                          \
         st = fmu_model_update(m, changed, allow, msg);                                          \
     }                                                                                           \
     if (st != FMU_OK) {                                                                         \
         while (i-- > 0) *SLOT(m, &vars[vr[i]]) = saved[i];                                      \
-        if (refreshed) (void)refresh(m, NULL);                                                  \
+        if (refreshed) (void)model_refresh(m, NULL);                                                  \
     }                                                                                           \
     if (saved != stack) free(saved);                                                            \
     return st;
 
-fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
+FMU_HOT fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
                                  int allow, fmu_msg *msg) {
     SET_BATCH(double, x->type == FMU_T_Float64, v[i], SLOT_D)
 }
@@ -157,13 +159,15 @@ static fmu_status not_of_type(unsigned int vr, const char *asked, fmu_msg *msg) 
     return fmu_fail(msg, "unknown value reference %u", vr);
 }
 
-fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
+FMU_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
                                  fmu_msg *msg) {
     const fmu_var *const vars = INFO.vars;
     const unsigned int nv = INFO.n_vars;
     for (size_t i = 0; i < n; ++i) {
-        const fmu_var *x = vr[i] < nv && vars[vr[i]].name ? &vars[vr[i]] : NULL;
-        if (!x || x->type != FMU_T_Float64) return not_of_type(vr[i], "Float64 (Real)", msg);
+        /* a row without a variable has type 0: no name test on the way */
+        const fmu_var *x = &vars[vr[i] < nv ? vr[i] : 0];
+        if (vr[i] >= nv || x->type != FMU_T_Float64)
+            return not_of_type(vr[i], "Float64 (Real)", msg);
         v[i] = *CSLOT_D(m, x);
     }
     return FMU_OK;
@@ -199,7 +203,7 @@ fmu_status fmu_model_init_from(fmu_model *m, const double start[], fmu_msg *msg)
         if (x->type == FMU_T_Float64) *SLOT_D(m, x) = s;
         else *SLOT_I(m, x) = (int)s;
     }
-    if (refresh(m, msg) != FMU_OK) return FMU_ERR;
+    if (model_refresh(m, msg) != FMU_OK) return FMU_ERR;
     return fmu_model_update(m, FMU_CHANGED_PARAMETERS | FMU_CHANGED_INPUTS,
                             FMU_ALLOW_PARAMETERS | FMU_ALLOW_INPUTS, msg);
 }
@@ -271,7 +275,7 @@ static const char *phase_name(int phase) {
     }
 }
 
-int fmu_allowed(fmu_instance *I, const char *fn, int phases) {
+int fmu_allowed_slow(fmu_instance *I, const char *fn, int phases) {
     if (!I) return 0;
     if (!(I->phase & phases)) {
         FMU_ERROR(I, "%s must not be called in the current state (%s)", fn, phase_name(I->phase));
@@ -281,15 +285,7 @@ int fmu_allowed(fmu_instance *I, const char *fn, int phases) {
     return 1;
 }
 
-int fmu_settable(const fmu_instance *I) {
-    int allow = 0;
-    if (I->phase & (FMU_INSTANTIATED | FMU_INIT)) allow |= FMU_ALLOW_PARAMETERS;
-    if (I->phase & (FMU_INSTANTIATED | FMU_INIT | FMU_STEP)) allow |= FMU_ALLOW_INPUTS;
-    return allow;
-}
-
-int fmu_result(fmu_instance *I, fmu_status st, const fmu_msg *msg, const char *fn) {
-    if (st == FMU_OK) return FMU_S_OK;
+int fmu_result_error(fmu_instance *I, const fmu_msg *msg, const char *fn) {
     FMU_ERROR(I, "%s: %s", fn, msg->text);
     return FMU_S_ERROR;
 }
@@ -544,7 +540,7 @@ fmu_status fmu_set_start_time(fmu_instance *I, double t, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
     const double before = *time;
     *time = t;
-    if (refresh(I->model, msg) != FMU_OK) {
+    if (model_refresh(I->model, msg) != FMU_OK) {
         *time = before;
         return FMU_ERR;
     }
@@ -565,27 +561,28 @@ fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg) {
     return FMU_OK;
 }
 
-fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
+FMU_HOT fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
     if (!isfinite(t) || !isfinite(h) || !(h > 0) || !isfinite(t + h))
         return fmu_fail(msg, "currentCommunicationPoint=%g, communicationStepSize=%g: the step "
                              "size must be > 0 and the time must stay finite", t, h);
     /* Masters that count time as t0 + k h differ from a sum of steps by
      * rounding only; anything beyond that is a master error. */
-    if (fabs(t - *time) > 1e-9 * fmax(fabs(*time), h))
+    const double at = fabs(*time); /* finite: no NaN for fmax, which would be a libm call */
+    if (fabs(t - *time) > 1e-9 * (at > h ? at : h))
         return fmu_fail(msg, "currentCommunicationPoint=%.17g but the FMU is at time %.17g", t,
                         *time);
     /* The time moves first: the outputs at the step's end are checked (and
      * the model steps) there, and the time goes back if either refuses. */
     const double before = *time;
     *time = t + h;
-    if (refresh(I->model, msg) != FMU_OK) {
+    if (model_refresh(I->model, msg) != FMU_OK) {
         *time = before;
         return FMU_ERR;
     }
     if (fmu_model_do_step(I->model, h, msg) != FMU_OK) {
         *time = before;
-        (void)refresh(I->model, NULL); /* the outputs it had, accepted before */
+        (void)model_refresh(I->model, NULL); /* the outputs it had, accepted before */
         return FMU_ERR;
     }
     return FMU_OK;
@@ -652,7 +649,7 @@ fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size
     if (st == FMU_OK) {
         *fmu_model_time(next) = time;
         fmu_msg why;
-        if ((st = refresh(next, &why)) != FMU_OK)
+        if ((st = model_refresh(next, &why)) != FMU_OK)
             fmu_fail(msg, "serialized state at t = %g s: %s", time, why.text);
     }
     if (st == FMU_OK) {

@@ -53,13 +53,29 @@ void fmu_instance_free(fmu_instance *I);
 void fmu_log(fmu_instance *I, int status, int category, const char *fmt, ...);
 #define FMU_ERROR(I, ...) fmu_log((I), FMU_S_ERROR, FMU_LOG_ERROR, __VA_ARGS__)
 
+/* The entry points' checks are inline: a step's three calls make them nine
+ * times, and as calls into this unit they cost more than the law's stick
+ * step.  Only what is rare (a refusal, the call trace) leaves the line. */
+int fmu_allowed_slow(fmu_instance *I, const char *fn, int phases);
+int fmu_result_error(fmu_instance *I, const fmu_msg *msg, const char *fn);
+
 /* 1 if `fn` may be called in the current phase (logs the call), else logs
  * why not and returns 0. */
-int fmu_allowed(fmu_instance *I, const char *fn, int phases);
+static inline int fmu_allowed(fmu_instance *I, const char *fn, int phases) {
+    if (I && (I->phase & phases) && !I->log_on[FMU_LOG_CALLS]) return 1;
+    return fmu_allowed_slow(I, fn, phases);
+}
 /* FMU_ALLOW_* for the current phase. */
-int fmu_settable(const fmu_instance *I);
+static inline int fmu_settable(const fmu_instance *I) {
+    int allow = 0;
+    if (I->phase & (FMU_INSTANTIATED | FMU_INIT)) allow |= FMU_ALLOW_PARAMETERS;
+    if (I->phase & (FMU_INSTANTIATED | FMU_INIT | FMU_STEP)) allow |= FMU_ALLOW_INPUTS;
+    return allow;
+}
 /* Logs msg under `fn` and returns FMU_S_ERROR, or FMU_S_OK. */
-int fmu_result(fmu_instance *I, fmu_status st, const fmu_msg *msg, const char *fn);
+static inline int fmu_result(fmu_instance *I, fmu_status st, const fmu_msg *msg, const char *fn) {
+    return st == FMU_OK ? FMU_S_OK : fmu_result_error(I, msg, fn);
+}
 
 /* 0, or -1 (logged) for an unknown category. */
 int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,

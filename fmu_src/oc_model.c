@@ -22,10 +22,10 @@
 #define FMU_SLOT_N offsetof(oc_model, N)
 #define FMU_SLOT_T1 offsetof(oc_model, T[0])
 #define FMU_SLOT_T2 offsetof(oc_model, T[1])
-#define FMU_SLOT_s1 offsetof(oc_model, result.next.s[0])
-#define FMU_SLOT_s2 offsetof(oc_model, result.next.s[1])
-#define FMU_SLOT_contactState offsetof(oc_model, result.contact)
-#define FMU_SLOT_dissipatedEnergy offsetof(oc_model, result.next.energy)
+#define FMU_SLOT_s1 offsetof(oc_model, s[0])
+#define FMU_SLOT_s2 offsetof(oc_model, s[1])
+#define FMU_SLOT_contactState offsetof(oc_model, contact)
+#define FMU_SLOT_dissipatedEnergy offsetof(oc_model, energy)
 #define FMU_SLOT_initialSlip offsetof(oc_model, initial_slip)
 #define FMU_SLOT_s1Start offsetof(oc_model, s_start[0])
 #define FMU_SLOT_s2Start offsetof(oc_model, s_start[1])
@@ -44,7 +44,26 @@ const fmu_model_info FMU_MODEL_INFO = {
     NULL /* the outputs live in their slots */, exit_init, derivative};
 
 static const oc_state *committed(const oc_model *m) {
-    return m->result_committed ? &m->result.next : &m->start;
+    return m->result_committed ? &m->steps[m->shown].next : &m->start;
+}
+
+/* A number the law has just stored, read on its own.  The law stores its
+ * results one by one; a wider load across two of those stores (compilers
+ * pair adjacent loads into one) must wait until both have retired, because
+ * store forwarding fails: it cost 2 ns a step.  A volatile read is never
+ * paired. */
+static inline double fresh(const double *p) { return *(const volatile double *)p; }
+
+/* Shows steps[shown]: its outputs into their slots. */
+static FMU_HOT void show(oc_model *m) {
+    const oc_step *st = &m->steps[m->shown];
+    /* 0.0 - q rather than -q: an open contact reads +0.0, not -0.0 */
+    m->T[0] = 0.0 - fresh(&st->q[0]);
+    m->T[1] = 0.0 - fresh(&st->q[1]);
+    m->s[0] = fresh(&st->next.s[0]);
+    m->s[1] = fresh(&st->next.s[1]);
+    m->energy = st->next.energy;
+    m->contact = st->contact;
 }
 
 /* The committed state before the first step (see oc_model.h). */
@@ -56,23 +75,28 @@ static oc_state initial_state(const oc_model *m) {
 /* Computes the pending step for the inputs in m from the committed state
  * `from` with `law` into m (which commits neither); or fails and changes
  * nothing. */
-static fmu_status evaluate(oc_model *m, const oc_law *law, const oc_state *from, fmu_msg *msg) {
-    oc_step st;
-    oc_law_step(law, from, m->u, m->N, &st); /* from read in place: no copy unless it moves */
-    if (!oc_step_is_finite(&st))
+static FMU_HOT fmu_status evaluate(oc_model *m, const oc_law *law, const oc_state *from, fmu_msg *msg) {
+    /* into the hidden step: `from` (which may be the shown step's state)
+     * is read in place, no copy unless it moves */
+    oc_step *st = &m->steps[m->shown ^ 1];
+    oc_law_step(law, from, m->u, m->N, st);
+    /* A stick step keeps `from`'s slip and energy (finite: a committed or
+     * initial state always is) and a force inside the yield surface (finite:
+     * an infinite or NaN trial fails the stick test); only q = G R a can
+     * overflow.  Most steps stick: they check two numbers, not seven. */
+    if (st->contact == OC_STICK ? !(isfinite(st->q[0]) && isfinite(st->q[1]))
+                                : !oc_step_is_finite(st))
         return fmu_fail(msg, "inputs u1=%g m, u2=%g m, N=%g N overflow the force or slip", m->u[0],
                         m->u[1], m->N);
     if (law != &m->law) m->law = *law;
     if (from != &m->start) m->start = *from;
-    m->result = st;
-    /* 0.0 - q rather than -q: an open contact reads +0.0, not -0.0 */
-    m->T[0] = 0.0 - st.q[0];
-    m->T[1] = 0.0 - st.q[1];
+    m->shown ^= 1;
+    show(m);
     m->result_committed = 0;
     return FMU_OK;
 }
 
-fmu_status fmu_model_update(oc_model *m, int changed, int allow, fmu_msg *msg) {
+FMU_HOT fmu_status fmu_model_update(oc_model *m, int changed, int allow, fmu_msg *msg) {
     /* Before the end of initialization the start follows the inputs or the
      * explicit slip; afterwards it is whatever was committed. */
     oc_state init;
@@ -99,10 +123,19 @@ static fmu_status exit_init(oc_model *m, fmu_msg *msg) {
     return evaluate(m, &m->law, &init, msg);
 }
 
-fmu_status fmu_model_do_step(oc_model *m, double h, fmu_msg *msg) {
+/* A further step with held inputs: rare (a master sets inputs before a
+ * step), so kept out of doStep, whose every call would otherwise pay for
+ * the registers the law needs. */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((noinline))
+#endif
+static fmu_status step_again(oc_model *m, fmu_msg *msg) {
+    return evaluate(m, &m->law, &m->steps[m->shown].next, msg);
+}
+
+FMU_HOT fmu_status fmu_model_do_step(oc_model *m, double h, fmu_msg *msg) {
     (void)h; /* rate-independent: the step size does not enter the law */
-    if (m->result_committed && evaluate(m, &m->law, &m->result.next, msg) != FMU_OK)
-        return FMU_ERR;
+    if (m->result_committed && step_again(m, msg) != FMU_OK) return FMU_ERR;
     m->result_committed = 1;
     return FMU_OK;
 }
@@ -147,17 +180,22 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
     for (size_t k = 0; k < n_seed; ++k)
         if (!isfinite(seed[k])) return fmu_fail(msg, "seed %zu is not finite", k);
     double J[OC_JAC_ROWS][OC_JAC_COLS];
-    oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->result, J);
+    oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->steps[m->shown], J);
     const size_t n_out = adjoint ? n_known : n_unknown;
+    /* Every index was checked above; as unsigned the compiler, which sees
+     * -1 among jac_row's values once the FMU is one unit, sees no index
+     * below the array either. */
+#define JAC(row_vr, col_vr) J[(unsigned)jac_row(row_vr) % OC_JAC_ROWS][(unsigned)jac_col(col_vr) % OC_JAC_COLS]
     for (size_t k = 0; k < n_out; ++k) {
         double acc = 0.0;
         if (adjoint)
-            for (size_t i = 0; i < n_unknown; ++i) acc += J[jac_row(unknown[i])][jac_col(known[k])] * seed[i];
+            for (size_t i = 0; i < n_unknown; ++i) acc += JAC(unknown[i], known[k]) * seed[i];
         else
-            for (size_t j = 0; j < n_known; ++j) acc += J[jac_row(unknown[k])][jac_col(known[j])] * seed[j];
+            for (size_t j = 0; j < n_known; ++j) acc += JAC(unknown[k], known[j]) * seed[j];
         if (!isfinite(acc)) return fmu_fail(msg, "the derivative overflows");
         out[k] = acc;
     }
+#undef JAC
     return FMU_OK;
 }
 
@@ -247,12 +285,12 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
     /* The shown result is not stored but recomputed: the law is a function
      * of the committed state and the inputs, so nothing derived can
      * disagree with what it derives from. */
-    oc_law_step(&t.law, &t.start, t.u, t.N, &t.result);
-    if (!oc_step_is_finite(&t.result))
+    t.shown = 0;
+    oc_law_step(&t.law, &t.start, t.u, t.N, &t.steps[0]);
+    if (!oc_step_is_finite(&t.steps[0]))
         return fmu_fail(msg, "serialized state: its inputs overflow the force or slip");
     t.result_committed = (int)done;
-    t.T[0] = 0.0 - t.result.q[0];
-    t.T[1] = 0.0 - t.result.q[1];
+    show(&t);
     t.time = m->time; /* the glue restores the time */
     *m = t;
     return FMU_OK;

@@ -115,6 +115,23 @@ def test_the_master_describes_its_structs_and_a_drift_is_refused():
         cmaster._filled(cmaster._Rig, mass=1.0)
 
 
+@pytest.mark.parametrize("name", ["mat_aged", "case5"])
+def test_run_grid_gives_runs_figures_bit_for_bit(name):
+    """The uq path (numpy-filled structs) against run() (one struct per task)."""
+    sc = load(ROOT / "scenarios" / f"{name}.toml")
+    rig = replace(sc.rig, travel_m=min(sc.rig.travel_m, 0.05))
+    laws = [sc.law, sc.law.replace(mu1=0.35, eps1=sc.law.eps1 * 1.1), sc.law.replace(rule="associated")]
+    angles = (0.0, 26.6, 39.2, 90.0)
+    axes = [(sc.params_at(a).alpha, sc.params_at(a).beta) for a in angles]
+    cm = CMaster(find_fmu())
+    grid = cm.run_grid(laws, axes, rig)
+    runs = cm.run([(law.replace(alpha=a, beta=b), rig) for law in laws for a, b in axes])
+    cm.close()
+    assert grid.shape == (len(laws), len(axes), 4)
+    for k, r in enumerate(runs):
+        assert same_figures(grid[k // len(axes), k % len(axes)], r), (k, r)
+
+
 def test_c_master_record_refuses_a_bad_interval():
     cm = CMaster(find_fmu())
     try:

@@ -5,10 +5,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 FMI_DIR=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
 cmake -S . -B build/ctest-release -DOC_BUILD_TESTS=ON -DFMI_HEADERS_DIR="$FMI_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/ctest-release -j2 --target bench_fmi2 bench_fmi3 >/dev/null
-echo "== C: one step through the FMI calls (target: slip <= 2x stick) =="
+cmake --build build/ctest-release -j2 --target bench_fmi2 bench_fmi3 bench_peer bench_master >/dev/null
+echo "== C: one step through the FMI calls, ours against the straightforward peer (targets: stick <= 1.0x, slip <= 0.5x) =="
+build/ctest-release/bench_peer
+echo "== C: one step through the FMI calls, linked in (slip / stick) =="
 build/ctest-release/bench_fmi2
 build/ctest-release/bench_fmi3
+echo "== C: the compiled master's rig step against the contact's own step (target: <= 1.5x) =="
+build/ctest-release/bench_master
 echo "== Python: harness vs bare fmpy, sweep scaling =="
 .venv/bin/python benchmarks/bench_harness.py
 echo "== Masters: rig runs/s, compiled vs fmpy (target: >= 20x) =="

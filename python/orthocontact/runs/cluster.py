@@ -67,6 +67,11 @@ def run_tasks(fmu, tasks):
     return _master_for(fmu).run(tasks)
 
 
+def run_grid(fmu, laws, axes, rig):
+    """CMaster.run_grid on the worker: every law at every (alpha, beta)."""
+    return _master_for(fmu).run_grid(laws, axes, rig)
+
+
 # -- the client's side ------------------------------------------------------------
 
 def check_address(scheduler: str) -> None:

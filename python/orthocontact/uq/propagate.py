@@ -56,20 +56,30 @@ def chunk_tasks(sc: Scenario, rig, names: list, rows) -> list:
     return tasks
 
 
-def _run_chunk_on(run, chunk):
+def chunk_grid(sc: Scenario, names: list, rows) -> tuple[list, list]:
+    """The runs of chunk_tasks as a grid: the law of each parameter set and
+    the (alpha, beta) [rad] of each angle (the same numbers, each checked by
+    ContactParams once, not once per run)."""
+    laws = [scenario_with(sc, names, row).law for row in rows]
+    axes = [(p.alpha, p.beta) for p in (sc.params_at(a) for a in sc.sweep_angles())]
+    return laws, axes
+
+
+def _run_chunk_on(run_grid, chunk):
     """chunk = (scenario, rig, names, rows) -> phi, drive and head - tail
     (rig_checks: a settled run's halves agree) arrays [len(rows) x angles],
-    the runs made by run([(params, rig)])."""
+    the runs made by run_grid(laws, axes, rig) (CMaster.run_grid)."""
     sc, rig, names, rows = chunk
-    arr = np.array(run(chunk_tasks(sc, rig, names, rows)), dtype=float)
-    arr = arr.reshape(len(rows), len(sc.sweep_angles()), len(RunFigures._fields))
+    laws, axes = chunk_grid(sc, names, rows)
+    arr = run_grid(laws, axes, rig)
+    assert arr.shape == (len(rows), len(sc.sweep_angles()), len(RunFigures._fields))
     return arr[:, :, 0], arr[:, :, 1], arr[:, :, 2] - arr[:, :, 3]
 
 
 def run_chunk(fmu, chunk):
     """On a worker: _run_chunk_on the worker's compiled master for `fmu`."""
-    from ..runs.cluster import run_tasks
-    return _run_chunk_on(lambda tasks: run_tasks(fmu, tasks), chunk)
+    from ..runs.cluster import run_grid
+    return _run_chunk_on(lambda laws, axes, rig: run_grid(fmu, laws, axes, rig), chunk)
 
 
 @dataclass
@@ -166,7 +176,7 @@ def _propagate(est, sc, samples, seed, fmu_path, scheduler, workers, step_s, x, 
         if scheduler is None:
             results = []
             for c in chunks:
-                results.append(_run_chunk_on(cm.run, c))
+                results.append(_run_chunk_on(cm.run_grid, c))
                 bar.update(len(c[3]) * len(angles))
             engine = "serial (this process)"
     finally:
