@@ -139,9 +139,10 @@ def test_an_invisible_character_in_a_header_is_shown_escaped(tmp_path):
     data = tmp_path / "data"
     shutil.copytree(DATA, data)
     f = data / "forces.csv"
-    f.write_text(f.read_text(encoding="utf-8").replace("alpha_deg", "alpha_deg\u200b", 1), encoding="utf-8")
+    f.write_text(f.read_text(encoding="utf-8").replace("mat_angle_deg", "mat_angle_deg\u200b", 1),
+                 encoding="utf-8")
     p = run(["identify", data, "--out", tmp_path / "out"], tmp_path)
-    one_error_line(p, "forces.csv: line 1: expected column 'alpha_deg'", "alpha_deg\\u200b")
+    one_error_line(p, "forces.csv: line 1: expected column 'mat_angle_deg'", "mat_angle_deg\\u200b")
 
 
 # -- Ctrl-C on a Dask command -------------------------------------------------------

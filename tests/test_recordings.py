@@ -50,7 +50,7 @@ def test_bundled_recordings_identify_and_uq_by_the_readme_commands(tmp_path):
     section = text.split("## From your recordings to your simulator")[1].split("\n## ")[0]
     block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
     lines = [ln for ln in block.replace("\\\n", " ").splitlines() if ln.startswith(".venv/bin/orthocontact")]
-    assert [ln.split()[1] for ln in lines] == ["identify", "uq"]
+    assert [ln.split()[1] for ln in lines] == ["identify", "uq", "export"]
     for ln in lines:
         args = ln.split()[1:]
         args = [a.replace("out/", f"{tmp_path}/") for a in args]
