@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import dataclasses
 import html
-import json
 import math
 from datetime import datetime, timezone
 from pathlib import Path
@@ -28,6 +27,7 @@ from ..experiment.ssp import parameter_values_file, write_ssp
 from ..fmu.files import MODEL_IDENTIFIER, find_fmu
 from ..fmu.params import RULES, ContactParams
 from ..fmu.start_values import write_with_start_values
+from .identified_file import read_identified
 from .measurements import data_digest
 
 ESTIMATED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
@@ -74,14 +74,7 @@ def _data_folder(path: Path, d: dict) -> Path:
 def load_calibration(path) -> Calibration:
     """identified.json -> Calibration; InputError naming the file and the field."""
     path = Path(path)
-    try:
-        d = json.loads(path.read_text())
-    except OSError as e:
-        raise InputError(f"{path}: cannot read ({e.strerror})") from None
-    except ValueError as e:
-        raise InputError(f"{path}: expected JSON written by `orthocontact identify` ({e})") from None
-    if not isinstance(d, dict):
-        raise InputError(f"{path}: expected a JSON object written by `orthocontact identify`")
+    d = read_identified(path)
     mu1, mu2 = _field(path, d, "mu1"), _field(path, d, "mu2")
     a = d.get("assumptions")
     if not isinstance(a, dict):

@@ -2,7 +2,6 @@
 validated field by field, and the seeded draws of physical parameter sets."""
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -10,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from ..identification.identified_file import read_identified
 
 LAW_PARAMETERS = ("mu1", "mu2", "eps_ratio", "eps2")
 
@@ -51,14 +51,7 @@ class Estimates:
 def load_estimates(path) -> Estimates:
     """identified.json -> Estimates; InputError naming the file and the field."""
     path = Path(path)
-    try:
-        d = json.loads(path.read_text())
-    except OSError as e:
-        raise InputError(f"{path}: cannot read ({e.strerror})") from None
-    except ValueError as e:
-        raise InputError(f"{path}: expected JSON written by `orthocontact identify` ({e})") from None
-    if not isinstance(d, dict):
-        raise InputError(f"{path}: expected a JSON object written by `orthocontact identify`")
+    d = read_identified(path)
     cov = d.get("covariance")
     if not isinstance(cov, dict) or not {"parameters", "values", "matrix"} <= set(cov):
         raise InputError(f"{path}: covariance: expected parameters, values and matrix "
