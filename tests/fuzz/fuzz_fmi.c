@@ -47,6 +47,12 @@ enum { C_IND = 1, C_PAR, C_IN, C_OUT };
 #define K_Float64 K_F64
 #define K_Int32 K_INT
 #define K_Enum K_INT
+/* each enumeration type of the table is an integer kind here */
+#ifdef FMU_ENUM_TYPES
+#define FUZZ_ENUM_KIND(name, items) K_##name = K_INT,
+enum { FMU_ENUM_TYPES(FUZZ_ENUM_KIND) FUZZ_ENUM_KINDS_END };
+#undef FUZZ_ENUM_KIND
+#endif
 typedef struct {
     unsigned vr;
     int kind, causality;
