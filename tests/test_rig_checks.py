@@ -73,6 +73,8 @@ def test_a_dynamic_rig_that_never_settled_is_flagged_everywhere(tmp_path):
     by_angle = {r.split(",")[0]: r for r in rows[1:]}
     assert by_angle["0"].endswith(",ok") and by_angle["11"].endswith('"unsettled, off-steady"')
     assert by_angle["40"].endswith(",ok")
+    # the extremum the sweep found lies among them: it says so
+    assert summary["extremum"]["steady_sliding"] is False
     # --strict: the same warnings, exit 1, the results written all the same
     p = run(["run", str(sc), "--out", "o2", "--strict"], tmp_path)
     assert p.returncode == 1 and len(warnings_of(p)) == 1 and "--strict" in p.stderr
@@ -86,6 +88,7 @@ def test_a_new_scenario_gets_a_rig_that_settles(tmp_path):
     assert p.returncode == 0 and warnings_of(p) == [], p.stderr
     s = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert s["mode"] == "quasistatic" and s["checks"]["ok"] is True
+    assert s["extremum"]["steady_sliding"] is True
     assert s["extremum"]["phi_deg"] == pytest.approx(-67.380135, abs=1e-4)
     assert s["extremum"]["angle_deg"] == pytest.approx(math.degrees(math.atan(0.2)), abs=1e-3)
 

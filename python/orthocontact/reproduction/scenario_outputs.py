@@ -59,7 +59,8 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
         "seconds": round(res.seconds, 3),
         # a flat curve (the closed form is zero everywhere) has no extremum to report
         "extremum": None if flat else {"angle_deg": e["angle_deg"], "phi_deg": e["phi_deg"],
-                                       **({"other_rule": e["other_rule"]} if "other_rule" in e else {})},
+                                       **({"other_rule": e["other_rule"]} if "other_rule" in e else {}),
+                                       "steady_sliding": extremum_is_steady(res)},
         "flat": flat,
         "extremum_refined": bool(e.get("refined", False)) and not flat,
         "grid_extremum": res.grid_extremum,
@@ -85,6 +86,16 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
                 "mu2": cf.eq1_mu(drives["90"], r.f_int_N, r.mass_kg, r.g)}
     write_json(out / "summary.json", summary)
     return summary
+
+
+def extremum_is_steady(res: SweepResult) -> bool:
+    """Whether the grid's runs about the extremum (within one grid step)
+    all passed their checks: a refined extremum between unsettled runs is
+    not the law's."""
+    a = res.angles_deg
+    step = float(np.min(np.diff(a))) if len(a) > 1 else 0.0
+    near = np.abs(a - res.extremum["angle_deg"]) <= step + 1e-9
+    return bool(np.all(res.checks.ok[near]))
 
 
 def checks_summary(checks, angles_deg, phi_deg, warning: str | None) -> dict:
@@ -117,7 +128,8 @@ def _figure_phi(sc: Scenario, res: SweepResult, path: Path, flat: bool) -> None:
     e = res.extremum
     if not flat:
         ax.plot([e["angle_deg"]], [e["phi_deg"]], "*", ms=12, color="C3",
-                label=f"extremum {e['phi_deg']:.2f}° at {e['angle_deg']:.2f}°")
+                label=f"extremum {e['phi_deg']:.2f}° at {e['angle_deg']:.2f}°"
+                      + ("" if extremum_is_steady(res) else " (not steady sliding)"))
     if flat:
         # Autoscaled, rounding of 1e-10 deg would look like a curve.
         top = float(np.nanmax(np.abs(res.phi_deg)))
