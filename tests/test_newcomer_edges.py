@@ -61,6 +61,7 @@ def bad_arguments(identified):
         "sensitivity --out ''": (["sensitivity", aged, "--out", ""], "--out"),
         "uq --out ''": (["uq", identified, "--scenario", aged, "--samples", "2", "--out", ""], "--out"),
         "ssp --out ''": (["ssp", aged, "--angle", "10", "--out", ""], "--out"),
+        "export --out ''": (["export", identified, "--out", ""], "--out"),
         "run --out ' '": (["run", aged, "--out", " "], "--out"),
     }
 

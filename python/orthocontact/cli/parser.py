@@ -200,7 +200,7 @@ def build_parser() -> argparse.ArgumentParser:
     x.add_argument("identification", type=Path, metavar="IDENTIFIED.json",
                    help="identified.json written by `orthocontact identify` (its data folder must be "
                         "readable: the export names the data's digest)")
-    x.add_argument("--out", type=Path, required=True, metavar="DIR",
+    x.add_argument("--out", type=_out_path, required=True, metavar="DIR",
                    help="output folder: created if missing, files replaced; written only when "
                         "everything completes")
     x.add_argument("--angle", type=float, default=45.0, metavar="DEG",
