@@ -112,7 +112,7 @@ def warning_line(label: str, angles_deg, checks: RunChecks, phi_deg, tasks) -> s
     angles = np.asarray(angles_deg, dtype=float)
     phi = np.asarray(phi_deg, dtype=float)
     why = []
-    unsettled = np.flatnonzero(~checks.settled)
+    unsettled = np.flatnonzero(~checks.settled & implicit)
     if len(unsettled):
         why.append("the halves of the fitted path differ by up to "
                    f"{np.nanmax(np.abs(checks.halves_deg[unsettled])):.3g} deg")
