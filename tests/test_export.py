@@ -10,6 +10,8 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 import pytest
+
+from libcosim_rig import run_rig_ssp
 from fmpy.ssp.ssd import read_ssv
 from fmpy.validation import validate_fmu
 from test_start_values import schema_errors, values_with_nothing_set
@@ -111,24 +113,6 @@ def test_the_exported_fmu_runs_calibrated_in_fmpy_with_nothing_set(identified, e
     assert abs(res.phi_deg - expected) <= 1e-9   # measured 4e-15 deg
 
 
-_LIBCOSIM = r"""
-import json, sys
-from libcosimpy.CosimExecution import CosimExecution
-from libcosimpy.CosimObserver import CosimObserver
-from libcosimpy.CosimLogging import log_output_level, CosimLogLevel
-log_output_level(CosimLogLevel.ERROR)
-ex = CosimExecution.from_ssp_file(sys.argv[1])
-rig = {i.name.decode(): i.index for i in ex.slave_infos()}["rig"]
-vr = {v.name.decode(): v.reference for v in ex.slave_variables(rig)}
-obs = CosimObserver.create_last_value(); ex.add_observer(observer=obs)
-rows = []
-for k in range(int(sys.argv[2])):
-    assert ex.step()
-    rows.append(obs.last_real_values(rig, [vr["x1"], vr["x2"], vr["driveForce"]]))
-print(json.dumps(rows))
-"""
-
-
 def test_the_exported_ssp_runs_calibrated_in_libcosim_with_no_parameter_set(identified, exported, tmp_path):
     """The SSP's parameter bindings are taken out: the FMUs' own start values
     alone make the calibrated experiment (CarriageBlock's dynamic rig)."""
@@ -146,10 +130,7 @@ def test_the_exported_ssp_runs_calibrated_in_libcosim_with_no_parameter_set(iden
     cal = load_calibration(identified)
     rig = cal.rig.harness(c_strip=cal.c_strip)
     n = int(rig.travel_m / (rig.velocity_m_s * rig.step_s) + 0.5)
-    q = subprocess.run([sys.executable, "-c", _LIBCOSIM, str(bare), str(n)], capture_output=True, text=True,
-                       timeout=600)
-    assert q.returncode == 0, q.stderr[-2000:]
-    rows = json.loads(q.stdout.strip().splitlines()[-1])
+    rows = run_rig_ssp(bare, n)
     fit = LineFit()
     for x1, x2, drive in rows:
         if x1 >= rig.fit_from * rows[-1][0]:

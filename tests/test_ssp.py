@@ -18,6 +18,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from libcosim_rig import run_rig_ssp
+
 from orthocontact.experiment.scenario import load
 from orthocontact.experiment.ssp import contact_values, rig_values
 from orthocontact.fmu.start_values import start_values_of
@@ -62,23 +64,6 @@ def fitted(sc, x1, x2, drive) -> LineFit:
 def steps(sc) -> int:
     return int(np.ceil(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) - 1e-9))
 
-_LIBCOSIM = r"""
-import sys, json
-from libcosimpy.CosimExecution import CosimExecution
-from libcosimpy.CosimObserver import CosimObserver
-from libcosimpy.CosimLogging import log_output_level, CosimLogLevel
-log_output_level(CosimLogLevel.ERROR)
-ex = CosimExecution.from_ssp_file(sys.argv[1])
-rig = {i.name.decode(): i.index for i in ex.slave_infos()}["rig"]
-vr = {v.name.decode(): v.reference for v in ex.slave_variables(rig)}
-obs = CosimObserver.create_last_value(); ex.add_observer(observer=obs)
-rows = []
-for k in range(int(sys.argv[2])):
-    assert ex.step()
-    rows.append(obs.last_real_values(rig, [vr["x1"], vr["x2"], vr["driveForce"]]))
-print(json.dumps(rows))
-"""
-
 
 def test_ssp_runs_in_libcosim_with_the_harness_angle(tmp_path):
     pytest.importorskip("libcosimpy")
@@ -91,10 +76,7 @@ def test_ssp_runs_in_libcosim_with_the_harness_angle(tmp_path):
                      "resources/CarriageBlock.fmu"}
     sc = load(ROOT / "scenarios/mat_aged.toml")
     n = int(np.ceil(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) - 1e-9))
-    q = subprocess.run([sys.executable, "-c", _LIBCOSIM, str(ssp), str(n)], capture_output=True,
-                       text=True, timeout=600)
-    assert q.returncode == 0, q.stderr[-2000:]
-    rows = np.array(json.loads(q.stdout.strip().splitlines()[-1]))  # libcosim logs to stdout
+    rows = np.array(run_rig_ssp(ssp, n))
     fit = LineFit()
     for x1, x2, drive in rows:
         if x1 >= sc.rig.fit_from * rows[-1, 0]:

@@ -26,6 +26,7 @@ import numpy as np
 from .. import plausibility
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup, load_rig_toml
+from .recordings import parse_number
 
 if sys.version_info >= (3, 11):
     pass
@@ -118,12 +119,7 @@ def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: 
         vals = []
         for c, k in zip(columns, idx):
             cell = r[k].strip() if k < len(r) else ""
-            try:
-                v = float(cell)
-            except ValueError:
-                raise InputError(f"{path}: line {line}: {c}: expected a number, got {cell!r}") from None
-            if not math.isfinite(v):
-                raise InputError(f"{path}: line {line}: {c}: expected a finite number, got {cell!r}")
+            v = parse_number(path, line, c, cell)
             bad = checks[c](v)
             if bad:
                 raise InputError(f"{path}: line {line}: {c}: expected {bad}, got {cell}")

@@ -87,7 +87,9 @@ def _header(path: Path, rows, columns) -> list:
     return idx
 
 
-def _number(path, line, col, cell, missing_ok=False) -> float:
+def parse_number(path, line, col, cell, missing_ok=False) -> float:
+    """A CSV cell as a finite number (nan for an empty or 'nan' cell where
+    missing_ok); InputError naming the file, line and column otherwise."""
     if missing_ok and cell.lower() in ("", "nan"):
         return math.nan
     try:
@@ -107,7 +109,7 @@ def read_series(path: Path, columns: tuple, what: str, missing_ok: tuple = ()) -
     data = []
     last_t, last_line = -math.inf, None
     for line, r in rows[1:]:
-        vals = [_number(path, line, c, r[k] if k < len(r) else "", c in missing_ok)
+        vals = [parse_number(path, line, c, r[k] if k < len(r) else "", c in missing_ok)
                 for c, k in zip(columns, idx)]
         if vals[0] <= last_t:
             raise InputError(f"{path}: line {line}: {columns[0]}: expected a time after line "
@@ -144,11 +146,11 @@ def load_recordings(folder) -> Recordings:
         if cell["kind"] not in KINDS:
             raise InputError(f"{path}: line {line}: kind: expected one of {', '.join(KINDS)}, "
                              f"got {cell['kind']!r}")
-        angle = _number(path, line, "mat_angle_deg", cell["mat_angle_deg"])
+        angle = parse_number(path, line, "mat_angle_deg", cell["mat_angle_deg"])
         if not -180 <= angle <= 180:
             raise InputError(f"{path}: line {line}: mat_angle_deg: expected an angle in [-180, 180] deg, "
                              f"got {angle:g}")
-        v = _number(path, line, "velocity_m_s", cell["velocity_m_s"])
+        v = parse_number(path, line, "velocity_m_s", cell["velocity_m_s"])
         found = plausibility.check("velocity_m_s", v)
         if found is not None:
             if found[0] == "error" or v <= 0:
