@@ -345,8 +345,14 @@ static double solve_dgamma_far(const double a[2], const double sh[2], double rho
     return v;
 }
 
-void oc_law_step(const oc_law *L, const oc_state *start, const double u[2], double N,
+void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], double N,
                  oc_step *out) {
+    /* The caller has typically just stored the inputs, one value at a time
+     * (a master's set call).  Read as a pair, as clang vectorizes the
+     * difference below, the load waits until both stores have retired
+     * (store forwarding fails): 3 ns of a 21 ns stick step and 18 ns of a
+     * slip step in the shipped binaries.  A volatile read is never paired. */
+    const double u[2] = {*(const volatile double *)&u_in[0], *(const volatile double *)&u_in[1]};
     out->dgamma = 0.0;
     out->w[0] = out->w[1] = out->inv_wmax = 1.0;
     out->next = *start;

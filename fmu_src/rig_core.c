@@ -4,10 +4,6 @@
 
 #include <math.h>
 
-/* Python's max(a, b) and min(a, b): the first argument unless the second is
- * strictly larger (smaller); fmax/fmin may differ on signed zeros. */
-static double py_max(double a, double b) { return b > a ? b : a; }
-static double py_min(double a, double b) { return b < a ? b : a; }
 
 long rig_step_count(double travel, double velocity, double step) {
     const double n = ceil(travel / (velocity * step) - 1e-9);
@@ -28,19 +24,19 @@ double rig_fit_end(const rig_setup *r, long n_steps) {
 double rig_fit_middle(double x1_fit, double x1_end) { return x1_fit + 0.5 * (x1_end - x1_fit); }
 
 double rig_lateral_scale(double mu1, double mu2, double eps1, double eps2, double N) {
-    return py_min(mu1, mu2) * N / py_max(eps1, eps2);
+    return rig_py_min(mu1, mu2) * N / rig_py_max(eps1, eps2);
 }
 
 void rig_lateral_step(double *x2, double *v2, double T1, double T2, double mass, double mu_strip,
                       double damp, double h) {
-    const double P = py_max(-T1, 0.0); /* the carriage can only push */
+    const double P = rig_py_max(-T1, 0.0); /* the carriage can only push */
     const double f_max = mu_strip * P, a_free = T2 / mass;
     double v;
     if (f_max > 0.0) {
         /* the strip's friction inside the implicit viscous update, as every
          * force: a steady state balances T2 + f = c_strip v2 exactly */
         const double w = *v2 + h * a_free;
-        const double f = -copysign(py_min(f_max, fabs(mass * w / h)), w);
+        const double f = -copysign(rig_py_min(f_max, fabs(mass * w / h)), w);
         v = (w + h * f / mass) / damp;
     } else {
         v = (*v2 + h * a_free) / damp;
@@ -82,8 +78,8 @@ int rig_solve_lateral(const rig_contact *c, double u1, double *u2p, double N, do
         *iterations = it;
         if (!c->set_inputs(c->ctx, u1, u2, N) || !c->force(c->ctx, &T1, &T2))
             return RIG_CONTACT_FAILED;
-        const double r = T2 - strip * py_max(-T1, 0.0) - visc * (u2 - u2_ref);
-        if (fabs(r) <= tol * py_max(fabs(N), 1e-300)) {
+        const double r = T2 - strip * rig_py_max(-T1, 0.0) - visc * (u2 - u2_ref);
+        if (fabs(r) <= tol * rig_py_max(fabs(N), 1e-300)) {
             *u2p = u2;
             return RIG_OK;
         }
@@ -99,9 +95,9 @@ int rig_solve_lateral(const rig_contact *c, double u1, double *u2p, double N, do
         const double d = dT2 + (T1 < 0 ? strip * dT1 : 0.0) - visc;
         double cand = d < 0 ? u2 - r / d : NAN;
         if (have_lo && have_hi) {
-            if (!(py_min(lo, hi) < cand && cand < py_max(lo, hi))) cand = 0.5 * (lo + hi);
+            if (!(rig_py_min(lo, hi) < cand && cand < rig_py_max(lo, hi))) cand = 0.5 * (lo + hi);
             /* bracket at rounding level: r jumps across zero */
-            if (fabs(hi - lo) <= 4e-16 * py_max(fabs(lo), fabs(hi))) {
+            if (fabs(hi - lo) <= 4e-16 * rig_py_max(fabs(lo), fabs(hi))) {
                 *u2p = u2;
                 return RIG_OK;
             }
@@ -114,58 +110,48 @@ int rig_solve_lateral(const rig_contact *c, double u1, double *u2p, double N, do
     return RIG_NOT_CONVERGED;
 }
 
-int rig_run(const rig_setup *r, const rig_contact *c, double scale, rig_observer observe,
-            void *observer_ctx, rig_figures *out, double *x1_failed) {
-    const double h = r->step, v = r->velocity, m = r->mass, N = r->mass * r->g;
+int rig_start(rig_runner *run, const rig_setup *r, const rig_contact *c, double scale) {
+    const double h = r->step, v = r->velocity, m = r->mass;
     const long n_steps = rig_step_count(r->travel, v, h);
     if (n_steps < 1) return RIG_BAD_SETUP;
-    const double mu_s = r->mu_strip;
+    rig_runner s = {0};
+    s.r = r;
+    s.c = c;
+    s.h = h;
+    s.v = v;
+    s.m = m;
+    s.N = r->mass * r->g;
+    s.mu_s = r->mu_strip;
     /* the strip's viscous term: implicit in the dynamic rig, a residual term
      * over the step's displacement in the quasi-static one */
-    const double damp = 1.0 + h * r->c_strip / m, visc = r->c_strip / h;
-    const double x1_fit = rig_fit_start(r, n_steps);
-    const double x1_mid = rig_fit_middle(x1_fit, rig_fit_end(r, n_steps));
-    double x2 = 0.0, v2 = 0.0, T1 = 0.0, T2 = 0.0;
-    rig_line_fit fit = {0}, head = {0}, tail = {0};
-    long newton = 0;
-    for (long k = 1; k <= n_steps; ++k) {
-        const double t = k * h, x1 = v * t;
-        if (!r->quasistatic) {
-            rig_lateral_step(&x2, &v2, T1, T2, m, mu_s, damp, h);
-            if (!c->set_inputs(c->ctx, x1, x2, N) || !c->force(c->ctx, &T1, &T2))
-                return RIG_CONTACT_FAILED;
-        } else {
-            /* The strip holds the block while |T2| <= mu_s P; beyond that the
-             * block moves until T2 falls to the strip's limit, iterating from
-             * the committed state. */
-            if (!c->save(c->ctx) || !c->set_inputs(c->ctx, x1, x2, N) ||
-                !c->force(c->ctx, &T1, &T2))
-                return RIG_CONTACT_FAILED;
-            if (fabs(T2) > mu_s * py_max(-T1, 0.0)) {
-                if (!c->restore(c->ctx)) return RIG_CONTACT_FAILED;
-                long it = 0;
-                const int st = rig_solve_lateral(c, x1, &x2, N, copysign(mu_s, T2), scale, visc, &it);
-                newton += it;
-                if (st != RIG_OK) {
-                    if (x1_failed) *x1_failed = x1;
-                    return st;
-                }
-                if (!c->force(c->ctx, &T1, &T2)) return RIG_CONTACT_FAILED;
-            }
-        }
-        if (!c->commit(c->ctx, h)) return RIG_CONTACT_FAILED;
-        const double drive = r->f_int - T1;
-        if (x1 >= x1_fit) {
-            rig_fit_add(&fit, x1, x2, drive);
-            rig_fit_add(x1 >= x1_mid ? &tail : &head, x1, x2, drive);
-        }
-        if (observe && !observe(observer_ctx, k, n_steps, t, x1, x2, T1, T2, drive))
-            return RIG_OBSERVER_FAILED;
-    }
-    out->phi_deg = rig_fit_angle_deg(&fit);
-    out->drive_mean_N = rig_fit_mean_drive(&fit);
-    out->phi_head_deg = rig_fit_angle_deg(&head);
-    out->phi_tail_deg = rig_fit_angle_deg(&tail);
-    out->newton_iterations = newton;
+    s.damp = 1.0 + h * r->c_strip / m;
+    s.visc = r->c_strip / h;
+    s.scale = scale;
+    s.x1_fit = rig_fit_start(r, n_steps);
+    s.x1_mid = rig_fit_middle(s.x1_fit, rig_fit_end(r, n_steps));
+    s.n_steps = n_steps;
+    s.k = 1;
+    *run = s;
     return RIG_OK;
+}
+
+int rig_advance(rig_runner *s, rig_observer observe, void *observer_ctx, double *x1_failed) {
+    return rig_advance_on(s, *s->c, observe, observer_ctx, x1_failed);
+}
+
+void rig_finish(const rig_runner *s, rig_figures *out) {
+    out->phi_deg = rig_fit_angle_deg(&s->fit);
+    out->drive_mean_N = rig_fit_mean_drive(&s->fit);
+    out->phi_head_deg = rig_fit_angle_deg(&s->head);
+    out->phi_tail_deg = rig_fit_angle_deg(&s->tail);
+    out->newton_iterations = s->newton;
+}
+
+int rig_run(const rig_setup *r, const rig_contact *c, double scale, rig_observer observe,
+            void *observer_ctx, rig_figures *out, double *x1_failed) {
+    rig_runner run;
+    int st = rig_start(&run, r, c, scale);
+    while (st == RIG_OK && !rig_done(&run)) st = rig_advance(&run, observe, observer_ctx, x1_failed);
+    if (st == RIG_OK) rig_finish(&run, out);
+    return st;
 }

@@ -14,6 +14,8 @@
 #ifndef RIG_CORE_H
 #define RIG_CORE_H
 
+#include <math.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -22,6 +24,11 @@ extern "C" {
  * compiled master can describe their layout to its Python caller
  * (rm_layout in master_src/rig_master.h) from the same list. */
 #define RIG_DECLARE_FIELD(type, name) type name;
+
+/* Python's max(a, b) and min(a, b): the first argument unless the second is
+ * strictly larger (smaller); fmax/fmin may differ on signed zeros. */
+static inline double rig_py_max(double a, double b) { return b > a ? b : a; }
+static inline double rig_py_min(double a, double b) { return b < a ? b : a; }
 
 /* The rig, as orthocontact.rig.Rig.  kg, m/s^2, N, m/s, m, s, N s/m;
  * quasistatic: 0 dynamic, 1 quasi-static. */
@@ -111,9 +118,80 @@ double rig_lateral_scale(double mu1, double mu2, double eps1, double eps2, doubl
 /* One run of the rig over r->travel on an initialized contact, `scale` from
  * rig_lateral_scale.  RIG_BAD_SETUP if its step count is not a whole number
  * in [1, 2^53].  On RIG_NOT_CONVERGED *x1_failed is where.  Figures
- * are written on RIG_OK only. */
+ * are written on RIG_OK only.  rig_start + rig_advance until rig_done +
+ * rig_finish, in one call. */
 int rig_run(const rig_setup *r, const rig_contact *c, double scale, rig_observer observe,
             void *observer_ctx, rig_figures *out, double *x1_failed);
+
+/* The same run a step at a time, so that a caller can advance several
+ * independent runs in turn: a rig step waits on the contact's result (the
+ * lateral step needs the force, the next contact step the position), and
+ * two runs stepped alternately let the processor work on one while the
+ * other waits.  Each run's numbers are those of rig_run, bit for bit. */
+typedef struct {
+    const rig_setup *r;
+    const rig_contact *c;
+    double h, v, m, N, mu_s, damp, visc, scale, x1_fit, x1_mid;
+    long n_steps, k, newton;
+    double x2, v2, T1, T2;
+    rig_line_fit fit, head, tail;
+} rig_runner;
+
+/* RIG_OK, or RIG_BAD_SETUP (nothing to step).  r and c must outlive the run. */
+int rig_start(rig_runner *run, const rig_setup *r, const rig_contact *c, double scale);
+/* 1 once every step is taken. */
+static inline int rig_done(const rig_runner *run) { return run->k > run->n_steps; }
+/* The next step (rig_run's loop body): RIG_OK or an error as rig_run's. */
+int rig_advance(rig_runner *run, rig_observer observe, void *observer_ctx, double *x1_failed);
+/* The same with the contact given by value: where the caller's contact
+ * functions are known at compile time, the compiler calls them directly
+ * (or inlines them) instead of through the pointers. */
+static inline int rig_advance_on(rig_runner *s, const rig_contact contact, rig_observer observe,
+                                 void *observer_ctx, double *x1_failed) {
+    const rig_contact *c = &contact;
+    const double h = s->h, N = s->N, mu_s = s->mu_s;
+    const long k = s->k;
+    const double t = k * h, x1 = s->v * t;
+    double x2 = s->x2, T1 = s->T1, T2 = s->T2;
+    if (!s->r->quasistatic) {
+        rig_lateral_step(&x2, &s->v2, T1, T2, s->m, mu_s, s->damp, h);
+        if (!c->set_inputs(c->ctx, x1, x2, N) || !c->force(c->ctx, &T1, &T2))
+            return RIG_CONTACT_FAILED;
+    } else {
+        /* The strip holds the block while |T2| <= mu_s P; beyond that the
+         * block moves until T2 falls to the strip's limit, iterating from
+         * the committed state. */
+        if (!c->save(c->ctx) || !c->set_inputs(c->ctx, x1, x2, N) || !c->force(c->ctx, &T1, &T2))
+            return RIG_CONTACT_FAILED;
+        if (fabs(T2) > mu_s * rig_py_max(-T1, 0.0)) {
+            if (!c->restore(c->ctx)) return RIG_CONTACT_FAILED;
+            long it = 0;
+            const int st = rig_solve_lateral(c, x1, &x2, N, copysign(mu_s, T2), s->scale, s->visc, &it);
+            s->newton += it;
+            if (st != RIG_OK) {
+                if (x1_failed) *x1_failed = x1;
+                return st;
+            }
+            if (!c->force(c->ctx, &T1, &T2)) return RIG_CONTACT_FAILED;
+        }
+    }
+    if (!c->commit(c->ctx, h)) return RIG_CONTACT_FAILED;
+    s->x2 = x2;
+    s->T1 = T1;
+    s->T2 = T2;
+    s->k = k + 1;
+    const double drive = s->r->f_int - T1;
+    if (x1 >= s->x1_fit) {
+        rig_fit_add(&s->fit, x1, x2, drive);
+        rig_fit_add(x1 >= s->x1_mid ? &s->tail : &s->head, x1, x2, drive);
+    }
+    if (observe && !observe(observer_ctx, k, s->n_steps, t, x1, x2, T1, T2, drive))
+        return RIG_OBSERVER_FAILED;
+    return RIG_OK;
+}
+
+/* The figures of a finished run. */
+void rig_finish(const rig_runner *run, rig_figures *out);
 
 #ifdef __cplusplus
 }

@@ -215,67 +215,121 @@ static int record_row(void *ctx, long k, long n_steps, double t, double x1, doub
     return 1;
 }
 
-/* One run on an initialized instance; rec may be NULL.  1, or 0 with err. */
-static int simulate(fmu_contact *F, const rm_contact *p, const rig_setup *r, rig_figures *out,
-                    recording *rec, char *err, size_t n) {
-    const rig_contact contact = {F, fc_set_inputs, fc_force, fc_force_du2, fc_save, fc_restore,
-                                 fc_commit};
-    const double scale = rig_lateral_scale(p->mu1, p->mu2, p->eps1, p->eps2, r->mass * r->g);
-    double x1_failed = NAN;
-    const int st = rig_run(r, &contact, scale, rec ? record_row : NULL, rec, out, &x1_failed);
-    if (F->snapshot) F->m->free_state(F->c, &F->snapshot);
-    F->snapshot = NULL;
+/* Why a run stopped with rig status st, into err. */
+static void run_error(const fmu_contact *F, int st, const rig_setup *r, const recording *rec,
+                      double x1_failed, char *err, size_t n) {
     switch (st) {
-    case RIG_OK: return 1;
     case RIG_NOT_CONVERGED:
         set_err(err, n, "lateral equilibrium not reached at x1 = %g m", x1_failed);
-        return 0;
+        break;
     case RIG_BAD_SETUP:
         set_err(err, n, "travel %g m at %g m/s in steps of %g s is not a whole number of steps "
                         "in [1, 2^53]", r->travel, r->velocity, r->step);
-        return 0;
-    case RIG_OBSERVER_FAILED:
-        if (rec && rec->full)
-            set_err(err, n, "recording buffer of %ld rows is full", rec->capacity);
-        else
-            set_err(err, n, "FMU call failed: %s", F->m->last);
-        return 0;
+        break;
     default:
-        set_err(err, n, "FMU call failed: %s", F->m->last);
+        if (st == RIG_OBSERVER_FAILED && rec && rec->full)
+            set_err(err, n, "recording buffer of %ld rows is full", rec->capacity);
+        else /* a call of the run or of its recorder */
+            set_err(err, n, "FMU call failed: %s", F->m->last);
+    }
+}
+
+/* A run in progress on its own contact instance.  run_sets advances up to
+ * LANES runs in turn, a step each: one rig step waits on its contact's
+ * result, and the other run's step fills that wait (rig_runner, rig_core.h),
+ * 17 % fewer ns a rig step in `orthocontact uq` (docs/benchmarks.md).  Each
+ * run is alone on its instance, so its numbers do not depend on the lanes. */
+enum { LANES = 2 };
+typedef struct {
+    fmu_contact F;
+    rig_contact contact;
+    rig_runner run;
+    int set;  /* the set it runs, -1 if idle */
+    int used; /* the instance has run a set: reset before the next */
+} lane;
+
+/* Starts set i on lane L: the instance reset and initialized with the set's
+ * parameters.  1, or 0 with err. */
+static int lane_start(lane *L, int i, const rm_contact *p, const rig_setup *r, char *err, size_t n) {
+    rm_master *m = L->F.m;
+    static const fmi2ValueReference vr[6] = {OC_VR_mu1, OC_VR_mu2, OC_VR_eps1,
+                                             OC_VR_eps2, OC_VR_alpha, OC_VR_beta};
+    static const fmi2ValueReference vr_rule = OC_VR_slidingRule;
+    const double v[6] = {p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2, p[i].alpha, p[i].beta};
+    const fmi2Integer rule = p[i].rule;
+    fmi2Component c = L->F.c;
+    if ((L->used && m->reset(c) > fmi2Warning) || m->set_real(c, vr, 6, v) > fmi2Warning ||
+        m->set_integer(c, &vr_rule, 1, &rule) > fmi2Warning ||
+        m->setup(c, fmi2False, 0.0, 0.0, fmi2False, 0.0) > fmi2Warning ||
+        m->enter_init(c) > fmi2Warning || m->exit_init(c) > fmi2Warning) {
+        set_err(err, n, "set %d: initialization failed: %s", i, m->last);
         return 0;
     }
+    L->used = 1;
+    L->F.time = 0.0;
+    L->set = i;
+    const double scale = rig_lateral_scale(p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2,
+                                           r[i].mass * r[i].g);
+    const int st = rig_start(&L->run, &r[i], &L->contact, scale);
+    if (st != RIG_OK) {
+        run_error(&L->F, st, &r[i], NULL, NAN, err, n);
+        return 0;
+    }
+    return 1;
 }
 
 static int run_sets(void *h, int count, const rm_contact *p, const rig_setup *r, rig_figures *out,
                     recording *rec, char *err, size_t n) {
     rm_master *m = h;
     const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, m};
-    fmu_contact F = {m, NULL, 0.0, NULL};
-    F.c = m->instantiate("cmaster", fmi2CoSimulation, m->guid, m->resources, &cb, fmi2False, fmi2False);
-    if (!F.c) {
-        set_err(err, n, "fmi2Instantiate failed: %s", m->last);
-        return -1;
-    }
-    if (rec) rec->F = &F;
-    static const fmi2ValueReference vr[6] = {OC_VR_mu1, OC_VR_mu2, OC_VR_eps1,
-                                             OC_VR_eps2, OC_VR_alpha, OC_VR_beta};
-    static const fmi2ValueReference vr_rule = OC_VR_slidingRule;
-    int status = 0;
-    for (int i = 0; i < count && status == 0; ++i) {
-        const double v[6] = {p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2, p[i].alpha, p[i].beta};
-        const fmi2Integer rule = p[i].rule;
-        if ((i > 0 && m->reset(F.c) > fmi2Warning) || m->set_real(F.c, vr, 6, v) > fmi2Warning ||
-            m->set_integer(F.c, &vr_rule, 1, &rule) > fmi2Warning ||
-            m->setup(F.c, fmi2False, 0.0, 0.0, fmi2False, 0.0) > fmi2Warning ||
-            m->enter_init(F.c) > fmi2Warning || m->exit_init(F.c) > fmi2Warning) {
-            set_err(err, n, "set %d: initialization failed: %s", i, m->last);
+    /* a recorded run has one observer, on one lane */
+    const int lanes = rec || count < LANES ? 1 : LANES;
+    lane L[LANES];
+    int status = 0, next = 0, active = 0;
+    for (int k = 0; k < lanes; ++k) {
+        L[k] = (lane){{m, NULL, 0.0, NULL}, {0}, {0}, -1, 0};
+        L[k].contact = (rig_contact){&L[k].F, fc_set_inputs, fc_force, fc_force_du2, fc_save,
+                                     fc_restore, fc_commit};
+        L[k].F.c = m->instantiate("cmaster", fmi2CoSimulation, m->guid, m->resources, &cb,
+                                  fmi2False, fmi2False);
+        if (!L[k].F.c) {
+            set_err(err, n, "fmi2Instantiate failed: %s", m->last);
             status = -1;
-            break;
         }
-        F.time = 0.0;
-        if (!simulate(&F, &p[i], &r[i], &out[i], i == 0 ? rec : NULL, err, n)) status = -1;
     }
-    m->free_instance(F.c);
+    if (rec) rec->F = &L[0].F;
+    for (int k = 0; k < lanes && status == 0 && next < count; ++k, ++active)
+        if (!lane_start(&L[k], next++, p, r, err, n)) status = -1;
+    while (status == 0 && active > 0) {
+        for (int k = 0; k < lanes && status == 0; ++k) {
+            lane *a = &L[k];
+            if (a->set < 0) continue;
+            double x1_failed = NAN;
+            const int st = rig_advance_on(&a->run, (rig_contact){&a->F, fc_set_inputs, fc_force,
+                                            fc_force_du2, fc_save, fc_restore, fc_commit},
+                                          rec ? record_row : NULL, rec, &x1_failed);
+            if (st != RIG_OK) {
+                run_error(&a->F, st, &r[a->set], rec, x1_failed, err, n);
+                status = -1;
+                break;
+            }
+            if (!rig_done(&a->run)) continue;
+            rig_finish(&a->run, &out[a->set]);
+            if (a->F.snapshot) m->free_state(a->F.c, &a->F.snapshot);
+            a->F.snapshot = NULL;
+            a->set = -1;
+            active -= 1;
+            if (next < count) {
+                if (!lane_start(a, next++, p, r, err, n)) status = -1;
+                else active += 1;
+            }
+        }
+    }
+    for (int k = 0; k < lanes; ++k) {
+        if (!L[k].F.c) continue;
+        if (L[k].F.snapshot) m->free_state(L[k].F.c, &L[k].F.snapshot);
+        m->free_instance(L[k].F.c);
+    }
     return status;
 }
 
