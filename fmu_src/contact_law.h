@@ -86,8 +86,9 @@ typedef struct {
     /* What the tangent needs of a slip: w_i = 1 + dgamma sigma_i, kept as
      * w_i / max w and 1 / max w, which stay representable where dgamma and
      * w overflow (a trial far outside a tiny yield surface).  Not outputs:
-     * nothing here may refuse a step. */
-    double dgamma;   /* plastic multiplier of the step (0 unless slipping; may be inf) */
+     * nothing here may refuse a step.  Written by a slip step only (an open
+     * or stick step leaves them as they were: its tangent needs none). */
+    double dgamma;   /* plastic multiplier of the slip step (0 for eq. 20; may be inf) */
     double w[2];     /* (1 + dgamma sigma_i) / max_j (1 + dgamma sigma_j), in (0, 1] */
     double inv_wmax; /* 1 / max_j (1 + dgamma sigma_j), in [0, 1] */
 } oc_step;
