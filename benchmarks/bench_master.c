@@ -9,6 +9,8 @@
  * 1.5x contact step.
  *
  *   bench_master [rounds]
+ * Environment: BENCH_OURS_FMI2 (the contact binary to run instead of the
+ * host build's, e.g. the shipped one that `orthocontact uq` loads).
  */
 #include <dlfcn.h>
 #include <math.h>
@@ -32,7 +34,8 @@ int main(int argc, char **argv) {
     (void)bench_inputs;
     const int rounds = argc > 1 ? atoi(argv[1]) : 7;
     char err[512];
-    void *m = rm_open(OURS_FMI2, FMU_TOKEN, "", err, sizeof err);
+    const char *ours = getenv("BENCH_OURS_FMI2") ? getenv("BENCH_OURS_FMI2") : OURS_FMI2;
+    void *m = rm_open(ours, FMU_TOKEN, "", err, sizeof err);
     if (!m) return fprintf(stderr, "%s\n", err), 2;
     rm_contact p[ANGLES];
     rig_setup r[ANGLES];
@@ -51,7 +54,7 @@ int main(int argc, char **argv) {
                       sizeof err) != 0 || n_rows[i] != STEPS)
             return fprintf(stderr, "record: %s (%ld rows)\n", err, n_rows[i]), 2;
 
-    void *lib = dlopen(OURS_FMI2, RTLD_NOW | RTLD_LOCAL);
+    void *lib = dlopen(ours, RTLD_NOW | RTLD_LOCAL);
     if (!lib) return fprintf(stderr, "%s\n", dlerror()), 2;
     fmi2InstantiateTYPE *inst = (fmi2InstantiateTYPE *)dlsym(lib, "fmi2Instantiate");
     fmi2FreeInstanceTYPE *free_inst = (fmi2FreeInstanceTYPE *)dlsym(lib, "fmi2FreeInstance");

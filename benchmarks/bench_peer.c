@@ -1,14 +1,16 @@
 /* Benchmark (not a test) and, with --check, the peer's agreement test.
  *
- * The shipped FMU (the host binaries CMake builds, loaded with dlopen as an
- * importer loads them) against the peer (benchmarks/peer/: the same law
+ * Our FMU's binaries (by default the host build CMake makes; tools/bench.sh
+ * also runs the shipped, zig-built ones through BENCH_OURS_FMI2/3), loaded
+ * with dlopen as an importer loads them, against the peer (benchmarks/peer/: the same law
  * written the plain way, with a minimal FMI layer), both driven through the
  * same loop of set inputs + doStep + get (T1, T2), FMI 2.0 and 3.0, every
  * sliding rule, stick and slip paths (bench_common.h).  Runs are interleaved
  * (ours and the peer one after the other, stick then slip, `rounds` rounds),
  * each figure the least disturbed of its rounds; the ratio is ours / peer of
  * those, with the range of the rounds' own ratios beside it.  Targets (issue
- * 16): stick <= 1.0x the peer, slip <= 0.5x.
+ * 16): stick <= 1.0x the peer, slip <= 0.5x (eq. (20), a formula with no
+ * solve to beat, <= 1.0x).
  *
  *   bench_peer [steps [rounds]]       ns per step and ratios, and the floor
  *                                     of the calls alone (a null FMU)
