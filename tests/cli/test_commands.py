@@ -3,8 +3,10 @@ summary, tables and figures; reproduce matches every number of the paper."""
 import json
 import math
 from pathlib import Path
+
 import pytest
 
+from orthocontact.cli.commands import load_scenario, packaged_scenarios
 from orthocontact.cli.main import main
 
 SCEN = Path(__file__).resolve().parents[2] / "scenarios"
@@ -81,3 +83,12 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
         assert (out / name / "summary.json").exists()
     assert {r["scenario"] for r in rows} >= {"case1", "case2", "case3", "case4", "case5", "mat_aged",
                                             "mat_new", "calibration"}
+
+
+def test_the_packaged_scenarios_are_the_repositorys(capsys):
+    folder = packaged_scenarios()
+    assert sorted(p.name for p in folder.glob("*.toml")) == sorted(p.name for p in SCEN.glob("*.toml"))
+    for f in SCEN.glob("*.toml"):
+        assert (folder / f.name).read_text() == f.read_text()
+    sc = load_scenario(SCEN / "case5.toml", yes=False)    # size checked, within the limits
+    assert sc.name == "case5" and capsys.readouterr().err == ""

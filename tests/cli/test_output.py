@@ -9,6 +9,9 @@ from pathlib import Path
 import pytest
 
 from orthocontact.cli.main import main
+from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings, staged_output,
+                                     warn, warnings_said)
+from orthocontact.errors import InputError
 
 CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = Path(__file__).resolve().parents[2] / "scenarios"
@@ -87,3 +90,43 @@ def test_reproduce_replaces_only_the_files_it_writes(tmp_path):
     assert (out / "mine.txt").read_text() == "keep me too"
     assert (out / "case4" / "summary.json").read_text() != "old"
     assert (out / "case4" / "sweep.csv").is_file() and (out / "report.md").is_file()
+
+
+def test_output_checks_in_process_name_the_users_path(tmp_path):
+    (tmp_path / "afile").write_text("x")
+    check_output_folder(tmp_path / "new" / "deeper")          # can be made: fine, nothing made
+    assert leftovers(tmp_path) == ["afile"]
+    with pytest.raises(InputError, match=r"--scenarios .*afile: is a file; expected a folder"):
+        check_output_folder(tmp_path / "afile", "--scenarios")
+    check_output_file(tmp_path / "a.ssp")
+    with pytest.raises(InputError, match="is a folder; expected a file name"):
+        check_output_file(tmp_path)
+    with pytest.raises(InputError, match=r"the folder .*nowhere does not exist"):
+        check_output_file(tmp_path / "nowhere" / "a.ssp")
+    assert leftovers(tmp_path) == ["afile"]
+
+
+def test_staged_output_commits_on_success_and_leaves_nothing_on_failure(tmp_path):
+    out = tmp_path / "made" / "results"
+    with pytest.raises(RuntimeError):
+        with staged_output(out) as stage:
+            (stage / "summary.json").write_text("{}")
+            raise RuntimeError("disk full")
+    assert leftovers(tmp_path) == []            # nor the parent folder made for it
+    with staged_output(out) as stage:
+        (stage / "sub").mkdir()
+        (stage / "sub" / "a.csv").write_text("1")
+        assert not out.exists()                 # nothing in place before the block ends
+    assert sorted(p.relative_to(out).as_posix() for p in out.rglob("*")) == ["sub", "sub/a.csv"]
+    assert leftovers(out.parent) == ["results"]
+
+
+def test_warnings_are_counted_for_strict(capsys):
+    forget_warnings()
+    warn("angles.csv: a value looks like radians")
+    warn("second")
+    assert warnings_said() == 2
+    assert capsys.readouterr().err.splitlines() == [
+        "orthocontact: warning: angles.csv: a value looks like radians", "orthocontact: warning: second"]
+    forget_warnings()
+    assert warnings_said() == 0

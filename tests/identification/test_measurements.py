@@ -1,10 +1,16 @@
 """Measurement data and their files (orthocontact.identification.measurements):
-Excel's CSV UTF-8 is read, an invisible character in a header is shown."""
+Excel's CSV UTF-8 is read, an invisible character in a header is shown,
+written data read back, the digest follows the files."""
 import json
 import shutil
 import subprocess
 import sys
 from pathlib import Path
+
+import numpy as np
+
+from orthocontact.experiment.rig_setup import RigSetup
+from orthocontact.identification.measurements import data_digest, load_data, visible, write_measurements
 
 ROOT = Path(__file__).resolve().parents[2]
 CMD = [sys.executable, "-m", "orthocontact"]
@@ -50,3 +56,26 @@ def test_an_invisible_character_in_a_header_is_shown_escaped(tmp_path):
                  encoding="utf-8")
     p = run(["identify", data, "--out", tmp_path / "out"], tmp_path)
     one_error_line(p, "forces.csv: line 1: expected column 'mat_angle_deg'", "mat_angle_deg\\u200b")
+
+
+def test_visible_escapes_exactly_what_a_reader_cannot_see():
+    assert visible("mat_angle_deg,force_N") == "mat_angle_deg,force_N"
+    assert visible("\ufeffmat angle\u200b\u00a0\t") == "\\ufeffmat angle\\u200b\\u00a0\\u0009"
+    assert visible("φ 39.2°") == "φ 39.2°"   # printable non-ASCII stays
+
+
+def test_written_measurements_read_back(tmp_path):
+    rig = RigSetup(mass_kg=1.875, f_int_N=5.0)
+    forces = np.array([[0.0, 12.5], [90.0, 16.5], [45.0, 14.25]])
+    angles = np.array([[30.0, -11.5], [40.0, -11.4]])
+    write_measurements(tmp_path / "d", rig, forces=forces, angles=angles)
+    data = load_data(tmp_path / "d")
+    assert data.rig.mass_kg == 1.875 and data.rig.f_int_N == 5.0
+    np.testing.assert_array_equal(data.forces, forces)
+    np.testing.assert_array_equal(data.angles, angles)
+    assert data.ramp is None
+    # the digest covers the data files: one changed digit changes it
+    digest = data_digest(tmp_path / "d")
+    f = tmp_path / "d" / "forces.csv"
+    f.write_text(f.read_text().replace("16.5", "16.6"))
+    assert data_digest(tmp_path / "d") != digest

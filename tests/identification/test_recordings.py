@@ -16,9 +16,11 @@ import numpy as np
 import pytest
 
 import make_recordings as mr
+from orthocontact.errors import InputError
 from orthocontact.identification.estimators import joint_fit, start_values
 from orthocontact.identification.job import load_folder
 from orthocontact.identification.measurements import load_data
+from orthocontact.identification.recordings import is_recordings, parse_number
 
 ROOT = Path(__file__).resolve().parents[2]
 EXE = [sys.executable, "-m", "orthocontact"]
@@ -218,3 +220,17 @@ def test_reduced_format_reads_both_names_of_the_mat_angle(tmp_path):
             p.write_text("\n".join([re.sub(r"^(alpha_deg|mat_angle_deg)", col, lines[0])] + lines[1:]) + "\n")
     a, b = load_data(new), load_data(old)
     assert np.array_equal(a.forces, b.forces) and np.array_equal(a.angles, b.angles)
+
+
+def test_a_cell_is_a_finite_number_or_one_line_naming_file_line_and_column(tmp_path):
+    assert parse_number("r.csv", 4, "x1_m", " 0.25 ".strip()) == 0.25
+    assert math.isnan(parse_number("r.csv", 4, "x2_m", "", missing_ok=True))
+    assert math.isnan(parse_number("r.csv", 4, "x2_m", "NaN", missing_ok=True))
+    for cell, says in (("0,25", "expected a number, got '0,25'"), ("inf", "expected a finite number"),
+                       ("", "expected a number, got ''"), ("nan", "expected a finite number")):
+        with pytest.raises(InputError) as e:
+            parse_number("r.csv", 4, "x1_m", cell)
+        assert str(e.value).startswith(f"r.csv: line 4: x1_m: {says}")
+    assert not is_recordings(tmp_path)
+    (tmp_path / "runs.csv").write_text("run,kind,mat_angle_deg,velocity_m_s\n")
+    assert is_recordings(tmp_path)

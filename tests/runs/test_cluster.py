@@ -6,6 +6,11 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
+from orthocontact.errors import InputError
+from orthocontact.runs.cluster import check_address
+
 ROOT = Path(__file__).resolve().parents[2]
 CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
@@ -57,3 +62,13 @@ def test_sweeps_on_dask_give_the_local_results(tmp_path):
     assert a.returncode == 0 and b.returncode == 0, b.stderr
     for name in ("sweep.csv", "trajectories.csv"):
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
+
+
+def test_a_scheduler_is_local_or_an_address():
+    for ok in ("local", "tcp://10.0.0.5:8786", "tls://h:1", "inproc://x", "ucx://h:2"):
+        check_address(ok)
+    for bad in ("127.0.0.1:8786", "none", "Local", ""):
+        with pytest.raises(InputError) as e:
+            check_address(bad)
+        assert str(e.value) == (f"--scheduler {bad}: expected 'local' or a scheduler address such as "
+                                "tcp://HOST:PORT")

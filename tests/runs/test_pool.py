@@ -7,6 +7,10 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
+
+from orthocontact.runs.pool import Heartbeat, Progress, default_workers
+
 ROOT = Path(__file__).resolve().parents[2]
 CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
@@ -57,3 +61,28 @@ def test_the_sweeps_refinement_and_recordings_say_they_are_running(tmp_path):
     p = run(["run", sc, "--out", tmp_path / "out", "--workers", "2"], tmp_path, timeout=300)
     assert p.returncode == 0, p.stderr
     assert "mat_aged extremum and trajectories: " in p.stderr and "runs done" in p.stderr
+
+
+def test_progress_says_each_tenth_once_and_the_end(capsys):
+    p = Progress(20, "sweep case5", enabled=True)
+    try:
+        for _ in range(20):
+            p.update()
+    finally:
+        p.close()
+    lines = capsys.readouterr().err.splitlines()   # not a terminal: the first run, then a line per 10 %
+    assert [x.split(" (")[0] for x in lines] == [f"sweep case5: {n}/20" for n in (1, 2, 4, 6, 8, 10, 12,
+                                                                                 14, 16, 18, 20)]
+    assert lines[0].startswith("sweep case5: 1/20 (5%, ")
+    assert lines[-1].startswith("sweep case5: 20/20 (100%, ")
+    quiet = Progress(5, "q", enabled=False)
+    quiet.update(5)
+    assert capsys.readouterr().err == "" and quiet.done == 5
+
+
+def test_a_heartbeat_counts_runs_and_speaks_only_when_due(capsys):
+    with Heartbeat("refine", enabled=False) as h:
+        h.update(3)
+        h.update()
+    assert h.done == 4 and capsys.readouterr().err == ""
+    assert 1 <= default_workers() <= 8
