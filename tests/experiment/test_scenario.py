@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from orthocontact.cli.main import main
+from orthocontact.experiment.scenario import ScenarioError, load
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"
@@ -104,3 +105,13 @@ def test_a_scenario_saved_with_a_byte_order_mark_is_read(tmp_path):
     sc.write_bytes(b"\xef\xbb\xbf" + (SCEN / "case4.toml").read_bytes())
     p = run(["run", sc, "--out", tmp_path / "out", "--workers", "1"], tmp_path)
     assert p.returncode == 0, p.stderr
+
+
+def test_load_in_process_names_the_file_and_key(tmp_path):
+    sc = load(SCEN / "case5.toml")
+    assert sc.name == "case5" and sc.kind == "sweep" and sc.closed_form == "eq25"
+    f = tmp_path / "bad.toml"
+    f.write_text((SCEN / "case5.toml").read_text().replace("[law]\n", "[law]\nmu3 = 0.2\n", 1))
+    with pytest.raises(ScenarioError) as e:
+        load(f)
+    assert str(e.value).startswith(f"{f}: law.mu3: expected ") and "\n" not in str(e.value)

@@ -1,16 +1,20 @@
 """The Teflon strip in the fit (orthocontact.identification.strip_model): its
-viscosity estimated from two velocities, a known strip taken as an input."""
+viscosity estimated from two velocities, a known strip taken as an input, the
+regimes of motion the model is built for."""
 import json
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from orthocontact import closed_forms as cf
 from orthocontact.cli.main import main
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.fmu.params import ContactParams
 from orthocontact.identification.estimators import joint_fit, start_values
 from orthocontact.identification.measurements import MeasurementSet, write_measurements
+from orthocontact.identification.strip_model import strip_regimes
+
 TRUTH = ContactParams(0.408, 0.625, 12510.0, 10000.0)
 TV = {"mu1": 0.408, "mu2": 0.625, "eps_ratio": 1.251, "eps2": 1e4, "eps1": 12510.0}
 FA, AA = [0, 15, 30, 45, 60, 75, 90], list(range(5, 90, 5))
@@ -67,3 +71,18 @@ def test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity():
     unknown = MeasurementSet(Path("u"), rig, forces, angles, None, vel)
     fit = joint_fit(unknown, start_values(unknown))
     assert "c_strip" in fit.not_identifiable and "two or more velocities" in fit.not_identifiable["c_strip"]
+
+
+def test_the_strips_regimes_against_the_law_without_it():
+    angles = np.array([[a, 0.0] for a in (10.0, 30.0, 50.0, 70.0, 85.0)])
+    values = {"mu1": 0.408, "mu2": 0.625, "eps_ratio": 1.251}
+
+    def regimes(mu_strip):
+        rig = RigSetup(mass_kg=1.875, f_int_N=5.0, mu_strip=mu_strip)
+        return strip_regimes(MeasurementSet(Path("s"), rig, None, angles, None), values)
+    assert regimes(0.0) == ()                        # no strip: nothing to choose
+    assert regimes(10.0) == (0,) * 5                 # friction above mu2 N holds the block
+    rig = RigSetup(mass_kg=1.875, f_int_N=5.0)
+    free = [cf.steady_tan_phi(0.408, 0.625, 1.251e4, 1e4, *rig.axes(a), rig.rule) for a, _ in angles]
+    assert all(abs(t) > 1e-3 for t in free)
+    assert regimes(1e-9) == tuple(1 if t > 0 else -1 for t in free)   # a negligible strip: the law's way

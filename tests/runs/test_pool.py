@@ -7,8 +7,6 @@ import sys
 import time
 from pathlib import Path
 
-import pytest
-
 from orthocontact.runs.pool import Heartbeat, Progress, default_workers
 
 ROOT = Path(__file__).resolve().parents[2]
