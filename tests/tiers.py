@@ -22,7 +22,10 @@ import pytest
 SLOW = {
     "identification/test_job.py": "*",         # identification: FMU data, CLI runs
     "identification/test_estimators.py": "*",  # coverage over 200 replicates
-    "identification/test_strip_model.py": "*",
+    "identification/test_strip_model.py": {
+        "test_strip_viscosity_estimated_from_two_velocities_through_the_cli",
+        "test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity",
+    },
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
     "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results"},
