@@ -46,6 +46,28 @@ def make(fmu_path):
         f.close()
 
 
+@pytest.fixture
+def last_figure(monkeypatch):
+    """The axes of every figure, as they were when it was closed (the figure
+    tests of reproduction and identification inspect them)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    seen = []
+    orig = plt.close
+
+    def keep(fig=None):
+        if fig is not None and hasattr(fig, "canvas"):
+            fig.canvas.draw()
+            seen.append([(ax, ax.get_ylim(), ax.get_window_extent(),
+                          ax.get_legend().get_window_extent() if ax.get_legend() else None,
+                          [t.get_text() for t in ax.get_legend().get_texts()] if ax.get_legend() else [])
+                         for ax in fig.axes])
+        orig(fig)
+    monkeypatch.setattr(plt, "close", keep)
+    return seen
+
+
 def pytest_configure(config):
     config.addinivalue_line("markers", "slow: not in the fast tier (`make check`); listed in tests/tiers.py")
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from orthocontact import ContactParams, plausibility
+from orthocontact import plausibility
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.measurements import write_measurements
 
@@ -117,14 +117,6 @@ def test_rig_toml_velocity_in_cm_s_is_refused(tmp_path):
                                                                      "velocity_m_s = 24.4"))
     p = run(["identify", str(d), "--out", "o"], tmp_path)
     assert p.returncode == 2 and "rig.toml: velocity_m_s = 24.4 m/s" in p.stderr and "cm/s?" in p.stderr
-
-
-def test_contact_params_refuse_angles_outside_4_pi_naming_radians():
-    with pytest.raises(ValueError, match=r"alpha = 90 rad is outside \[-4 pi, 4 pi\] rad.*degrees\?"):
-        ContactParams(0.408, 0.625, 1e4, 1e4, alpha=90)
-    with pytest.raises(ValueError, match="beta"):
-        ContactParams(0.408, 0.625, 1e4, 1e4, beta=-13.0)
-    assert ContactParams(0.408, 0.625, 1e4, 1e4, alpha=4 * math.pi).alpha == 4 * math.pi
 
 
 def test_the_plausibility_table_itself():

@@ -3,8 +3,9 @@ marked `slow`: the law, both FMUs, the rig (harness, compiled master,
 CarriageBlock) and the CLI's core, under 2 minutes with the release C tests.
 `make test` runs everything, and is what CI runs.
 
-SLOW lists the slow tests by file and function name (every parametrization of
-a function; "*" for a whole file), measured with `pytest --durations=0`:
+SLOW lists the slow tests by file (its path under tests/) and function name
+(every parametrization of a function; "*" for a whole file), measured with
+`pytest --durations=0`:
 installs into fresh environments, the FMU rebuilt from its sources, qemu, the
 long random and reference comparisons, identification, uncertainty
 propagation and sensitivity.  The list is kept in one place, not spread as
@@ -19,19 +20,26 @@ from pathlib import Path
 import pytest
 
 SLOW = {
-    "test_identify.py": "*",          # identification: coverage over 200 replicates, CLI runs
-    "test_uq.py": "*",                # uncertainty propagation, Dask clusters
-    "test_sensitivity.py": "*",       # the rig's assumptions, 168 rig runs
-    "test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
-    "test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
-    "test_fmu.py": {"test_sources_compile_into_a_working_binary"},           # builds from sources/
-    "test_closed_forms.py": {
+    "identification/test_job.py": "*",         # identification: FMU data, CLI runs
+    "identification/test_estimators.py": "*",  # coverage over 200 replicates
+    "identification/test_strip_model.py": {
+        "test_strip_viscosity_estimated_from_two_velocities_through_the_cli",
+        "test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity",
+    },
+    "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
+    "uq/test_estimates.py": "*",
+    "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results"},
+    "reproduction/test_sensitivity.py": "*",   # the rig's assumptions, 168 rig runs
+    "contracts/test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
+    "fmus/test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
+    "fmus/test_fmu.py": {"test_sources_compile_into_a_working_binary"},           # builds from sources/
+    "closed_forms/test_rig.py": {
         "test_strip_steady_state_matches_the_independent_reference_simulator",
         "test_no_nan_and_no_exception_in_any_regime",
         "test_array_form_equals_the_scalar_form",
         "test_strip_steady_state_matches_the_rig_on_1000_random_laws",
     },
-    "test_rig_checks.py": {
+    "rig/test_checks.py": {
         "test_the_identifications_validation_runs_the_fitted_strip",
         "test_a_dynamic_rig_that_never_settled_is_flagged_everywhere",
         "test_a_new_scenario_gets_a_rig_that_settles",
@@ -52,11 +60,14 @@ def mark_slow(config, items) -> None:
     seen: dict[str, set] = {}
     for item in items:
         path = Path(str(item.fspath))
-        if path.parent != HERE or path.name not in SLOW:
+        if HERE not in path.parents:
+            continue
+        rel = path.relative_to(HERE).as_posix()
+        if rel not in SLOW:
             continue
         name = getattr(item, "originalname", item.name)
-        seen.setdefault(path.name, set()).add(name)
-        names = SLOW[path.name]
+        seen.setdefault(rel, set()).add(name)
+        names = SLOW[rel]
         if names == "*" or name in names:
             item.add_marker(pytest.mark.slow)
     if _collected_in_part(config):

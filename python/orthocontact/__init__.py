@@ -13,7 +13,7 @@ The public API (see README, "Python API"):
     load_measurements     read and validate a measurement folder
     identify_parameters   identification from a measurement folder or set
 
-Subpackages by layer, lowest first (tests/test_structure.py keeps every
+Subpackages by layer, lowest first (tests/contracts/test_structure.py keeps every
 import going down):
     errors, plausibility  -- one-line errors; the plausible ranges of inputs with a unit
     fmu            -- the law's parameters, the installed FMUs, an FMU instance through fmpy

@@ -4,7 +4,7 @@ functions (dlopen of the extracted binary) for a batch of parameter sets per
 call.
 
 The C rig is pinned to the Python harness (orthocontact.rig, the reference)
-bit for bit by tests/test_cmaster.py; it only spends no Python per step.
+bit for bit by tests/rig/test_compiled.py; it only spends no Python per step.
 The structs passed to it are built from the library's own description of
 their layout (rm_layout, master_src/rig_master.h), so there is one
 declaration of them, in C.  Units as in orthocontact.rig: kg, m/s^2, N, m/s,

@@ -24,7 +24,7 @@ Modes:
 
 The same rig in C (fmu_src/rig_core.c: the CarriageBlock FMU's step and the
 compiled master's loop) is tested against this module bit for bit
-(tests/test_cmaster.py): this is the reference, and the path that needs no
+(tests/rig/test_compiled.py): this is the reference, and the path that needs no
 compiled master."""
 from __future__ import annotations
 

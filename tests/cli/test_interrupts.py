@@ -1,0 +1,136 @@
+"""Interrupts (orthocontact.cli.interrupts), through the real command in a
+subprocess: a signal to the main process or one swallowed by a finalizer
+stops every worker and leaves nothing behind."""
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from procs import alive, children, descendants
+
+CMD = [sys.executable, "-m", "orthocontact"]
+ROOT = Path(__file__).resolve().parents[2]
+SCEN = ROOT / "scenarios"
+DATA = SCEN / "example_identification"
+
+
+def leftovers(folder: Path):
+    return sorted(p.name for p in folder.iterdir())
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_signal_to_the_main_process_stops_everything_and_writes_nothing(tmp_path, sig):
+    """As an IDE's stop button or a job runner does: the signal goes to the
+    main process only, while its workers are busy."""
+    proc = subprocess.Popen(CMD + ["reproduce", "--out", "results", "--workers", "2"], cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    kids = []
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < 60:  # wait until the sweep's workers are running
+        kids = [k for k in children(proc.pid)]
+        if len(kids) >= 2:
+            break
+        time.sleep(0.1)
+    assert len(kids) >= 2, "the sweep's workers did not start"
+    time.sleep(0.5)
+    os.kill(proc.pid, sig)
+    t_sig = time.monotonic()
+    out, err = proc.communicate(timeout=60)
+    stopped_after = time.monotonic() - t_sig
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err
+    assert err.strip().splitlines()[-1] == "orthocontact: interrupted; nothing written to results"
+    assert stopped_after < 10
+    assert leftovers(tmp_path) == []  # no results/, no .results.partial-*
+    time.sleep(0.2)
+    assert [k for k in kids if alive(k)] == []
+
+
+@pytest.mark.filterwarnings("ignore::pytest.PytestUnraisableExceptionWarning")  # the swallowing, expected
+def test_an_interrupt_swallowed_by_a_finalizer_still_stops_and_writes_nothing(tmp_path):
+    """Python reports a KeyboardInterrupt raised inside __del__ as "Exception
+    ignored" and runs on (this happened to the CLI, in ContactFMU.__del__);
+    the run must still end as interrupted, with nothing committed."""
+    from orthocontact.cli import interrupts, output
+
+    class SignalledDuringFinalization:
+        def __del__(self):
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)  # the handler runs here, inside __del__
+
+    old = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    try:
+        interrupts.install_signal_handlers()
+        with pytest.raises(KeyboardInterrupt):
+            with output.staged_output(tmp_path / "results") as stage:
+                (stage / "summary.json").write_text("{}")
+                SignalledDuringFinalization()  # dropped at once: __del__ runs
+                # reaching here means the interrupt was swallowed
+    finally:
+        signal.signal(signal.SIGINT, old[0])
+        signal.signal(signal.SIGTERM, old[1])
+        interrupts.install_signal_handlers()  # forgets the interrupt
+        signal.signal(signal.SIGINT, old[0])
+        signal.signal(signal.SIGTERM, old[1])
+    assert leftovers(tmp_path) == []
+
+
+def run(args, cwd, timeout=120, env=None):
+    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout, env=env)
+
+
+# -- Ctrl-C on a Dask command -------------------------------------------------------
+
+def _busy_dashboard_port():
+    """Holds 127.0.0.1:8787 if it is free (if not, someone else does)."""
+    s = socket.socket()
+    try:
+        s.bind(("127.0.0.1", 8787))
+        s.listen(1)
+    except OSError:
+        s.close()
+        return None
+    return s
+
+
+@pytest.mark.parametrize("after", ["start", "progress"])
+def test_ctrl_c_on_uq_is_one_line_and_leaves_nothing(tmp_path, identified, after):
+    """Ctrl-C as a terminal sends it: SIGINT to the whole process group,
+    Dask's worker processes included, while the cluster starts or runs."""
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    env = dict(os.environ, TMPDIR=str(tmp))
+    port = _busy_dashboard_port()
+    try:
+        proc = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(SCEN / "mat_aged.toml"),
+                                       "--samples", "3000", "--out", "out", "--workers", "2"],
+                                cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True, start_new_session=True)
+        t0 = time.monotonic()
+        if after == "start":
+            time.sleep(1.5)  # the interpreter is up, the cluster starting
+        else:
+            while time.monotonic() - t0 < 90:  # the workers are running chunks
+                line = proc.stderr.readline()
+                if line.startswith("uq mat_aged:") or not line:
+                    break
+            time.sleep(1.0)
+        kids = descendants(proc.pid)
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=60)
+    finally:
+        if port is not None:
+            port.close()
+    assert proc.returncode == 130, err
+    lines = [x for x in err.splitlines() if not x.startswith("uq mat_aged:")]
+    assert lines == ["orthocontact: interrupted; nothing written to out"], err
+    assert "UserWarning" not in err and "Traceback" not in err and "leaked" not in err
+    assert sorted(os.listdir(tmp_path)) == ["tmp"]
+    assert sorted(os.listdir(tmp)) == []  # no unpacked FMU, no dask-scratch-space
+    time.sleep(0.5)
+    assert [k for k in kids if alive(k)] == []

@@ -1,0 +1,132 @@
+"""Where a command's results go (orthocontact.cli.output): bad output paths
+refused before any work, a staging folder committed only when everything
+is written, files the command does not write left alone."""
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from orthocontact.cli.main import main
+from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings, staged_output,
+                                     warn, warnings_said)
+from orthocontact.errors import InputError
+
+CMD = [sys.executable, "-m", "orthocontact"]
+SCEN = Path(__file__).resolve().parents[2] / "scenarios"
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def timed_run(args, cwd, timeout=120):
+    t0 = time.monotonic()
+    p = subprocess.run(CMD + args, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    return p, time.monotonic() - t0
+
+
+def leftovers(folder: Path):
+    return sorted(p.name for p in folder.iterdir())
+
+
+@pytest.mark.parametrize("out,says", [
+    ("afile", "afile: is a file"),
+    ("afile/sub", "afile is a file"),
+    ("/proc/x", "/proc is not writable"),
+])
+def test_bad_output_path_is_refused_before_any_work(tmp_path, out, says):
+    (tmp_path / "afile").write_text("keep me")
+    before = leftovers(tmp_path)
+    p, seconds = timed_run(["reproduce", "--out", out], tmp_path)
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and f"--out {out}" in lines[0] and says in lines[0], p.stderr
+    assert "partial" not in p.stderr and "Traceback" not in p.stderr
+    assert leftovers(tmp_path) == before and (tmp_path / "afile").read_text() == "keep me"
+    assert seconds < 10  # no sweep ran (measured: ~0.3 s, the interpreter's start)
+
+
+def test_failed_run_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "keep.txt").write_text("earlier result")
+    import orthocontact.reproduction.scenario_outputs as report
+
+    def boom(*a, **k):
+        raise RuntimeError("disk full")
+    monkeypatch.setattr(report, "sweep_outputs", boom)
+    sc = (SCEN / "case4.toml").read_text().replace("step_deg = 1.0", "step_deg = 45.0")
+    f = tmp_path / "c4.toml"
+    f.write_text(sc)
+    with pytest.raises(RuntimeError):
+        main(["run", str(f), "--out", str(out), "--workers", "1"])
+    assert [p.name for p in out.iterdir()] == ["keep.txt"]
+    assert not list(tmp_path.glob(".out.partial-*"))
+
+
+def run(args, cwd, timeout=120, env=None):
+    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout, env=env)
+
+
+def _scenario_named(tmp_path, name) -> Path:
+    folder = tmp_path / "scen"
+    folder.mkdir(exist_ok=True)
+    text = (SCEN / "case4.toml").read_text().replace('name = "case4"', f'name = "{name}"', 1)
+    assert f'name = "{name}"' in text
+    (folder / "s.toml").write_text(text)
+    return folder
+
+
+def test_reproduce_replaces_only_the_files_it_writes(tmp_path):
+    folder = _scenario_named(tmp_path, "case4")
+    out = tmp_path / "out"
+    (out / "case4").mkdir(parents=True)
+    (out / "case4" / "my_notes.txt").write_text("keep me")
+    (out / "case4" / "summary.json").write_text("old")
+    (out / "mine.txt").write_text("keep me too")
+    p = run(["reproduce", "--scenarios", folder, "--out", out], tmp_path)
+    assert p.returncode in (0, 1), p.stderr  # 1: the packaged report compares rows of all scenarios
+    assert (out / "case4" / "my_notes.txt").read_text() == "keep me"
+    assert (out / "mine.txt").read_text() == "keep me too"
+    assert (out / "case4" / "summary.json").read_text() != "old"
+    assert (out / "case4" / "sweep.csv").is_file() and (out / "report.md").is_file()
+
+
+def test_output_checks_in_process_name_the_users_path(tmp_path):
+    (tmp_path / "afile").write_text("x")
+    check_output_folder(tmp_path / "new" / "deeper")          # can be made: fine, nothing made
+    assert leftovers(tmp_path) == ["afile"]
+    with pytest.raises(InputError, match=r"--scenarios .*afile: is a file; expected a folder"):
+        check_output_folder(tmp_path / "afile", "--scenarios")
+    check_output_file(tmp_path / "a.ssp")
+    with pytest.raises(InputError, match="is a folder; expected a file name"):
+        check_output_file(tmp_path)
+    with pytest.raises(InputError, match=r"the folder .*nowhere does not exist"):
+        check_output_file(tmp_path / "nowhere" / "a.ssp")
+    assert leftovers(tmp_path) == ["afile"]
+
+
+def test_staged_output_commits_on_success_and_leaves_nothing_on_failure(tmp_path):
+    out = tmp_path / "made" / "results"
+    with pytest.raises(RuntimeError):
+        with staged_output(out) as stage:
+            (stage / "summary.json").write_text("{}")
+            raise RuntimeError("disk full")
+    assert leftovers(tmp_path) == []            # nor the parent folder made for it
+    with staged_output(out) as stage:
+        (stage / "sub").mkdir()
+        (stage / "sub" / "a.csv").write_text("1")
+        assert not out.exists()                 # nothing in place before the block ends
+    assert sorted(p.relative_to(out).as_posix() for p in out.rglob("*")) == ["sub", "sub/a.csv"]
+    assert leftovers(out.parent) == ["results"]
+
+
+def test_warnings_are_counted_for_strict(capsys):
+    forget_warnings()
+    warn("angles.csv: a value looks like radians")
+    warn("second")
+    assert warnings_said() == 2
+    assert capsys.readouterr().err.splitlines() == [
+        "orthocontact: warning: angles.csv: a value looks like radians", "orthocontact: warning: second"]
+    forget_warnings()
+    assert warnings_said() == 0

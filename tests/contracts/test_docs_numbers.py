@@ -1,0 +1,166 @@
+"""The numbers the documentation states are the ones the commands and the
+closed forms give: the README's uq example, the compiled master's speed-up
+(one range in README, --help and docs/benchmarks.md), the model notes' errata,
+the libcosim example; and the documentation names no "issue" a reader cannot
+see.  CITATION.cff is valid."""
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from orthocontact.cli.parser import build_parser
+
+ROOT = Path(__file__).resolve().parents[2]
+README = (ROOT / "README.md").read_text()
+NOTES = (ROOT / "docs" / "model-notes.md").read_text()
+CMD = [sys.executable, "-m", "orthocontact"]
+
+
+def _help(name):
+    sub = next(a for a in build_parser()._actions if a.__class__.__name__ == "_SubParsersAction")
+    return " ".join(sub.choices[name].format_help().split())
+
+
+def test_the_readme_uq_example_prints_what_the_readme_says(tmp_path):
+    """The README's two commands (identify, then uq with 2000 draws), run
+    serially: the files are the same bit for bit on any cluster."""
+    ident = tmp_path / "identify"
+    p = subprocess.run(CMD + ["identify", str(ROOT / "scenarios/example_identification"), "--out",
+                              str(ident)], capture_output=True, text=True, timeout=300, cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    p = subprocess.run(CMD + ["uq", str(ident / "identified.json"), "--scenario", "scenarios/mat_aged.toml",
+                              "--samples", "2000", "--out", str(tmp_path / "uq"), "--scheduler", "none"],
+                       capture_output=True, text=True, timeout=900, cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    uq = json.loads((tmp_path / "uq" / "uq.json").read_text())
+    inside = uq["data_inside_measurement_band"]
+    said = re.search(r"\((\d+) of (\d+) for the example set\)", README)
+    assert said and (int(said.group(1)), int(said.group(2))) == (inside["inside"], inside["points"])
+    w = uq["widest_band"]
+    said = re.search(r"widest parameter band is ([\d.]+)° wide \(at (\d+)°", README)
+    assert said and said.group(1) == f"{w['width_deg']:.3f}" and float(said.group(2)) == w["angle_deg"]
+    assert f"{w['width_deg']:.3f} deg at {w['angle_deg']:g} deg" in p.stdout
+
+
+def test_the_compiled_masters_speed_up_is_one_range_everywhere():
+    """docs/benchmarks.md holds the measured table (benchmarks/bench_masters.py);
+    README and --help state its range, rounded outwards to whole numbers."""
+    bench = (ROOT / "docs" / "benchmarks.md").read_text()
+    table = bench.split("## The compiled master")[1].split("##")[0]
+    ratios = [float(x) for row in re.findall(r"\| ([\d.]+–[\d.]+)× \|", table) for x in row.split("–")]
+    assert len(ratios) == 4, table
+    lo, hi = int(min(ratios)), int(-(-max(ratios) // 1))
+    said = f"{lo}–{hi}×"
+    assert said in README.split("## The rig harness")[1].split("###")[0]
+    assert f"measured {said}" in README.split("## Benchmarks")[1]
+    assert f"{lo}-{hi}x faster" in _help("run")
+
+
+def test_identify_help_names_every_column():
+    text = _help("identify")
+    for column in ("mat_angle_deg", "force_N", "phi_deg", "velocity_m_s", "x1_m", "runs.csv", "t_s"):
+        assert column in text, column
+
+
+def test_no_documentation_names_an_issue_the_reader_cannot_see():
+    files = [ROOT / "README.md", ROOT / "CITATION.cff", ROOT / "scenarios" / "README.md",
+             ROOT / "benchmarks" / "bench_coverage.py", *sorted((ROOT / "docs").glob("*.md")),
+             ROOT / "docs" / "coverage.json"]
+    texts = {f.name: f.read_text() for f in files}
+    texts["--help"] = " ".join(_help(c) for c in ("run", "reproduce", "identify", "ssp", "uq", "sensitivity"))
+    for name, text in texts.items():
+        assert not re.search(r"\bissue(?:'s|s)?\b", text, re.I), name
+
+
+def _errata_numbers():
+    block = next(b for b in re.findall(r"```sh\n\.venv/bin/python -c \"\n(.*?)\"\n```", NOTES, re.S)
+                 if "case5_eq28_deg" in b)
+    out = subprocess.run([sys.executable, "-c", block], capture_output=True, text=True, check=True,
+                         timeout=60).stdout
+    return {line.split()[0]: line.split()[1:] for line in out.splitlines()}
+
+
+def test_the_sign_errata_say_what_the_closed_forms_give():
+    got = _errata_numbers()
+    assert got["case5_eq28_deg"] == ["-36.87"] and "give **−36.87°**" in NOTES
+    assert got["case5_eq27_deg"] == ["26.565"] and "α = 26.565°" in NOTES
+    assert got["mat_ratio"][0] == "0.817" and "λ₁/λ₂ = 0.817" in NOTES
+    assert got["other_reading_eps_ratio"] == ["1.875"] and "**ε₁/ε₂ = 1.875**" in NOTES
+    c, a = got["coupled"], got["associated"]
+    assert f"{a[1]}° at a mat angle of {a[3]}°" in " ".join(NOTES.split())
+    assert f"coupled rule's {c[1].lstrip('-')}° at {c[3]}°" in " ".join(NOTES.split())
+    assert f"(−{c[1].lstrip('-')}° at {c[3]}°)" in " ".join(NOTES.split())
+    m = got["case5_in_mat_frame"]
+    assert f"(+{m[0]}° at {m[2]}°)" in " ".join(NOTES.split())
+
+
+def test_the_readme_libcosim_example_runs_as_written_and_prints_the_harness_angle(tmp_path):
+    pytest.importorskip("libcosimpy")
+    block = re.search(r"```sh\n(\.venv/bin/pip install libcosimpy\n.*?)```", README, re.S).group(1)
+    lines = block.splitlines()
+    ssp_line = next(x for x in lines if " ssp " in x)
+    # the README's paths are relative to the repository root
+    p = subprocess.run(CMD + [a.replace("scenarios/", str(ROOT / "scenarios") + "/")
+                              for a in ssp_line.split()[1:]], capture_output=True, text=True, timeout=120,
+                       cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    code = block.split('-c "\n', 1)[1].rsplit('"', 1)[0]
+    q = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert q.returncode == 0, q.stderr[-2000:]
+    printed = q.stdout.strip().splitlines()[-1]
+    said = re.search(r"It prints `(phi = [-\d.]+ deg)`", README).group(1)
+    assert printed == said
+    from orthocontact.experiment.scenario import load
+    from orthocontact.rig.harness import run
+    sc = load(ROOT / "scenarios" / "mat_aged.toml")
+    assert abs(float(printed.split()[2]) - run(sc.params_at(39.2), sc.rig).phi_deg) < 5e-3
+
+
+def test_citation_cff_is_valid_and_names_the_paper_as_given():
+    text = (ROOT / "CITATION.cff").read_text()
+    try:
+        from cffconvert.cli.create_citation import create_citation
+        from cffconvert.cli.validate_or_write_output import validate_or_write_output
+    except ImportError:
+        create_citation = None
+    if create_citation is not None:
+        citation = create_citation(str(ROOT / "CITATION.cff"), None)
+        validate_or_write_output(None, "cff", True, citation)  # raises if the schema is not met
+    else:
+        import yaml
+        data = yaml.safe_load(text)
+        assert data["cff-version"] == "1.2.0" and data["message"] and data["title"] and data["authors"]
+    import yaml
+    data = yaml.safe_load(text)
+    assert data["version"] == (ROOT / "VERSION").read_text().strip()
+    paper = data["references"][0]
+    assert paper["type"] == "report" and paper["year"] == 2007
+    assert paper["institution"]["name"] == "Institut für Mechanik, Universität Karlsruhe"
+    assert paper["title"] == "On coupled models of anisotropic contact surfaces and their experimental validation"
+    assert "## Citing" in README and "CITATION.cff" in README.split("## Citing")[1]
+    assert "Institut für Mechanik" in README.split("## Citing")[1]
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_each_fmus_documentation_is_its_own_versions(version):
+    """documentation/index.html of the installed FMUs: the version's types and
+    functions only, the wiring, the output timing, angles in degrees, how to cite."""
+    import zipfile
+
+    from orthocontact.fmu.files import find_fmu
+    text = zipfile.ZipFile(find_fmu(fmi_version=version)).read("documentation/index.html").decode()
+    other = 3 if version == 2 else 2
+    assert f"FMI {version}.0 Co-Simulation" in text
+    assert f"fmi{other}" not in text and f"fmi{version}DoStep" in text
+    types = set(re.findall(r"<tr><td><code>\w+</code></td><td>\d+</td><td>\w+</td><td>\w+</td><td>([^<]+)</td>",
+                           text))
+    assert types == ({"Real", "Integer", "Integer (see below)"} if version == 2 else
+                     {"Float64", "Int32", "Enumeration SlidingRule", "Enumeration InitialSlip"}), types
+    words = " ".join(re.sub(r"<[^>]+>", " ", text).split())
+    for said in ("relative to the surface", "T(u, N)", "one step behind", "N starts at 0",
+                 "1.5707963267948966 (90&deg;)", "How to cite", "Universit&auml;t Karlsruhe, 2007"):
+        assert said in words, said
+    assert "machine precision" not in words

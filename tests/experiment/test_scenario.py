@@ -1,0 +1,117 @@
+"""Scenario files (orthocontact.experiment.scenario): every bad key, type,
+range or name is one line naming the file and key, exit 2, nothing written."""
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from orthocontact.cli.main import main
+from orthocontact.experiment.scenario import ScenarioError, load
+
+ROOT = Path(__file__).resolve().parents[2]
+SCEN = ROOT / "scenarios"
+CMD = [sys.executable, "-m", "orthocontact"]
+BAD = [
+    ("unknown key", "mu3 = 0.2\n", "[law]", "law.mu3"),
+    ("wrong type", 'mu1 = "high"\n', "[law]", "law.mu1"),
+    ("out of range", "mu2 = -0.5\n", "[law]", "law.mu2"),
+    ("bad mode", 'mode = "fast"\n', "[rig]", "rig.mode"),
+    ("missing fmu", 'fmu = "nowhere/OrthotropicContact.fmu"\n', None, "fmu"),
+    ("bad evidence", 'evidence = "hearsay"\n', "[paper]", "paper.evidence"),
+    ("unknown calibration input", 'calibrated_on = ["phi_deg"]\n', "[paper]", "paper.calibrated_on"),
+]
+
+
+@pytest.mark.parametrize("what,line,table,key", BAD, ids=[b[0] for b in BAD])
+def test_bad_scenario_one_line_exit_2_nothing_written(tmp_path, capsys, what, line, table, key):
+    text = (SCEN / "case1.toml").read_text()
+    if table:
+        # replace an existing key of the table, or add the new one to it
+        k = line.split("=")[0].strip()
+        lines = text.splitlines(keepends=True)
+        start = lines.index(table + "\n")
+        for i in range(start + 1, len(lines)):
+            if lines[i].startswith(k + " ") or lines[i].startswith("["):
+                if lines[i].startswith(k + " "):
+                    lines[i] = line
+                else:
+                    lines.insert(i, line)
+                break
+        else:  # the table is the file's last
+            lines.append(line)
+        text = "".join(lines)
+    else:
+        text = line + text
+    f = tmp_path / "bad.toml"
+    f.write_text(text)
+    out = tmp_path / "out"
+    assert main(["run", str(f), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1
+    assert str(f) in err[0] and key in err[0] and "expected" in err[0]
+    assert not out.exists() or not any(out.iterdir())
+    assert not list(tmp_path.glob(".out.partial-*"))
+
+
+def test_toml_syntax_error_is_one_line(tmp_path, capsys):
+    f = tmp_path / "broken.toml"
+    f.write_text("name = \n")
+    assert main(["run", str(f), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "broken.toml" in err[0] and "TOML" in err[0]
+
+
+def run(args, cwd, timeout=120, env=None):
+    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout, env=env)
+
+
+def one_error_line(p, *says):
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2, p.stderr
+    assert len(lines) == 1 and lines[0].startswith("orthocontact: error: "), p.stderr
+    for s in says:
+        assert s in lines[0], lines[0]
+
+
+def _scenario_named(tmp_path, name) -> Path:
+    folder = tmp_path / "scen"
+    folder.mkdir(exist_ok=True)
+    text = (SCEN / "case4.toml").read_text().replace('name = "case4"', f'name = "{name}"', 1)
+    assert f'name = "{name}"' in text
+    (folder / "s.toml").write_text(text)
+    return folder
+
+
+@pytest.mark.parametrize("name", ["../escaped", "a/b", "..", ".", "", "c:x", "a\\\\b", " lead"])
+def test_a_scenario_name_that_is_not_a_plain_file_name_is_refused(tmp_path, name):
+    folder = _scenario_named(tmp_path, name)
+    p = run(["reproduce", "--scenarios", folder, "--out", tmp_path / "out"], tmp_path)
+    one_error_line(p, "s.toml: name: expected a plain file name")
+    assert sorted(os.listdir(tmp_path)) == ["scen"]
+
+
+@pytest.mark.parametrize("name", ["sensitivity", "report.md", "summary.json"])
+def test_a_scenario_named_like_the_reports_own_files_is_refused(tmp_path, name):
+    folder = _scenario_named(tmp_path, name)
+    p = run(["reproduce", "--scenarios", folder, "--out", tmp_path / "out"], tmp_path)
+    one_error_line(p, "name: expected a name of its own")
+
+
+def test_a_scenario_saved_with_a_byte_order_mark_is_read(tmp_path):
+    sc = tmp_path / "bom.toml"
+    sc.write_bytes(b"\xef\xbb\xbf" + (SCEN / "case4.toml").read_bytes())
+    p = run(["run", sc, "--out", tmp_path / "out", "--workers", "1"], tmp_path)
+    assert p.returncode == 0, p.stderr
+
+
+def test_load_in_process_names_the_file_and_key(tmp_path):
+    sc = load(SCEN / "case5.toml")
+    assert sc.name == "case5" and sc.kind == "sweep" and sc.closed_form == "eq25"
+    f = tmp_path / "bad.toml"
+    f.write_text((SCEN / "case5.toml").read_text().replace("[law]\n", "[law]\nmu3 = 0.2\n", 1))
+    with pytest.raises(ScenarioError) as e:
+        load(f)
+    assert str(e.value).startswith(f"{f}: law.mu3: expected ") and "\n" not in str(e.value)

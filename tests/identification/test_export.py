@@ -1,0 +1,174 @@
+"""`orthocontact export`: identify on the bundled example, export, and run
+the exported FMUs with no parameter set anywhere (fmpy, libcosim): the
+trajectory angle is the identified model's closed-form prediction."""
+import json
+import re
+import subprocess
+import sys
+import zipfile
+from datetime import datetime, timezone
+from pathlib import Path
+
+import pytest
+
+from libcosim_rig import run_rig_ssp
+from fmpy.ssp.ssd import read_ssv
+from fmpy.validation import validate_fmu
+from fmu_values import schema_errors, values_with_nothing_set
+
+from orthocontact import __version__
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.start_values import start_values_of
+from orthocontact.identification.export import load_calibration, predicted_phi_deg
+from orthocontact.rig.harness import LineFit, run
+
+ROOT = Path(__file__).resolve().parents[2]
+DATA = ROOT / "scenarios/example_identification"
+ANGLE = 40.0   # near the example mat's extremum
+
+
+def cli(*args, timeout=300):
+    return subprocess.run([sys.executable, "-m", "orthocontact", *map(str, args)], capture_output=True,
+                          text=True, timeout=timeout)
+
+
+@pytest.fixture(scope="module")
+def identified(tmp_path_factory):
+    out = tmp_path_factory.mktemp("identified")
+    p = cli("identify", DATA, "--out", out, "--no-validate")
+    assert p.returncode == 0, p.stderr
+    return out / "identified.json"
+
+
+@pytest.fixture(scope="module")
+def exported(identified, tmp_path_factory):
+    out = tmp_path_factory.mktemp("export") / "calibrated"
+    p = cli("export", identified, "--out", out, "--angle", ANGLE)
+    assert p.returncode == 0, p.stderr
+    return out
+
+
+def test_export_writes_calibrated_fmus_that_validate_and_keep_everything(identified, exported):
+    d = json.loads(identified.read_text())
+    names = sorted(p.relative_to(exported).as_posix() for p in exported.rglob("*") if p.is_file())
+    assert names == ["calibration.ssv", "fmi2/OrthotropicContact.fmu", "fmi3/OrthotropicContact.fmu",
+                     f"rig_{ANGLE:g}.ssp"]
+    for v in (2, 3):
+        fmu = exported / f"fmi{v}/OrthotropicContact.fmu"
+        assert validate_fmu(str(fmu)) == [] and schema_errors(fmu) == []
+        stated = start_values_of(fmu)
+        assert {n: stated[n] for n in ("mu1", "mu2", "eps1", "eps2")} == \
+            {n: d[n]["value"] for n in ("mu1", "mu2", "eps1", "eps2")}
+        assert values_with_nothing_set(fmu, ["mu1", "eps2"]) == {"mu1": d["mu1"]["value"],
+                                                                "eps2": d["eps2"]["value"]}
+        original, copy = zipfile.ZipFile(find_fmu(fmi_version=v)), zipfile.ZipFile(fmu)
+        for name in original.namelist():   # binaries of every platform, sources, licenses
+            if name != "modelDescription.xml":
+                assert copy.read(name) == original.read(name), name
+        doc = copy.read("documentation/calibration.html").decode()
+        digest = d["data"]["sha256"]
+        assert re.fullmatch("[0-9a-f]{64}", digest)
+        today = datetime.now(timezone.utc).strftime("%Y-%m-%d")
+        for text in (digest, today, f"orthocontact {__version__}"):
+            assert text in doc
+        lo, hi = d["mu1"]["ci95"]
+        assert f"{lo:.6g} .. {hi:.6g}" in doc
+        description = re.search(r'<fmiModelDescription[^>]*description="([^"]*)"',
+                                copy.read("modelDescription.xml").decode()).group(1)
+        assert digest in description and today in description and "calibration.html" in description
+
+
+def test_the_ssv_is_valid_and_holds_the_calibration(identified, exported):
+    d = json.loads(identified.read_text())
+    ps = read_ssv(str(exported / "calibration.ssv"))   # validated against the SSP schema
+    values = {p.name: p.value for p in ps.parameters}
+    assert {n: float(values[n]) for n in ("mu1", "mu2", "eps1", "eps2")} == \
+        {n: d[n]["value"] for n in ("mu1", "mu2", "eps1", "eps2")}
+    assert int(values["slidingRule"]) == 2
+
+
+class NothingSet(ContactFMU):
+    """The contact FMU initialized without setting any parameter: the rig
+    harness's loop drives only its inputs."""
+
+    def initialize(self, params, start_time=0.0):
+        self.slave.setupExperiment(startTime=start_time)
+        self.slave.enterInitializationMode()
+        self.slave.exitInitializationMode()
+        self.time, self.initialized = start_time, True
+
+
+def test_the_exported_fmu_runs_calibrated_in_fmpy_with_nothing_set(identified, exported):
+    cal = load_calibration(identified)
+    rig = cal.rig.harness(c_strip=cal.c_strip)   # the data's quasi-static rig
+    fmu = NothingSet(exported / "fmi2/OrthotropicContact.fmu", instance_name="nothing_set")
+    try:
+        # the parameters given to run() only scale the quasi-static Newton solve
+        res = run(cal.rig.params_at(cal.law, ANGLE), rig, fmu=fmu)
+    finally:
+        fmu.close()
+    expected = predicted_phi_deg(cal, ANGLE)
+    assert abs(expected) > 10      # far from what the FMU's defaults give here
+    assert abs(res.phi_deg - expected) <= 1e-9   # measured 4e-15 deg
+
+
+def test_the_exported_ssp_runs_calibrated_in_libcosim_with_no_parameter_set(identified, exported, tmp_path):
+    """The SSP's parameter bindings are taken out: the FMUs' own start values
+    alone make the calibrated experiment (CarriageBlock's dynamic rig)."""
+    pytest.importorskip("libcosimpy")
+    bare = tmp_path / "bare.ssp"
+    with zipfile.ZipFile(exported / f"rig_{ANGLE:g}.ssp") as z, zipfile.ZipFile(bare, "w") as o:
+        for info in z.infolist():
+            data = z.read(info)
+            if info.filename == "SystemStructure.ssd":
+                text, n = re.subn(r"\s*<ssd:ParameterBindings>.*?</ssd:ParameterBindings>", "",
+                                  data.decode(), flags=re.S)
+                assert n == 2 and "ParameterSet" not in text
+                data = text.encode()
+            o.writestr(info, data)
+    cal = load_calibration(identified)
+    rig = cal.rig.harness(c_strip=cal.c_strip)
+    n = int(rig.travel_m / (rig.velocity_m_s * rig.step_s) + 0.5)
+    rows = run_rig_ssp(bare, n)
+    fit = LineFit()
+    for x1, x2, drive in rows:
+        if x1 >= rig.fit_from * rows[-1][0]:
+            fit.add(x1, x2, drive)
+    # the dynamic rig has settled to the steady angle long before the fit: measured 6e-10 deg
+    assert abs(fit.angle_deg() - predicted_phi_deg(cal, ANGLE)) <= 1e-6
+
+
+def test_eps2_not_identified_takes_the_nominal_and_says_so(identified, tmp_path):
+    d = json.loads(identified.read_text())
+    ratio = d["eps_ratio"]["value"]
+    for n in ("eps1", "eps2"):
+        d[n] = {"identifiable": False, "reason": "no ramp.csv"}
+    d["data"]["folder"] = str(DATA)
+    (tmp_path / "identified.json").write_text(json.dumps(d))
+    p = cli("export", tmp_path / "identified.json", "--out", tmp_path / "out")
+    assert p.returncode == 0, p.stderr
+    fmu = tmp_path / "out/fmi2/OrthotropicContact.fmu"
+    v = start_values_of(fmu)
+    assert v["eps2"] == 1e4 and v["eps1"] == ratio * 1e4   # rig.toml's eps2_nominal_N_m (default)
+    doc = zipfile.ZipFile(fmu).read("documentation/calibration.html").decode()
+    assert "eps2 was <b>not</b> identified" in doc and "eps2_nominal_N_m" in doc
+
+
+@pytest.mark.parametrize("edit,says", [
+    (lambda d: d.pop("mu1"), "mu1: expected an object"),
+    (lambda d: d["mu2"].update(value=-1), "mu2.value: expected a finite number > 0"),
+    (lambda d: d["assumptions"].update(rule="sticky"), "assumptions.rule: expected one of"),
+    (lambda d: d["data"].update(folder="nowhere", absolute_folder="/nowhere"), "data.folder: nowhere not found"),
+    (lambda d: d["data"].update(sha256="0" * 64), "data.sha256: the files in"),
+])
+def test_bad_input_is_one_line_naming_the_file_and_field(identified, tmp_path, edit, says):
+    d = json.loads(identified.read_text())
+    edit(d)
+    bad = tmp_path / "identified.json"
+    bad.write_text(json.dumps(d))
+    p = cli("export", bad, "--out", tmp_path / "out")
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and str(bad) in lines[0] and says in lines[0], p.stderr
+    assert not (tmp_path / "out").exists()

@@ -1,0 +1,81 @@
+"""Measurement data and their files (orthocontact.identification.measurements):
+Excel's CSV UTF-8 is read, an invisible character in a header is shown,
+written data read back, the digest follows the files."""
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from orthocontact.experiment.rig_setup import RigSetup
+from orthocontact.identification.measurements import data_digest, load_data, visible, write_measurements
+
+ROOT = Path(__file__).resolve().parents[2]
+CMD = [sys.executable, "-m", "orthocontact"]
+SCEN = ROOT / "scenarios"
+DATA = SCEN / "example_identification"
+
+
+def run(args, cwd, timeout=120, env=None):
+    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout, env=env)
+
+
+def one_error_line(p, *says):
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2, p.stderr
+    assert len(lines) == 1 and lines[0].startswith("orthocontact: error: "), p.stderr
+    for s in says:
+        assert s in lines[0], lines[0]
+
+
+def test_excel_csv_utf8_with_a_byte_order_mark_is_read(tmp_path):
+    data = tmp_path / "data"
+    shutil.copytree(DATA, data)
+    for name in ("forces.csv", "angles.csv", "ramp.csv"):
+        f = data / name
+        f.write_bytes(b"\xef\xbb\xbf" + f.read_bytes().replace(b"\n", b"\r\n"))
+    p = run(["identify", data, "--out", tmp_path / "out", "--no-validate"], tmp_path)
+    assert p.returncode == 0, p.stderr
+    ref = run(["identify", DATA, "--out", tmp_path / "ref", "--no-validate"], tmp_path)
+    assert ref.returncode == 0, ref.stderr
+    got = json.loads((tmp_path / "out" / "identified.json").read_text())
+    want = json.loads((tmp_path / "ref" / "identified.json").read_text())
+    # the files' digest differs (their bytes do): everything read from them does not
+    assert got.pop("data")["sha256"] != want.pop("data")["sha256"]
+    assert json.dumps(got).replace(str(data), "DATA") == json.dumps(want).replace(str(DATA), "DATA")
+
+
+def test_an_invisible_character_in_a_header_is_shown_escaped(tmp_path):
+    data = tmp_path / "data"
+    shutil.copytree(DATA, data)
+    f = data / "forces.csv"
+    f.write_text(f.read_text(encoding="utf-8").replace("mat_angle_deg", "mat_angle_deg\u200b", 1),
+                 encoding="utf-8")
+    p = run(["identify", data, "--out", tmp_path / "out"], tmp_path)
+    one_error_line(p, "forces.csv: line 1: expected column 'mat_angle_deg'", "mat_angle_deg\\u200b")
+
+
+def test_visible_escapes_exactly_what_a_reader_cannot_see():
+    assert visible("mat_angle_deg,force_N") == "mat_angle_deg,force_N"
+    assert visible("\ufeffmat angle\u200b\u00a0\t") == "\\ufeffmat angle\\u200b\\u00a0\\u0009"
+    assert visible("φ 39.2°") == "φ 39.2°"   # printable non-ASCII stays
+
+
+def test_written_measurements_read_back(tmp_path):
+    rig = RigSetup(mass_kg=1.875, f_int_N=5.0)
+    forces = np.array([[0.0, 12.5], [90.0, 16.5], [45.0, 14.25]])
+    angles = np.array([[30.0, -11.5], [40.0, -11.4]])
+    write_measurements(tmp_path / "d", rig, forces=forces, angles=angles)
+    data = load_data(tmp_path / "d")
+    assert data.rig.mass_kg == 1.875 and data.rig.f_int_N == 5.0
+    np.testing.assert_array_equal(data.forces, forces)
+    np.testing.assert_array_equal(data.angles, angles)
+    assert data.ramp is None
+    # the digest covers the data files: one changed digit changes it
+    digest = data_digest(tmp_path / "d")
+    f = tmp_path / "d" / "forces.csv"
+    f.write_text(f.read_text().replace("16.5", "16.6"))
+    assert data_digest(tmp_path / "d") != digest

@@ -1,0 +1,72 @@
+"""The identification's estimates (orthocontact.uq.estimates): draws are
+physical, seeded and follow the covariance; a bad identified.json is one line."""
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from orthocontact.uq.estimates import Estimates, draw, load_estimates
+
+ROOT = Path(__file__).resolve().parents[2]
+CMD = [sys.executable, "-m", "orthocontact"]
+
+
+def _identification(tmp_path) -> Path:
+    out = tmp_path / "id"
+    p = subprocess.run(CMD + ["identify", str(ROOT / "scenarios/example_identification"), "--out", str(out),
+                              "--no-validate"], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    return out / "identified.json"
+
+
+@pytest.fixture(scope="module")
+def identified(tmp_path_factory):
+    return _identification(tmp_path_factory.mktemp("uq"))
+
+
+def test_draws_are_physical_seeded_and_follow_the_covariance(identified):
+    est = load_estimates(identified)
+    x, kept = draw(est, 20000, seed=7)
+    assert x.shape == (20000, len(est.names)) and np.all(x > 0) and kept == 1.0
+    assert np.array_equal(x, draw(est, 20000, seed=7)[0])
+    assert not np.array_equal(x, draw(est, 20000, seed=8)[0])
+    se = np.sqrt(np.diag(est.cov) / len(x))
+    assert np.all(np.abs(x.mean(axis=0) - est.mean) < 5 * se)
+    rel = np.abs(np.cov(x.T) - est.cov) / np.sqrt(np.outer(np.diag(est.cov), np.diag(est.cov)))
+    assert rel.max() < 0.05  # sampling error of a covariance from 20,000 draws: ~0.01
+
+
+def test_truncation_keeps_only_positive_draws():
+    # mu1 = 0.01 +- 0.01: about 16 % of the normal draws are not physical
+    est = Estimates(Path("x.json"), ["mu1", "mu2"], np.array([0.01, 0.6]), np.diag([1e-4, 1e-4]),
+                    "coupled", 90.0, 0.0, None, None)
+    x, kept = draw(est, 5000, seed=1)
+    assert np.all(x > 0) and len(x) == 5000
+    assert kept == pytest.approx(1 - 0.5 * math.erfc(1 / math.sqrt(2)), abs=0.02)
+
+
+def _uq(identified, scenario, out, *extra, timeout=300):
+    return subprocess.run(CMD + ["uq", str(identified), "--scenario", str(scenario), "--out", str(out),
+                                 *extra], capture_output=True, text=True, timeout=timeout)
+
+
+@pytest.mark.parametrize("change,says", [
+    (lambda d: d.pop("covariance"), "covariance: expected parameters, values and matrix"),
+    (lambda d: d["covariance"].__setitem__("matrix", [[1.0]]), "covariance: expected 4 values and a 4x4"),
+    (lambda d: d["covariance"]["matrix"][0].__setitem__(0, -1.0), "positive semidefinite"),
+    (lambda d: d["assumptions"].__setitem__("rule", "eq20"), "law.rule: expected 'eq20'"),
+])
+def test_bad_identification_file_one_line_and_nothing_written(identified, tmp_path, change, says):
+    d = json.loads(identified.read_text())
+    change(d)
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(d))
+    p = _uq(bad, ROOT / "scenarios/mat_aged.toml", tmp_path / "o", "--samples", "10")
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and says in lines[0] and "Traceback" not in p.stderr, p.stderr
+    assert not (tmp_path / "o").exists()
