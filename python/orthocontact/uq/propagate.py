@@ -140,7 +140,7 @@ def check_geometry(sc: Scenario, est: Estimates) -> None:
 
 def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
               scheduler: str | None = "local", workers: int = 1, step_s: float | None = None,
-              chunk_runs: int = 1000, progress: bool = True) -> UQResult:
+              chunk_runs: int = 5000, progress: bool = True) -> UQResult:
     """The rig over the scenario's angles for `samples` parameter sets.
     scheduler None runs here, in this process; "local" or an address on Dask."""
     from ..fmu.files import find_fmu
