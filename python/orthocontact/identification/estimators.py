@@ -17,7 +17,7 @@ from .. import closed_forms as cf
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
 from .measurements import MeasurementSet, friction_axis_key
-from .noise_model import between_run_tau2, tau_summary
+from .noise_model import between_run_tau2, tau_summary, variance_parts
 from .statistics import satterthwaite, t975
 from .strip_model import strip_regimes, strip_steady_state
 
@@ -124,6 +124,7 @@ class JointFit:
     sigma_assumed: list = field(default_factory=list)      # groups whose noise is the prior
     param_dof: dict = field(default_factory=dict)  # name -> Welch-Satterthwaite dof of its interval
     between_runs: dict = field(default_factory=dict)  # group -> tau, the run-to-run scatter
+    between_runs_dof: dict = field(default_factory=dict)  # group -> dof of its tau^2 (inf: the prior)
     within_run: dict = field(default_factory=dict)    # group -> rms of the within-run errors
 
 
@@ -332,12 +333,8 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     # variance that is run-to-run scatter, none for the part that is the
     # tracked speed's known error.  A group whose tau is the prior is known.
     group_dof = {g: (math.inf if g in assumed else n - groups[g][1]) for g, n in zip(names, sizes)}
-    rows = np.split(np.arange(len(r)), np.cumsum(sizes)[:-1])
-    parts = []
-    for g, idx in zip(names, rows):
-        WJ = J[idx] * wdiag[idx][:, None]
-        for var_c, nu in ((tau2[g], group_dof[g]), (se2[g], math.inf)):
-            parts.append((S @ cov_scaled @ (WJ.T @ (var_c[:, None] * WJ)) @ cov_scaled @ S, nu))
+    parts = variance_parts(S @ cov_scaled, J * wdiag[:, None], sizes,
+                           [(tau2[g], group_dof[g]) for g in names], [se2[g] for g in names])
     grads = {n: np.eye(len(free))[i] for i, n in enumerate(free)}
     if "eps2" in free and "eps_ratio" in free:
         i, j = free.index("eps_ratio"), free.index("eps2")
@@ -362,7 +359,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     return JointFit(free, values, cov, stderr, ci, dof, {g: sigma[g] for g in names},
                     dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof,
                     {g: tau_summary(tau2[g], components.get(g)) for g in names},
-                    {g: math.sqrt(float(np.mean(se2[g]))) for g in names})
+                    {g: math.sqrt(float(np.mean(se2[g]))) for g in names}, group_dof)
 
 
 def start_values(data: MeasurementSet) -> dict:
