@@ -124,8 +124,8 @@ class JointFit:
     sigma_assumed: list = field(default_factory=list)      # groups whose noise is the prior
     param_dof: dict = field(default_factory=dict)  # name -> Welch-Satterthwaite dof of its interval
     between_runs: dict = field(default_factory=dict)  # group -> tau, the run-to-run scatter
-    between_runs_dof: dict = field(default_factory=dict)  # group -> dof of its tau^2 (inf: the prior)
     within_run: dict = field(default_factory=dict)    # group -> rms of the within-run errors
+    between_runs_dof: dict = field(default_factory=dict)  # group -> dof of its tau^2 (inf: the prior)
 
 
 def identifiability(data: MeasurementSet) -> tuple[list, dict]:
