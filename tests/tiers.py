@@ -20,6 +20,7 @@ import pytest
 
 SLOW = {
     "test_identify.py": "*",          # identification: coverage over 200 replicates, CLI runs
+    "test_interval_coverage.py": {"test_intervals_cover_on_the_small_design"},  # 120 sets of raw recordings
     "test_uq.py": "*",                # uncertainty propagation, Dask clusters
     "test_sensitivity.py": "*",       # the rig's assumptions, 168 rig runs
     "test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
