@@ -15,7 +15,7 @@ Beside it, what the intervals would be without the between-run part of the
 noise model (weights 1/se^2 of the within-run errors alone, as if every run
 were as precise as its own line fit): their coverage of eps_ratio.
 
-    .venv/bin/python benchmarks/bench_recordings_coverage.py [--replicates 200] [--small]
+    .venv/bin/python benchmarks/bench_recordings_coverage.py [--replicates 200] [--small] [--seed 1000]
 """
 from __future__ import annotations
 
@@ -62,7 +62,8 @@ def replicate(args):
         mr.write_folder(Path(d), truth, runs)
         data, _ = load_folder(d)
     fit = joint_fit(data, start_values(data))
-    out = {k: (fit.values[k], fit.ci95[k][0], fit.ci95[k][1], fit.stderr[k]) for k in PARAMS if k in fit.values}
+    out = {k: (fit.values[k], fit.ci95[k][0], fit.ci95[k][1], fit.stderr[k], fit.param_dof[k])
+           for k in PARAMS if k in fit.values}
     # Without the between-run part the angles' noise would be the within-run
     # error alone; eps_ratio rests on the angles, so its stderr would shrink
     # by that ratio of noise levels (an approximation: the forces' share of
@@ -81,6 +82,7 @@ def main():
     ap.add_argument("--replicates", type=int, default=200)
     ap.add_argument("--small", action="store_true", help="the test's design: 4 angles x 5 runs, one velocity")
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--seed", type=int, default=1000, help="the first replicate's seed")
     ap.add_argument("--out", type=Path, default=None, help="write recordings_coverage.json here")
     args = ap.parse_args()
     t0 = time.time()
@@ -93,7 +95,7 @@ def main():
     print(f"{n} replicates of raw recordings ({'small' if args.small else 'bundled'} design); a true 95 % "
           f"coverage lands in {95 - 100 * half:.1f}-{95 + 100 * half:.1f} % (binomial 95 %)", flush=True)
     with ProcessPoolExecutor(args.workers) as ex:
-        res = list(ex.map(replicate, [(1000 + i, args.small, paths, ramp) for i in range(n)], chunksize=2))
+        res = list(ex.map(replicate, [(args.seed + i, args.small, paths, ramp) for i in range(n)], chunksize=2))
     rows = {}
     for k in PARAMS:
         got = [r[0][k] for r in res if k in r[0]]
@@ -101,10 +103,17 @@ def main():
             continue
         v = np.array(got)
         cover = float(np.mean((v[:, 1] <= tv[k]) & (tv[k] <= v[:, 2])))
+        sd = float(v[:, 0].std(ddof=1))
+        bias, bias_se = v[:, 0].mean() / tv[k] - 1, sd / math.sqrt(len(v)) / abs(tv[k])
         rows[k] = {"coverage": cover, "truth": tv[k], "mean_estimate": float(v[:, 0].mean()),
-                   "sd_of_estimates": float(v[:, 0].std(ddof=1)), "mean_stderr": float(v[:, 3].mean())}
-        print(f"{k:>9}: coverage {100 * cover:5.1f} %   truth {tv[k]:.6g}   mean {v[:, 0].mean():.6g}   "
-              f"sd {v[:, 0].std(ddof=1):.3g}   mean stderr {v[:, 3].mean():.3g}", flush=True)
+                   "relative_bias": float(bias), "relative_bias_se": float(bias_se),
+                   "sd_of_estimates": sd, "mean_stderr": float(v[:, 3].mean()),
+                   "rms_stderr_over_sd": float(np.sqrt(np.mean(v[:, 3] ** 2)) / sd),
+                   "median_dof": float(np.median(v[:, 4]))}
+        print(f"{k:>9}: coverage {100 * cover:5.1f} %   truth {tv[k]:.6g}   mean {v[:, 0].mean():.6g} "
+              f"({100 * bias:+.3f} +- {100 * bias_se:.3f} %)   sd {sd:.3g}   mean stderr {v[:, 3].mean():.3g}"
+              f"   rms stderr / sd {rows[k]['rms_stderr_over_sd']:.2f}   median dof {np.median(v[:, 4]):.3g}",
+              flush=True)
     naive = [r[1] for r in res if r[1] is not None]
     if naive:
         est = np.array([r[0]["eps_ratio"][0] for r in res if r[1] is not None])
@@ -115,7 +124,7 @@ def main():
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
         (args.out / "recordings_coverage.json").write_text(json.dumps(
-            {"replicates": n, "design": "small" if args.small else "bundled", "results": rows,
+            {"replicates": n, "first_seed": args.seed, "design": "small" if args.small else "bundled", "results": rows,
              "seconds": round(time.time() - t0, 1)}, indent=2) + "\n")
 
 

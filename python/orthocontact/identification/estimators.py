@@ -17,8 +17,8 @@ from .. import closed_forms as cf
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
 from .measurements import MeasurementSet, friction_axis_key
-from .noise_model import between_run_tau2, tau_summary
-from .statistics import t975
+from .noise_model import between_run_tau2, tau_summary, variance_parts
+from .statistics import satterthwaite, t975
 from .strip_model import strip_regimes, strip_steady_state
 
 REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
@@ -125,6 +125,7 @@ class JointFit:
     param_dof: dict = field(default_factory=dict)  # name -> Welch-Satterthwaite dof of its interval
     between_runs: dict = field(default_factory=dict)  # group -> tau, the run-to-run scatter
     within_run: dict = field(default_factory=dict)    # group -> rms of the within-run errors
+    between_runs_dof: dict = field(default_factory=dict)  # group -> dof of its tau^2 (inf: the prior)
 
 
 def identifiability(data: MeasurementSet) -> tuple[list, dict]:
@@ -323,18 +324,17 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     cov = S @ cov_scaled @ S
     values = {n: float(x0[i] * scale[n]) for i, n in enumerate(free)}
     dof = len(r) - len(free)
-    # Each group's noise is estimated from its own residuals, with its own
-    # degrees of freedom; a parameter's variance is a sum of the groups'
-    # contributions (cov J_g' W_g J_g cov), so its interval takes the
-    # Welch-Satterthwaite degrees of freedom of that sum: the forces' for
-    # mu1, mu2, mostly the ramp's for eps2, a blend for the ratio.  A group
-    # whose noise is the prior contributes with infinite dof.
+    # A parameter's variance is a sum of the variance components'
+    # contributions (cov J' W Sigma_c W J cov): each group's between-run
+    # tau^2, estimated from its residuals with the group's degrees of freedom,
+    # and its within-run se^2, known (the run's own line fit or mean).  Its
+    # interval takes the Welch-Satterthwaite dof of that sum: the forces'
+    # for mu1, mu2, the two ramp runs' one dof for the part of eps2's
+    # variance that is run-to-run scatter, none for the part that is the
+    # tracked speed's known error.  A group whose tau is the prior is known.
     group_dof = {g: (math.inf if g in assumed else n - groups[g][1]) for g, n in zip(names, sizes)}
-    rows = np.split(np.arange(len(r)), np.cumsum(sizes)[:-1])
-    contrib = {}
-    for g, idx in zip(names, rows):
-        Jg = J[idx] * np.sqrt(wdiag[idx])[:, None]
-        contrib[g] = S @ cov_scaled @ (Jg.T @ Jg) @ cov_scaled @ S
+    parts = variance_parts(S @ cov_scaled, J * wdiag[:, None], sizes,
+                           [(tau2[g], group_dof[g]) for g in names], [se2[g] for g in names])
     grads = {n: np.eye(len(free))[i] for i, n in enumerate(free)}
     if "eps2" in free and "eps_ratio" in free:
         i, j = free.index("eps_ratio"), free.index("eps2")
@@ -344,13 +344,9 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
         grads["eps1"] = grad
     stderr, param_dof, ci = {}, {}, {}
     for n, gvec in grads.items():
-        shares = {g: max(float(gvec @ C @ gvec), 0.0) for g, C in contrib.items()}
-        var = max(float(gvec @ cov @ gvec), 0.0)
-        stderr[n] = math.sqrt(var)
-        den = sum(v * v / group_dof[g] for g, v in shares.items() if math.isfinite(group_dof[g]))
-        nu = (sum(shares.values()) ** 2 / den) if den > 0 else math.inf
-        param_dof[n] = nu
-        t = 1.959963984540054 if not math.isfinite(nu) else t975(nu)
+        stderr[n] = math.sqrt(max(float(gvec @ cov @ gvec), 0.0))
+        param_dof[n] = nu = satterthwaite(gvec, parts)[1]
+        t = t975(max(nu, 1.0))
         ci[n] = [values[n] - t * stderr[n], values[n] + t * stderr[n]]
     # Identifiability is about the shape of the information, not its scale:
     # judge the correlation form, which weights and units do not distort.
@@ -363,7 +359,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     return JointFit(free, values, cov, stderr, ci, dof, {g: sigma[g] for g in names},
                     dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof,
                     {g: tau_summary(tau2[g], components.get(g)) for g in names},
-                    {g: math.sqrt(float(np.mean(se2[g]))) for g in names})
+                    {g: math.sqrt(float(np.mean(se2[g]))) for g in names}, group_dof)
 
 
 def start_values(data: MeasurementSet) -> dict:

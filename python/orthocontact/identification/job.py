@@ -132,9 +132,16 @@ class Identification:
         if isinstance(tau, dict):   # a measured angle's noise at each velocity, for uq
             out["noise_estimate"]["angles_deg_by_velocity"] = {
                 v: (t * t + f.within_run["angles"] ** 2) ** 0.5 for v, t in tau.items()}
-        out["noise_model"] = {unit[g]: {"between_runs": f.between_runs.get(g), "within_run_rms":
-                                        f.within_run.get(g), "values": int(len(f.residuals[g]))}
+        out["noise_model"] = {unit[g]: {"between_runs": f.between_runs.get(g),
+                                        "between_runs_dof": json_dof(f.between_runs_dof.get(g)),
+                                        "within_run_rms": f.within_run.get(g),
+                                        "values": int(len(f.residuals[g]))}
                               for g in f.sigma}
+        out["intervals"] = ("ci95 = value -+ t(0.975, dof) stderr; stderr from the Gauss-Newton covariance "
+                            "with each value weighted by 1/(between_runs^2 + its within-run error^2); dof "
+                            "the Welch-Satterthwaite degrees of freedom of that variance over its parts: "
+                            "each group's between-run variance with its between_runs_dof (values less "
+                            "the parameters it determines), the within-run errors known (inf)")
         if f.sigma_assumed:
             out["noise_assumed"] = [unit[g] for g in f.sigma_assumed]
         out["fit_residuals"] = {g: res_stats(r) for g, r in f.residuals.items()}

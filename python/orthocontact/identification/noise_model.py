@@ -7,6 +7,8 @@ measurements as precise as their within-run errors.  Reduced data without
 within-run errors (se = 0) make tau^2 the plain residual variance."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 
@@ -66,3 +68,17 @@ def tau_summary(tau2: np.ndarray, labels=None):
         return float(np.sqrt(tau2.mean()))
     labels = np.asarray(labels)
     return {f"{c:g}": float(np.sqrt(tau2[labels == c].mean())) for c in np.unique(labels)}
+
+
+def variance_parts(A: np.ndarray, WJ: np.ndarray, sizes: list, between: list, within: list) -> list:
+    """The fitted parameters' covariance A (WJ' Sigma WJ) A' as its parts, one per
+    variance component, for satterthwaite(): (covariance, dof) of each group's
+    between-run tau^2 (between: (tau2 per value, its dof)) and of its
+    within-run se^2 (known: infinite dof).  A is the inverse information
+    (in the fit's scaling and back), WJ the weighted Jacobian's rows, in the
+    groups' order and sizes."""
+    parts = []
+    for rows, (tau2, nu), se2 in zip(np.split(WJ, np.cumsum(sizes)[:-1]), between, within):
+        for var_c, dof in ((tau2, nu), (se2, math.inf)):
+            parts.append((A @ (rows.T @ (np.asarray(var_c, float)[:, None] * rows)) @ A.T, dof))
+    return parts
