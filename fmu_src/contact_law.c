@@ -465,8 +465,14 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
          * units decided whether a_i^2 was subnormal). */
         double inv_np, w[2], wfac; /* w = wfac (1 + dgamma sigma) */
         if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
+            /* the scale from the square, as eq. (20)'s: the solve's
+             * divisions that need only the scaled trial start while n_tr's
+             * square root is still under way */
             double sc;
-            pow2_of(n_tr, &sc);
+            if (sq >= 0x1p-900 && sq <= 0x1p1000)
+                sc = pow2_root_inverse(sq);
+            else
+                pow2_of(n_tr, &sc);
             const double as[2] = {a[0] * sc, a[1] * sc};
             const double y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc,
                                           L->sig_hat, p, &inv_np);

@@ -145,7 +145,12 @@ static inline int rig_done(const rig_runner *run) { return run->k > run->n_steps
 int rig_advance(rig_runner *run, rig_observer observe, void *observer_ctx, double *x1_failed);
 /* The same with the contact given by value: where the caller's contact
  * functions are known at compile time, the compiler calls them directly
- * (or inlines them) instead of through the pointers. */
+ * (or inlines them) instead of through the pointers.  Always inlined: gcc
+ * -O2 leaves it a call at a second call site, and the pointers then cost a
+ * fifth of a rig step (123 against 104 ns in uq's grid). */
+#if defined(__GNUC__) || defined(__clang__)
+__attribute__((always_inline))
+#endif
 static inline int rig_advance_on(rig_runner *s, const rig_contact contact, rig_observer observe,
                                  void *observer_ctx, double *x1_failed) {
     const rig_contact *c = &contact;

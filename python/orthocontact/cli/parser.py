@@ -253,8 +253,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="communication step of the rig [s] (default: 0.004 for the implicit rules, "
                         "step-size independent; the scenario's for eq20); checked against the "
                         "scenario's step at the estimates")
-    u.add_argument("--chunk-runs", type=_positive_int("runs"), default=5000, metavar="RUNS",
-                   help="rig runs per task sent to a worker (default 5000)")
+    u.add_argument("--chunk-runs", type=_positive_int("runs"), default=20000, metavar="RUNS",
+                   help="most rig runs per task sent to a worker (default 20000; the last tasks are smaller)")
     strict(u)
     u.set_defaults(func=cmd_uq)
     return ap

@@ -65,6 +65,21 @@ def chunk_grid(sc: Scenario, names: list, rows) -> tuple[list, list]:
     return laws, axes
 
 
+def chunk_bounds(samples: int, most: int) -> list[tuple[int, int]]:
+    """[start, end) of each task's parameter sets: `most` sets a task while
+    much is left, then an eighth of what is left (down to a quarter of
+    `most`), so that the workers end together instead of one waiting on
+    another's last large task.  Large tasks first keep the scheduler's share
+    small (a task costs ~7 ms of CPU on this 2-core machine: 1,000 tasks
+    were 2 s of a 30 s run).  The results do not depend on the bounds."""
+    bounds, i, least = [], 0, max(1, most // 4)
+    while i < samples:
+        n = min(most, max(least, -(-(samples - i) // 8)), samples - i)
+        bounds.append((i, i + n))
+        i += n
+    return bounds
+
+
 def _run_chunk_on(run_grid, chunk):
     """chunk = (scenario, rig, names, rows) -> phi, drive and head - tail
     (rig_checks: a settled run's halves agree) arrays [len(rows) x angles],
@@ -140,7 +155,7 @@ def check_geometry(sc: Scenario, est: Estimates) -> None:
 
 def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
               scheduler: str | None = "local", workers: int = 1, step_s: float | None = None,
-              chunk_runs: int = 5000, progress: bool = True) -> UQResult:
+              chunk_runs: int = 20000, progress: bool = True) -> UQResult:
     """The rig over the scenario's angles for `samples` parameter sets.
     scheduler None runs here, in this process; "local" or an address on Dask."""
     from ..fmu.files import find_fmu
@@ -153,8 +168,8 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     x, accepted = draw(est, samples, seed)
     angles = sc.sweep_angles()
     nominal = scenario_with(sc, est.names, est.mean)
-    per = max(1, chunk_runs // len(angles))
-    chunks = [(sc, rig, est.names, x[i:i + per]) for i in range(0, samples, per)]
+    chunks = [(sc, rig, est.names, x[i:j])
+              for i, j in chunk_bounds(samples, max(1, chunk_runs // len(angles)))]
     bar = Progress(samples * len(angles), f"uq {sc.name}", progress)
     try:
         return _propagate(est, sc, samples, seed, fmu_path, scheduler, workers, step_s, x, accepted,
