@@ -1,7 +1,7 @@
 """Benchmark (not a test): 10^6 rig runs of uncertainty propagation, through
 the command a user runs: `orthocontact uq` on the example identification and
 the aged mat (91 angles), on the default Dask LocalCluster (one worker per
-core).  Target (issue 16): <= 30 s on this 2-core machine.
+core).  Target: <= 30 s on this 2-core machine.
 
     .venv/bin/python benchmarks/bench_uq.py [--runs 1000000] [--scheduler local]
 """

@@ -136,7 +136,7 @@ def build_parser() -> argparse.ArgumentParser:
                             "both give the same results bit for bit")
         p.add_argument("--master", choices=("auto", "c", "fmpy"), default="auto",
                        help="who runs the rig loop: c, the compiled master (FMI 2.0 FMUs, about "
-                            "25-37x faster), fmpy, the Python harness, or auto (default: c where "
+                            "23-34x faster), fmpy, the Python harness, or auto (default: c where "
                             "it applies); both give the same angles")
         strict(p)
         if scheduler:
