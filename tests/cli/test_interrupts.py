@@ -3,13 +3,13 @@ subprocess: a signal to the main process or one swallowed by a finalizer
 stops every worker and leaves nothing behind."""
 import os
 import signal
-import socket
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 import pytest
+from cli_run import busy_dashboard_port
 from procs import alive, children, descendants
 
 CMD = [sys.executable, "-m", "orthocontact"]
@@ -79,24 +79,7 @@ def test_an_interrupt_swallowed_by_a_finalizer_still_stops_and_writes_nothing(tm
     assert leftovers(tmp_path) == []
 
 
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
-
-
 # -- Ctrl-C on a Dask command -------------------------------------------------------
-
-def _busy_dashboard_port():
-    """Holds 127.0.0.1:8787 if it is free (if not, someone else does)."""
-    s = socket.socket()
-    try:
-        s.bind(("127.0.0.1", 8787))
-        s.listen(1)
-    except OSError:
-        s.close()
-        return None
-    return s
-
 
 @pytest.mark.parametrize("after", ["start", "progress"])
 def test_ctrl_c_on_uq_is_one_line_and_leaves_nothing(tmp_path, identified, after):
@@ -105,7 +88,7 @@ def test_ctrl_c_on_uq_is_one_line_and_leaves_nothing(tmp_path, identified, after
     tmp = tmp_path / "tmp"
     tmp.mkdir()
     env = dict(os.environ, TMPDIR=str(tmp))
-    port = _busy_dashboard_port()
+    port = busy_dashboard_port()
     try:
         proc = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(SCEN / "mat_aged.toml"),
                                        "--samples", "3000", "--out", "out", "--workers", "2"],

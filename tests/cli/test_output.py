@@ -7,10 +7,11 @@ import time
 from pathlib import Path
 
 import pytest
-
+from cli_run import run_cli as run
 from orthocontact.cli.main import main
-from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings, staged_output,
-                                     warn, warnings_said)
+from orthocontact.cli.output import (check_output_file, check_output_folder,
+                                     forget_warnings, staged_output, warn,
+                                     warnings_said)
 from orthocontact.errors import InputError
 
 CMD = [sys.executable, "-m", "orthocontact"]
@@ -61,11 +62,6 @@ def test_failed_run_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
         main(["run", str(f), "--out", str(out), "--workers", "1"])
     assert [p.name for p in out.iterdir()] == ["keep.txt"]
     assert not list(tmp_path.glob(".out.partial-*"))
-
-
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
 
 
 def _scenario_named(tmp_path, name) -> Path:

@@ -7,7 +7,7 @@ import time
 from pathlib import Path
 
 import pytest
-
+from cli_run import run_cli as run
 from orthocontact.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -46,11 +46,6 @@ def test_every_command_and_argument_has_help():
     texts = {name: p.format_help() for name, p in sub.choices.items()}
     assert all("degrees" in texts[n] for n in ("run", "identify"))  # units are said
     assert "N/m" in texts["identify"] and "[m]" in texts["identify"] or "x1_m" in texts["identify"]
-
-
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
 
 
 def one_error_line(p, *says):

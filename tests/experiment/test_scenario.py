@@ -1,12 +1,11 @@
 """Scenario files (orthocontact.experiment.scenario): every bad key, type,
 range or name is one line naming the file and key, exit 2, nothing written."""
 import os
-import subprocess
 import sys
 from pathlib import Path
 
 import pytest
-
+from cli_run import run_cli as run
 from orthocontact.cli.main import main
 from orthocontact.experiment.scenario import ScenarioError, load
 
@@ -61,11 +60,6 @@ def test_toml_syntax_error_is_one_line(tmp_path, capsys):
     assert main(["run", str(f), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "broken.toml" in err[0] and "TOML" in err[0]
-
-
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
 
 
 def one_error_line(p, *says):

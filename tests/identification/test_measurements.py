@@ -3,24 +3,20 @@ Excel's CSV UTF-8 is read, an invisible character in a header is shown,
 written data read back, the digest follows the files."""
 import json
 import shutil
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
-
+from cli_run import run_cli as run
 from orthocontact.experiment.rig_setup import RigSetup
-from orthocontact.identification.measurements import data_digest, load_data, visible, write_measurements
+from orthocontact.identification.measurements import (data_digest, load_data,
+                                                      visible,
+                                                      write_measurements)
 
 ROOT = Path(__file__).resolve().parents[2]
 CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
 DATA = SCEN / "example_identification"
-
-
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
 
 
 def one_error_line(p, *says):

@@ -1,13 +1,13 @@
 """Runs on Dask (orthocontact.runs.cluster): a Dask run leaves nothing in
 the temp folder, sweeps on Dask give the local results."""
 import os
-import socket
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
-
+from cli_run import busy_dashboard_port
+from cli_run import run_cli as run
 from orthocontact.errors import InputError
 from orthocontact.runs.cluster import check_address
 
@@ -16,30 +16,13 @@ CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
 
 
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
-
-
 # -- Ctrl-C on a Dask command -------------------------------------------------------
-
-def _busy_dashboard_port():
-    """Holds 127.0.0.1:8787 if it is free (if not, someone else does)."""
-    s = socket.socket()
-    try:
-        s.bind(("127.0.0.1", 8787))
-        s.listen(1)
-    except OSError:
-        s.close()
-        return None
-    return s
-
 
 def test_a_dask_run_leaves_nothing_in_the_temp_folder(tmp_path):
     tmp = tmp_path / "tmp"
     tmp.mkdir()
     env = dict(os.environ, TMPDIR=str(tmp))
-    port = _busy_dashboard_port()
+    port = busy_dashboard_port()
     try:
         p = run(["run", SCEN / "case4.toml", "--out", tmp_path / "out", "--scheduler", "local",
                  "--workers", "2"], tmp_path, env=env)

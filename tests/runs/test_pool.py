@@ -7,16 +7,12 @@ import sys
 import time
 from pathlib import Path
 
+from cli_run import run_cli as run
 from orthocontact.runs.pool import Heartbeat, Progress, default_workers
 
 ROOT = Path(__file__).resolve().parents[2]
 CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
-
-
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
 
 
 # -- huge work: said before it starts, and progress while it runs ---------------------

@@ -1,26 +1,20 @@
 """The size of the work (orthocontact.runs.size): huge work is refused before
 it starts unless --yes, with a message naming the keys that set its size;
 the step count is the rig's."""
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 import pytest
-
+from cli_run import run_cli as run
 from orthocontact.errors import InputError
 from orthocontact.experiment.scenario import load
-from orthocontact.runs.size import (LIMIT_RUNS, LIMIT_STEPS, check_run_size, check_scenario_size,
-                                    steps_per_run)
+from orthocontact.runs.size import (LIMIT_RUNS, LIMIT_STEPS, check_run_size,
+                                    check_scenario_size, steps_per_run)
 
 ROOT = Path(__file__).resolve().parents[2]
 CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
-
-
-def run(args, cwd, timeout=120, env=None):
-    return subprocess.run(CMD + [str(a) for a in args], cwd=cwd, capture_output=True, text=True,
-                          timeout=timeout, env=env)
 
 
 # -- huge work: said before it starts, and progress while it runs ---------------------
