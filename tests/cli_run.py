@@ -3,8 +3,11 @@ subprocess, as a user does, with its output captured."""
 import socket
 import subprocess
 import sys
+import time
+from pathlib import Path
 
 CMD = [sys.executable, "-m", "orthocontact"]
+SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
 
 
 def run_cli(args, cwd, timeout=120, env=None):
@@ -24,3 +27,42 @@ def busy_dashboard_port():
         s.close()
         return None
     return s
+
+
+def timed_run(args, cwd, timeout=120):
+    """(run_cli's result, its wall time [s])."""
+    t0 = time.monotonic()
+    p = run_cli(args, cwd, timeout=timeout)
+    return p, time.monotonic() - t0
+
+
+def one_error_line(p, *says):
+    """The command refused its input as the CLI promises: exit 2 and one
+    line `orthocontact: error: ...` on stderr, containing each of `says`."""
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2, p.stderr
+    assert len(lines) == 1 and lines[0].startswith("orthocontact: error: "), p.stderr
+    for s in says:
+        assert s in lines[0], lines[0]
+
+
+def leftovers(folder: Path):
+    """The names in `folder`, sorted."""
+    return sorted(p.name for p in folder.iterdir())
+
+
+def scenario_variant(path: Path, old: str, new: str, into: Path) -> Path:
+    """The scenario file `path` with its text `old` (which must be there)
+    replaced by `new`, written as `into`."""
+    text = path.read_text()
+    assert old in text, (path, old)
+    into.write_text(text.replace(old, new, 1))
+    return into
+
+
+def case4_named(tmp_path: Path, name: str) -> Path:
+    """A folder holding Case 4's scenario under the name `name` (s.toml)."""
+    folder = tmp_path / "scen"
+    folder.mkdir(exist_ok=True)
+    scenario_variant(SCENARIOS / "case4.toml", 'name = "case4"', f'name = "{name}"', folder / "s.toml")
+    return folder

@@ -12,6 +12,10 @@ from orthocontact.fmu.params import ContactParams
 # tools/ (free of package code), shared with the benchmarks.
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
+from cli_run import run_cli  # noqa: E402  (tests/ is on sys.path: the shared helpers)
+
+ROOT = Path(__file__).resolve().parents[1]
+
 CASE1 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e4, rule="associated")
 CASE5 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e3, rule="coupled")
 G_N = 1.875 * 9.806  # the rig's normal force [N]
@@ -66,6 +70,18 @@ def last_figure(monkeypatch):
         orig(fig)
     monkeypatch.setattr(plt, "close", keep)
     return seen
+
+
+@pytest.fixture(scope="module")
+def identified(tmp_path_factory):
+    """The bundled example identified once per module (`orthocontact identify
+    --no-validate`), for the tests of what takes an identified.json (uq,
+    export, the CLI's edges)."""
+    out = tmp_path_factory.mktemp("id") / "id"
+    p = run_cli(["identify", ROOT / "scenarios" / "example_identification", "--out", out,
+                 "--no-validate"], cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    return out / "identified.json"
 
 
 def pytest_configure(config):

@@ -3,17 +3,16 @@ real command: an error where a value cannot be right, a warning where it is
 merely unusual, each naming the likely unit slip."""
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import CMD
 
 from orthocontact import plausibility
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.measurements import write_measurements
 
-CMD = [sys.executable, "-m", "orthocontact"]
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "scenarios" / "example_identification"
 

@@ -4,22 +4,16 @@ stops every worker and leaves nothing behind."""
 import os
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
 import pytest
-from cli_run import busy_dashboard_port
+from cli_run import CMD, busy_dashboard_port, leftovers
 from procs import alive, children, descendants
 
-CMD = [sys.executable, "-m", "orthocontact"]
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"
 DATA = SCEN / "example_identification"
-
-
-def leftovers(folder: Path):
-    return sorted(p.name for p in folder.iterdir())
 
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])

@@ -1,18 +1,8 @@
 """The `orthocontact` command (orthocontact.cli.main, python -m orthocontact):
 --version, and an error is one line with exit 2."""
-import subprocess
-import sys
-import time
+from cli_run import timed_run as run
 
 from orthocontact.cli.main import main
-
-CMD = [sys.executable, "-m", "orthocontact"]
-
-
-def run(args, cwd, timeout=120):
-    t0 = time.monotonic()
-    p = subprocess.run(CMD + args, cwd=cwd, capture_output=True, text=True, timeout=timeout)
-    return p, time.monotonic() - t0
 
 
 def test_version_names_the_package_and_both_fmus(tmp_path):

@@ -1,32 +1,18 @@
 """Where a command's results go (orthocontact.cli.output): bad output paths
 refused before any work, a staging folder committed only when everything
 is written, files the command does not write left alone."""
-import subprocess
-import sys
-import time
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli as run
+from cli_run import case4_named, leftovers, run_cli as run, timed_run
+
 from orthocontact.cli.main import main
-from orthocontact.cli.output import (check_output_file, check_output_folder,
-                                     forget_warnings, staged_output, warn,
-                                     warnings_said)
+from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings,
+                                     staged_output, warn, warnings_said)
 from orthocontact.errors import InputError
 
-CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = Path(__file__).resolve().parents[2] / "scenarios"
 ROOT = Path(__file__).resolve().parents[2]
-
-
-def timed_run(args, cwd, timeout=120):
-    t0 = time.monotonic()
-    p = subprocess.run(CMD + args, cwd=cwd, capture_output=True, text=True, timeout=timeout)
-    return p, time.monotonic() - t0
-
-
-def leftovers(folder: Path):
-    return sorted(p.name for p in folder.iterdir())
 
 
 @pytest.mark.parametrize("out,says", [
@@ -64,17 +50,8 @@ def test_failed_run_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
     assert not list(tmp_path.glob(".out.partial-*"))
 
 
-def _scenario_named(tmp_path, name) -> Path:
-    folder = tmp_path / "scen"
-    folder.mkdir(exist_ok=True)
-    text = (SCEN / "case4.toml").read_text().replace('name = "case4"', f'name = "{name}"', 1)
-    assert f'name = "{name}"' in text
-    (folder / "s.toml").write_text(text)
-    return folder
-
-
 def test_reproduce_replaces_only_the_files_it_writes(tmp_path):
-    folder = _scenario_named(tmp_path, "case4")
+    folder = case4_named(tmp_path, "case4")
     out = tmp_path / "out"
     (out / "case4").mkdir(parents=True)
     (out / "case4" / "my_notes.txt").write_text("keep me")

@@ -1,30 +1,18 @@
 """The command line (orthocontact.cli.parser): every option has help and
 units, a bad argument is one line and exit 2 before any work."""
 import os
-import subprocess
-import sys
 import time
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli as run
+from cli_run import leftovers, one_error_line, run_cli as run, timed_run
+
 from orthocontact.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[2]
-CMD = [sys.executable, "-m", "orthocontact"]
 CASE4 = str(ROOT / "scenarios" / "case4.toml")
 SCEN = ROOT / "scenarios"
 DATA = SCEN / "example_identification"
-
-
-def timed_run(args, cwd, timeout=120):
-    t0 = time.monotonic()
-    p = subprocess.run(CMD + args, cwd=cwd, capture_output=True, text=True, timeout=timeout)
-    return p, time.monotonic() - t0
-
-
-def leftovers(folder: Path):
-    return sorted(p.name for p in folder.iterdir())
 
 
 @pytest.mark.parametrize("value", ["0", "-3", "two"])
@@ -46,14 +34,6 @@ def test_every_command_and_argument_has_help():
     texts = {name: p.format_help() for name, p in sub.choices.items()}
     assert all("degrees" in texts[n] for n in ("run", "identify"))  # units are said
     assert "N/m" in texts["identify"] and "[m]" in texts["identify"] or "x1_m" in texts["identify"]
-
-
-def one_error_line(p, *says):
-    lines = p.stderr.strip().splitlines()
-    assert p.returncode == 2, p.stderr
-    assert len(lines) == 1 and lines[0].startswith("orthocontact: error: "), p.stderr
-    for s in says:
-        assert s in lines[0], lines[0]
 
 
 def bad_arguments(identified):

@@ -10,13 +10,13 @@ import sys
 from pathlib import Path
 
 import pytest
+from cli_run import CMD
 
 from orthocontact.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[2]
 README = (ROOT / "README.md").read_text()
 NOTES = (ROOT / "docs" / "model-notes.md").read_text()
-CMD = [sys.executable, "-m", "orthocontact"]
 
 
 def _help(name):

@@ -3,15 +3,15 @@ orthocontact.__version__, all four FMUs (their model descriptions and
 documentation), the repository's copies of the descriptions, the cross-check
 folder and `orthocontact --version` say; and the GUID / instantiationToken
 changes whenever a model description does."""
-import re
 import importlib.util
+import re
 import shutil
 import subprocess
 import sys
 import zipfile
-from xml.etree import ElementTree
 from importlib.metadata import version as installed_version
 from pathlib import Path
+from xml.etree import ElementTree
 
 import pytest
 

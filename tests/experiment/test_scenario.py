@@ -1,17 +1,16 @@
 """Scenario files (orthocontact.experiment.scenario): every bad key, type,
 range or name is one line naming the file and key, exit 2, nothing written."""
 import os
-import sys
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli as run
+from cli_run import case4_named, one_error_line, run_cli as run
+
 from orthocontact.cli.main import main
 from orthocontact.experiment.scenario import ScenarioError, load
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"
-CMD = [sys.executable, "-m", "orthocontact"]
 BAD = [
     ("unknown key", "mu3 = 0.2\n", "[law]", "law.mu3"),
     ("wrong type", 'mu1 = "high"\n', "[law]", "law.mu1"),
@@ -62,26 +61,9 @@ def test_toml_syntax_error_is_one_line(tmp_path, capsys):
     assert len(err) == 1 and "broken.toml" in err[0] and "TOML" in err[0]
 
 
-def one_error_line(p, *says):
-    lines = p.stderr.strip().splitlines()
-    assert p.returncode == 2, p.stderr
-    assert len(lines) == 1 and lines[0].startswith("orthocontact: error: "), p.stderr
-    for s in says:
-        assert s in lines[0], lines[0]
-
-
-def _scenario_named(tmp_path, name) -> Path:
-    folder = tmp_path / "scen"
-    folder.mkdir(exist_ok=True)
-    text = (SCEN / "case4.toml").read_text().replace('name = "case4"', f'name = "{name}"', 1)
-    assert f'name = "{name}"' in text
-    (folder / "s.toml").write_text(text)
-    return folder
-
-
 @pytest.mark.parametrize("name", ["../escaped", "a/b", "..", ".", "", "c:x", "a\\\\b", " lead"])
 def test_a_scenario_name_that_is_not_a_plain_file_name_is_refused(tmp_path, name):
-    folder = _scenario_named(tmp_path, name)
+    folder = case4_named(tmp_path, name)
     p = run(["reproduce", "--scenarios", folder, "--out", tmp_path / "out"], tmp_path)
     one_error_line(p, "s.toml: name: expected a plain file name")
     assert sorted(os.listdir(tmp_path)) == ["scen"]
@@ -89,7 +71,7 @@ def test_a_scenario_name_that_is_not_a_plain_file_name_is_refused(tmp_path, name
 
 @pytest.mark.parametrize("name", ["sensitivity", "report.md", "summary.json"])
 def test_a_scenario_named_like_the_reports_own_files_is_refused(tmp_path, name):
-    folder = _scenario_named(tmp_path, name)
+    folder = case4_named(tmp_path, name)
     p = run(["reproduce", "--scenarios", folder, "--out", tmp_path / "out"], tmp_path)
     one_error_line(p, "name: expected a name of its own")
 

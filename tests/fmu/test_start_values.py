@@ -10,8 +10,7 @@ from fmpy.validation import validate_fmu
 from fmu_values import schema_errors, values_with_nothing_set
 
 from orthocontact.fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
-from orthocontact.fmu.start_values import (StartValueError, start_values_of,
-                                           write_with_start_values)
+from orthocontact.fmu.start_values import StartValueError, start_values_of, write_with_start_values
 
 NEW = {"mu1": 0.3711, "mu2": 0.5873, "eps1": 13377.25, "eps2": 9123.5, "alpha": -0.4,
        "beta": 0.1, "slidingRule": 1}

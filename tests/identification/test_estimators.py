@@ -3,15 +3,15 @@ recovers the truth from the independent simulator's noise-free data, and
 its intervals cover honestly."""
 from pathlib import Path
 
+import make_recordings as mr
 import numpy as np
 import pytest
-from orthocontact.identification.job import load_folder
-
-import make_recordings as mr
 
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.estimators import joint_fit, start_values
+from orthocontact.identification.job import load_folder
 from orthocontact.identification.measurements import MeasurementSet
+
 RIG = RigSetup(mass_kg=1.875, f_int_N=5.0)
 FA, AA = [0, 15, 30, 45, 60, 75, 90], list(range(5, 90, 5))
 

@@ -10,11 +10,10 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 import pytest
-
-from libcosim_rig import run_rig_ssp
 from fmpy.ssp.ssd import read_ssv
 from fmpy.validation import validate_fmu
 from fmu_values import schema_errors, values_with_nothing_set
+from libcosim_rig import run_rig_ssp
 
 from orthocontact import __version__
 from orthocontact.fmu.contact import ContactFMU
@@ -31,14 +30,6 @@ ANGLE = 40.0   # near the example mat's extremum
 def cli(*args, timeout=300):
     return subprocess.run([sys.executable, "-m", "orthocontact", *map(str, args)], capture_output=True,
                           text=True, timeout=timeout)
-
-
-@pytest.fixture(scope="module")
-def identified(tmp_path_factory):
-    out = tmp_path_factory.mktemp("identified")
-    p = cli("identify", DATA, "--out", out, "--no-validate")
-    assert p.returncode == 0, p.stderr
-    return out / "identified.json"
 
 
 @pytest.fixture(scope="module")

@@ -3,28 +3,18 @@ Excel's CSV UTF-8 is read, an invisible character in a header is shown,
 written data read back, the digest follows the files."""
 import json
 import shutil
-import sys
 from pathlib import Path
 
 import numpy as np
-from cli_run import run_cli as run
+from cli_run import one_error_line, run_cli as run
+
 from orthocontact.experiment.rig_setup import RigSetup
-from orthocontact.identification.measurements import (data_digest, load_data,
-                                                      visible,
+from orthocontact.identification.measurements import (data_digest, load_data, visible,
                                                       write_measurements)
 
 ROOT = Path(__file__).resolve().parents[2]
-CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
 DATA = SCEN / "example_identification"
-
-
-def one_error_line(p, *says):
-    lines = p.stderr.strip().splitlines()
-    assert p.returncode == 2, p.stderr
-    assert len(lines) == 1 and lines[0].startswith("orthocontact: error: "), p.stderr
-    for s in says:
-        assert s in lines[0], lines[0]
 
 
 def test_excel_csv_utf8_with_a_byte_order_mark_is_read(tmp_path):

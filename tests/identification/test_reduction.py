@@ -4,10 +4,9 @@ straight path at a known angle after a curved transient, a known mean force."""
 import math
 from pathlib import Path
 
+import make_recordings as mr
 import numpy as np
 import pytest
-
-import make_recordings as mr
 
 from orthocontact.errors import InputError
 from orthocontact.identification.recordings import Run

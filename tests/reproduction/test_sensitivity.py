@@ -5,22 +5,21 @@ every step), the calibration it implies against eq. (29)/(39) by hand, and the
 import json
 import math
 import subprocess
-import sys
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import CMD
 
 from orthocontact import closed_forms as cf
-from orthocontact.reproduction import sensitivity as S
 from orthocontact.experiment.scenario import load
 from orthocontact.fmu.files import find_fmu
+from orthocontact.reproduction import sensitivity as S
 from orthocontact.rig.compiled import CMaster
 
 ROOT = Path(__file__).resolve().parents[2]
 AGED = load(ROOT / "scenarios/mat_aged.toml")
-CMD = [sys.executable, "-m", "orthocontact"]
 
 
 @pytest.mark.parametrize("rule", ["coupled", "associated"])

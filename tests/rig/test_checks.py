@@ -5,18 +5,16 @@ identification's validation with its strip terms."""
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from cli_run import CMD
 
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams
 from orthocontact.rig.checks import SETTLE_TOL_DEG, check_runs
 from orthocontact.rig.compiled import CMaster
 from orthocontact.rig.harness import Rig
-
-CMD = [sys.executable, "-m", "orthocontact"]
 
 CASE2_LAW = """
 [law]

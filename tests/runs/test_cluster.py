@@ -2,17 +2,15 @@
 the temp folder, sweeps on Dask give the local results."""
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-from cli_run import busy_dashboard_port
-from cli_run import run_cli as run
+from cli_run import CMD, busy_dashboard_port, run_cli as run
+
 from orthocontact.errors import InputError
 from orthocontact.runs.cluster import check_address
 
 ROOT = Path(__file__).resolve().parents[2]
-CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
 
 

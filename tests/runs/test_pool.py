@@ -3,27 +3,23 @@ far it is within 2 s and stops on Ctrl-C."""
 import os
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
-from cli_run import run_cli as run
+from cli_run import CMD, run_cli as run, scenario_variant
+
 from orthocontact.runs.pool import Heartbeat, Progress, default_workers
 
 ROOT = Path(__file__).resolve().parents[2]
-CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
 
 
-# -- huge work: said before it starts, and progress while it runs ---------------------
 
 def _aged_with(tmp_path, old, new) -> Path:
-    text = (SCEN / "mat_aged.toml").read_text()
-    assert old in text
-    path = tmp_path / "big.toml"
-    path.write_text(text.replace(old, new))
-    return path
+    return scenario_variant(SCEN / "mat_aged.toml", old, new, tmp_path / "big.toml")
 
+
+# -- huge work: said before it starts, and progress while it runs ---------------------
 
 def test_a_long_run_says_how_far_it_is_within_2_s_and_stops_on_ctrl_c(tmp_path):
     big = _aged_with(tmp_path, "step_s = 2.0e-4", "step_s = 1e-9")

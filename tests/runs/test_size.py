@@ -1,31 +1,27 @@
 """The size of the work (orthocontact.runs.size): huge work is refused before
 it starts unless --yes, with a message naming the keys that set its size;
 the step count is the rig's."""
-import sys
 import time
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli as run
+from cli_run import run_cli as run, scenario_variant
+
 from orthocontact.errors import InputError
 from orthocontact.experiment.scenario import load
-from orthocontact.runs.size import (LIMIT_RUNS, LIMIT_STEPS, check_run_size,
-                                    check_scenario_size, steps_per_run)
+from orthocontact.runs.size import (LIMIT_RUNS, LIMIT_STEPS, check_run_size, check_scenario_size,
+                                    steps_per_run)
 
 ROOT = Path(__file__).resolve().parents[2]
-CMD = [sys.executable, "-m", "orthocontact"]
 SCEN = ROOT / "scenarios"
 
 
-# -- huge work: said before it starts, and progress while it runs ---------------------
 
 def _aged_with(tmp_path, old, new) -> Path:
-    text = (SCEN / "mat_aged.toml").read_text()
-    assert old in text
-    path = tmp_path / "big.toml"
-    path.write_text(text.replace(old, new))
-    return path
+    return scenario_variant(SCEN / "mat_aged.toml", old, new, tmp_path / "big.toml")
 
+
+# -- huge work: said before it starts, and progress while it runs ---------------------
 
 @pytest.mark.parametrize("old,new,key", [
     ("step_deg = 1.0", "step_deg = 1e-6", "sweep.step_deg"),      # 90 million angles

@@ -4,6 +4,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
+
 from orthocontact.experiment.scenario import load
 from orthocontact.runs.sweep import run_sweep
 
@@ -30,8 +31,8 @@ def test_vectorized_closed_forms_equal_the_scalar_ones():
     from pathlib import Path as _P
 
     import numpy as np
-    from orthocontact.runs.sweep import (closed_form_phi_deg,
-                                         closed_form_phi_deg_array)
+
+    from orthocontact.runs.sweep import closed_form_phi_deg, closed_form_phi_deg_array
     a = np.linspace(-30, 120, 301)
     for f in sorted((_P(__file__).resolve().parents[2] / "scenarios").glob("*.toml")):
         sc = load(f)

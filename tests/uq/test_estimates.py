@@ -3,29 +3,15 @@ physical, seeded and follow the covariance; a bad identified.json is one line.""
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import CMD
 
 from orthocontact.uq.estimates import Estimates, draw, load_estimates
 
 ROOT = Path(__file__).resolve().parents[2]
-CMD = [sys.executable, "-m", "orthocontact"]
-
-
-def _identification(tmp_path) -> Path:
-    out = tmp_path / "id"
-    p = subprocess.run(CMD + ["identify", str(ROOT / "scenarios/example_identification"), "--out", str(out),
-                              "--no-validate"], capture_output=True, text=True, timeout=120)
-    assert p.returncode == 0, p.stderr
-    return out / "identified.json"
-
-
-@pytest.fixture(scope="module")
-def identified(tmp_path_factory):
-    return _identification(tmp_path_factory.mktemp("uq"))
 
 
 def test_draws_are_physical_seeded_and_follow_the_covariance(identified):

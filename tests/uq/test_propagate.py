@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import CMD
 from procs import alive, descendants
 
 from orthocontact import closed_forms as cf
@@ -21,21 +22,7 @@ from orthocontact.uq.estimates import load_estimates
 from orthocontact.uq.propagate import propagate
 
 ROOT = Path(__file__).resolve().parents[2]
-CMD = [sys.executable, "-m", "orthocontact"]
 BIN = Path(sys.executable).parent
-
-
-def _identification(tmp_path) -> Path:
-    out = tmp_path / "id"
-    p = subprocess.run(CMD + ["identify", str(ROOT / "scenarios/example_identification"), "--out", str(out),
-                              "--no-validate"], capture_output=True, text=True, timeout=120)
-    assert p.returncode == 0, p.stderr
-    return out / "identified.json"
-
-
-@pytest.fixture(scope="module")
-def identified(tmp_path_factory):
-    return _identification(tmp_path_factory.mktemp("uq"))
 
 
 def _small_scenario(tmp_path, start=10.0, stop=70.0, step=30.0) -> Path:
