@@ -104,6 +104,17 @@ static inline double pow2_root_inverse(double x) {
     return out;
 }
 
+/* The power of two that scales a trial of norm n_tr = sqrt(sq) to about
+ * [1, 2): from sq's exponent where sq is normal (the slip's work that needs
+ * only the scaled trial then starts while the square root is under way),
+ * else from n_tr itself. */
+static inline double trial_scale(double sq, double n_tr) {
+    if (sq >= 0x1p-900 && sq <= 0x1p1000) return pow2_root_inverse(sq);
+    double sc;
+    pow2_of(n_tr, &sc);
+    return sc;
+}
+
 /* The general case of oc_norm2: no square may under- or overflow. */
 static double norm2_scaled(double x, double y) {
     const double ax = fabs(x), ay = fabs(y);
@@ -444,11 +455,7 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
         /* t = N z / |z|, z = E t_tr, t_tr = R a (see oc_law.E20), on a trial
          * scaled to |t_tr| in [1, 2) by a power of two: the direction of z
          * is the same in any units.  Back in yield coordinates, p = R^T z. */
-        double sc;
-        if (sq >= 0x1p-900 && sq <= 0x1p1000)
-            sc = pow2_root_inverse(sq); /* without waiting for n_tr's square root */
-        else
-            pow2_of(n_tr, &sc);
+        const double sc = trial_scale(sq, n_tr);
         const double as[2] = {a[0] * sc, a[1] * sc};
         double t[2], z[2];
         matvec(L->R, as, t);
@@ -465,14 +472,7 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
          * units decided whether a_i^2 was subnormal). */
         double inv_np, w[2], wfac; /* w = wfac (1 + dgamma sigma) */
         if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
-            /* the scale from the square, as eq. (20)'s: the solve's
-             * divisions that need only the scaled trial start while n_tr's
-             * square root is still under way */
-            double sc;
-            if (sq >= 0x1p-900 && sq <= 0x1p1000)
-                sc = pow2_root_inverse(sq);
-            else
-                pow2_of(n_tr, &sc);
+            const double sc = trial_scale(sq, n_tr);
             const double as[2] = {a[0] * sc, a[1] * sc};
             const double y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc,
                                           L->sig_hat, p, &inv_np);

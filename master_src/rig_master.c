@@ -305,6 +305,8 @@ static int run_sets(void *h, int count, const rm_contact *p, const rig_setup *r,
             lane *a = &L[k];
             if (a->set < 0) continue;
             double x1_failed = NAN;
+            /* the contact's functions as constants (not a->contact, which
+             * holds the same in memory): so they are called directly */
             const int st = rig_advance_on(&a->run, (rig_contact){&a->F, fc_set_inputs, fc_force,
                                             fc_force_du2, fc_save, fc_restore, fc_commit},
                                           rec ? record_row : NULL, rec, &x1_failed);
