@@ -22,6 +22,9 @@ import pytest
 SLOW = {
     "identification/test_job.py": "*",         # identification: FMU data, CLI runs
     "identification/test_estimators.py": "*",  # coverage over 200 replicates; 120 sets of raw recordings
+    "identification/test_report.py": {   # identifies the bundled recordings
+        "test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs",
+    },
     "identification/test_strip_model.py": {
         "test_strip_viscosity_estimated_from_two_velocities_through_the_cli",
         "test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity",

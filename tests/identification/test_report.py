@@ -1,8 +1,10 @@
 """What identification writes for people (orthocontact.identification.report):
-the fit figure's legends sit below the data; identified.md's runs section."""
+the fit figure draws the model that was fitted, its legends sit below the
+data and its title clear of the labels; identified.md's runs section."""
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 
@@ -19,6 +21,51 @@ def test_the_fits_legends_do_not_cover_the_data(tmp_path, last_figure):
     assert len(panels) == 3
     for _, _, axes_box, legend_box, _ in panels:
         assert legend_box.y1 <= axes_box.y0  # below the panel
+
+
+def _curve(ax, label_start):
+    lines = [ln for ln in ax.get_lines() if ln.get_label().startswith(label_start)]
+    assert len(lines) == 1, [ln.get_label() for ln in ax.get_lines()]
+    return lines[0]
+
+
+def test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs(tmp_path, last_figure):
+    """example_recordings: the strip's viscosity fitted from two velocities.
+    The figure drew the joint fit without the strip (-11.5 deg at 40 deg,
+    every run at -8 to -10); each velocity's curve of the fitted model now
+    passes within the runs' scatter at every mat angle (2 standard errors
+    of their mean, at least 0.5 deg / 0.1 N), the maximum rule is named as
+    the paper's approximation, and the title clears every axis label."""
+    from orthocontact.identification.job import load_folder, run
+    data, recordings = load_folder(ROOT / "scenarios" / "example_recordings")
+    run(data, tmp_path, validate=False, workers=1, recordings=recordings)
+    panels = last_figure[-1]
+    by_label = {ax.get_ylabel().split(" [")[0]: (ax, legend) for ax, _, _, _, legend in panels}
+    checked = 0
+    for name, pts, vel, floor in (("trajectory angle φ", data.angles, data.velocities_of_angles(), 0.5),
+                                  ("driving force", data.forces, data.velocities_of_forces(), 0.1)):
+        ax, _ = by_label[name]
+        speeds = np.unique(vel)
+        assert len(speeds) == 2
+        for u in speeds:
+            line = _curve(ax, f"fitted model at {u:g} m/s")
+            for a in np.unique(pts[:, 0]):
+                runs = pts[(pts[:, 0] == a) & (vel == u), 1]
+                stderr = runs.std(ddof=1) / np.sqrt(len(runs))
+                drawn = np.interp(a, line.get_xdata(), line.get_ydata())
+                assert abs(drawn - runs.mean()) <= max(2 * stderr, floor), (name, u, a, drawn, runs)
+                checked += 1
+    assert checked == 2 * 2 * 7
+    _, legend = by_label["trajectory angle φ"]
+    assert any(t.startswith("the paper's approximation (maximum rule): ε1/ε2=") for t in legend), legend
+    fig = panels[0][0].figure
+    fig.canvas.draw()
+    title = [t for t in fig.findobj(matplotlib.text.Text) if t.get_text() == fig.get_suptitle()]
+    assert len(title) == 1 and "example_recordings" in title[0].get_text()
+    box = title[0].get_window_extent()
+    for ax, *_ in panels:
+        for label in (ax.xaxis.label, ax.yaxis.label):
+            assert not box.overlaps(label.get_window_extent()), label.get_text()
 
 
 def test_the_runs_section_of_identified_md_by_hand():

@@ -4,62 +4,150 @@ imports this module, not the reverse)."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from .. import closed_forms as cf
+from ..experiment.rig_setup import RigSetup
 from .estimators import reported_names
 
 
+# The swept angle's one name in every figure, message and help text.
+SWEPT_ANGLE = "mat angle"
+
+
+@dataclass(frozen=True)
+class FittedModel:
+    """The model the joint fit fitted (estimators._joint_fit_once), for
+    drawing: with the strip's Coulomb friction and viscosity whenever the fit
+    had them, each steady state from closed_forms at the carriage velocity
+    [m/s] it is drawn for; F_int [N] as fitted or from rig.toml."""
+    rig: RigSetup
+    values: dict
+
+    @property
+    def f_int(self) -> float:
+        return self.values.get("f_int", self.rig.f_int_N)
+
+    @property
+    def c_strip(self) -> float:
+        return self.values.get("c_strip", self.rig.c_strip or 0.0)
+
+    @property
+    def with_strip(self) -> bool:
+        return "eps_ratio" in self.values and (self.rig.mu_strip > 0 or self.c_strip > 0)
+
+    def _strip_state(self, angles_deg, velocity):
+        v, rig = self.values, self.rig
+        al, be = rig.axes(np.asarray(angles_deg, dtype=float))
+        # eps enters the direction of sliding only through eps1/eps2
+        return cf.steady_strip_state_array(v["mu1"], v["mu2"], v["eps_ratio"], 1.0, al, be, rig.rule,
+                                           rig.mu_strip, self.c_strip, velocity, rig.normal_force)
+
+    def forces(self, angles_deg, velocity) -> np.ndarray | None:
+        """Driving force [N] of steady sliding at the mat angles [deg]."""
+        v, rig = self.values, self.rig
+        if "mu1" not in v:
+            return None
+        if self.with_strip:
+            return self.f_int + self._strip_state(angles_deg, velocity)[1]
+        _, be = rig.axes(np.asarray(angles_deg, dtype=float))
+        return cf.steady_drive_force(v["mu1"], v["mu2"], be, self.f_int, rig.mass_kg, rig.g)
+
+    def angles(self, angles_deg, velocity) -> np.ndarray | None:
+        """Steady trajectory angle phi [deg] at the mat angles [deg]."""
+        v, rig = self.values, self.rig
+        al, be = rig.axes(np.asarray(angles_deg, dtype=float))
+        if self.with_strip:
+            tp = self._strip_state(angles_deg, velocity)[0]
+        elif "eps_ratio" in v and "mu1" in v:
+            tp = cf.steady_tan_phi(v["mu1"], v["mu2"], v["eps_ratio"], 1.0, al, be, rig.rule)
+        elif "l1_l2_ratio" in v:
+            tp = cf.eq25_tan_phi(v["l1_l2_ratio"], 1.0, al)
+        else:
+            return None
+        return np.degrees(np.arctan(tp))
+
+    def label(self, panel: str) -> str:
+        """The fitted values a panel's curve shows (legend text)."""
+        v = self.values
+        if panel == "forces":
+            return f": μ1={v['mu1']:.4f}, μ2={v['mu2']:.4f}" if "mu1" in v else ""
+        if "eps_ratio" in v:
+            return f": ε1/ε2={v['eps_ratio']:.4f}"
+        return f": l1/l2={v['l1_l2_ratio']:.4f}" if "l1_l2_ratio" in v else ""
+
+    def describe(self) -> str:
+        """The fitted model's terms, one phrase."""
+        if not self.with_strip:
+            return "the fitted model: no strip"
+        return (f"the fitted model: strip μ={self.rig.mu_strip:g}, "
+                f"c_strip={self.c_strip:.3g} N s/m" + (" (fitted)" if "c_strip" in self.values else ""))
+
+
 def fit_figure(res, path: Path):
+    """fit.png: the data beside the model that was fitted (with the strip's
+    friction and viscosity and at each velocity measured, as the joint fit
+    saw them), the paper's approximations (maximum rule, eq. 41) marked as
+    such.  Angles in deg, forces in N, travel in mm."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     d, v, rig = res.data, res.fit.values, res.data.rig
     panels = [p for p, have in (("forces", d.forces is not None), ("angles", d.angles is not None),
                                 ("ramp", d.ramp is not None)) if have]
-    fig, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4), squeeze=False)
+    # constrained layout keeps the suptitle clear of the axes' labels
+    fig, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4.6), squeeze=False,
+                             layout="constrained")
     grid = np.linspace(0, 90, 181)
+    model = FittedModel(rig, v)
 
-    def phi_curve(eps_ratio):
-        return [math.degrees(math.atan(cf.steady_tan_phi(v["mu1"], v["mu2"], eps_ratio, 1.0,
-                                                         *rig.axes(a), rig.rule))) for a in grid]
+    def paper_phi(eps_ratio):
+        # the paper's steady angle, eq. (10)/(23): no strip, no velocity
+        al, be = rig.axes(grid)
+        return np.degrees(np.arctan(cf.steady_tan_phi(v["mu1"], v["mu2"], eps_ratio, 1.0, al, be, rig.rule)))
     for ax, p in zip(axes[0], panels):
+        if p in ("forces", "angles"):
+            pts = d.forces if p == "forces" else d.angles
+            vel = d.velocities_of_forces() if p == "forces" else d.velocities_of_angles()
+            speeds = np.unique(np.round(vel, 9))
+            for k, u in enumerate(speeds):
+                at = np.isclose(vel, u, rtol=0, atol=1e-9)
+                colour = f"C{k}"
+                tag = f" at {u:g} m/s" if len(speeds) > 1 else ""
+                ax.plot(pts[at, 0], pts[at, 1], "o", ms=4, color=colour, alpha=0.7, label="data" + tag)
+                curve = model.forces(grid, u) if p == "forces" else model.angles(grid, u)
+                if curve is not None:
+                    ax.plot(grid, curve, "-", color=colour, label=f"fitted model{tag}{model.label(p)}")
         if p == "forces":
-            ax.plot(d.forces[:, 0], d.forces[:, 1], "o", ms=4, label="data")
-            if "mu1" in v:
-                ax.plot(grid, [cf.steady_drive_force(v["mu1"], v["mu2"], rig.axes(a)[1], rig.f_int_N,
-                                                     rig.mass_kg, rig.g) for a in grid], "-",
-                        label=f"fit: μ1={v['mu1']:.4f}, μ2={v['mu2']:.4f}")
             ax.set_ylabel("driving force [N]")
         elif p == "angles":
-            ax.plot(d.angles[:, 0], d.angles[:, 1], "o", ms=4, label="data")
-            if "eps_ratio" in v:
-                ax.plot(grid, phi_curve(v["eps_ratio"]), "-", label=f"joint fit: ε1/ε2={v['eps_ratio']:.4f}")
-            for key, style, lab in (("max_rule", ":", "maximum rule"), ("eq41", "--", "eq. (41)")):
+            for key, style, lab in (("max_rule", ":", "the paper's approximation (maximum rule)"),
+                                    ("eq41", "--", "the paper's eq. (41)")):
                 src = res.max_rule if key == "max_rule" else (res.eq40 or {}).get("eq41")
                 if src and "eps_ratio" in src and "mu1" in v and math.isfinite(src["eps_ratio"]):
-                    ax.plot(grid, phi_curve(src["eps_ratio"]), style, label=f"{lab}: ε1/ε2={src['eps_ratio']:.4f}")
-            ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
+                    ax.plot(grid, paper_phi(src["eps_ratio"]), style, color="0.35" if key == "max_rule"
+                            else "C3", label=f"{lab}: ε1/ε2={src['eps_ratio']:.4f}")
+            ax.set_ylabel("trajectory angle φ [deg]\n(counterclockwise)")
         else:
             ax.plot(d.ramp[:, 0] * 1e3, d.ramp[:, 1], "o", ms=3, label="data")
             if "eps2" in v:
                 al, be = rig.axes(rig.ramp_angle_deg)
                 k = cf.stick_stiffness_x1(v.get("eps_ratio", 1.0) * v["eps2"], v["eps2"], al)
                 top = cf.steady_drive_force(v["mu1"], v["mu2"], be, 0.0, rig.mass_kg, rig.g) \
-                    if "mu1" in v else float(np.max(d.ramp[:, 1]) - rig.f_int_N)
+                    if "mu1" in v else float(np.max(d.ramp[:, 1]) - model.f_int)
                 xs = np.linspace(0, d.ramp[:, 0].max(), 200)
-                ax.plot(xs * 1e3, rig.f_int_N + np.minimum(k * xs, top), "-", label=f"fit: k={k:.4g} N/m")
+                ax.plot(xs * 1e3, model.f_int + np.minimum(k * xs, top), "-", label=f"fitted model: k={k:.4g} N/m")
             ax.set_xlabel("travel x1 [mm]")
             ax.set_ylabel("driving force [N]")
         if p != "ramp":
-            ax.set_xlabel("orientation angle [deg]")
+            ax.set_xlabel(f"{SWEPT_ANGLE} [deg]")
         ax.grid(alpha=0.3)
         # below the panel: inside, it covered data points
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.22))
-    fig.suptitle(f"orthocontact identify: {d.folder.name}", fontsize=10)
-    fig.tight_layout()
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.2))
+    fig.suptitle(f"orthocontact identify: {d.folder.name} ({model.describe()})", fontsize=10)
     fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
 
