@@ -58,3 +58,23 @@ def _bad_rule():
     p = ContactParams(0.3, 0.6, 1e4, 1e4)
     object.__setattr__(p, "rule", "sticky")
     return p
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_initialize_takes_the_start_as_the_fmu_does_and_refuses_what_it_would_ignore(version):
+    """The initial inputs are the FMU's at once (no set_inputs needed): the
+    contact starts unloaded there.  An unknown initial slip, or a start slip
+    with atInputs (which the FMU ignores), is refused before any FMI call.
+    (The first step against the FMU driven directly: tests/fmus/test_initial_slip.py.)"""
+    with ContactFMU(fmi_version=version, instance_name="start") as f:
+        with pytest.raises(ValueError, match="initial_slip must be one of"):
+            f.initialize(LAW, initial_slip="at_inputs")
+        with pytest.raises(ValueError, match="s_start is used only with initial_slip='explicit'"):
+            f.initialize(LAW, inputs=(1.0, 0.5, 18.39), s_start=(0.0, 0.0))
+        assert not f.initialized
+        f.initialize(LAW, inputs=(1.0, 0.5, 18.39))
+        o = f.outputs()
+        assert (o["s1"], o["s2"], o["T1"], o["T2"], o["contactState"]) == (1.0, 0.5, 0.0, 0.0, 1)
+        f.reset(LAW)                                      # back to the defaults: inputs 0, atInputs
+        f.set_inputs(2e-5, 0.0, 20.0)
+        assert f.outputs()["s1"] == 0.0 and f.force()[0] < 0

@@ -3,11 +3,14 @@ simulator that wires absolute positions from t0 sets the inputs in
 initialization mode; by default the contact starts unloaded there (no force,
 no slip, no dissipation on the first step), and the explicit initial slip 0
 gives the earlier versions' full slide, bit for bit what inputs set only
-after initialization give."""
+after initialization give.  ContactFMU.initialize takes the same choice and
+gives the same results bit for bit."""
+import math
+
 import pytest
 from fmpy import extract, read_model_description
 
-from orthocontact.fmu import find_fmu
+from orthocontact.fmu import RULES, ContactFMU, ContactParams, find_fmu
 
 U = (1.0, 0.5, 18.39)  # the issue's absolute position and normal force
 
@@ -93,3 +96,48 @@ def test_explicit_initial_slip_zero_is_the_old_behaviour(version, rule):
 def test_explicit_initial_slip_at_the_body_is_unloaded(version):
     out = first_step(version, 2, initial_slip=2, s_start=U[:2])
     assert out["contactState"] == 1 and out["dissipatedEnergy"] == 0.0
+
+
+# -- the same through orthocontact.fmu.ContactFMU ------------------------------------------------
+
+DEFAULTS = ContactParams(0.408, 0.625, 12510.0, 1e4, math.pi / 2, 0.0, "coupled")  # the FMU's own
+
+
+def wrapper_first_step(version, rule, **initial):
+    """Outputs after one committed step at U, through ContactFMU.initialize(**initial)."""
+    with ContactFMU(fmi_version=version, instance_name="initial_wrapper") as f:
+        f.initialize(DEFAULTS.replace(rule=next(k for k, v in RULES.items() if v == rule)), **initial)
+        f.set_inputs(*U)
+        f.do_step(1e-3)
+        return f.outputs()
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("rule", [1, 2, 3])
+def test_the_wrapper_given_the_inputs_starts_where_the_body_is(version, rule):
+    """initialize(inputs=U), then set_inputs(U): stick, no force, 0 J on the
+    first step, as the FMU driven directly gives (it slid 8.55 J when the
+    wrapper set no inputs before the end of initialization)."""
+    got = wrapper_first_step(version, rule, inputs=U)
+    assert got == first_step(version, rule)  # bit for bit
+    assert got["contactState"] == 1 and got["dissipatedEnergy"] == 0.0
+    assert (got["T1"], got["T2"]) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("rule", [1, 2, 3])
+def test_the_wrappers_explicit_slip_zero_is_the_old_dissipation(version, rule):
+    got = wrapper_first_step(version, rule, inputs=U, initial_slip="explicit", s_start=(0.0, 0.0))
+    assert got == first_step(version, rule, initial_slip=2, s_start=(0.0, 0.0))
+    assert got == first_step(version, rule, inputs_in_init=False)  # the wrapper's old start
+    assert got == wrapper_first_step(version, rule)  # inputs 0 until the first step: the same path
+    assert got["contactState"] == 2 and got["dissipatedEnergy"] > 0
+    if rule == 2:
+        assert got["dissipatedEnergy"] == pytest.approx(8.55, abs=5e-3)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_the_wrappers_explicit_slip_at_the_body_is_unloaded(version):
+    got = wrapper_first_step(version, 2, inputs=U, initial_slip="explicit", s_start=U[:2])
+    assert got == first_step(version, 2, initial_slip=2, s_start=U[:2])
+    assert got["contactState"] == 1 and got["dissipatedEnergy"] == 0.0

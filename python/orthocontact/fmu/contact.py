@@ -16,6 +16,9 @@ class FMUError(RuntimeError):
     """An FMI call returned an error; the message carries what the FMU logged."""
 
 
+INITIAL_SLIP = {"atInputs": 1, "explicit": 2}   # the FMU's parameter initialSlip
+
+
 class ContactFMU:
     """One instance of the contact element, FMI 2.0 or 3.0 (read from the
     FMU's model description); both run the same calls on the hot path.
@@ -129,21 +132,49 @@ class ContactFMU:
         return self._slave
 
     # -- set-up --------------------------------------------------------------
-    def initialize(self, params: ContactParams, start_time: float = 0.0):
-        """Sets the parameters and enters step mode (parameters are fixed)."""
+    def initialize(self, params: ContactParams, start_time: float = 0.0,
+                   inputs: tuple[float, float, float] = (0.0, 0.0, 0.0),
+                   initial_slip: str = "atInputs",
+                   s_start: tuple[float, float] | None = None):
+        """Sets the parameters, the initial inputs and the initial slip, and
+        enters step mode (parameters are fixed), as a system simulator does.
+
+        inputs        (u1 [m], u2 [m], N [N]) at start_time [s]: set in
+                      initialization mode, where the FMU takes them.
+        initial_slip  "atInputs" (the FMU's default): the contact starts
+                      unloaded where the body is, s = (u1, u2); "explicit":
+                      s = s_start, loaded by B (u - s_start) at once.
+        s_start       (s1Start, s2Start) [m], only with "explicit" (default
+                      (0, 0): the behaviour of the FMU before 0.4 and of this
+                      wrapper before it took inputs).
+        """
         if params.rule not in RULES:
             raise ValueError(f"rule must be one of {sorted(RULES)}, got {params.rule!r}")
+        if initial_slip not in INITIAL_SLIP:
+            raise ValueError(f"initial_slip must be one of {sorted(INITIAL_SLIP)}, got {initial_slip!r}")
+        if s_start is not None and initial_slip != "explicit":
+            # the FMU would ignore it: refuse rather than run another start than asked
+            raise ValueError(f"s_start is used only with initial_slip='explicit', not {initial_slip!r}")
+        if len(inputs) != 3:
+            raise ValueError(f"inputs must be (u1 [m], u2 [m], N [N]), got {inputs!r}")
         names = ["mu1", "mu2", "eps1", "eps2", "alpha", "beta"]
-        vr = (ctypes.c_uint * 6)(*(self.vr[n] for n in names))
-        val = (ctypes.c_double * 6)(*(float(getattr(params, n)) for n in names))
-        self._check(self._set_reals(vr, val, 6), "setting parameters")
+        values = [float(getattr(params, n)) for n in names]
+        if initial_slip == "explicit":
+            names += ["s1Start", "s2Start"]
+            values += [float(x) for x in (s_start or (0.0, 0.0))]
+        vr = (ctypes.c_uint * len(names))(*(self.vr[n] for n in names))
+        val = (ctypes.c_double * len(names))(*values)
+        self._check(self._set_reals(vr, val, len(names)), "setting parameters")
         self._check(self._set_rule((ctypes.c_uint * 1)(self.vr["slidingRule"]), RULES[params.rule]),
                     "setting slidingRule")
+        self._check(self._set_rule((ctypes.c_uint * 1)(self.vr["initialSlip"]), INITIAL_SLIP[initial_slip]),
+                    "setting initialSlip")
         if self.fmi_version == 2:
             self._slave.setupExperiment(startTime=start_time)
             self._slave.enterInitializationMode()
         else:
             self._slave.enterInitializationMode(startTime=start_time)
+        self.set_inputs(*inputs)  # initialization mode: where the FMU takes the start from them
         self._slave.exitInitializationMode()
         self.time = start_time
         self.initialized = True
