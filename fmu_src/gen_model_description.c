@@ -172,43 +172,142 @@ static void common_attrs(FILE *f, const char *license_path) {
             FMU_VERSION, license_path);
 }
 
-/* Which inputs an output depends on: every input, unless the table says
- * otherwise with FMU_DEPENDENCIES(D), D(output, "input names"). */
+/* What each output depends on, from the table's FMU_DEPENDENCIES(D),
+ * D(output, "step knowns", "initialization knowns"): lists of "name" (kind
+ * dependent) or "name:kind".  check_dependencies refuses a table that leaves
+ * an output out or names what is not a known of the mode. */
 typedef struct {
-    const char *output, *inputs;
+    const char *output, *step, *init;
 } dep;
-#ifdef FMU_DEPENDENCIES
-#define DEP(out, ins) {#out, ins},
+#ifndef FMU_DEPENDENCIES
+#error "the table must declare FMU_DEPENDENCIES(D): every output's dependencies in both modes"
+#endif
+#define DEP(out, step, init) {#out, step, init},
 static const dep DEPS[] = {FMU_DEPENDENCIES(DEP)};
 #undef DEP
 enum { NDEPS = sizeof DEPS / sizeof DEPS[0] };
-#else
-static const dep DEPS[1];
-enum { NDEPS = 0 };
-#endif
 
-static int depends(const char *output, const char *input) {
+static const dep *deps_of(const char *output) {
     for (int k = 0; k < NDEPS; ++k)
-        if (is(DEPS[k].output, output)) {
-            const char *p = DEPS[k].inputs;
-            const size_t n = strlen(input);
-            while ((p = strstr(p, input)) != NULL) {
-                if ((p == DEPS[k].inputs || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
-                    return 1;
-                p += n;
-            }
-            return 0;
-        }
-    return 1;
+        if (is(DEPS[k].output, output)) return &DEPS[k];
+    return NULL;
 }
 
-static void inputs_of(FILE *f, const char *output, int by_index) {
-    int first = 1;
+/* The k-th item of a space-separated list into name and kind (dependent
+ * when the item has no ":kind"); 0 when there is no k-th token. */
+static int list_item(const char *list, int k, char name[64], char kind[16]) {
+    const char *p = list;
+    for (;;) {
+        while (*p == ' ') ++p;
+        if (!*p) return 0;
+        const char *end = p;
+        while (*end && *end != ' ') ++end;
+        if (k-- == 0) {
+            const char *colon = memchr(p, ':', (size_t)(end - p));
+            const char *name_end = colon ? colon : end;
+            snprintf(name, 64, "%.*s", (int)(name_end - p), p);
+            if (colon) snprintf(kind, 16, "%.*s", (int)(end - colon - 1), colon + 1);
+            else snprintf(kind, 16, "dependent");
+            return 1;
+        }
+        p = end;
+    }
+}
+
+/* The kind with which `list` names `known`, or NULL if it does not. */
+static const char *kind_in(const char *list, const char *known) {
+    static char kind[16];
+    char name[64];
+    for (int k = 0; list_item(list, k, name, kind); ++k)
+        if (is(name, known)) return kind;
+    return NULL;
+}
+
+static const row *row_named(const char *name) {
     for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "input") && depends(output, ROWS[i].name)) {
+        if (is(ROWS[i].name, name)) return &ROWS[i];
+    return NULL;
+}
+
+/* A known of the mode: at a communication point the inputs (the time moves
+ * with doStep as the hidden state does: the importer sets neither); in
+ * initialization mode also the start time and every variable with
+ * initial = exact, the knowns FMI 2.0 and 3.0 name. */
+static int is_known(const row *r, int init) {
+    if (is(r->causality, "input")) return 1;
+    return init && (is(r->causality, "independent") || is(r->initial, "exact"));
+}
+
+/* FMI 2.0 and 3.0: constant (c v) and, at communication points only, fixed,
+ * tunable, discrete (p v) are for floating-point unknowns; dependent for any. */
+static int kind_allowed(const char *kind, const row *unknown, int init) {
+    if (is(kind, "dependent")) return 1;
+    if (is_int(unknown)) return 0;
+    if (is(kind, "constant")) return 1;
+    return !init && (is(kind, "fixed") || is(kind, "tunable") || is(kind, "discrete"));
+}
+
+static int check_dependencies(void) {
+    int bad = 0;
+    for (int i = 0; i < NROWS; ++i)
+        if (is(ROWS[i].causality, "output") && !deps_of(ROWS[i].name)) {
+            fprintf(stderr, "gen_model_description: output %s has no FMU_DEPENDENCIES row\n",
+                    ROWS[i].name);
+            bad = 1;
+        }
+    for (int k = 0; k < NDEPS; ++k) {
+        const row *out = row_named(DEPS[k].output);
+        if (!out || !is(out->causality, "output")) {
+            fprintf(stderr, "gen_model_description: FMU_DEPENDENCIES names %s, not an output\n",
+                    DEPS[k].output);
+            bad = 1;
+            continue;
+        }
+        for (int init = 0; init < 2; ++init) {
+            const char *list = init ? DEPS[k].init : DEPS[k].step;
+            char name[64], kind[16];
+            for (int t = 0; list_item(list, t, name, kind); ++t) {
+                const row *r = row_named(name);
+                int seen = 0;
+                char other[64], other_kind[16];
+                for (int u = 0; list_item(list, u, other, other_kind); ++u) seen += is(other, name);
+                const char *why = !r ? "no such variable"
+                                  : !is_known(r, init) ? "not a known of this mode"
+                                  : !kind_allowed(kind, out, init) ? "a kind not allowed here"
+                                  : seen > 1 ? "named twice" : NULL;
+                if (why) {
+                    fprintf(stderr, "gen_model_description: %s depends on %s:%s in %s: %s\n",
+                            DEPS[k].output, name, kind, init ? "initialization" : "step mode", why);
+                    bad = 1;
+                }
+            }
+        }
+    }
+    return bad;
+}
+
+/* The dependencies and their kinds of `output` in a mode, as the two
+ * attributes, in the order of the variables (by index or value reference). */
+static void dependencies(FILE *f, const char *output, int init, int by_index) {
+    const dep *d = deps_of(output);
+    const char *list = init ? d->init : d->step;
+    int first = 1;
+    fputs(" dependencies=\"", f);
+    for (int i = 0; i < NROWS; ++i)
+        if (kind_in(list, ROWS[i].name)) {
             fprintf(f, first ? "%u" : " %u", by_index ? (unsigned)(i + 1) : ROWS[i].vr);
             first = 0;
         }
+    fputs("\" dependenciesKind=\"", f);
+    first = 1;
+    for (int i = 0; i < NROWS; ++i) {
+        const char *kind = kind_in(list, ROWS[i].name);
+        if (kind) {
+            fprintf(f, first ? "%s" : " %s", kind);
+            first = 0;
+        }
+    }
+    fputc('"', f);
 }
 
 static void fmi2(FILE *f, const char *token) {
@@ -241,15 +340,17 @@ static void fmi2(FILE *f, const char *token) {
     fputs("  </ModelVariables>\n\n  <ModelStructure>\n    <Outputs>\n", f);
     for (int i = 0; i < NROWS; ++i)
         if (is(ROWS[i].causality, "output")) {
-            fprintf(f, "      <Unknown index=\"%d\" dependencies=\"", i + 1);
-            inputs_of(f, ROWS[i].name, 1);
-            fputs("\"/>\n", f);
+            fprintf(f, "      <Unknown index=\"%d\"", i + 1);
+            dependencies(f, ROWS[i].name, 0, 1);
+            fputs("/>\n", f);
         }
-    /* In initialization mode the outputs depend on the parameters too; no
-     * dependencies attribute says "on every known", which is the truth. */
     fputs("    </Outputs>\n    <InitialUnknowns>\n", f);
     for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "output")) fprintf(f, "      <Unknown index=\"%d\"/>\n", i + 1);
+        if (is(ROWS[i].causality, "output")) {
+            fprintf(f, "      <Unknown index=\"%d\"", i + 1);
+            dependencies(f, ROWS[i].name, 1, 1);
+            fputs("/>\n", f);
+        }
     fputs("    </InitialUnknowns>\n  </ModelStructure>\n\n</fmiModelDescription>\n", f);
 }
 
@@ -296,13 +397,16 @@ static void fmi3(FILE *f, const char *token) {
     fputs("  </ModelVariables>\n\n  <ModelStructure>\n", f);
     for (int i = 0; i < NROWS; ++i)
         if (is(ROWS[i].causality, "output")) {
-            fprintf(f, "    <Output valueReference=\"%u\" dependencies=\"", ROWS[i].vr);
-            inputs_of(f, ROWS[i].name, 0);
-            fputs("\"/>\n", f);
+            fprintf(f, "    <Output valueReference=\"%u\"", ROWS[i].vr);
+            dependencies(f, ROWS[i].name, 0, 0);
+            fputs("/>\n", f);
         }
     for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "output"))
-            fprintf(f, "    <InitialUnknown valueReference=\"%u\"/>\n", ROWS[i].vr);
+        if (is(ROWS[i].causality, "output")) {
+            fprintf(f, "    <InitialUnknown valueReference=\"%u\"", ROWS[i].vr);
+            dependencies(f, ROWS[i].name, 1, 0);
+            fputs("/>\n", f);
+        }
     fputs("  </ModelStructure>\n\n</fmiModelDescription>\n", f);
 }
 
@@ -444,6 +548,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "usage: %s fmi2|fmi3|build|html2|html3|token [OUTPUT]\n", argv[0]);
         return 2;
     }
+    if (check_dependencies()) return 1;
     char token[39];
     compute_token(token);
     FILE *f = stdout;

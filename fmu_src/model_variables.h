@@ -102,6 +102,27 @@
     E(atInputs, 1, "s = u at the end of initialization: no force until the body moves")        \
     E(explicit, 2, "s = (s1Start, s2Start): the body is loaded by B (u - s) at once")
 
+/* What each output depends on (ModelStructure, both FMI versions):
+ * D(output, step mode, initialization), each a list of the knowns it is
+ * computed from, "name" (no particular structure) or "name:kind".
+ *   step mode: the inputs read at a communication point (FMI Outputs).  Every
+ *     output is the pending step's for u1, u2, N (direct feedthrough).
+ *   initialization: the knowns of initialization mode it is computed from
+ *     (FMI InitialUnknowns): the start is s = u (atInputs) or s = (s1Start,
+ *     s2Start) (explicit), and the first step's result follows from it with
+ *     every parameter.  The stick/slip test does not read the rule: the state
+ *     does not depend on slidingRule.  Nothing reads the start time.
+ * gen_model_description refuses an output without its row and a name that
+ * is not a known of the mode; tests/fmus/test_model_structure.py checks each
+ * list against what the binary does. */
+#define OC_INIT_KNOWNS_NO_RULE "mu1 mu2 eps1 eps2 alpha beta u1 u2 N initialSlip s1Start s2Start"
+#define OC_INIT_KNOWNS OC_INIT_KNOWNS_NO_RULE " slidingRule"
+#define FMU_DEPENDENCIES(D)                                                                    \
+    D(T1, "u1 u2 N", OC_INIT_KNOWNS) D(T2, "u1 u2 N", OC_INIT_KNOWNS)                          \
+    D(s1, "u1 u2 N", OC_INIT_KNOWNS) D(s2, "u1 u2 N", OC_INIT_KNOWNS)                          \
+    D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE)                                         \
+    D(dissipatedEnergy, "u1 u2 N", OC_INIT_KNOWNS)
+
 #define FMU_VARIABLES(X)                                                                       \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "", "Simulation time")     \
     X(mu1, 1, Float64, parameter, fixed, exact, 0.408, 1e-150, 1e150, "1", "",             \

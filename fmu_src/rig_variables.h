@@ -42,9 +42,15 @@
     "<li>Each step integrates with T held: symplectic Euler, the viscous term implicit "       \
     "(stable for any step).</li>\n</ul>\n"
 
-/* u1, u2, N, x1, x2 follow from the state: no direct feedthrough, so a master
- * needs no iteration; driveForce reads the input T1. */
-#define FMU_DEPENDENCIES(D) D(u1, "") D(u2, "") D(N, "") D(x1, "") D(x2, "") D(driveForce, "T1")
+/* What each output depends on (ModelStructure, both FMI versions; columns
+ * as in model_variables.h).  u1, u2, N, x1, x2 follow from the state and the
+ * time, not from an input: no direct feedthrough, so a master needs no
+ * iteration; driveForce = fInt - T1 reads the input T1 with the factor -1.
+ * In initialization x1 = velocity * startTime, x2 = 0, N = mass g. */
+#define FMU_DEPENDENCIES(D)                                                                    \
+    D(u1, "", "time velocity") D(u2, "", "") D(N, "", "mass g")                                \
+    D(x1, "", "time velocity") D(x2, "", "")                                                    \
+    D(driveForce, "T1:constant", "fInt:constant T1:constant")
 
 #define FMU_VARIABLES(X)                                                                       \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "", "Simulation time") \

@@ -1,0 +1,254 @@
+"""The model structure both models declare (ModelStructure: every output's and
+initial unknown's dependencies and dependenciesKind, FMI 2.0 and 3.0) against
+what their binaries do, found independently of the table: each known of a
+mode is perturbed through fmpy at several base points, and the outputs that
+change are its dependents.  Initialization: the knowns are the inputs, the
+parameters (initial = exact) and the start time, read in initialization mode;
+step mode: the inputs, read at a communication point after the first step.
+The descriptions validate against the FMI schemas fmpy ships, and the
+generator refuses a table that leaves an output's dependencies out."""
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy import extract, read_model_description
+from fmpy.validation import validate_fmu
+from fmu_values import schema_errors
+
+from orthocontact import closed_forms as cf
+from orthocontact.fmu import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+class Instance:
+    """One instance of a model through fmpy, with the calls both versions share."""
+
+    def __init__(self, version, model):
+        path = str(find_fmu(fmi_version=version, model=model))
+        self.md = read_model_description(path)
+        self.var = {v.name: v for v in self.md.modelVariables}
+        if version == 2:
+            from fmpy.fmi2 import FMU2Slave as Slave
+        else:
+            from fmpy.fmi3 import FMU3Slave as Slave
+        self.version = version
+        self.s = Slave(guid=self.md.guid, unzipDirectory=extract(path), modelIdentifier=model,
+                       instanceName="structure")
+        self.s.instantiate()
+
+    def set(self, values: dict):
+        for name, x in values.items():
+            v = self.var[name]
+            if v.type in ("Real", "Float64"):
+                (self.s.setReal if self.version == 2 else self.s.setFloat64)([v.valueReference], [x])
+            elif self.version == 2:
+                self.s.setInteger([v.valueReference], [int(x)])
+            else:
+                self.s.setInt64([v.valueReference], [int(x)])
+
+    def outputs(self) -> dict:
+        out = {}
+        for v in self.md.modelVariables:
+            if v.causality != "output":
+                continue
+            if v.type in ("Real", "Float64"):
+                get = self.s.getReal if self.version == 2 else self.s.getFloat64
+            else:
+                get = self.s.getInteger if self.version == 2 else self.s.getInt32
+            out[v.name] = get([v.valueReference])[0]
+        return out
+
+    def enter_initialization(self, start_time):
+        if self.version == 2:
+            self.s.setupExperiment(startTime=start_time)
+            self.s.enterInitializationMode()
+        else:
+            self.s.enterInitializationMode(startTime=start_time)
+
+    def free(self):
+        self.s.terminate()
+        self.s.freeInstance()
+
+
+def knowns_by_mode(md):
+    """{"step": the inputs, "init": the inputs, parameters and the time}."""
+    inputs = [v.name for v in md.modelVariables if v.causality == "input"]
+    init = [v.name for v in md.modelVariables
+            if v.causality in ("input", "independent") or v.initial == "exact"]
+    return {"step": inputs, "init": init}
+
+
+def observe(version, model, point, mode):
+    """The outputs of `model` at a base point: {"time": start time, "init":
+    parameters and inputs set before and in initialization mode, "step":
+    inputs set after the first step}; read in initialization mode (init) or
+    at the communication point after the first step (step)."""
+    f = Instance(version, model)
+    try:
+        kinds = {n: v.causality for n, v in f.var.items()}
+        init = point["init"]
+        f.set({n: x for n, x in init.items() if kinds[n] == "parameter"})
+        f.enter_initialization(point["time"])
+        f.set({n: x for n, x in init.items() if kinds[n] == "input"})
+        if mode == "init":
+            return f.outputs()
+        f.s.exitInitializationMode()
+        f.s.doStep(point["time"], 1e-3)
+        f.set(point["step"])
+        return f.outputs()
+    finally:
+        f.free()
+
+
+def perturbations(var, value):
+    """Other admissible values of a known: every other item of an
+    enumeration / integer; 10 % either side of a number (0.1 of its unit
+    beside 0, as an angle, a time or a coefficient that starts at 0)."""
+    if var.type not in ("Real", "Float64"):
+        return [k for k in range(int(var.min), int(var.max) + 1) if k != value]
+    return [value * 1.1, value * 0.9] if value != 0 else [0.1, -0.1] if var.min is None or float(var.min) < 0 else [0.1]
+
+
+def measured_dependencies(version, model, points, mode):
+    """{output: {known: the changes it makes, as (base, perturbed) pairs}}."""
+    md = read_model_description(str(find_fmu(fmi_version=version, model=model)))
+    var = {v.name: v for v in md.modelVariables}
+    found = {v.name: {} for v in md.modelVariables if v.causality == "output"}
+    for point in points:
+        base = observe(version, model, point, mode)
+        for known in knowns_by_mode(md)[mode]:
+            where = "time" if known == "time" else "step" if mode == "step" else "init"
+            value = point[where] if known == "time" else point[where][known]
+            for other in perturbations(var[known], value):
+                moved = dict(point)
+                if known == "time":
+                    moved["time"] = other
+                else:
+                    moved[where] = {**point[where], known: other}
+                out = observe(version, model, moved, mode)
+                for name in found:
+                    if out[name] != base[name]:
+                        found[name].setdefault(known, []).append((value, other, base[name], out[name]))
+    return found
+
+
+def declared(version, model):
+    """{mode: {output: {known: kind}}} from the model description, as fmpy reads it."""
+    md = read_model_description(str(find_fmu(fmi_version=version, model=model)))
+    out = {}
+    for mode, unknowns in (("step", md.outputs), ("init", md.initialUnknowns)):
+        out[mode] = {}
+        for u in unknowns:
+            assert u.dependencies is not None and u.dependenciesKind is not None, u.variable.name
+            assert len(u.dependencies) == len(u.dependenciesKind)
+            out[mode][u.variable.name] = {d.name: k for d, k in zip(u.dependencies, u.dependenciesKind)}
+    return out
+
+
+# -- the base points: each branch of each model, so that every dependency can show ----------------
+
+LAW = dict(mu1=0.408, mu2=0.625, eps1=12510.0, eps2=1e4, alpha=math.pi / 2, beta=0.0)  # the defaults
+N0 = 18.39
+S0 = (4e-4, -3e-4)   # an explicit initial slip [m]
+
+
+def elastic_at(ratio, angle=math.radians(45)):
+    """The displacement along `angle` whose trial force is `ratio` times the
+    friction limit at N0 (the yield function's sqrt(q.F q) / N)."""
+    B = cf.adhesion_tensor(LAW["eps1"], LAW["eps2"], LAW["alpha"])
+    F = cf.friction_tensor(LAW["mu1"], LAW["mu2"], LAW["beta"])
+    d = np.array([math.cos(angle), math.sin(angle)])
+    q = B @ d
+    return d * ratio * N0 / math.sqrt(q @ F @ q)
+
+
+def contact_points(mode):
+    def at(ratio, **extra):
+        u = elastic_at(ratio) + (np.array(S0) if extra.get("initialSlip") == 2 else 0.0)
+        return {"u1": float(u[0]), "u2": float(u[1]), "N": N0}
+    explicit = dict(initialSlip=2, s1Start=S0[0], s2Start=S0[1])
+    if mode == "init":
+        return [{"time": 0.0, "init": {**LAW, "slidingRule": 2, "initialSlip": 1, "s1Start": 0.0,
+                                       "s2Start": 0.0, **at(0.5)}},
+                {"time": 0.0, "init": {**LAW, "slidingRule": 2, **explicit, **at(0.99, **explicit)}},
+                {"time": 0.0, "init": {**LAW, "slidingRule": 2, **explicit, **at(1.5, **explicit)}}]
+    # step mode: from an unloaded start at u = 0, just inside and well beyond the limit
+    return [{"time": 0.0, "init": {**LAW, "u1": 0.0, "u2": 0.0, "N": N0}, "step": at(r)}
+            for r in (0.99, 1.5)]
+
+
+RIG = dict(mass=1.875, g=9.806, fInt=5.0, velocity=0.244, muStrip=0.3, cStrip=2.0)
+
+
+def rig_points(mode):
+    return [{"time": t, "init": {**RIG, "T1": -8.0, "T2": 3.0}, "step": {"T1": -7.0, "T2": 2.5}}
+            for t in (0.25, 1.0)]
+
+
+POINTS = {MODEL_IDENTIFIER: contact_points, RIG_MODEL_IDENTIFIER: rig_points}
+
+
+@pytest.mark.parametrize("model", [MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER])
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("mode", ["init", "step"])
+def test_declared_dependencies_are_what_the_binary_does(model, version, mode):
+    """Each output's declared knowns are exactly those whose perturbation
+    changes it; a declared constant factor is the same at every base point."""
+    found = measured_dependencies(version, model, POINTS[model](mode), mode)
+    said = declared(version, model)[mode]
+    assert set(said) == set(found)
+    for output, knowns in said.items():
+        assert set(knowns) == set(found[output]), (output, sorted(knowns), sorted(found[output]))
+        for known, kind in knowns.items():
+            if kind == "constant":
+                factors = {(new - old) / (b - a) for a, b, old, new in found[output][known]}
+                assert max(factors) - min(factors) <= 1e-9 * max(map(abs, factors)), (output, known)
+
+
+@pytest.mark.parametrize("model", [MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER])
+@pytest.mark.parametrize("version", [2, 3])
+def test_the_structure_validates_and_the_rigs_positions_need_no_contact_force(model, version):
+    """The schema and fmpy's own checks; no initial unknown or output left
+    without its dependencies (which an importer must read as "on every
+    known": the rig's positions on the contact's force, an algebraic loop at
+    initialization)."""
+    path = find_fmu(fmi_version=version, model=model)
+    assert validate_fmu(str(path)) == [] and schema_errors(path) == []
+    said = declared(version, model)
+    if model == RIG_MODEL_IDENTIFIER:
+        for mode in ("step", "init"):
+            for position in ("u1", "u2", "N", "x1", "x2"):
+                assert not {"T1", "T2"} & set(said[mode][position]), (mode, position)
+
+
+def _compiler():
+    cc = shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+    return [cc] if cc else [sys.executable, "-m", "ziglang", "cc"]
+
+
+@pytest.mark.parametrize("edit, message", [
+    ('D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE)', "output contactState has no FMU_DEPENDENCIES row"),
+    ('D(contactState, "u1 u2 N mu1", OC_INIT_KNOWNS_NO_RULE)', "contactState depends on mu1:dependent in step "
+                                                               "mode: not a known of this mode"),
+    ('D(contactState, "u1 u2 N:constant", OC_INIT_KNOWNS_NO_RULE)', "a kind not allowed here"),
+    ('D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE " u1")', "named twice"),
+])
+def test_the_generator_refuses_a_table_without_exact_dependencies(tmp_path, edit, message):
+    src = tmp_path / "fmu_src"
+    shutil.copytree(ROOT / "fmu_src", src)
+    table = (src / "model_variables.h").read_text()
+    row = 'D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE)'
+    assert row in table
+    edited = table.replace(row, "" if edit == row else edit)
+    (src / "model_variables.h").write_text(edited)
+    gen = tmp_path / "gen"
+    subprocess.run(_compiler() + ["-std=c99", "-I", str(src), '-DFMU_TABLE_HEADER="model_variables.h"',
+                                  '-DFMU_VERSION="0"', str(src / "gen_model_description.c"), "-o", str(gen),
+                                  "-lm"], check=True, capture_output=True, timeout=120)
+    r = subprocess.run([str(gen), "fmi2"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1 and r.stdout == "" and message in r.stderr, r.stderr
