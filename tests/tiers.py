@@ -24,6 +24,7 @@ SLOW = {
     "identification/test_estimators.py": "*",  # coverage over 200 replicates; 120 sets of raw recordings
     "identification/test_report.py": {   # identifies the bundled recordings
         "test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs",
+        "test_identify_prints_every_estimate_with_its_unit_and_positive_intervals",
     },
     "identification/test_strip_model.py": {
         "test_strip_viscosity_estimated_from_two_velocities_through_the_cli",

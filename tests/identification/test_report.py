@@ -79,3 +79,37 @@ def test_the_runs_section_of_identified_md_by_hand():
         "0.05 at 0.244 m/s / 0.011; forces 0.04 / 0",
         "- runs: 20 slide, 3 carriage, 2 ramp; left out: s07; flagged: s03 (dropout outlier)",
         "- the reduction per run: reduction.csv; the paths per mat angle: ![paths_30.png](paths_30.png)"]
+
+
+def test_identify_prints_every_estimate_with_its_unit_and_positive_intervals(tmp_path):
+    """Through the CLI on the bundled recordings (every estimate: μ, ε, their
+    ratio, c_strip, F_int): the terminal summary and identified.md give each
+    value's unit, the maximum rule's angles in degrees; identified.json's
+    intervals are on the log scale, so each is above 0 and holds its value."""
+    import json
+
+    from cli_run import run_cli
+    from orthocontact.identification.report import UNITS, unit_of
+    out = tmp_path / "id"
+    p = run_cli(["identify", ROOT / "scenarios" / "example_recordings", "--out", out, "--no-validate"],
+                cwd=ROOT)
+    assert p.returncode == 0, p.stderr
+    want = {"mu1": "[-]", "mu2": "[-]", "eps_ratio": "[-]", "eps1": "[N/m]", "eps2": "[N/m]",
+            "c_strip": "[N s/m]", "f_int": "[N]"}
+    assert {n: unit_of(n) for n in want} == want and set(want) <= set(UNITS)
+    lines = {ln.split("=")[0].strip(): ln for ln in p.stdout.splitlines() if " ± " in ln}
+    assert set(lines) == set(want), p.stdout
+    for n, u in want.items():
+        # the value's unit and the interval's
+        assert lines[n].count(f" {u}") == 2, lines[n]
+    rule = [ln for ln in p.stdout.splitlines() if ln.startswith("maximum rule")]
+    assert len(rule) == 1 and " deg at mat angle " in rule[0] and "the paper's approximation" in rule[0]
+    md = (out / "identified.md").read_text()
+    assert "| parameter | unit | value | std. error | 95% interval |" in md
+    for n, u in want.items():
+        assert f"| {n} | {u[1:-1]} | " in md, n
+    j = json.loads((out / "identified.json").read_text())
+    assert "log scale" in j["intervals"]
+    for n in want:
+        lo, hi = j[n]["ci95"]
+        assert 0 < lo < j[n]["value"] < hi, (n, j[n])

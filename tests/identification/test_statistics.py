@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from orthocontact.identification.statistics import json_dof, res_stats, satterthwaite, t975
+from orthocontact.identification.statistics import json_dof, positive_ci, res_stats, satterthwaite, t975
 
 # Student's t, 97.5 % quantile, to 6 decimals (the standard tables, e.g.
 # Abramowitz & Stegun table 26.10).
@@ -67,3 +67,36 @@ def test_satterthwaite_is_welchs_formula_and_known_parts_add_no_dof():
     assert var_k == pytest.approx(a + b + 0.3)
     assert nu_k == pytest.approx((a + b + 0.3) ** 2 / (a**2 / (n1 - 1) + b**2 / (n2 - 1)))
     assert satterthwaite(g, [(np.eye(2), math.inf)])[1] == math.inf
+
+
+@pytest.mark.parametrize("value, stderr", [(0.27, 0.6), (1e-3, 5.0), (9.76, 40.0), (1e-8, 1.0)])
+def test_an_interval_of_a_positive_quantity_stays_positive_under_a_large_stderr(value, stderr):
+    """c_strip's linear interval went to -0.97 .. 1.50 N s/m; on the log scale
+    (value * exp(-+ t stderr / value)) the interval stays above 0, holds the
+    value, and is symmetric in log(value)."""
+    t = t975(4.0)
+    lo, hi = positive_ci(value, stderr, t)
+    assert 0 < lo < value < hi and math.isfinite(hi)
+    assert value - t * stderr < 0          # the linear interval would have crossed 0
+    if t * stderr / value < 700:
+        assert math.log(hi / value) == pytest.approx(math.log(value / lo), rel=1e-12)
+        assert math.log(hi / value) == pytest.approx(t * stderr / value, rel=1e-12)
+
+
+@pytest.mark.parametrize("rel", [1e-2, 1e-3, 1e-4])
+def test_for_a_small_relative_stderr_the_interval_is_the_linear_one_to_first_order(rel):
+    value, t = 12468.4, t975(12.0)
+    stderr = rel * value
+    lo, hi = positive_ci(value, stderr, t)
+    # exp(-+z) = 1 -+ z + z^2/2 ...: each end differs from value -+ t stderr by
+    # value z^2 / 2 (z = t stderr / value) to leading order, second order in rel
+    z = t * rel
+    for got, linear in ((lo, value - t * stderr), (hi, value + t * stderr)):
+        assert got - linear == pytest.approx(value * z * z / 2, rel=z)
+        assert abs(got - linear) / (t * stderr) < z
+
+
+def test_an_interval_of_no_positive_value_is_refused():
+    for bad in ((0.0, 1.0, 2.0), (-1.0, 1.0, 2.0), (1.0, -1.0, 2.0), (math.nan, 1.0, 2.0), (1.0, math.nan, 2.0)):
+        with pytest.raises(ValueError, match="positive_ci"):
+            positive_ci(*bad)

@@ -18,7 +18,7 @@ from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
 from .measurements import MeasurementSet, friction_axis_key
 from .noise_model import between_run_tau2, tau_summary, variance_parts
-from .statistics import satterthwaite, t975
+from .statistics import positive_ci, satterthwaite, t975
 from .strip_model import strip_regimes, strip_steady_state
 
 REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
@@ -346,8 +346,9 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     for n, gvec in grads.items():
         stderr[n] = math.sqrt(max(float(gvec @ cov @ gvec), 0.0))
         param_dof[n] = nu = satterthwaite(gvec, parts)[1]
-        t = t975(max(nu, 1.0))
-        ci[n] = [values[n] - t * stderr[n], values[n] + t * stderr[n]]
+        # every fitted quantity is positive by nature (the solver's bounds keep it so): its
+        # interval on the log scale, which a linear one left for c_strip (below 0)
+        ci[n] = positive_ci(values[n], stderr[n], t975(max(nu, 1.0)))
     # Identifiability is about the shape of the information, not its scale:
     # judge the correlation form, which weights and units do not distort.
     dscale = np.sqrt(np.maximum(np.diag(info), 1e-300))

@@ -152,21 +152,38 @@ def fit_figure(res, path: Path):
     plt.close(fig)
 
 
+# The unit of each reported estimate: the terminal summary and identified.md
+# print it with every value ("-": dimensionless).
+UNITS = {"mu1": "-", "mu2": "-", "eps_ratio": "-", "l1_l2_ratio": "-", "eps1": "N/m", "eps2": "N/m",
+         "c_strip": "N s/m", "f_int": "N"}
+
+
+def unit_of(name: str) -> str:
+    """The unit of a reported estimate, bracketed: [-], [N/m], [N s/m], [N]."""
+    return f"[{UNITS[name]}]"
+
+
 def summary_text(res) -> str:
+    """The terminal summary: each estimate with its unit, standard error and
+    95 % interval; the paper's formulas beside them."""
     j = res.as_json()
     lines = []
     for n in reported_names(j):
         e = j[n]
         if "value" in e:
-            lines.append(f"{n:>9} = {e['value']:.6g} ± {e['stderr']:.2g}  (95%: {e['ci95'][0]:.6g} .. {e['ci95'][1]:.6g})")
+            u = unit_of(n)
+            lines.append(f"{n:>9} = {e['value']:.6g} ± {e['stderr']:.2g} {u}  "
+                         f"(95%: {e['ci95'][0]:.6g} .. {e['ci95'][1]:.6g} {u})")
         else:
             lines.append(f"{n:>9}: not identifiable: {e['reason']}")
     if j["max_rule"]:
-        lines.append(f"maximum rule: l1/l2 = {j['max_rule']['l1_l2_ratio']:.4f}"
-                     + (f", eps1/eps2 = {j['max_rule']['eps_ratio']:.4f}" if "eps_ratio" in j["max_rule"] else ""))
+        mr = j["max_rule"]
+        lines.append(f"maximum rule (the paper's approximation): phi_ext = {mr['phi_ext_deg']:.3f} deg at "
+                     f"{SWEPT_ANGLE} {mr['at_alpha_deg']:g} deg -> l1/l2 = {mr['l1_l2_ratio']:.4f} [-]"
+                     + (f", eps1/eps2 = {mr['eps_ratio']:.4f} [-]" if "eps_ratio" in mr else ""))
     if j["eq40"]:
-        lines.append(f"eq. (40) least squares: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f}; "
-                     f"eq. (41) closed form: l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} (not the minimiser)")
+        lines.append(f"eq. (40) least squares: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f} [-]; "
+                     f"eq. (41) closed form: l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} [-] (not the minimiser)")
     return "\n".join(lines)
 
 
@@ -176,23 +193,27 @@ def markdown_text(res) -> str:
          f"Data: {j['data']['forces']} forces, {j['data']['angles']} angles, {j['data']['ramp']} ramp points. "
          f"Rule {j['assumptions']['rule']}, alpha = angle {j['assumptions']['alpha_offset_deg']:+g}°, "
          f"beta = angle {j['assumptions']['beta_offset_deg']:+g}°.", "",
-         "| parameter | value | std. error | 95% interval |", "|---|---|---|---|"]
+         "| parameter | unit | value | std. error | 95% interval |", "|---|---|---|---|---|"]
     for n in reported_names(j):
         e = j[n]
         if "value" in e:
-            L.append(f"| {n} | {e['value']:.6g} | {e['stderr']:.3g} | {e['ci95'][0]:.6g} … {e['ci95'][1]:.6g} |")
+            L.append(f"| {n} | {UNITS[n]} | {e['value']:.6g} | {e['stderr']:.3g} | "
+                     f"{e['ci95'][0]:.6g} … {e['ci95'][1]:.6g} |")
         else:
-            L.append(f"| {n} | not identifiable | – | {e['reason']} |")
+            L.append(f"| {n} | {UNITS[n]} | not identifiable | – | – | {e['reason']} |")
     L.append("")
     if j["eq1"]:
-        L.append(f"- eq. (1) from the forces at the friction axes: μ1 = {j['eq1']['mu1']:.4f}, μ2 = {j['eq1']['mu2']:.4f}")
+        L.append(f"- eq. (1) from the forces at the friction axes: μ1 = {j['eq1']['mu1']:.4f} [-], "
+                 f"μ2 = {j['eq1']['mu2']:.4f} [-]")
     if j["max_rule"]:
         mr = j["max_rule"]
-        L.append(f"- maximum rule (eq. 29, 37–39): φ_ext = {mr['phi_ext_deg']:.3f}° → l1/l2 = {mr['l1_l2_ratio']:.4f}"
-                 + (f", ε1/ε2 = {mr['eps_ratio']:.4f}" if "eps_ratio" in mr else ""))
+        L.append(f"- maximum rule (eq. 29, 37–39; the paper's approximation): φ_ext = {mr['phi_ext_deg']:.3f}° "
+                 f"at {SWEPT_ANGLE} {mr['at_alpha_deg']:g}° → l1/l2 = {mr['l1_l2_ratio']:.4f} [-]"
+                 + (f", ε1/ε2 = {mr['eps_ratio']:.4f} [-]" if "eps_ratio" in mr else ""))
     if j["eq40"]:
-        L.append(f"- eq. (40) by IPOPT: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f} (objective {j['eq40']['objective']:.3e}); "
-                 f"the paper's eq. (41): l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} (objective {j['eq41']['objective']:.3e}) — not the minimiser")
+        L.append(f"- eq. (40) by IPOPT: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f} [-] (objective "
+                 f"{j['eq40']['objective']:.3e}); the paper's eq. (41): l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} [-] "
+                 f"(objective {j['eq41']['objective']:.3e}) — not the minimiser")
     L.append("- noise estimated from the residuals: " + ", ".join(
         f"{k} {v:.3g}" for k, v in j["noise_estimate"].items() if not isinstance(v, dict)))
     v = j["validation_fmu"]

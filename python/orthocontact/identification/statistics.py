@@ -1,5 +1,6 @@
 """The statistics of identification: Student-t quantiles for (not
-necessarily whole) degrees of freedom, residual summaries, JSON forms."""
+necessarily whole) degrees of freedom, intervals of positive quantities,
+residual summaries, JSON forms."""
 from __future__ import annotations
 
 import math
@@ -39,6 +40,25 @@ def t975(dof: float) -> float:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if prob(mid) < 0.95 else (lo, mid)
     return math.sqrt(dof) * math.tan(0.5 * (lo + hi))
+
+
+# exp(700) is near the largest double: beyond it an upper end is no bound at all
+_MAX_LOG_SPAN = 700.0
+
+
+def positive_ci(value: float, stderr: float, t: float) -> list:
+    """[low, high] of a quantity positive by nature (a friction coefficient,
+    a stiffness or its ratio, a viscosity, a force), in its own unit: the
+    interval of log(value), whose standard error is stderr / value by the
+    delta method, taken back, value * exp(-+ t stderr / value) (log-normal).
+    It stays > 0 however large the standard error, holds the value, and for
+    a small relative error equals value -+ t stderr to first order.  t: the
+    quantile (t975)."""
+    if not (value > 0 and math.isfinite(value)) or not (stderr >= 0 and math.isfinite(t) and t >= 0):
+        raise ValueError(f"positive_ci: expected value > 0, stderr >= 0 and t >= 0, got "
+                         f"{value!r}, {stderr!r}, {t!r}")
+    span = min(t * stderr / value, _MAX_LOG_SPAN)
+    return [value * math.exp(-span), value * math.exp(span)]
 
 
 def satterthwaite(grad: np.ndarray, parts: list) -> tuple[float, float]:
