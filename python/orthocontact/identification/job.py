@@ -137,7 +137,10 @@ class Identification:
                                         "within_run_rms": f.within_run.get(g),
                                         "values": int(len(f.residuals[g]))}
                               for g in f.sigma}
-        out["intervals"] = ("ci95 = value -+ t(0.975, dof) stderr; stderr from the Gauss-Newton covariance "
+        out["intervals"] = ("ci95 = value * exp(-+ t(0.975, dof) stderr / value), on the log scale (the "
+                            "delta method's log-normal interval: every parameter is positive by nature, "
+                            "so its interval stays > 0; for a small stderr / value it is value -+ "
+                            "t(0.975, dof) stderr); stderr from the Gauss-Newton covariance "
                             "with each value weighted by 1/(between_runs^2 + its within-run error^2); dof "
                             "the Welch-Satterthwaite degrees of freedom of that variance over its parts: "
                             "each group's between-run variance with its between_runs_dof (values less "
@@ -182,7 +185,7 @@ class Identification:
                                                 (r.c_strip if r.c_strip is not None else 0.0)),
                               "phi_convention": "counterclockwise (data converted)" if r.phi_convention == "paper"
                               else "counterclockwise",
-                              "ci": "95%, Student t with each parameter's Welch-Satterthwaite "
+                              "ci": "95%, on the log scale, Student t with each parameter's Welch-Satterthwaite "
                                     "degrees of freedom over the data groups' noise estimates, "
                                     "Gauss-Newton covariance with per-group noise estimates"}
         return out
