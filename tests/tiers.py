@@ -33,6 +33,7 @@ SLOW = {
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
     "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results"},
+    "runs/test_size.py": {"test_uqs_estimate_is_the_runs_it_makes"},   # identifies the example first
     "reproduction/test_sensitivity.py": "*",   # the rig's assumptions, 168 rig runs
     "contracts/test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
     "fmus/test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},

@@ -1,6 +1,7 @@
 """The size of the work (orthocontact.runs.size): huge work is refused before
 it starts unless --yes, with a message naming the keys that set its size;
-the step count is the rig's."""
+the step count is the rig's; the estimate counts every run the command
+makes, against the runs the compiled master actually made."""
 import time
 from pathlib import Path
 
@@ -10,7 +11,7 @@ from cli_run import run_cli as run, scenario_variant
 from orthocontact.errors import InputError
 from orthocontact.experiment.scenario import load
 from orthocontact.runs.size import (LIMIT_RUNS, LIMIT_STEPS, check_run_size, check_scenario_size,
-                                    steps_per_run)
+                                    check_uq_size, scenario_work, steps_per_run, uq_work)
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"
@@ -67,6 +68,110 @@ def test_a_scenarios_size_is_its_angles_times_its_runs_steps():
     steps = steps_per_run(sc.rig.travel_m, sc.rig.velocity_m_s, sc.rig.step_s)
     assert runs == 91   # 0 to 90 deg in steps of 1 deg
     check_scenario_size(sc, yes=False)
+    # uq: the draws at each angle and its step check, two runs an angle, at the scenario's step here
     samples = int(LIMIT_STEPS / (runs * steps)) + 1
-    with pytest.raises(InputError, match=f"{runs * samples:,} rig runs x {steps:,.0f} steps"):
-        check_scenario_size(sc, yes=False, samples=samples, samples_key="--samples")
+    with pytest.raises(InputError, match=f"{runs * samples + 2 * runs:,} rig runs .* x {steps:,.0f} steps"):
+        check_uq_size(sc, False, samples, sc.rig.step_s, "--samples", "--step-s")
+
+
+# -- the estimate counts every run: against the runs made --------------------------
+
+@pytest.fixture
+def counted(monkeypatch):
+    """The rig runs the compiled master makes in this process, counted where
+    they are made (CMaster.run, record, run_grid: each still runs)."""
+    from orthocontact.rig.compiled import CMaster
+    made = [0]
+    run_, record_, grid_ = CMaster.run, CMaster.record, CMaster.run_grid
+
+    def run(self, tasks):
+        made[0] += len(tasks)
+        return run_(self, tasks)
+
+    def record(self, *a, **k):
+        made[0] += 1
+        return record_(self, *a, **k)
+
+    def run_grid(self, laws, axes, *a, **k):
+        made[0] += len(laws) * len(axes)
+        return grid_(self, laws, axes, *a, **k)
+    monkeypatch.setattr(CMaster, "run", run)
+    monkeypatch.setattr(CMaster, "record", record)
+    monkeypatch.setattr(CMaster, "run_grid", run_grid)
+    return made
+
+
+def _variant(tmp_path, path, *edits) -> Path:
+    out = tmp_path / path.name
+    text = path.read_text()
+    for old, new in edits:
+        assert old in text, old
+        text = text.replace(old, new, 1)
+    out.write_text(text)
+    return out
+
+
+SHORT = ("travel_m = 0.5", "travel_m = 0.05")   # 205 steps a run: quick
+
+
+def test_a_one_angle_sweeps_estimate_is_the_runs_it_makes(tmp_path, counted):
+    """The issue's case: a 1-angle sweep's estimate said 1 run and the sweep
+    made 9 (the other rule at the extremum, 7 recorded trajectories)."""
+    from orthocontact.runs.sweep import run_sweep
+    sc = load(_variant(tmp_path, SCEN / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 45.0"),
+                       ("stop_deg = 90.0", "stop_deg = 45.0")))
+    work = scenario_work(sc)
+    run_sweep(sc, workers=1, progress=False, master="c")
+    assert counted[0] == 9 and work.runs == counted[0], work.parts
+    assert work.steps == counted[0] * steps_per_run(0.05, 0.244, 2e-4)
+
+
+def test_a_refined_sweeps_estimate_bounds_the_refinement_and_counts_the_rest(tmp_path, counted):
+    """The refinement's count depends on the angles found: the estimate takes
+    its most; every other run is counted exactly."""
+    from orthocontact.runs.sweep import refinement_runs_at_most, run_sweep
+    sc = load(_variant(tmp_path, SCEN / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 36.0"),
+                       ("stop_deg = 90.0", "stop_deg = 44.0"), ("step_deg = 1.0", "step_deg = 2.0")))
+    work = scenario_work(sc)
+    res = run_sweep(sc, workers=1, progress=False, master="c")
+    refined = res.extremum.get("evaluations", 0)
+    assert res.extremum["refined"] and refined > 0
+    bound = refinement_runs_at_most(2.0)
+    assert dict((w, r) for w, r, _ in work.parts)["refining the extremum, at most"] == bound
+    assert counted[0] - refined == work.runs - bound == 5 + 1 + 7
+    assert counted[0] <= work.runs
+
+
+def test_a_step_studys_estimate_is_the_runs_it_makes(tmp_path, counted):
+    from orthocontact.runs.sweep import run_step_study
+    sc = load(_variant(tmp_path, SCEN / "step_study.toml", ("travel_m = 1.0", "travel_m = 0.02"),
+                       ("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]", "steps_s = [2.0e-3, 1.0e-3]")))
+    work = scenario_work(sc)
+    run_step_study(sc, workers=1, progress=False, master="c")
+    assert counted[0] == 3 * 2 and work.runs == counted[0]
+    rig = sc.rig
+    assert work.steps == 3 * sum(steps_per_run(0.02, rig.velocity_m_s, h) for h in (2e-3, 1e-3))
+
+
+def test_uqs_estimate_is_the_runs_it_makes(tmp_path, counted, identified):
+    """uq's draws at each angle and its step check (the estimates at the
+    scenario's step and at the uq step)."""
+    from orthocontact import uq
+    sc = load(_variant(tmp_path, SCEN / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 30.0"),
+                       ("stop_deg = 90.0", "stop_deg = 50.0"), ("step_deg = 1.0", "step_deg = 10.0")))
+    est = uq.load_estimates(identified)
+    work = uq_work(sc, 4, uq.uq_step(sc))
+    uq.propagate(est, sc, 4, 1, None, scheduler=None, progress=False)
+    assert counted[0] == 4 * 3 + 2 * 3 and work.runs == counted[0], work.parts
+
+
+def test_work_the_old_estimate_let_through_is_refused_with_every_run_named(tmp_path):
+    """A 1-angle sweep of 3e8 steps a run: 1 run was under the limit, the 9
+    runs it makes are 2.7e9 steps."""
+    big = _variant(tmp_path, SCEN / "mat_aged.toml", ("start_deg = 0.0", "start_deg = 45.0"),
+                   ("stop_deg = 90.0", "stop_deg = 45.0"), ("step_s = 2.0e-4", "step_s = 6.83e-9"))
+    p = run(["run", big, "--out", tmp_path / "out"], tmp_path)
+    lines = [x for x in p.stderr.strip().splitlines() if ": warning: " not in x]
+    assert p.returncode == 2 and len(lines) == 1, p.stderr
+    assert "9 rig runs (1 at the swept angles, 1 by the other rule, 7 recorded trajectories) x 300," in lines[0], lines[0]
+    assert "--yes" in lines[0] and not (tmp_path / "out").exists()

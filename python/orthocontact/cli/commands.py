@@ -166,12 +166,13 @@ def cmd_sensitivity(args) -> int:
 
 def cmd_uq(args) -> int:
     from .. import uq
-    from ..runs.size import check_scenario_size
+    from ..runs.size import check_uq_size
     est = uq.load_estimates(args.identification)
-    sc = load_scenario(args.scenario, args.yes)  # the check at the scenario's own step
+    sc = load_scenario(args.scenario)
     uq.check_geometry(sc, est)  # before any work
-    check_scenario_size(sc, args.yes, args.samples, uq.uq_step(sc, args.step_s), "--samples",
-                        "--step-s or rig.travel_m")
+    # every run uq makes: the draws and the step check at the scenario's own step
+    check_uq_size(sc, args.yes, args.samples, uq.uq_step(sc, args.step_s), "--samples",
+                  "--step-s or rig.travel_m")
     with staged_output(args.out) as stage:
         res = uq.propagate(est, sc, args.samples, args.seed, None,
                            scheduler=None if args.scheduler == "none" else args.scheduler,

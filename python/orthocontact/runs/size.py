@@ -5,6 +5,7 @@ memory or run for days with nothing to show."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from ..errors import InputError
 
@@ -27,34 +28,113 @@ def steps_per_run(travel_m: float, velocity_m_s: float, step_s: float) -> float:
     return math.ceil(travel_m / (velocity_m_s * step_s) - 1e-9)
 
 
-def check_run_size(what: str, runs: float, steps: float, runs_key: str, steps_key: str,
-                   yes: bool) -> None:
-    """InputError unless `runs` rig runs of `steps` steps each are a size a
-    command takes without asking: naming `what` (the file or command), the
-    keys or options that set the size, and --yes."""
+@dataclass(frozen=True)
+class Work:
+    """The rig runs a command makes, by part: (what, runs, steps per run).
+    Every run the command makes is in one part: the estimate said before
+    any of them starts."""
+    parts: tuple = ()
+
+    def plus(self, what: str, runs: float, steps: float) -> "Work":
+        return Work(self.parts + ((what, runs, steps),)) if runs else self
+
+    @property
+    def runs(self) -> float:
+        return sum(r for _, r, _ in self.parts)
+
+    @property
+    def steps(self) -> float:
+        """Rig steps of all runs together."""
+        return sum(r * n for _, r, n in self.parts)
+
+    @property
+    def most_steps(self) -> float:
+        """Steps of the longest run."""
+        return max((n for _, _, n in self.parts), default=0.0)
+
+    def describe(self) -> str:
+        """'N rig runs (n what, ...)'; the parts when there are several."""
+        head = f"{self.runs:,.0f} rig runs"
+        if len(self.parts) < 2:
+            return head
+        return head + " (" + ", ".join(f"{r:,.0f} {w}" for w, r, _ in self.parts) + ")"
+
+
+def check_work(what: str, work: Work, runs_key: str, steps_key: str, yes: bool) -> None:
+    """InputError unless `work` is a size a command takes without asking:
+    naming `what` (the file or command), the keys or options that set the
+    size, and --yes."""
+    steps = work.most_steps
     if not 1 <= steps <= MAX_STEPS_PER_RUN:
         raise InputError(f"{what}: {steps_key}: gives {steps:.3g} steps a run; a run takes "
                          f"1 to 2^53 = {MAX_STEPS_PER_RUN:.3g} steps")
-    total = runs * steps
-    if yes or (runs <= LIMIT_RUNS and total <= LIMIT_STEPS):
+    total = work.steps
+    if yes or (work.runs <= LIMIT_RUNS and total <= LIMIT_STEPS):
         return
-    raise InputError(f"{what}: {runs:,.0f} rig runs x {steps:,.0f} steps = {total:.3g} rig steps "
+    if len({n for _, _, n in work.parts}) == 1:
+        size = f"{work.describe()} x {steps:,.0f} steps"
+    else:
+        size = f"{work.describe()} of up to {steps:,.0f} steps"
+    raise InputError(f"{what}: {size} = {total:.3g} rig steps "
                      f"(limits without --yes: {LIMIT_RUNS:.0e} runs, {LIMIT_STEPS:.0e} steps, about 5 "
                      f"minutes on 2 cores); raise {runs_key} (runs) or {steps_key} (steps per run), "
                      "or pass --yes to run it anyway")
 
 
-def check_scenario_size(sc, yes: bool, samples: int = 1, step_s: float | None = None,
-                        samples_key: str = "", step_key: str | None = None) -> None:
-    """check_run_size for a scenario's sweep or step study (times `samples`
-    parameter sets, at the step `step_s` if given)."""
+def check_run_size(what: str, runs: float, steps: float, runs_key: str, steps_key: str,
+                   yes: bool) -> None:
+    """check_work for `runs` rig runs of `steps` steps each."""
+    check_work(what, Work().plus("runs", runs, steps), runs_key, steps_key, yes)
+
+
+def scenario_work(sc) -> Work:
+    """Every rig run `orthocontact run` makes for a scenario (runs.sweep):
+    a sweep's angles, its extremum's refinement (at most
+    refinement_runs_at_most: the count depends on the angles found), the
+    other implicit rule at the extremum and the recorded trajectories, each
+    of the rig's steps; a step study's rules at each of its steps."""
+    from .sweep import refinement_runs_at_most
     rig = sc.rig
+    if sc.kind != "sweep":
+        work = Work()
+        for h in sc.study["steps_s"]:
+            work = work.plus(f"at step {h:g} s", len(sc.study["rules"]),
+                             steps_per_run(rig.travel_m, rig.velocity_m_s, h))
+        return work
+    n = sc.angle_count()
+    steps = steps_per_run(rig.travel_m, rig.velocity_m_s, rig.step_s)
+    refine = refinement_runs_at_most(sc.sweep["step_deg"]) if sc.sweep["refine_extremum"] and n >= 3 else 0
+    other = 1 if sc.law.rule in ("coupled", "associated") else 0
+    return (Work().plus("at the swept angles", n, steps).plus("refining the extremum, at most", refine, steps)
+            .plus("by the other rule", other, steps)
+            .plus("recorded trajectories", len(sc.sweep["trajectory_angles_deg"]), steps))
+
+
+def uq_work(sc, samples: int, step_s: float) -> Work:
+    """Every rig run `orthocontact uq` makes (uq.propagate): `samples`
+    parameter sets at each of the scenario's angles at the uq step `step_s`
+    [s], and its step check, the estimates at each angle at the scenario's
+    step and at the uq step."""
+    rig = sc.rig
+    n = sc.angle_count()
+    at_uq = steps_per_run(rig.travel_m, rig.velocity_m_s, step_s)
+    return (Work().plus("parameter-set runs", samples * n, at_uq)
+            .plus("step check at the uq step", n, at_uq)
+            .plus("step check at the scenario's step", n,
+                  steps_per_run(rig.travel_m, rig.velocity_m_s, rig.step_s)))
+
+
+def check_scenario_size(sc, yes: bool) -> None:
+    """check_work for every run `orthocontact run` makes for the scenario."""
     if sc.kind == "sweep":
-        runs = sc.angle_count() * samples
-        steps = steps_per_run(rig.travel_m, rig.velocity_m_s, step_s or rig.step_s)
-        runs_key = "sweep.step_deg" + (f" or {samples_key}" if samples_key else "")
-        check_run_size(str(sc.path), runs, steps, runs_key, step_key or "rig.step_s or rig.travel_m", yes)
-        return
-    steps = [steps_per_run(rig.travel_m, rig.velocity_m_s, h) for h in sc.study["steps_s"]]
-    check_run_size(str(sc.path), len(sc.study["rules"]) * len(steps), max(steps),
-                   "study.rules or study.steps_s", "study.steps_s or rig.travel_m", yes)
+        check_work(str(sc.path), scenario_work(sc), "sweep.step_deg or sweep.trajectory_angles_deg",
+                   "rig.step_s or rig.travel_m", yes)
+    else:
+        check_work(str(sc.path), scenario_work(sc), "study.rules or study.steps_s",
+                   "study.steps_s or rig.travel_m", yes)
+
+
+def check_uq_size(sc, yes: bool, samples: int, step_s: float, samples_key: str, step_key: str) -> None:
+    """check_work for every run `orthocontact uq` makes."""
+    check_work(str(sc.path), uq_work(sc, samples, step_s), f"sweep.step_deg or {samples_key}",
+               f"{step_key}, rig.step_s", yes)

@@ -105,7 +105,22 @@ class SweepResult:
                             [(sc.params_at(a), sc.rig) for a in self.angles_deg])
 
 
-def _parabolic_extremum(f, xs, fs, tol: float = 1e-4, max_evals: int = 12):
+PARABOLA_RUNS = 12        # most rig runs of the parabolic refinement
+GOLDEN_TOL_DEG = 1e-3     # the golden-section search's final bracket [deg]
+
+
+def refinement_runs_at_most(step_deg: float) -> int:
+    """The most rig runs a sweep's extremum refinement makes (run_sweep):
+    the parabolas' PARABOLA_RUNS, then, if they fail, a golden-section search
+    over at most two grid steps: its two first points, one a bracket
+    shrinking by the golden ratio until GOLDEN_TOL_DEG, and its midpoint."""
+    width = 2 * step_deg
+    shrink = 0 if width <= GOLDEN_TOL_DEG else math.ceil(
+        math.log(GOLDEN_TOL_DEG / width) / math.log((math.sqrt(5) - 1) / 2) - 1e-9)
+    return PARABOLA_RUNS + 3 + shrink
+
+
+def _parabolic_extremum(f, xs, fs, tol: float = 1e-4, max_evals: int = PARABOLA_RUNS):
     """Maximiser of a smooth f from three points about its maximum
     (successive parabolic interpolation through the three best points so
     far); None when a parabola opens upwards or its vertex leaves the
@@ -129,7 +144,7 @@ def _parabolic_extremum(f, xs, fs, tol: float = 1e-4, max_evals: int = 12):
     return max(pts, key=lambda p: p[1])
 
 
-def _golden_extremum(f, a: float, b: float, tol: float = 1e-3) -> tuple[float, float]:
+def _golden_extremum(f, a: float, b: float, tol: float = GOLDEN_TOL_DEG) -> tuple[float, float]:
     """Maximiser of f on [a, b] by golden-section search."""
     g = (math.sqrt(5) - 1) / 2
     c, d = b - g * (b - a), a + g * (b - a)
