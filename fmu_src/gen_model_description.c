@@ -424,11 +424,14 @@ static void build(FILE *f) {
 }
 
 /* Model documentation text with the FMI version's names put in: @SET@,
- * @GET@, @DOSTEP@, @REAL@ (the Float64 functions and type of FMI 2.0 or 3.0). */
+ * @GET@, @DOSTEP@, @DIRDER@, @REAL@ (the Float64 functions, the directional
+ * derivative and the type of FMI 2.0 or 3.0). */
 static void doc(FILE *f, const char *text, int v) {
     static const char *const KEYS[][3] = {{"@SET@", "fmi2SetReal", "fmi3SetFloat64"},
                                           {"@GET@", "fmi2GetReal", "fmi3GetFloat64"},
                                           {"@DOSTEP@", "fmi2DoStep", "fmi3DoStep"},
+                                          {"@DIRDER@", "fmi2GetDirectionalDerivative",
+                                           "fmi3GetDirectionalDerivative"},
                                           {"@REAL@", "Real", "Float64"}};
     while (*text) {
         int done = 0;

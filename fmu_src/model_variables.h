@@ -85,6 +85,31 @@
     "    T1, T2 = contact.@GET@([T1, T2])          the force for these inputs (pending)\n"     \
     "    contact.@DOSTEP@(t, h)                     commit it\n"                                \
     "    body.@SET@([T1, T2], [T1, T2])             acts on the body over its next step</pre>\n" \
+    "<h2>The explicit coupling's step limit</h2>\n<p>The loop above is explicit: the body "      \
+    "steps with the force held.  On a stuck contact the force is a spring, T = -B (u - s), "     \
+    "and the body's update with it held is the central-difference (symplectic Euler) update "   \
+    "of a mass on a spring, u<sub>n+1</sub> - 2 u<sub>n</sub> + u<sub>n-1</sub> = h<sup>2</sup> " \
+    "(F - &epsilon; u<sub>n</sub>) / m, stable only for h &omega; &lt; 2, &omega; = "            \
+    "sqrt(&epsilon; / m).  The stiffest direction of B is &epsilon;<sub>max</sub> = max(eps1, " \
+    "eps2), so the communication step must satisfy</p>\n"                                     \
+    "<p><b>h &lt; 2 sqrt(m / &epsilon;<sub>max</sub>)</b> (m: the mass of the body the "        \
+    "contact holds; add the stiffness of anything else holding it to &epsilon;<sub>max</sub>; "  \
+    "for two bodies, use m<sub>1</sub> m<sub>2</sub> / (m<sub>1</sub> + m<sub>2</sub>)).</p>\n"   \
+    "<p>Above it the solution grows: a body that truly sticks slides, and the dissipated energy " \
+    "is spurious.  Example: m = 0.05 kg on &epsilon;<sub>max</sub> = 25,000 N/m gives "          \
+    "h &lt; 2 sqrt(0.05 / 25000) = 2.83 ms.  At h = 4 ms (h &omega; = 2.83) the first step "      \
+    "moves the body by h<sup>2</sup> F / m = 8 F / &epsilon;: pushed by 30 % of the friction "   \
+    "limit, the contact carries 2.4 times the limit and slides, where the stuck mass-spring "     \
+    "never carries more than 2 F = 60 % of it.  (The default eps1 = 12510 N/m and the rig's "    \
+    "1.875 kg give h &lt; 24.5 ms.)  What to do instead:</p>\n<ul>\n"                         \
+    "<li>a smaller step, h &lt; 2 sqrt(m / &epsilon;<sub>max</sub>); h &le; sqrt(m / "            \
+    "&epsilon;<sub>max</sub>) (h &omega; &le; 1) also keeps the period within 5 %;</li>\n"       \
+    "<li>or an implicit step of the body solved by iteration: set u, read the pending T and its " \
+    "derivative dT/du (@DIRDER@ of T1, T2 with respect to u1, u2: the consistent tangent, -B "   \
+    "when stuck) and update u by Newton, e.g. on the trapezoidal step R(u) = u - u<sub>n</sub> "  \
+    "- h v<sub>n</sub> - h<sup>2</sup>/4 (a<sub>n</sub> + a(u)) with dR/du = I - "               \
+    "h<sup>2</sup>/(4 m) dT/du; then @DOSTEP@ commits.  Stable for any step: at 4 ms the "       \
+    "body above sticks (one update a step).</li>\n</ul>\n"                                     \
     "<h2>What an importer prints</h2>\n<p>An importer that sets the inputs at t, calls "      \
     "@DOSTEP@(t, h) and then reads the outputs records at t + h the outputs of the step taken " \
     "with the inputs of t (inputs are held over a step): a ramp u = v t reads one step behind, " \

@@ -40,7 +40,11 @@
     "P = max(-T1, 0) the push, opposing the lateral motion and never reversing it.</li>\n"     \
     "<li>driveForce = fInt - T1: what the force sensor reads.</li>\n"                          \
     "<li>Each step integrates with T held: symplectic Euler, the viscous term implicit "       \
-    "(stable for any step).</li>\n</ul>\n"
+    "(stable for any step).</li>\n"                                                            \
+    "<li>Coupled with OrthotropicContact by the explicit loop (the rig steps with T held), "   \
+    "the lateral motion on a stuck contact is a mass on a spring of stiffness up to "          \
+    "max(eps1, eps2): stable only for h &lt; 2 sqrt(mass / max(eps1, eps2)), 24.5 ms for the " \
+    "defaults (the contact's documentation says why and what to do otherwise).</li>\n</ul>\n"
 
 /* What each output depends on (ModelStructure, both FMI versions; columns
  * as in model_variables.h).  u1, u2, N, x1, x2 follow from the state and the

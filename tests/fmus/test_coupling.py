@@ -16,6 +16,7 @@ trapezoidal update, with the FMU's directional derivative of T with respect
 to u, sticks at 4 ms on its own closed form, u[n] = u_eq (1 - cos(n theta)),
 theta = 2 atan(h w / 2): the amplitude of the truth, a phase that lags."""
 import math
+import zipfile
 
 import numpy as np
 import pytest
@@ -196,3 +197,15 @@ def test_newton_coupling_with_the_fmus_derivatives_sticks_at_the_large_step(vers
     assert np.max(np.abs(us[:, 0] - U_EQ * (1 - np.cos(n * theta)))) <= CLOSED_FORM_TOL
     assert np.all(us[:, 1] == 0.0)
     assert np.max(us[:, 0]) <= 2 * U_EQ * (1 + 1e-12)   # the truth's amplitude, never beyond
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_the_fmus_documentation_states_the_limit_with_this_example(version):
+    """documentation/index.html: the formula, this file's example with the
+    numbers computed here, and the version's own derivative function."""
+    text = zipfile.ZipFile(find_fmu(fmi_version=version)).read("documentation/index.html").decode()
+    assert "<b>h &lt; 2 sqrt(m / &epsilon;<sub>max</sub>)</b>" in text
+    assert f"m = {M} kg on &epsilon;<sub>max</sub> = {EPS1:,.0f} N/m" in text
+    assert f"h &lt; 2 sqrt({M} / {EPS1:.0f}) = {H_LIMIT * 1e3:.2f} ms" in text
+    assert f"At h = {H_LARGE * 1e3:.0f} ms (h &omega; = {H_LARGE * W:.2f})" in text
+    assert f"= {(H_LARGE * W) ** 2:.0f} F / &epsilon;" in text and f"fmi{version}GetDirectionalDerivative" in text
