@@ -19,11 +19,11 @@ def test_overlapping_curves_get_distinct_markers_dashes_and_staggered_marks():
     assert len({s["markevery"][0] for s in styles}) == 7  # marks do not stack
 
 
-def test_legend_names_the_swept_angle():
+def test_legend_names_the_mat_angle():
     assert figures.swept_label(load(ROOT / "scenarios/mat_aged.toml")) == \
-        "swept angle a: α = a +90°, β = a"
+        "mat angle a: α = a +90°, β = a"
     assert figures.swept_label(load(ROOT / "scenarios/case5.toml")) == \
-        "swept angle a: α = a, β = a +90°"
+        "mat angle a: α = a, β = a +90°"
 
 
 def test_legend_outside_the_axes(tmp_path):

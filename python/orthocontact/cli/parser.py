@@ -185,7 +185,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("scenario", metavar="SCENARIO", help="sweep scenario file (TOML); angles in "
                    "degrees, forces in N, lengths in m")
     s.add_argument("--angle", type=_angle_deg, required=True, metavar="DEG",
-                   help="the swept angle [deg] (the mat angle for the experiment's scenarios)")
+                   help="the mat angle a [deg] (the scenario's geometry sets the law's axes from it)")
     s.add_argument("--out", type=_out_path, required=True, metavar="FILE.ssp",
                    help="the package to write (replaced if it exists)")
     s.set_defaults(func=cmd_ssp)
@@ -204,7 +204,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="output folder: created if missing, files replaced; written only when "
                         "everything completes")
     x.add_argument("--angle", type=float, default=45.0, metavar="DEG",
-                   help="orientation [deg] in the measurement's geometry that the FMUs' axes alpha, "
+                   help="mat angle [deg] in the measurement's geometry that the FMUs' axes alpha, "
                         "beta are set for and the SSP's rig runs at (default 45)")
     x.add_argument("--scenario", type=Path, default=None, metavar="SCENARIO",
                    help="sweep scenario file (TOML) whose rig the SSP uses (default: the data's "

@@ -50,11 +50,11 @@ class RigSetup:
         return AxisGeometry(self.alpha_offset_deg, self.beta_offset_deg)
 
     def axes(self, angle_deg: float) -> tuple[float, float]:
-        """(alpha, beta) [rad] at a data orientation angle [deg]."""
+        """(alpha, beta) [rad] at a data mat angle [deg]."""
         return self.geometry.axes(angle_deg)
 
     def params_at(self, law: ContactParams, angle_deg: float) -> ContactParams:
-        """The law's parameters with the tensors' axes of this orientation and rig.rule."""
+        """The law's parameters with the tensors' axes of this mat angle and rig.rule."""
         alpha, beta = self.axes(angle_deg)
         return law.replace(alpha=alpha, beta=beta, rule=self.rule)
 

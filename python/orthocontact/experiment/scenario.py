@@ -103,7 +103,7 @@ class Scenario:
     kind: str
     description: str
     law: ContactParams            # alpha, beta are 0 here; see params_at
-    geometry: AxisGeometry        # the axes' offsets from the swept angle [deg]
+    geometry: AxisGeometry        # the axes' offsets from the mat angle [deg]
     closed_form: str
     rig: Rig
     sweep: dict = field(default_factory=dict)
@@ -113,7 +113,7 @@ class Scenario:
     warnings: list = field(default_factory=list)   # one line each: unusual values
 
     def params_at(self, angle_deg: float, rule: str | None = None) -> ContactParams:
-        """The law's parameters with the swept angle [deg] set."""
+        """The law's parameters with the mat angle [deg] set."""
         return self.geometry.params_at(self.law, angle_deg, rule)
 
     def angle_count(self) -> int:

@@ -99,7 +99,7 @@ def rig_values(sc: Scenario) -> dict:
 
 
 def contact_values(sc: Scenario, angle_deg: float) -> dict:
-    """The OrthotropicContact FMU's parameters at the swept angle [deg]
+    """The OrthotropicContact FMU's parameters at the mat angle [deg]
     (floats; slidingRule an int)."""
     p = sc.params_at(angle_deg)
     values = {"mu1": p.mu1, "mu2": p.mu2, "eps1": p.eps1, "eps2": p.eps2, "alpha": p.alpha,
@@ -113,7 +113,7 @@ def _split(values: dict):
 
 
 def system_structure(sc: Scenario, angle_deg: float) -> str:
-    """SystemStructure.ssd for the scenario at the swept angle [deg]."""
+    """SystemStructure.ssd for the scenario at the mat angle [deg]."""
     rig = sc.rig
     stop = rig.travel_m / rig.velocity_m_s
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',

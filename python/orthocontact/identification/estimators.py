@@ -136,7 +136,7 @@ def identifiability(data: MeasurementSet) -> tuple[list, dict]:
     if data.forces is not None:
         free += ["mu1", "mu2"]
     else:
-        why["mu1"] = why["mu2"] = "needs driving forces (forces.csv) at two orientations"
+        why["mu1"] = why["mu2"] = "needs driving forces (forces.csv) at two mat angles"
     informative_angles = data.angles is not None and np.any(
         np.abs(np.sin(2 * np.radians(data.angles[:, 0] + rig.alpha_offset_deg))) > 1e-9)
     if rig.rule == "associated":

@@ -10,7 +10,7 @@ FMU (experiment.ssp), whose FMUs carry the values too.
 The FMUs' axis angles alpha, beta are those of the chosen angle in the
 measurement's geometry (alpha = angle + alpha offset, beta = angle + beta
 offset), so that the calibrated FMU alone, run in the rig, predicts the
-trajectory angle at that orientation."""
+trajectory angle at that mat angle."""
 from __future__ import annotations
 
 import dataclasses
@@ -118,7 +118,7 @@ def load_calibration(path) -> Calibration:
 
 
 def contact_start_values(cal: Calibration, angle_deg: float) -> dict:
-    """The contact FMU's parameters at the orientation `angle_deg`."""
+    """The contact FMU's parameters at the mat angle `angle_deg`."""
     try:
         p = cal.rig.params_at(cal.law, angle_deg)
     except ValueError as e:
@@ -181,9 +181,9 @@ when an importer sets nothing (they are in <code>resources/start_values.txt</cod
 </table>
 <p>{eps2}</p>
 <p>slidingRule = {values['slidingRule']} ({e(cal.law.rule)}), the rule the identification assumed.
-alpha = {values['alpha']!r} rad, beta = {values['beta']!r} rad: the axes at the orientation
-{angle_deg:g} deg of the measurement's geometry (alpha = orientation + {cal.rig.alpha_offset_deg:g} deg,
-beta = orientation + {cal.rig.beta_offset_deg:g} deg); set them for another orientation.
+alpha = {values['alpha']!r} rad, beta = {values['beta']!r} rad: the axes at the mat angle
+{angle_deg:g} deg of the measurement's geometry (alpha = mat angle + {cal.rig.alpha_offset_deg:g} deg,
+beta = mat angle + {cal.rig.beta_offset_deg:g} deg); set them for another mat angle.
 The identified model predicts a steady trajectory angle of {phi_deg:.4f} deg (counterclockwise)
 there on the data's rig (strip: mu_strip = {cal.rig.mu_strip:g}, c_strip = {cal.c_strip:g} N s/m).</p>
 <h2>Provenance</h2>

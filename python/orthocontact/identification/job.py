@@ -28,7 +28,7 @@ __all__ = ["Identification", "identify", "run", "load_folder", "validate_with_fm
 
 def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path=None) -> dict:
     """Simulates the identified parameters in the rig harness with the FMU at
-    the data's orientations and velocities (and the ramp), strip terms
+    the data's mat angles and velocities (and the ramp), strip terms
     included (the estimated c_strip where it was fitted), and returns the
     residuals data - simulation and the runs' self-checks (rig_checks):
     "warning" holds the user's line if a run was not steady sliding."""
@@ -250,7 +250,7 @@ def simulate_measurements(truth: ContactParams, rig: RigSetup, force_angles, ang
                           ramp_max_x1_m: float | None = None, workers=1) -> dict:
     """Noise-free measurements made by the FMU in the rig harness (quasistatic
     mode: the steady state without inertial transients): mean driving forces
-    and fitted trajectory angles at the given orientations [deg], and the
+    and fitted trajectory angles at the given mat angles [deg], and the
     start of a pull at rig.ramp_angle_deg up to ramp_max_x1_m [m].
     truth.alpha/beta are ignored: the rig's geometry sets them per angle."""
     from ..rig.harness import run

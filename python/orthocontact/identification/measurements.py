@@ -2,10 +2,10 @@
 
 A measurement set is a folder (see scenarios/example_identification/README.md):
   rig.toml     mass_kg, g, f_int_N, velocity_m_s, rule, geometry (required file)
-  forces.csv   mat_angle_deg,force_N    driving force at an orientation (repeats allowed)
+  forces.csv   mat_angle_deg,force_N    driving force at a mat angle (repeats allowed)
   angles.csv   mat_angle_deg,phi_deg    trajectory angle (repeats allowed)
   ramp.csv     x1_m,force_N             start of a pull, before and into sliding
-`mat_angle_deg` is the swept angle: the mat's (the ripples') angle; the
+`mat_angle_deg` is the mat angle: the mat's (the ripples') angle; the
 tensors' axes follow from it by the geometry offsets.  The column's old name
 `alpha_deg` (which read as the adhesion axis, and is not) is still read.
 A lab's raw recordings (runs.csv, trajectories/, forces/) are read by
@@ -157,7 +157,7 @@ def load_data(folder) -> MeasurementSet:
     if angles is not None and rig.phi_convention == "paper":
         angles[:, 1] = -angles[:, 1]
     if forces is not None and len(np.unique(np.round(friction_axis_key(rig, forces[:, 0]), 9))) < 2:
-        raise InputError(f"{folder / 'forces.csv'}: expected forces at two or more orientations "
+        raise InputError(f"{folder / 'forces.csv'}: expected forces at two or more mat angles "
                          "with different friction directions (mu1 and mu2 are two parameters)")
     return MeasurementSet(folder, rig, forces, angles, ramp, velocities, tuple(warnings))
 
@@ -176,7 +176,7 @@ def data_digest(folder) -> str:
     return hashlib.sha256(listing.encode()).hexdigest()
 
 
-RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |orientation| [deg] of a sweep typed in rad
+RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |mat angle| [deg] of a sweep typed in rad
 
 
 RADIAN_TRAJECTORY = 0.25                  # |phi| [deg] of angles typed in rad (the aged mat peaks at 0.2007 rad)

@@ -14,7 +14,7 @@ from ..experiment.rig_setup import RigSetup
 from .estimators import reported_names
 
 
-# The swept angle's one name in every figure, message and help text.
+# The one name of the angle the mat (the law's axes) is turned by: every figure, message and help text.
 SWEPT_ANGLE = "mat angle"
 
 

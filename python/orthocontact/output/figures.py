@@ -53,10 +53,10 @@ def curve_style(i: int, n_points: int, n_lines: int = 8) -> dict:
 
 
 def swept_label(sc: Scenario) -> str:
-    """What the swept angle a is, in terms of the law's axes."""
+    """What the mat angle a is, in terms of the law's axes."""
     def rel(d):
         return "a" if abs(d) < 1e-12 else f"a {d:+g}°"
-    return f"swept angle a: α = {rel(sc.geometry.alpha_offset_deg)}, β = {rel(sc.geometry.beta_offset_deg)}"
+    return f"mat angle a: α = {rel(sc.geometry.alpha_offset_deg)}, β = {rel(sc.geometry.beta_offset_deg)}"
 
 
 def draw_here(fn, *args):

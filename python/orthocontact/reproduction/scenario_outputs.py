@@ -145,7 +145,7 @@ def _figure_paths(sc: Scenario, res: SweepResult, path: Path, what: str) -> None
     """The recorded runs: the block's path (what = "x2") or the driving
     force (what = "drive") over the travel."""
     plt = pyplot()
-    legend_title = swept_label(sc).replace("swept angle a: ", "a, with ")
+    legend_title = swept_label(sc).replace("mat angle a: ", "a, with ")
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for i, (a, r) in enumerate(res.trajectories.items()):
         y = r.x2 * 1e3 if what == "x2" else r.drive

@@ -105,7 +105,7 @@ def scenario_work(sc) -> Work:
     steps = steps_per_run(rig.travel_m, rig.velocity_m_s, rig.step_s)
     refine = refinement_runs_at_most(sc.sweep["step_deg"]) if sc.sweep["refine_extremum"] and n >= 3 else 0
     other = 1 if sc.law.rule in ("coupled", "associated") else 0
-    return (Work().plus("at the swept angles", n, steps).plus("refining the extremum, at most", refine, steps)
+    return (Work().plus("at the mat angles", n, steps).plus("refining the extremum, at most", refine, steps)
             .plus("by the other rule", other, steps)
             .plus("recorded trajectories", len(sc.sweep["trajectory_angles_deg"]), steps))
 

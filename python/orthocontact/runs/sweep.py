@@ -1,4 +1,4 @@
-"""A scenario's orientation sweep (with its extremum refined on the rig
+"""A scenario's sweep over the mat angle (with its extremum refined on the rig
 itself and the trajectories recorded) and its step-size study; the closed
 form the scenario names, at its angles."""
 from __future__ import annotations
@@ -22,7 +22,7 @@ from .pool import Heartbeat, default_workers
 
 def closed_form_phi_deg(sc: Scenario, angle_deg: float, rule: str | None = None) -> float:
     """The steady trajectory angle [deg] the paper's closed form predicts for
-    the scenario at the swept angle.  'general' is eq. (10)/(23) from the
+    the scenario at the mat angle.  'general' is eq. (10)/(23) from the
     tensors themselves; the named forms are the paper's case formulas."""
     p = sc.params_at(angle_deg, rule)
     form = sc.closed_form
@@ -44,7 +44,7 @@ def closed_form_phi_deg(sc: Scenario, angle_deg: float, rule: str | None = None)
 
 
 def closed_form_phi_deg_array(sc: Scenario, angles_deg, rule: str | None = None) -> np.ndarray:
-    """closed_form_phi_deg over an array of swept angles [deg] at once (the
+    """closed_form_phi_deg over an array of mat angles [deg] at once (the
     fine scans of the report: tens of thousands of points)."""
     a = np.radians(np.asarray(angles_deg, dtype=float))
     law, form = sc.law, sc.closed_form
