@@ -2,6 +2,7 @@
 real command: an error where a value cannot be right, a warning where it is
 merely unusual, each naming the likely unit slip."""
 import math
+import shutil
 import subprocess
 from pathlib import Path
 
@@ -138,3 +139,70 @@ def test_the_readme_lists_every_range_as_the_code_has_it():
         row = (f"| `{key}` | {q.unit} | {hard} | [{fmt(q.usual[0])}, {fmt(q.usual[1])}] | "
                f"{', '.join(u for _, u in q.slips) or '–'} |")
         assert row in readme, row
+
+
+# --- the one gate (plausibility.gate) and the cross-checks --------------------
+
+def test_the_gate_refuses_the_first_value_outside_its_hard_range_with_its_limit():
+    from orthocontact.errors import InputError
+    assert plausibility.gate({"eps1": 1.25e4, "mu1": 0.4}, "f: ") == []
+    with pytest.raises(InputError) as e:
+        plausibility.gate({"mu1": 0.4, "eps1": 1e13}, "f: ", refused="refused (--force)")
+    assert str(e.value) == ("f: eps1 = 1e+13 N/m: a contact's tangential stiffness is 10-1e9 N/m; none "
+                            "above 1e+12 N/m can be right; refused (--force)")
+    with pytest.raises(InputError, match=r"f: mu2 = nan: expected a finite number \[-\]"):
+        plausibility.gate({"mu2": float("nan")}, "f: ")
+    with pytest.raises(InputError, match="it cannot be 0"):
+        plausibility.gate({"eps2": 0.0})
+    # unusual: a warning line, named slip included
+    assert plausibility.gate({"eps2": 5.0}, "f: ") == [
+        "f: eps2 = 5 N/m: a contact's tangential stiffness is 10-1e9 N/m; N/mm?"]
+    # a value the table does not know is a programming error, not a silent pass
+    with pytest.raises(KeyError):
+        plausibility.gate({"eps3": 1.0})
+
+
+def test_the_elastic_length_bounds_the_stiffness_by_the_travel():
+    """mu N / eps against the rig's travel, with N = m g of the example rig."""
+    N = 1.875 * 9.806
+    short, long = plausibility.elastic_lengths(0.408, 0.625, 12.51, 10.0, N)
+    assert short == pytest.approx(0.408 * N / 12.51) and long == pytest.approx(0.625 * N / 10.0)
+    # eps in N/mm typed as N/m: even the shortest (0.60 m) exceeds 0.5 m of travel
+    f = plausibility.elastic_length_check(0.408, 0.625, 12.51, 10.0, N, 0.5, "d: ")
+    assert f.level == "error" and "would stick over the whole travel" in f.line
+    assert f.line.endswith("; eps1, eps2 in N/mm?") and "0.6 .. 1.15 m" in f.line
+    # soft but possible: the rig's fit would start within 10 elastic lengths
+    f = plausibility.elastic_length_check(0.408, 0.625, 125.1, 100.0, N, 0.5)
+    assert f.level == "warning" and "would not settle" in f.line
+    assert plausibility.elastic_length_check(0.408, 0.625, 12510.0, 1e4, N, 0.5) is None
+
+
+def test_a_ramp_beyond_the_travel_names_the_length_unit():
+    f = plausibility.ramp_extent_check(1.965, 0.5, "ramp.csv: ")
+    assert f.level == "error" and f.line == ("ramp.csv: x1_m reaches 1.965 m, beyond the rig's travel "
+                                             "0.5 m: x1_m in mm? the column is in m")
+    assert plausibility.ramp_extent_check(0.002, 0.5) is None
+    assert "in mm?" not in plausibility.ramp_extent_check(900.0, 0.5).line   # no unit explains it
+
+
+def test_a_force_is_judged_against_f_int_and_m_g():
+    N = 1.875 * 9.806
+    assert plausibility.force_check(12.5, 5.0, N) is None
+    assert plausibility.force_check(4.0, 5.0, N).line == ("force_N = 4: below f_int_N = 5 N (the sensor "
+                                                          "reads F_int plus the push)")
+    assert "mu = (F - F_int)/(m g) = 10.6, outside (0, 5)" in plausibility.force_check(200.0, 5.0, N).line
+
+
+def test_identify_refuses_a_stiffness_that_cannot_be_right_and_writes_nothing(tmp_path):
+    """A ramp whose x1_m is 1e-9 of the example's: eps ~ 1e13 N/m, above the
+    hard limit; the identified value is refused before identified.json."""
+    from cli_run import one_error_line
+    d = tmp_path / "d"
+    shutil.copytree(EXAMPLE, d)
+    rows = np.loadtxt(EXAMPLE / "ramp.csv", delimiter=",", skiprows=1)
+    np.savetxt(d / "ramp.csv", np.column_stack([rows[:, 0] * 1e-9, rows[:, 1]]), delimiter=",",
+               header="x1_m,force_N", comments="")
+    p = run(["identify", str(d), "--out", "o", "--no-validate"], tmp_path)
+    one_error_line(p, "identified eps", "none above 1e+12 N/m can be right",
+                   "refused: identified.json not written")
+    assert not (tmp_path / "o").exists()

@@ -5,12 +5,19 @@ unit slip (cm/s typed into a m/s key, radians into a degree key), the
 message names the likely mistake.
 
 One table serves every place a user types such a number: scenario files,
-rig.toml, the measurement CSVs, ContactParams and Rig.  README, "What the
-tool checks", lists the ranges."""
+rig.toml, the measurement CSVs, raw recordings' reduction, identified.json,
+the identified values before they are written and again before export,
+ContactParams and Rig.  gate() is the one verdict over it; the cross-checks
+below judge a value against another that bounds it (a ramp's extent and
+the elastic length mu N / eps against the rig's travel, a force against
+F_int and m g).  README, "Plausible inputs", lists the ranges."""
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+
+from .errors import InputError
 
 
 @dataclass(frozen=True)
@@ -55,6 +62,9 @@ QUANTITIES = {
     "eps2_nominal_N_m": Quantity("N/m", (0.0, 1e12), (10.0, 1e9),
                                  "a contact's tangential stiffness is 10-1e9 N/m", ((1e3, "N/mm"),)),
     "eps_ratio": Quantity("-", (0.0, 1e6), (1e-3, 1e3), "stiffness ratios eps1/eps2 are 1e-3-1e3"),
+    # a ramp run's stick stiffness dF/dx1 (raw recordings): a stiffness of the contact along x1
+    "stiffness_N_m": Quantity("N/m", (0.0, 1e12), (10.0, 1e9),
+                              "a ramp's stick stiffness dF/dx1 is 10-1e9 N/m", ((1e3, "positions in mm"),)),
 }
 
 
@@ -129,3 +139,130 @@ def scale_slip(ratio: float, slips=LENGTH_SLIPS) -> str | None:
         if 0.5 * factor < ratio < 2 * factor:
             return unit
     return None
+
+
+@dataclass(frozen=True)
+class Finding:
+    """One implausible value: level "error" (it cannot be right) or
+    "warning" (it is unusual), and the user's line naming where it is."""
+    level: str
+    line: str
+
+
+def findings(values: Mapping[str, float], where: str = "") -> list[Finding]:
+    """The Finding of each value of `values` {key of QUANTITIES: value in its
+    unit} outside its range; `where` prefixes each line (a file and the
+    field's path, e.g. 'identified.json: ').  A non-finite value is an
+    error; a key not in the table is a programming error (KeyError): a value
+    the gate is given must be one it can judge."""
+    out = []
+    for key, v in values.items():
+        q = QUANTITIES[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            out.append(Finding("error", f"{where}{key} = {v!r}: expected a finite number [{q.unit}]"))
+            continue
+        found = check(key, float(v))
+        if found is not None:
+            out.append(Finding(found[0], where + found[1] + (f"; {hard_limit(q, v)}" if found[0] == "error"
+                                                             else "")))
+    return out
+
+
+def hard_limit(q: Quantity, v: float) -> str:
+    """The hard limit a value `v` of the quantity `q` crosses, in words."""
+    unit = "" if q.unit == "-" else f" {q.unit}"
+    if v > q.hard[1]:
+        return f"none above {q.hard[1]:g}{unit} can be right"
+    if v == 0 and not q.zero_allowed:
+        return "it cannot be 0"
+    return f"none below {q.hard[0]:g}{unit} can be right"
+
+
+def split(found: Iterable[Finding | None]) -> tuple[list[str], list[str]]:
+    """(error lines, warning lines) of the findings (None: a check that found nothing)."""
+    found = [f for f in found if f is not None]
+    return [f.line for f in found if f.level == "error"], [f.line for f in found if f.level == "warning"]
+
+
+def gate(values: Mapping[str, float], where: str = "", also: Iterable[Finding | None] = (),
+         refused: str = "") -> list[str]:
+    """The one verdict over quantities with a unit: raises InputError (one
+    line: the first error, then `refused`, e.g. what overrides it) if a value
+    of `values` (see findings) or a cross-check in `also` cannot be right;
+    returns the warning lines of the unusual ones."""
+    errors, warnings = split(list(findings(values, where)) + list(also))
+    if errors:
+        raise InputError(errors[0] + (f"; {refused}" if refused else ""))
+    return warnings
+
+
+# The rig's fitted part of a path starts at half its travel (Rig.fit_from),
+# and the quasi-static rig settles within ELASTIC_LENGTHS elastic lengths of
+# the start (experiment.scenario: over 300 random laws, < 3e-8 deg off at 10).
+FIT_FROM = 0.5
+ELASTIC_LENGTHS = 10.0
+
+
+def elastic_lengths(mu1: float, mu2: float, eps1: float, eps2: float, normal_force: float) -> tuple:
+    """(shortest, longest) [m] elastic length mu N / eps of the law: the
+    carriage travel a stick branch takes before sliding starts, in any
+    direction, lies between min(mu) N / max(eps) and max(mu) N / min(eps)
+    (normal_force N [N], eps [N/m])."""
+    return (min(mu1, mu2) * normal_force / max(eps1, eps2),
+            max(mu1, mu2) * normal_force / min(eps1, eps2))
+
+
+def elastic_length_check(mu1: float, mu2: float, eps1: float, eps2: float, normal_force: float,
+                         travel_m: float, where: str = "", slip: str = "eps1, eps2 in N/mm?") -> Finding | None:
+    """The elastic length mu N / eps against the rig's travel [m]: an error
+    if even the shortest reaches the travel (the block would stick over the
+    whole of it: no force or angle of sliding could be measured or
+    simulated); a warning if the longest puts the fitted part of a path
+    (from FIT_FROM of the travel) within ELASTIC_LENGTHS of the start (the
+    rig's runs would not settle).  `slip`: the likely unit slip, named where
+    1000 times the stiffness would fit."""
+    short, long = elastic_lengths(mu1, mu2, eps1, eps2, normal_force)
+    fit_start = FIT_FROM * travel_m
+    text = (f"{where}the elastic length mu N / eps is {short:.3g} .. {long:.3g} m (mu1 = {mu1:.4g}, "
+            f"mu2 = {mu2:.4g}, eps1 = {eps1:.4g} N/m, eps2 = {eps2:.4g} N/m, N = m g = {normal_force:.4g} N)")
+    hint = f"; {slip}" if slip and ELASTIC_LENGTHS * long / 1e3 <= fit_start else ""
+    if short >= travel_m:
+        return Finding("error", f"{text}, the rig's travel is {travel_m:g} m: the block would stick over "
+                                f"the whole travel{hint}")
+    if ELASTIC_LENGTHS * long > fit_start:
+        return Finding("warning", f"{text}: the rig's runs fit from {fit_start:g} m of its {travel_m:g} m "
+                                  f"travel, within {ELASTIC_LENGTHS:g} elastic lengths, and would not settle"
+                                  f"{hint}")
+    return None
+
+
+def ramp_extent_check(max_x1_m: float, travel_m: float, where: str = "",
+                      travel_said: str = "") -> Finding | None:
+    """An error if a ramp (a pull's start) reaches beyond the rig's travel
+    [m] (`travel_said`: where that travel comes from): its x1 column was
+    likely typed in mm or cm."""
+    if max_x1_m <= travel_m:
+        return None
+    slip = next((u for f, u in LENGTH_SLIPS if max_x1_m / f <= travel_m), None)
+    return Finding("error", f"{where}x1_m reaches {max_x1_m:.4g} m, beyond the rig's travel "
+                            f"{travel_m:g} m{travel_said}" + (f": x1_m in {slip}? the column is in m"
+                                                              if slip else ""))
+
+
+# (F - F_int) / (m g) of a plausible sliding force: friction coefficients
+# up to 5 (the hard range of mu_strip; mu1, mu2's usual range ends at 3).
+MU_FROM_FORCE = (0.0, 5.0)
+
+
+def force_check(force_N: float, f_int_N: float, normal_force: float, where: str = "") -> Finding | None:
+    """A driving force of sliding [N] against the carriage's internal
+    resistance F_int [N] and the normal force m g [N]: an error at or below
+    F_int (the sensor reads F_int plus the push), or implying a friction
+    coefficient (F - F_int)/(m g) outside MU_FROM_FORCE (N? kN, or lbf?)."""
+    mu = (force_N - f_int_N) / normal_force
+    if MU_FROM_FORCE[0] < mu < MU_FROM_FORCE[1]:
+        return None
+    why = (f"below f_int_N = {f_int_N:g} N (the sensor reads F_int plus the push)" if force_N <= f_int_N else
+           f"mu = (F - F_int)/(m g) = {mu:.3g}, outside ({MU_FROM_FORCE[0]:g}, {MU_FROM_FORCE[1]:g}): "
+           "N? (kN, or lbf?)")
+    return Finding("error", f"{where}force_N = {force_N:g}: {why}")

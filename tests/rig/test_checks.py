@@ -193,3 +193,41 @@ def test_identify_no_longer_ends_in_a_traceback_on_case5_material_with_a_viscous
     j = json.loads((tmp_path / "o" / "identified.json").read_text())
     assert j["eps_ratio"]["value"] == pytest.approx(10.0, rel=1e-6)
     assert j["mu1"]["value"] == pytest.approx(0.1, rel=1e-6)
+
+
+def test_a_stiffness_in_n_per_mm_is_named_as_the_cause_not_the_travel(tmp_path):
+    """eps2 = 10 (N/mm typed as N/m) in the aged mat's 0.5 m dynamic rig: it
+    was told "rig.travel_m >= 0.357 m", a travel it has; the cause is the
+    elastic length mu N / eps = 1.15 m."""
+    root = Path(__file__).resolve().parents[2]
+    text = (root / "scenarios" / "mat_aged.toml").read_text()
+    assert "eps2 = 1.0e4" in text and 'mode = "dynamic"' in text and "travel_m = 0.5" in text
+    sc = tmp_path / "aged.toml"
+    sc.write_text(text.replace("eps2 = 1.0e4", "eps2 = 10.0"))
+    p = run(["run", str(sc), "--out", "o"], tmp_path)
+    assert p.returncode == 0, p.stderr
+    lines = warnings_of(p)
+    assert len(lines) == 1, p.stderr
+    remedy = lines[0].split("; remedy: ", 1)[1]
+    assert remedy.startswith("check eps1, eps2 = 12.51, 10 N/m (N/mm typed as N/m?")
+    assert "the elastic length max(mu) N / min(eps) = 1.15 m" in remedy
+    assert "0.357" not in remedy and "nan" not in lines[0]
+    # the travel it would take otherwise is longer than the rig's, never one it has
+    need = float(remedy.rsplit("rig.travel_m >= ", 1)[1].split(" m")[0])
+    assert need > 0.5
+
+
+def test_the_remedy_names_the_step_when_the_step_is_the_cause():
+    """Quasi-static runs whose fitted path holds 3 steps: the step, not the
+    travel (the law's elastic length is 1 mm, it settles)."""
+    from orthocontact.rig.checks import MIN_FIT_STEPS, fitted_steps, remedy, run_cause
+    law = ContactParams.from_degrees(0.408, 0.625, 12510.0, 1e4, 130.0, 40.0)
+    rig = Rig(travel_m=0.5, step_s=0.5)
+    assert fitted_steps(rig) == 3 < MIN_FIT_STEPS
+    assert run_cause(law, rig, float("nan"))[0] == "step"
+    text = remedy([(law, rig)], [float("nan")], "--step-s")
+    assert text.startswith("--step-s <= 0.051 s (the step 0.5 s leaves 3 steps in the fitted path")
+    # a rig that settles has no cause: the remedy says so instead of guessing
+    fine = Rig(travel_m=0.5, step_s=1e-3)
+    assert run_cause(law, fine, float("nan")) is None
+    assert "neither the elastic length, the settling length nor the step" in remedy([(law, fine)], [float("nan")])

@@ -198,3 +198,35 @@ def test_ctrl_c_stops_the_local_cluster_and_writes_nothing(identified, tmp_path)
     while time.monotonic() < deadline and [k for k in kids if alive(k)]:
         time.sleep(0.2)
     assert [k for k in kids if alive(k)] == []
+
+
+def test_a_step_too_long_to_fit_is_named_and_no_nan_is_printed(identified, tmp_path):
+    """uq --step-s 0.5 on the 0.5 m dynamic rig: 3 steps in the fitted path,
+    one of 0.122 m against a settling length of 0.022 m.  It warned "differ
+    by up to nan deg" with numpy's RuntimeWarning and told a travel the rig
+    has; the remedy is the step."""
+    sc = _small_scenario(tmp_path, 10.0, 70.0, 30.0)
+    p = _uq(identified, sc, tmp_path / "o", "--samples", "5", "--scheduler", "none", "--step-s", "0.5")
+    assert p.returncode == 0, p.stderr
+    assert "nan" not in p.stderr and "RuntimeWarning" not in p.stderr
+    lines = [x for x in p.stderr.splitlines() if x.startswith("orthocontact: warning:")]
+    runs = next(x for x in lines if "not steady sliding" in x)
+    assert "3 have too few steps in a half of the fitted path to fit an angle" in runs
+    assert "remedy: --step-s <= 0.012 s (the step 0.5 s leaves 3 steps in the fitted path" in runs
+    assert "rig.travel_m" not in runs
+    d = json.loads((tmp_path / "o" / "uq.json").read_text())
+    assert d["step_check"]["not_fitted"] == {"uq_step": 0, "scenario_step": 0}
+    assert d["step_check"]["max_abs_difference_deg"] > 1.0
+
+
+def test_the_step_check_says_what_failed_instead_of_nan():
+    from orthocontact.uq.propagate import step_check, step_warning
+    nan = float("nan")
+    chk = step_check(2e-4, 1.5, [nan, nan], [-10.5, -11.0])
+    assert chk["max_abs_difference_deg"] is None and chk["not_fitted"] == {"uq_step": 2, "scenario_step": 0}
+    assert step_warning(chk) == ("at the estimates, at the uq step 1.5 s, 2 of 2 runs gave no angle (too "
+                                 "few steps in the fitted path to fit one); choose --step-s")
+    chk = step_check(2e-4, 4e-3, [-10.5, nan], [-10.52, -11.0])
+    assert chk["max_abs_difference_deg"] == pytest.approx(0.02)
+    assert "1 of 2 runs gave no angle" in step_warning(chk) and "by 0.02 deg" in step_warning(chk)
+    assert step_warning(step_check(2e-4, 4e-3, [-10.5], [-10.5])) is None

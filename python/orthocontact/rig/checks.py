@@ -11,15 +11,20 @@ form with the rig's strip terms?
   is claimed for it, only the settling is checked.
 
 A run that fails either is flagged; the commands print one warning line per
-scenario with the remedy (quasi-static mode, a longer travel: the dynamic
-rig's settling length is closed_forms.settling_length_array)."""
+scenario with the remedy of the cause found (run_cause): the law's elastic
+length mu N / eps against the fit's start (a stiffness in N/mm?), the step
+(too few steps in the fitted path, or too long for the dynamic rig's
+lateral motion), the dynamic rig's settling length
+(closed_forms.settling_length_array) against the travel."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from .. import closed_forms as cf
+from .. import plausibility
 
 SETTLE_TOL_DEG = 0.05   # |phi_head - phi_tail| of a run that reached steady sliding
 
@@ -98,46 +103,132 @@ def check_runs(tasks, figures) -> RunChecks:
     return RunChecks(halves, steady, settling_lengths(tasks), settled, on_steady & np.isfinite(phi))
 
 
-def warning_line(label: str, angles_deg, checks: RunChecks, phi_deg, tasks) -> str | None:
+def warning_line(label: str, angles_deg, checks: RunChecks, phi_deg, tasks,
+                 step_name: str = "rig.step_s") -> str | None:
     """One line for the user naming the flagged angles, the deviations and
-    the remedy; None if every run passed.  tasks: the (ContactParams, Rig)
-    of each run.  Runs of the literal eq. (20) rule are flagged in the
-    tables but not warned about: it has no step-independent steady state,
-    and the step study shows exactly that (docs/model-notes.md)."""
+    the remedy for the cause the checks find (run_cause); None if every run
+    passed.  tasks: the (ContactParams, Rig) of each run; step_name: what
+    sets the step (uq: --step-s).  Runs of the literal eq. (20) rule are
+    flagged in the tables but not warned about: it has no step-independent
+    steady state, and the step study shows exactly that
+    (docs/model-notes.md).  No number in it is nan: a value that could not
+    be fitted is said as such."""
     implicit = np.array([p.rule != "eq20" for p, _ in tasks], dtype=bool)
     bad = np.flatnonzero(~checks.ok & implicit)
     if len(bad) == 0:
         return None
-    rigs = [r for _, r in tasks]
     angles = np.asarray(angles_deg, dtype=float)
     phi = np.asarray(phi_deg, dtype=float)
     why = []
     unsettled = np.flatnonzero(~checks.settled & implicit)
-    if len(unsettled):
-        why.append("the halves of the fitted path differ by up to "
-                   f"{np.nanmax(np.abs(checks.halves_deg[unsettled])):.3g} deg")
+    halves = np.abs(checks.halves_deg[unsettled])
+    if np.isfinite(halves).any():
+        why.append(f"the halves of the fitted path differ by up to {np.nanmax(halves):.3g} deg")
+    if (~np.isfinite(halves)).any():
+        why.append(f"{int((~np.isfinite(halves)).sum())} have too few steps in a half of the fitted path "
+                   "to fit an angle")
     dev = np.abs(phi - checks.steady_deg)
     off = np.flatnonzero(~checks.on_steady)
-    if len(off):
-        k = off[np.nanargmax(dev[off])] if np.any(np.isfinite(dev[off])) else off[0]
+    if len(off) and np.any(np.isfinite(dev[off])):
+        k = off[np.nanargmax(dev[off])]
         why.append(f"phi departs from the steady closed form by up to {dev[k]:.3g} deg "
                    f"({phi[k]:.4g} against {checks.steady_deg[k]:.4g} deg at {angles[k]:g} deg)")
+    elif len(off):
+        why.append("phi could not be fitted")
     return (f"{label}: {len(bad)} of {len(angles)} rig runs are not steady sliding, at "
-            f"{angle_list(angles[bad])} deg: {', and '.join(why)}; remedy: {_remedy(bad, checks, rigs)}")
+            f"{angle_list(angles[bad])} deg: {', and '.join(why)}; remedy: "
+            f"{remedy([tasks[i] for i in bad], checks.settling_length_m[bad], step_name)}")
 
 
-def _remedy(bad, checks: RunChecks, rigs) -> str:
-    dynamic = [i for i in bad if rigs[i].mode == "dynamic"]
-    if dynamic:
-        L = np.nanmax(checks.settling_length_m[dynamic])
-        r = rigs[dynamic[0]]
-        if np.isfinite(L):
-            need = SETTLING_LENGTHS * L / r.fit_from if r.fit_from > 0 else SETTLING_LENGTHS * L
-            return (f'rig.mode = "quasistatic", or rig.travel_m >= {need:.3g} m (the dynamic rig settles '
-                    f"over {L:.3g} m here, its fit starts at {r.fit_from * r.travel_m:.3g} m)")
-        return 'rig.mode = "quasistatic" (the dynamic rig has no restoring lateral force here)'
-    r = rigs[bad[0]]
-    return f"a longer rig.travel_m than {r.travel_m:g} m, or a smaller rig.step_s"
+# The causes a run's check can have, most basic first: the law's elastic
+# length (a stiffness typed in N/mm puts the stick branch over the fitted
+# path), the step (too few steps in the fitted path, or one longer than the
+# dynamic rig's lateral motion can follow), the dynamic rig's settling length.
+CAUSES = ("elastic length", "step", "settling length")
+
+
+# The fitted path's two halves each need steps to fit an angle to: 10 each.
+MIN_FIT_STEPS = 20
+
+
+def elastic_length_m(params, rig) -> float:
+    """The law's longest elastic length max(mu) N / min(eps) [m]
+    (plausibility.elastic_lengths)."""
+    return plausibility.elastic_lengths(params.mu1, params.mu2, params.eps1, params.eps2,
+                                        rig.normal_force)[1]
+
+
+def fitted_steps(rig) -> int:
+    """The steps of a run in the fitted part of its path (rig.harness: the
+    steps from fit_from of the travel the run makes on)."""
+    n = math.ceil(rig.travel_m / (rig.velocity_m_s * rig.step_s) - 1e-9)
+    return n - math.ceil(rig.fit_from * n) + 1
+
+
+def step_limit_s(params, rig, settling_m: float) -> float:
+    """The largest step [s] the run can take: MIN_FIT_STEPS in the fitted
+    path; in the dynamic rig, whose lateral update is explicit, at most half
+    the settling time L / v and the stick stiffness's bound sqrt(m / eps_max)
+    (half of 2 sqrt(m / eps_max), the explicit update's stability limit)."""
+    v = rig.velocity_m_s
+    limit = (1 - rig.fit_from) * rig.travel_m / (v * MIN_FIT_STEPS)
+    if rig.mode == "dynamic":
+        limit = min(limit, (rig.mass_kg / max(params.eps1, params.eps2)) ** 0.5)
+        if 0 < settling_m < np.inf:
+            limit = min(limit, 0.5 * settling_m / v)
+    return limit
+
+
+def run_cause(params, rig, settling_m: float) -> tuple[str, float] | None:
+    """(cause of CAUSES, its severity: how far the run is past its bound)
+    that explains why a run is not steady sliding, or None if none does."""
+    start = rig.fit_from * rig.travel_m
+    L = elastic_length_m(params, rig)
+    if start < plausibility.ELASTIC_LENGTHS * L:
+        return "elastic length", plausibility.ELASTIC_LENGTHS * L / start
+    if rig.step_s > step_limit_s(params, rig, settling_m) or fitted_steps(rig) < MIN_FIT_STEPS:
+        return "step", rig.step_s / step_limit_s(params, rig, settling_m)
+    if rig.mode == "dynamic" and not start >= SETTLING_LENGTHS * settling_m:
+        return "settling length", SETTLING_LENGTHS * settling_m / start if start > 0 else np.inf
+    return None
+
+
+def remedy(tasks, settling_m, step_name: str = "rig.step_s") -> str:
+    """The remedy of the most basic cause (CAUSES) found among the runs
+    `tasks` [(ContactParams, Rig)] with their settling lengths [m] (nan in
+    quasi-static mode), for the run furthest past its bound.  It never
+    proposes a travel the rig already has."""
+    found = {}
+    for (p, r), L in zip(tasks, settling_m):
+        c = run_cause(p, r, float(L))
+        if c is not None and (c[0] not in found or c[1] > found[c[0]][0]):
+            found[c[0]] = (c[1], p, r, float(L))
+    if not found:
+        r = tasks[0][1]
+        return (f"a smaller {step_name} than {r.step_s:g} s, or a longer rig.travel_m than {r.travel_m:g} m "
+                "(neither the elastic length, the settling length nor the step explains it)")
+    cause = next(c for c in CAUSES if c in found)
+    _, p, r, L = found[cause]
+    start = r.fit_from * r.travel_m
+    if cause == "elastic length":
+        e = elastic_length_m(p, r)
+        slip = (" (N/mm typed as N/m? 1000 times the stiffness would settle)"
+                if plausibility.ELASTIC_LENGTHS * e / 1e3 <= start else "")
+        return (f"check eps1, eps2 = {p.eps1:.4g}, {p.eps2:.4g} N/m{slip}: the elastic length max(mu) N / "
+                f"min(eps) = {e:.3g} m puts the fit's start at {start:.3g} m within "
+                f"{plausibility.ELASTIC_LENGTHS:g} elastic lengths, where the block has not settled (or "
+                f"rig.travel_m >= {plausibility.ELASTIC_LENGTHS * e / r.fit_from:.3g} m)")
+    if cause == "step":
+        return (f"{step_name} <= {step_limit_s(p, r, L):.2g} s (the step {r.step_s:g} s leaves "
+                f"{fitted_steps(r)} steps in "
+                f"the fitted path" + (f", of {r.velocity_m_s * r.step_s:.3g} m each against a settling "
+                                      f"length of {L:.3g} m" if r.mode == "dynamic" and 0 < L < np.inf
+                                      else "") + ")")
+    if np.isfinite(L):
+        need = SETTLING_LENGTHS * L / r.fit_from if r.fit_from > 0 else SETTLING_LENGTHS * L
+        return (f'rig.mode = "quasistatic", or rig.travel_m >= {need:.3g} m (the dynamic rig settles '
+                f"over {L:.3g} m here, its fit starts at {start:.3g} m)")
+    return 'rig.mode = "quasistatic" (the dynamic rig has no restoring lateral force here)'
 
 
 def angle_list(a) -> str:
@@ -158,11 +249,16 @@ def system_settling_warning(label: str, params, rig) -> str | None:
     """A warning line if the dynamic rig (the CarriageBlock FMU of an SSP,
     which integrates the block's lateral inertia whatever the scenario's
     mode) does not settle before the fitted part of its path starts: that
-    part must start SETTLING_LENGTHS settling lengths in."""
+    part must start SETTLING_LENGTHS settling lengths and
+    plausibility.ELASTIC_LENGTHS elastic lengths in (the remedy says which)."""
     from dataclasses import replace
     dynamic = replace(rig, mode="dynamic")
     L = settling_lengths([(params, dynamic)])[0]
     start = rig.fit_from * rig.travel_m
+    cause = run_cause(params, dynamic, L)
+    if cause is not None and cause[0] == "elastic length":
+        return (f"{label}: the system's dynamic rig would not settle before the fit of its path starts at "
+                f"{start:.3g} m: its angle is not steady sliding; remedy: {remedy([(params, dynamic)], [L])}")
     if np.isfinite(L) and start >= SETTLING_LENGTHS * L:
         return None
     need = f"rig.travel_m >= {SETTLING_LENGTHS * L / rig.fit_from:.3g} m" if np.isfinite(L) else \

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..experiment.scenario import Scenario
-from ..rig.checks import SETTLE_TOL_DEG, RunChecks, angle_list, check_runs, warning_line
+from ..rig.checks import SETTLE_TOL_DEG, RunChecks, angle_list, check_runs, remedy, warning_line
 from ..rig.harness import RunFigures
 from .estimates import IMPLICIT_RULES, Estimates, draw
 
@@ -31,6 +31,39 @@ DEFAULT_STEP_S = 4e-3
 
 
 STEP_CHECK_WARN_DEG = 0.01
+
+
+STEP_NAME = "--step-s"   # what sets uq's step, in its remedies
+
+
+def step_check(scenario_step_s: float, step_s: float, coarse, fine) -> dict:
+    """The step check's record: phi [deg] at the estimates at the uq step
+    (coarse) against the scenario's own step (fine), over the angles fitted
+    at both (max_abs_difference_deg None if there are none), and which step
+    left angles without a fitted phi (not_fitted: {step [s]: count})."""
+    coarse, fine = np.asarray(coarse, dtype=float), np.asarray(fine, dtype=float)
+    both = np.isfinite(coarse) & np.isfinite(fine)
+    missing = {"uq_step": int((~np.isfinite(coarse)).sum()), "scenario_step": int((~np.isfinite(fine)).sum())}
+    return {"scenario_step_s": scenario_step_s, "uq_step_s": step_s,
+            "max_abs_difference_deg": float(np.max(np.abs(coarse - fine)[both])) if both.any() else None,
+            "angles": int(len(coarse)), "not_fitted": missing}
+
+
+def step_warning(chk: dict) -> str | None:
+    """The user's line if the uq step moves phi at the estimates by more
+    than STEP_CHECK_WARN_DEG, or if a run at either step gave no angle."""
+    parts = []
+    for key, name in (("uq_step", f"the uq step {chk['uq_step_s']:g} s"),
+                      ("scenario_step", f"the scenario's step {chk['scenario_step_s']:g} s")):
+        n = chk["not_fitted"][key]
+        if n:
+            parts.append(f"at {name}, {n} of {chk['angles']} runs gave no angle (too few steps in the "
+                         "fitted path to fit one)")
+    dev = chk["max_abs_difference_deg"]
+    if dev is not None and dev > STEP_CHECK_WARN_DEG:
+        parts.append(f"phi at the uq step {chk['uq_step_s']:g} s differs from the scenario's step "
+                     f"{chk['scenario_step_s']:g} s by {dev:.3g} deg")
+    return ("at the estimates, " + "; ".join(parts) + "; choose --step-s") if parts else None
 
 
 def scenario_with(sc: Scenario, names: list, row) -> Scenario:
@@ -124,16 +157,20 @@ class UQResult:
         are not steady sliding."""
         parts = []
         line = warning_line(f"uq {sc.name} at the estimates", self.angles_deg, self.nominal_checks,
-                            self.nominal_phi, self.nominal_tasks)
+                            self.nominal_phi, self.nominal_tasks, STEP_NAME)
         if line:
             parts.append(line)
         if sc.law.rule != "eq20" and self.unsettled.any():
             bad = self.unsettled
+            apart = np.abs(self.halves[bad])
+            how = (f"halves of the fitted path up to {np.max(apart[np.isfinite(apart)]):.3g} deg apart"
+                   if np.isfinite(apart).any() else "too few steps in a half of the fitted path to fit an angle")
+            at = bad.any(axis=0)
             parts.append(f"uq {sc.name}: {int(bad.sum())} of {bad.size} runs over the drawn parameter "
-                         f"sets did not settle (halves of the fitted path up to "
-                         f"{np.nanmax(np.abs(np.where(bad, self.halves, 0))):.3g} deg apart; angles "
-                         f"{angle_list(self.angles_deg[bad.any(axis=0)])} deg): their bands are not "
-                         "steady-state predictions; use a quasi-static rig or a longer travel")
+                         f"sets did not settle ({how}; angles {angle_list(self.angles_deg[at])} deg): their "
+                         "bands are not steady-state predictions; remedy at the estimates: "
+                         + remedy([t for t, a in zip(self.nominal_tasks, at) if a],
+                                  self.nominal_checks.settling_length_m[at], STEP_NAME))
         return "; ".join(parts) or None
 
 
@@ -196,8 +233,7 @@ def _propagate(est, sc, samples, seed, fmu_path, scheduler, workers, step_s, x, 
             engine = "serial (this process)"
     finally:
         cm.close()
-    dev = float(np.nanmax(np.abs(coarse - fine))) if np.any(np.isfinite(fine)) else float("nan")
-    check = {"scenario_step_s": sc.rig.step_s, "uq_step_s": step_s, "max_abs_difference_deg": dev}
+    check = step_check(sc.rig.step_s, step_s, coarse, fine)
     if scheduler is not None:
         from ..runs.cluster import DaskRunner
         with DaskRunner(scheduler, workers) as dr:
