@@ -163,3 +163,50 @@ def test_bad_input_is_one_line_naming_the_file_and_field(identified, tmp_path, e
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and str(bad) in lines[0] and says in lines[0], p.stderr
     assert not (tmp_path / "out").exists()
+
+
+def edited(identified, tmp_path, **values):
+    """A copy of identified.json (outside its run's folder, as a user's
+    edit would be) with the estimates `values` changed."""
+    d = json.loads(identified.read_text())
+    for n, v in values.items():
+        d[n]["value"] = v
+    path = tmp_path / "edited.json"
+    path.write_text(json.dumps(d))
+    return path
+
+
+def test_export_refuses_a_value_that_cannot_be_right_and_force_overrides_it(identified, tmp_path):
+    """An edited eps1 = 1e13 N/m, above identify's own limit 1e12: it was
+    exported with only finite and > 0 checked, exit 0."""
+    from cli_run import one_error_line
+    path = edited(identified, tmp_path, eps1=1e13)
+    p = cli("export", path, "--out", tmp_path / "o")
+    one_error_line(p, f"{path}: eps1 = 1e+13 N/m", "none above 1e+12 N/m can be right",
+                   "refused (`orthocontact export --force` exports it anyway)")
+    assert not (tmp_path / "o").exists()
+    p = cli("export", path, "--out", tmp_path / "o", "--force")
+    assert p.returncode == 0, p.stderr
+    warnings = [x for x in p.stderr.splitlines() if x.startswith("orthocontact: warning:")]
+    assert len(warnings) == 1 and warnings[0].startswith("orthocontact: warning: --force: exporting 2 "
+                                                         "value(s) that cannot be right")
+    assert "eps1 = 1e+13 N/m" in warnings[0] and "Warning" not in p.stderr.replace("warning:", "")
+    for v in (2, 3):
+        with zipfile.ZipFile(tmp_path / "o" / f"fmi{v}/OrthotropicContact.fmu") as z:
+            doc = z.read("documentation/calibration.html").decode()
+            md = z.read("modelDescription.xml").decode()
+        assert "<b>Exported with --force</b>" in doc and "eps1 = 1e+13 N/m" in doc
+        assert "Exported with --force: 2 value(s) outside the plausible range" in md
+        assert start_values_of(tmp_path / "o" / f"fmi{v}/OrthotropicContact.fmu")["eps1"] == 1e13
+
+
+def test_export_refuses_an_elastic_length_the_rigs_travel_cannot_hold(identified, tmp_path):
+    """eps1, eps2 = 12.59, 10.04 N/m (what a ramp in mm gave): each in its
+    usual range, but mu N / eps = 0.59-1.15 m, more than the rig's 0.5 m of
+    travel: the block could never have slid."""
+    from cli_run import one_error_line
+    path = edited(identified, tmp_path, eps1=12.59, eps2=10.04, eps_ratio=12.59 / 10.04)
+    p = cli("export", path, "--out", tmp_path / "o")
+    one_error_line(p, "the elastic length mu N / eps is 0.594 .. 1.14 m", "the rig's travel is 0.5 m",
+                   "the block would stick over the whole travel", "N/mm",
+                   "refused (`orthocontact export --force` exports it anyway)")

@@ -1,6 +1,7 @@
 """identified.json read back (orthocontact.identification.identified_file):
 what is not identify's output is one InputError naming the file."""
 import json
+import re
 
 import pytest
 
@@ -29,3 +30,30 @@ def test_what_is_not_identifys_output_names_the_file(tmp_path, content, says):
         read_identified(path)
     assert str(e.value).startswith(f"{path}: ") and says in str(e.value)
     assert "\n" not in str(e.value)
+
+
+def test_a_value_that_cannot_be_right_is_refused_by_the_one_reader(tmp_path):
+    """Every reader of identified.json (export, uq) gets the plausibility
+    gate: a hand-edited eps1 above the hard limit is refused, naming the
+    override the caller gives; forced, it is read as it is."""
+    d = {"mu1": {"value": 0.408}, "eps1": {"value": 1e13}, "assumptions": {"mass_kg": 1.875},
+         "covariance": {"parameters": ["mu1", "eps2"], "values": [0.408, 1e4], "matrix": [[1, 0], [0, 1]]}}
+    path = tmp_path / "identified.json"
+    path.write_text(json.dumps(d))
+    with pytest.raises(InputError) as e:
+        read_identified(path, override="--force writes it anyway")
+    assert str(e.value) == (f"{path}: eps1 = 1e+13 N/m: a contact's tangential stiffness is 10-1e9 N/m; "
+                            "none above 1e+12 N/m can be right; refused (--force writes it anyway)")
+    assert read_identified(path, force=True) == d
+    # what uq draws around (covariance.values) and the assumptions are judged too
+    for edit, says in ((("covariance", "values"), "covariance.values: eps2 = 0 N/m"),
+                       (("assumptions", "mass_kg"), "assumptions.mass_kg = 1.875e+06 kg")):
+        bad = json.loads(json.dumps(d))
+        bad["eps1"]["value"] = 1.25e4
+        if edit[0] == "covariance":
+            bad["covariance"]["values"] = [0.408, 0.0]
+        else:
+            bad["assumptions"]["mass_kg"] = 1.875e6
+        path.write_text(json.dumps(bad))
+        with pytest.raises(InputError, match=re.escape(says)):
+            read_identified(path)

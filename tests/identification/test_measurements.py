@@ -65,3 +65,33 @@ def test_written_measurements_read_back(tmp_path):
     f = tmp_path / "d" / "forces.csv"
     f.write_text(f.read_text().replace("16.5", "16.6"))
     assert data_digest(tmp_path / "d") != digest
+
+
+def test_a_ramp_in_mm_is_refused_naming_the_unit(tmp_path):
+    """ramp.csv's x1_m x 1000 (mm in a metre column): it gave eps1 = 12.59,
+    eps2 = 10.04 N/m (truth 12510, 10000), exit 0, no word; its stick branch
+    reaches 1.965 m in a rig with 0.5 m of travel."""
+    d = tmp_path / "d"
+    shutil.copytree(DATA, d)
+    rows = np.loadtxt(DATA / "ramp.csv", delimiter=",", skiprows=1)
+    np.savetxt(d / "ramp.csv", np.column_stack([rows[:, 0] * 1000, rows[:, 1]]), delimiter=",",
+               header="x1_m,force_N", comments="")
+    p = run(["identify", d, "--out", tmp_path / "o", "--no-validate"], tmp_path)
+    one_error_line(p, f"{d / 'ramp.csv'}: x1_m reaches 1.965 m, beyond the rig's travel 0.5 m",
+                   "x1_m in mm? the column is in m")
+    assert not (tmp_path / "o").exists()
+    # the gate is in the reader: the same refusal for every caller
+    import pytest
+    from orthocontact.errors import InputError
+    with pytest.raises(InputError, match="x1_m in mm"):
+        load_data(d)
+
+
+def test_a_velocity_column_in_cm_s_is_refused(tmp_path):
+    d = tmp_path / "d"
+    shutil.copytree(DATA, d)
+    lines = (d / "angles.csv").read_text().splitlines()
+    (d / "angles.csv").write_text("\n".join([lines[0] + ",velocity_m_s"] + [x + ",24.4" for x in lines[1:]])
+                                  + "\n")
+    p = run(["identify", d, "--out", tmp_path / "o", "--no-validate"], tmp_path)
+    one_error_line(p, "angles.csv: row 1: velocity_m_s = 24.4 m/s", "cm/s?")

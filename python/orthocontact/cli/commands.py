@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import contextlib
 import json
-import sys
 import time
 from pathlib import Path
 
@@ -128,6 +127,8 @@ def cmd_identify(args) -> int:
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
                               fmu_path=str(find_fmu(fmi_version=args.fmi)), recordings=recordings)
     print(identify.summary_text(result))
+    for line in result.warnings:
+        warn(line)
     if result.validation and result.validation.get("warning"):
         warn(result.validation["warning"])
     print(f"wrote {args.out}/identified.json")
@@ -181,11 +182,9 @@ def cmd_uq(args) -> int:
         summary = uq.write_outputs(res, est, sc, args.seed, stage)
     if summary["checks"]["warning"]:
         warn(summary["checks"]["warning"])
-    chk = summary["step_check"]
-    if not chk["max_abs_difference_deg"] <= uq.STEP_CHECK_WARN_DEG:
-        print(f"orthocontact: warning: at the estimates, phi at the uq step {chk['uq_step_s']:g} s "
-              f"differs from the scenario's step {chk['scenario_step_s']:g} s by "
-              f"{chk['max_abs_difference_deg']:.3g} deg; choose --step-s", file=sys.stderr)
+    line = uq.step_warning(summary["step_check"])
+    if line:
+        warn(line)
     w = summary["widest_band"]
     print(f"{summary['runs']} rig runs ({summary['samples']} parameter sets x "
           f"{len(summary['bands'])} angles) in {summary['seconds']:.1f} s on {summary['engine']}")
@@ -227,10 +226,16 @@ def cmd_ssp(args) -> int:
 
 
 def cmd_export(args) -> int:
-    from ..identification.export import export, load_calibration
-    cal = load_calibration(args.identification)
+    from ..identification.export import export, load_calibration, plausible_calibration
+    cal = load_calibration(args.identification, force=args.force)
+    forced, unusual = plausible_calibration(cal, force=args.force)
+    for line in unusual:
+        warn(line)
+    if forced:
+        warn(f"--force: exporting {len(forced)} value(s) that cannot be right (said in "
+             f"documentation/calibration.html): " + "; ".join(forced))
     with staged_output(args.out) as stage:
-        res = export(cal, stage, args.angle, args.scenario)
+        res = export(cal, stage, args.angle, args.scenario, forced)
     from ..rig.checks import system_settling_warning
     line = system_settling_warning(f"{res['ssp'].name}", res["ssp_params"], res["ssp_rig"])
     if line:

@@ -209,6 +209,9 @@ def build_parser() -> argparse.ArgumentParser:
     x.add_argument("--scenario", type=Path, default=None, metavar="SCENARIO",
                    help="sweep scenario file (TOML) whose rig the SSP uses (default: the data's "
                         "rig.toml)")
+    x.add_argument("--force", action="store_true",
+                   help="export values outside the plausible range too (refused otherwise, with the "
+                        "reason); said in a warning and in the FMUs' documentation")
     x.set_defaults(func=cmd_export)
     v = sub.add_parser("sensitivity", help="how the rig's unmeasured strip friction and viscosity, "
                                            "and the velocity, move the peak angle and the identified "

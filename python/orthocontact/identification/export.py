@@ -20,6 +20,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 from .. import closed_forms as cf
+from .. import plausibility
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup, load_rig_toml
 from ..experiment.scenario import Scenario, load
@@ -71,10 +72,11 @@ def _data_folder(path: Path, d: dict) -> Path:
                      f"to {path.parent}): the calibration names the data it came from")
 
 
-def load_calibration(path) -> Calibration:
-    """identified.json -> Calibration; InputError naming the file and the field."""
+def load_calibration(path, force: bool = False) -> Calibration:
+    """identified.json -> Calibration; InputError naming the file and the field
+    (a value that cannot be right too, unless `force`: plausible_calibration)."""
     path = Path(path)
-    d = read_identified(path)
+    d = read_identified(path, force=force, override=FORCE_OVERRIDE)
     mu1, mu2 = _field(path, d, "mu1"), _field(path, d, "mu2")
     a = d.get("assumptions")
     if not isinstance(a, dict):
@@ -198,9 +200,43 @@ there on the data's rig (strip: mu_strip = {cal.rig.mu_strip:g}, c_strip = {cal.
 """
 
 
-def export(cal: Calibration, out: Path, angle_deg: float, scenario=None) -> dict:
+FORCE_OVERRIDE = "`orthocontact export --force` exports it anyway"
+
+
+def plausible_calibration(cal: Calibration, force: bool = False) -> tuple[list[str], list[str]]:
+    """(forced, warnings): the calibration's law and strip through the one
+    gate (orthocontact.plausibility), and the elastic length mu N / eps
+    against the travel of the data's rig.  A value that cannot be right is
+    refused (InputError, one line naming --force) unless `force`; then it
+    is among `forced`, for the user's warning and the FMUs' documentation."""
+    law, rig = cal.law, cal.rig
+    where = f"{cal.path}: "
+    values = {"mu1": law.mu1, "mu2": law.mu2, "eps1": law.eps1, "eps2": law.eps2,
+              "eps_ratio": law.eps1 / law.eps2, "c_strip": cal.c_strip}
+    slip = ("eps1, eps2 in N/mm (ramp.csv's x1_m in mm)?" if cal.eps2_identified else
+            "rig.toml's eps2_nominal_N_m in N/mm?")
+    elastic = plausibility.elastic_length_check(law.mu1, law.mu2, law.eps1, law.eps2, rig.normal_force,
+                                                rig.travel_m, where, slip)
+    errors, warnings = plausibility.split(plausibility.findings(values, where) + [elastic])
+    if errors and not force:
+        raise InputError(f"{errors[0]}; refused ({FORCE_OVERRIDE})")
+    return errors, warnings
+
+
+def forced_html(forced) -> str:
+    """The documentation's paragraph on values exported with --force."""
+    if not forced:
+        return ""
+    items = "\n".join(f"<li>{html.escape(line)}</li>" for line in forced)
+    return (f"<p><b>Exported with --force</b>: these values are outside the plausible range "
+            f"(orthocontact.plausibility) and were exported anyway:</p>\n<ul>\n{items}\n</ul>\n")
+
+
+def export(cal: Calibration, out: Path, angle_deg: float, scenario=None, forced=()) -> dict:
     """Writes into the folder `out` fmi2/ and fmi3/OrthotropicContact.fmu
-    (calibrated), calibration.ssv and rig_<angle>.ssp; returns what was written."""
+    (calibrated), calibration.ssv and rig_<angle>.ssp; returns what was
+    written.  forced: the lines of values exported with --force
+    (plausible_calibration), said in the documentation and the description."""
     from .. import __version__
     if not math.isfinite(angle_deg):
         raise InputError(f"--angle: expected a finite angle [deg], got {angle_deg!r}")
@@ -209,10 +245,16 @@ def export(cal: Calibration, out: Path, angle_deg: float, scenario=None) -> dict
     date = datetime.now(timezone.utc).strftime("%Y-%m-%d")
     phi = predicted_phi_deg(cal, angle_deg, sc.rig)
     doc = _documentation(cal, values, angle_deg, __version__, date, phi)
+    if forced:   # said before the provenance, where a reader of the values looks
+        at = doc.find("<h2>Provenance</h2>") if "<h2>Provenance</h2>" in doc else doc.find("</body>")
+        doc = doc[:at] + forced_html(forced) + doc[at:]
     note = (f"Calibrated: mu1 = {values['mu1']:.6g}, mu2 = {values['mu2']:.6g}, eps1 = {values['eps1']:.6g} "
             f"N/m, eps2 = {values['eps2']:.6g} N/m{'' if cal.eps2_identified else ' (nominal)'}, "
             f"{cal.law.rule} rule, axes at {angle_deg:g} deg; data sha256 {cal.digest}; {date}; "
             f"orthocontact {__version__}; 95 % intervals in documentation/calibration.html.")
+    if forced:
+        note += (f" Exported with --force: {len(forced)} value(s) outside the plausible range, listed "
+                 "in documentation/calibration.html.")
     fmus = {}
     for v in (2, 3):
         fmus[v] = write_with_start_values(find_fmu(fmi_version=v), out / f"fmi{v}" / f"{MODEL_IDENTIFIER}.fmu",

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import plausibility
 from ..experiment.rig_setup import RigSetup
 from ..fmu.params import ContactParams
 from .estimators import REPORTED, JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
@@ -96,6 +97,7 @@ class Identification:
     eq40: dict | None
     validation: dict | None
     start: dict
+    warnings: tuple = ()     # one line each: identified values that are unusual (plausible_values)
 
     def as_json(self) -> dict:
         f = self.fit
@@ -191,15 +193,43 @@ class Identification:
         return out
 
 
+# The identified values the gate judges, by their key in plausibility.QUANTITIES.
+GATED = {"mu1": "mu1", "mu2": "mu2", "eps_ratio": "eps_ratio", "eps1": "eps1", "eps2": "eps2",
+         "c_strip": "c_strip", "f_int": "f_int_N"}
+
+
+def plausible_values(data: MeasurementSet, values: dict) -> list[str]:
+    """The identified values through the one gate (orthocontact.plausibility)
+    and the elastic length mu N / eps they give against the data's rig
+    travel: raises InputError (one line, the reason) for a value that cannot
+    be right, before anything is written; returns warning lines."""
+    rig = data.rig
+    where = f"{data.folder}: identified "
+    also = []
+    if "mu1" in values and "mu2" in values and ("eps2" in values or "eps_ratio" in values):
+        eps2 = values.get("eps2", rig.eps2_nominal_N_m)
+        eps1 = values.get("eps1", values.get("eps_ratio", 1.0) * eps2)
+        slip = ("rig.toml's eps2_nominal_N_m in N/mm?" if "eps2" not in values else
+                "ramp.csv's x1_m in mm?" if data.ramp is not None else "the ramp runs' positions in mm?")
+        also.append(plausibility.elastic_length_check(values["mu1"], values["mu2"], eps1, eps2,
+                                                      rig.normal_force, rig.travel_m, where, slip))
+    return plausibility.gate({GATED[k]: v for k, v in values.items() if k in GATED}, where, also,
+                             "refused: identified.json not written")
+
+
 def identify(data: MeasurementSet, validate: bool = True, workers=None,
              fmu_path=None) -> Identification:
+    """The fit, the paper's formulas beside it and the FMU's validation; the
+    fitted values pass the plausibility gate before the validation runs
+    (InputError: nothing is written)."""
     start = start_values(data)
     fit = joint_fit(data, start)
+    warnings = plausible_values(data, fit.values)
     mu1, mu2 = fit.values.get("mu1"), fit.values.get("mu2")
     mr = max_rule(data, mu1, mu2)
     e40 = eq40_fit(data, mu1, mu2)
     val = validate_with_fmu(data, fit.values, workers, fmu_path) if validate else None
-    return Identification(data, fit, eq1(data), mr, e40, val, start)
+    return Identification(data, fit, eq1(data), mr, e40, val, start, tuple(warnings))
 
 
 def load_folder(folder):

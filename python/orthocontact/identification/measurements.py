@@ -153,7 +153,8 @@ def load_data(folder) -> MeasurementSet:
                      3, "stiffness needs points on the stick branch")
     if forces is None and angles is None and ramp is None:
         raise InputError(f"{folder}: expected at least one of forces.csv, angles.csv, ramp.csv")
-    warnings = list(rig.warnings) + plausible_data(folder, rig, forces, angles)
+    warnings = list(rig.warnings) + plausible_data(folder, rig, forces, angles, ramp=ramp,
+                                                   velocities=velocities)
     if angles is not None and rig.phi_convention == "paper":
         angles[:, 1] = -angles[:, 1]
     if forces is not None and len(np.unique(np.round(friction_axis_key(rig, forces[:, 0]), 9))) < 2:
@@ -182,14 +183,20 @@ RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |mat angle| [deg] of a sweep typed 
 RADIAN_TRAJECTORY = 0.25                  # |phi| [deg] of angles typed in rad (the aged mat peaks at 0.2007 rad)
 
 
-MU_FROM_FORCE = (0.0, 5.0)                # (F - F_int) / (m g) of a plausible force
+TRAVEL_SAID = " (rig.toml's travel_m; 0.5 m unless given)"
 
 
-def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None) -> list[str]:
-    """Raises InputError for data that cannot be right (orientations in
-    radians, forces below F_int or implying mu outside (0, 5)); returns
-    warnings for unusual ones (trajectory angles that all look like
-    radians)."""
+def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None, ramp=None,
+                   velocities=None, stiffness=None, ramp_names=None) -> list[str]:
+    """The data against the one gate (orthocontact.plausibility) and the rig
+    that bounds them: raises InputError for data that cannot be right
+    (orientations in radians, forces at or below F_int or implying mu
+    outside (0, 5), a ramp reaching beyond the rig's travel, a velocity or a
+    ramp run's stiffness outside its hard range); returns warnings for
+    unusual ones (trajectory angles that all look like radians).  names: the
+    run of each force and angle (raw recordings), else rows of the files;
+    velocities [m/s] of angles.csv's rows; stiffness the ramp runs' (n, 3)
+    array and ramp_names their runs."""
     warnings = []
     for name, arr in (("forces.csv", forces), ("angles.csv", angles)):
         if arr is not None and plausibility.looks_like_radians(arr[:, 0], RADIAN_ORIENTATIONS):
@@ -199,18 +206,24 @@ def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None) -> l
     if angles is not None and plausibility.looks_like_radians(angles[:, 1], RADIAN_TRAJECTORY):
         warnings.append(f"{folder / 'angles.csv'}: phi_deg: all trajectory angles lie within "
                         f"+-{RADIAN_TRAJECTORY} deg: radians? the column is in degrees")
+    found = []
     if forces is not None:
-        W = rig.mass_kg * rig.g
         for k, (a, F) in enumerate(forces):
-            mu = (F - rig.f_int_N) / W
-            if not MU_FROM_FORCE[0] < mu < MU_FROM_FORCE[1]:
-                why = (f"below f_int_N = {rig.f_int_N:g} N (the sensor reads F_int plus the push)"
-                       if F <= rig.f_int_N else
-                       f"mu = (F - F_int)/(m g) = {mu:.3g}, outside (0, 5): N? (kN, or lbf?)")
-                where = f"run {names[k]}" if names else f"row {k + 1}"
-                raise InputError(f"{folder / 'forces.csv' if not names else folder}: {where} "
-                                 f"({ANGLE} = {a:g}): force_N = {F:g}: {why}")
-    return warnings
+            where = (f"{folder}: run {names[k]}" if names else f"{folder / 'forces.csv'}: row {k + 1}")
+            found.append(plausibility.force_check(F, rig.f_int_N, rig.normal_force,
+                                                  f"{where} ({ANGLE} = {a:g}): "))
+    if velocities is not None:
+        for k, v in enumerate(velocities):
+            found += plausibility.findings({"velocity_m_s": float(v)},
+                                           f"{folder / 'angles.csv'}: row {k + 1}: ")
+    if ramp is not None:
+        found.append(plausibility.ramp_extent_check(float(ramp[:, 0].max()), rig.travel_m,
+                                                    f"{folder / 'ramp.csv'}: ", TRAVEL_SAID))
+    if stiffness is not None:
+        for k, (a, s, _) in enumerate(stiffness):
+            found += plausibility.findings({"stiffness_N_m": float(s)}, f"{folder}: ramp run "
+                                           f"{ramp_names[k] if ramp_names else k + 1} ({ANGLE} = {a:g}): ")
+    return warnings + plausibility.gate({}, also=found)
 
 
 def write_measurements(folder: Path, rig: RigSetup, forces=None, angles=None, ramp=None,

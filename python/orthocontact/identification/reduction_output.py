@@ -37,15 +37,17 @@ def to_measurements(rec: Recordings, red: Reduction) -> MeasurementSet:
     forces = np.array([[r.mat_angle_deg, r.force_N] for r in slides])
     velocities = np.array([r.velocity_m_s for r in slides])
     warnings = list(rec.warnings) + list(red.warnings)
-    warnings += plausible_data(rec.folder, rig, forces, angles, names=[r.run for r in slides])
+    stiffness = (np.array([[r.mat_angle_deg, r.stiffness_N_m, r.stiffness_se_N_m] for r in ramps])
+                 if ramps else None)
+    warnings += plausible_data(rec.folder, rig, forces, angles, names=[r.run for r in slides],
+                               stiffness=stiffness, ramp_names=[r.run for r in ramps])
     return MeasurementSet(
         rec.folder, rig, forces, angles, None, velocities, tuple(warnings),
         force_se=np.array([r.force_se_N for r in slides]),
         angle_se=np.array([r.phi_se_deg for r in slides]),
         force_velocities=velocities,
         carriage=np.array([[r.force_N, r.force_se_N] for r in carriage]) if carriage else None,
-        stiffness=np.array([[r.mat_angle_deg, r.stiffness_N_m, r.stiffness_se_N_m] for r in ramps])
-        if ramps else None)
+        stiffness=stiffness)
 
 
 def rows(red: Reduction) -> list:
