@@ -15,7 +15,6 @@ def user_facing_files():
     yield ROOT / "README.md"
     yield from (ROOT / "docs").rglob("*.md")
     yield from (ROOT / "scenarios").rglob("*.md")
-    yield from (ROOT / "scenarios").glob("*.toml")
 
 
 # Lines being rewritten by the plausibility gate's work (issue 23 item 1) when
