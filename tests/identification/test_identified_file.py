@@ -46,12 +46,12 @@ def test_a_value_that_cannot_be_right_is_refused_by_the_one_reader(tmp_path):
                             "none above 1e+12 N/m can be right; refused (--force writes it anyway)")
     assert read_identified(path, force=True) == d
     # what uq draws around (covariance.values) and the assumptions are judged too
-    for edit, says in ((("covariance", "values"), "covariance.values: eps2 = 0 N/m"),
+    for edit, says in ((("covariance", "values"), "covariance.values: eps2 = 1e+13 N/m"),
                        (("assumptions", "mass_kg"), "assumptions.mass_kg = 1.875e+06 kg")):
         bad = json.loads(json.dumps(d))
         bad["eps1"]["value"] = 1.25e4
         if edit[0] == "covariance":
-            bad["covariance"]["values"] = [0.408, 0.0]
+            bad["covariance"]["values"] = [0.408, 1e13]
         else:
             bad["assumptions"]["mass_kg"] = 1.875e6
         path.write_text(json.dumps(bad))

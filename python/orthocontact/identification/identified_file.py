@@ -3,6 +3,7 @@ what a file that is not identify's output gets."""
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from .. import plausibility
@@ -39,25 +40,29 @@ ASSUMED = {"mass_kg": "mass_kg", "g": "g", "f_int_N": "f_int_N", "c_strip_N_s_m"
 def plausible_identified(path, d: dict) -> list:
     """The plausibility Findings of identified.json `d`'s numbers with a unit:
     each estimate's value, the covariance's values (what uq draws around) and
-    the assumptions (mass, g, F_int, strip terms).  Fields that are absent or
-    not numbers are left to the readers that need them."""
-    def number(v):
-        return isinstance(v, (int, float)) and not isinstance(v, bool)
+    the assumptions (mass, g, F_int, strip terms).  Fields that are absent,
+    not numbers, or outside the quantity's domain (not finite; below 0, or 0
+    where 0 is not allowed) are left to the readers that need them, whose
+    message says what the field must be."""
+    def number(v, key):
+        q = plausibility.QUANTITIES[key]
+        return (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                and (v > 0 or (v == 0 and q.zero_allowed)))
     found = []
     for name, key in IDENTIFIED.items():
         entry = d.get(name)
-        if isinstance(entry, dict) and number(entry.get("value")):
+        if isinstance(entry, dict) and number(entry.get("value"), key):
             found += plausibility.findings({key: entry["value"]},
                                            f"{path}: " + ("" if name == key else f"{name}.value: "))
     cov = d.get("covariance")
     if isinstance(cov, dict) and isinstance(cov.get("parameters"), list) and isinstance(cov.get("values"), list):
         for name, v in zip(cov["parameters"], cov["values"]):
-            if name in IDENTIFIED and number(v):
+            if name in IDENTIFIED and number(v, IDENTIFIED[name]):
                 found += plausibility.findings({IDENTIFIED[name]: v}, f"{path}: covariance.values: ")
     a = d.get("assumptions")
     if isinstance(a, dict):
         for name, key in ASSUMED.items():
-            if number(a.get(name)):
+            if number(a.get(name), key):
                 found += plausibility.findings({key: a[name]}, f"{path}: assumptions."
                                                + ("" if name == key else f"{name}: "))
     return found
