@@ -30,6 +30,10 @@ SLOW = {
         "test_strip_viscosity_estimated_from_two_velocities_through_the_cli",
         "test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity",
     },
+    "identification/test_export.py": {   # identifies the bundled recordings twice
+        "test_force_logs_changed_after_identify_are_refused_by_export_and_uq_naming_them",
+    },
+    "cli/test_output.py": {"test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs"},
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
     "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results"},

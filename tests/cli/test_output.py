@@ -1,15 +1,18 @@
 """Where a command's results go (orthocontact.cli.output): bad output paths
 refused before any work, a staging folder committed only when everything
-is written, files the command does not write left alone."""
+is written, files the command does not write left alone, an earlier run's
+files removed (the folder's manifest)."""
+import json
 from pathlib import Path
 
 import pytest
-from cli_run import case4_named, leftovers, run_cli as run, timed_run
+from cli_run import case4_named, leftovers, one_error_line, run_cli as run, timed_run
 
 from orthocontact.cli.main import main
 from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings,
                                      staged_output, warn, warnings_said)
 from orthocontact.errors import InputError
+from orthocontact.output.manifest import MANIFEST, file_sha256
 
 SCEN = Path(__file__).resolve().parents[2] / "scenarios"
 ROOT = Path(__file__).resolve().parents[2]
@@ -90,8 +93,83 @@ def test_staged_output_commits_on_success_and_leaves_nothing_on_failure(tmp_path
         (stage / "sub").mkdir()
         (stage / "sub" / "a.csv").write_text("1")
         assert not out.exists()                 # nothing in place before the block ends
-    assert sorted(p.relative_to(out).as_posix() for p in out.rglob("*")) == ["sub", "sub/a.csv"]
+    assert sorted(p.relative_to(out).as_posix() for p in out.rglob("*")) == [MANIFEST, "sub", "sub/a.csv"]
     assert leftovers(out.parent) == ["results"]
+
+
+def files_under(folder: Path) -> list:
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file())
+
+
+def test_a_new_run_removes_the_earlier_runs_files_and_nothing_else(tmp_path, capsys):
+    out = tmp_path / "out"
+    with staged_output(out, "identify") as stage:
+        for name in ("identified.json", "reduction.csv", "figs/reduction_45deg.png", "identified.md"):
+            (stage / name).parent.mkdir(exist_ok=True)
+            (stage / name).write_text(f"first run's {name}")
+    first = json.loads((out / MANIFEST).read_text())
+    (out / "my_notes.txt").write_text("mine")
+    (out / "identified.md").write_text("the first run's, with my notes")
+    forget_warnings()
+    with staged_output(out, "identify") as stage:
+        (stage / "identified.json").write_text("second run's")
+    assert files_under(out) == [MANIFEST, "identified.json", "identified.md", "my_notes.txt"]
+    assert (out / "identified.json").read_text() == "second run's"
+    assert (out / "my_notes.txt").read_text() == "mine"
+    assert (out / "identified.md").read_text() == "the first run's, with my notes"   # changed: the user's
+    assert warnings_said() == 1 and "kept identified.md" in capsys.readouterr().err
+    second = json.loads((out / MANIFEST).read_text())
+    assert second["run_id"] != first["run_id"] and second["command"] == "identify"
+    assert second["files"] == {"identified.json": file_sha256(out / "identified.json")}
+    forget_warnings()
+
+
+def test_a_bad_manifest_in_the_output_folder_is_refused_before_any_work(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / MANIFEST).write_text('{"written_by": "orthocontact", "run_id": "r", "files": {"../x": "0"}}')
+    p = run(["reproduce", "--out", out], tmp_path)
+    one_error_line(p, f"{out / MANIFEST}: files: expected paths inside the folder")
+    assert leftovers(out) == [MANIFEST]
+
+
+def test_reproduce_into_the_same_folder_leaves_no_scenario_of_the_earlier_run(tmp_path):
+    """Nested outputs: the first run's <out>/alpha/ goes, files and folder,
+    except what the user put there."""
+    out = tmp_path / "out"
+    (tmp_path / "a").mkdir(), (tmp_path / "b").mkdir()
+    p = run(["reproduce", "--scenarios", case4_named(tmp_path / "a", "alpha"), "--out", out], tmp_path)
+    assert p.returncode in (0, 1), p.stderr
+    assert (out / "alpha" / "sweep.csv").is_file()
+    (out / "mine.txt").write_text("keep me")
+    (out / "beta_notes").mkdir()
+    (out / "beta_notes" / "n.txt").write_text("keep me too")
+    p = run(["reproduce", "--scenarios", case4_named(tmp_path / "b", "beta"), "--out", out], tmp_path)
+    assert p.returncode in (0, 1), p.stderr
+    assert not (out / "alpha").exists()
+    assert (out / "mine.txt").read_text() == "keep me" and (out / "beta_notes" / "n.txt").is_file()
+    m = json.loads((out / MANIFEST).read_text())
+    assert m["command"] == "reproduce" and "beta/sweep.csv" in m["files"]
+    assert sorted(m["files"]) == [f for f in files_under(out)
+                                  if f not in (MANIFEST, "mine.txt", "beta_notes/n.txt")]
+    assert all(file_sha256(out / f) == h for f, h in m["files"].items())
+
+
+def test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs(tmp_path):
+    """The README's sequence: the recordings, then the example set, both
+    into out/identify; before, the first run's reduction and rig scenario
+    stayed beside the second run's identified.json (and uq took that rig)."""
+    out = tmp_path / "out" / "identify"
+    out.mkdir(parents=True)
+    (out / "my_notes.txt").write_text("mine")
+    p = run(["identify", SCEN / "example_recordings", "--out", out, "--no-validate"], tmp_path)
+    assert p.returncode == 0, p.stderr
+    first = files_under(out)
+    assert {"rig_scenario.toml", "reduction.csv", "reduction.json", "reduction_45deg.png"} <= set(first)
+    p = run(["identify", SCEN / "example_identification", "--out", out, "--no-validate"], tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert files_under(out) == [MANIFEST, "fit.png", "identified.json", "identified.md", "my_notes.txt"]
+    assert (out / "my_notes.txt").read_text() == "mine"
 
 
 def test_warnings_are_counted_for_strict(capsys):

@@ -3,6 +3,7 @@ the exported FMUs with no parameter set anywhere (fmpy, libcosim): the
 trajectory angle is the identified model's closed-form prediction."""
 import json
 import re
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -12,6 +13,7 @@ from pathlib import Path
 import pytest
 from fmpy.ssp.ssd import read_ssv
 from fmpy.validation import validate_fmu
+from cli_run import one_error_line
 from fmu_values import schema_errors, values_with_nothing_set
 from libcosim_rig import run_rig_ssp
 
@@ -43,8 +45,8 @@ def exported(identified, tmp_path_factory):
 def test_export_writes_calibrated_fmus_that_validate_and_keep_everything(identified, exported):
     d = json.loads(identified.read_text())
     names = sorted(p.relative_to(exported).as_posix() for p in exported.rglob("*") if p.is_file())
-    assert names == ["calibration.ssv", "fmi2/OrthotropicContact.fmu", "fmi3/OrthotropicContact.fmu",
-                     f"rig_{ANGLE:g}.ssp"]
+    assert names == [".orthocontact-manifest.json", "calibration.ssv", "fmi2/OrthotropicContact.fmu",
+                     "fmi3/OrthotropicContact.fmu", f"rig_{ANGLE:g}.ssp"]
     for v in (2, 3):
         fmu = exported / f"fmi{v}/OrthotropicContact.fmu"
         assert validate_fmu(str(fmu)) == [] and schema_errors(fmu) == []
@@ -65,6 +67,9 @@ def test_export_writes_calibrated_fmus_that_validate_and_keep_everything(identif
             assert text in doc
         lo, hi = d["mu1"]["ci95"]
         assert f"{lo:.6g} .. {hi:.6g}" in doc
+        assert sorted(d["data"]["files"]) == ["angles.csv", "forces.csv", "ramp.csv", "rig.toml"]
+        for name, sha in d["data"]["files"].items():
+            assert f"<tr><td><code>{name}</code></td><td><code>{sha}</code></td></tr>" in doc
         description = re.search(r'<fmiModelDescription[^>]*description="([^"]*)"',
                                 copy.read("modelDescription.xml").decode()).group(1)
         assert digest in description and today in description and "calibration.html" in description
@@ -151,7 +156,8 @@ def test_eps2_not_identified_takes_the_nominal_and_says_so(identified, tmp_path)
     (lambda d: d["mu2"].update(value=-1), "mu2.value: expected a finite number > 0"),
     (lambda d: d["assumptions"].update(rule="sticky"), "assumptions.rule: expected one of"),
     (lambda d: d["data"].update(folder="nowhere", absolute_folder="/nowhere"), "data.folder: nowhere not found"),
-    (lambda d: d["data"].update(sha256="0" * 64), "data.sha256: the files in"),
+    (lambda d: d["data"].update(sha256="0" * 64), "data.sha256: expected the digest of data.files"),
+    (lambda d: d["data"].pop("files"), "data.files: expected the SHA-256 of every file"),
 ])
 def test_bad_input_is_one_line_naming_the_file_and_field(identified, tmp_path, edit, says):
     d = json.loads(identified.read_text())
@@ -163,6 +169,59 @@ def test_bad_input_is_one_line_naming_the_file_and_field(identified, tmp_path, e
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and str(bad) in lines[0] and says in lines[0], p.stderr
     assert not (tmp_path / "out").exists()
+
+
+def scale_forces(folder: Path, pattern: str, factor: float) -> list:
+    """Every force log `pattern` in folder/forces/ with force_N times
+    `factor`; their paths under folder."""
+    changed = []
+    for f in sorted((folder / "forces").glob(pattern)):
+        lines = f.read_text().splitlines()
+        rows = [ln.split(",") for ln in lines[1:]]
+        f.write_text("\n".join([lines[0]] + [f"{t},{float(F) * factor:.6g}" for t, F in rows]) + "\n")
+        changed.append(f.relative_to(folder).as_posix())
+    return changed
+
+
+def test_force_logs_changed_after_identify_are_refused_by_export_and_uq_naming_them(tmp_path):
+    """Every 45 deg force log times 1.1: before, the digest hashed rig.toml
+    only, and export took the changed data with the original's digest."""
+    import hashlib
+    data = tmp_path / "recordings"
+    shutil.copytree(ROOT / "scenarios/example_recordings", data)
+    first = tmp_path / "id"
+    p = cli("identify", data, "--out", first, "--no-validate")
+    assert p.returncode == 0, p.stderr
+    d = json.loads((first / "identified.json").read_text())["data"]
+    read = {f.relative_to(data).as_posix(): hashlib.sha256(f.read_bytes()).hexdigest()
+            for f in data.rglob("*.*") if f.name != "README.md"}
+    assert d["files"] == read and len(read) == 153    # rig.toml, runs.csv and every recording
+    p = cli("export", first / "identified.json", "--out", tmp_path / "exported", "--angle", ANGLE)
+    assert p.returncode == 0, p.stderr
+    fmu = zipfile.ZipFile(tmp_path / "exported/fmi2/OrthotropicContact.fmu")
+    doc = fmu.read("documentation/calibration.html").decode()
+    assert all(f"<tr><td><code>{n}</code></td><td><code>{h}</code></td></tr>" in doc for n, h in read.items())
+    assert f"data sha256 {d['sha256']} (of 153 files" in fmu.read("modelDescription.xml").decode()
+
+    altered = scale_forces(data, "a045_*.csv", 1.1)
+    assert len(altered) == 10
+    p = cli("export", first / "identified.json", "--out", tmp_path / "refused", "--angle", ANGLE)
+    one_error_line(p, str(first / "identified.json"), "10 of the 153 files", *altered)
+    p = cli("uq", first / "identified.json", "--scenario", first / "rig_scenario.toml", "--samples", 10,
+            "--out", tmp_path / "uq")
+    one_error_line(p, str(first / "identified.json"), "10 of the 153 files", *altered)
+    assert not (tmp_path / "refused").exists() and not (tmp_path / "uq").exists()
+
+    second = tmp_path / "id_altered"
+    p = cli("identify", data, "--out", second, "--no-validate")
+    assert p.returncode == 0, p.stderr
+    d2 = json.loads((second / "identified.json").read_text())["data"]
+    assert d2["sha256"] != d["sha256"]
+    assert sorted(n for n in d["files"] if d["files"][n] != d2["files"][n]) == altered
+    # a rig scenario of one run with the estimates of another: two runs, refused
+    p = cli("uq", second / "identified.json", "--scenario", first / "rig_scenario.toml", "--samples", 10,
+            "--out", tmp_path / "uq")
+    one_error_line(p, f"{first / 'rig_scenario.toml'}: written by `orthocontact identify` run", "two runs")
 
 
 def edited(identified, tmp_path, **values):

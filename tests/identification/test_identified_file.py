@@ -1,5 +1,6 @@
 """identified.json read back (orthocontact.identification.identified_file):
 what is not identify's output is one InputError naming the file."""
+import hashlib
 import json
 import re
 
@@ -30,6 +31,25 @@ def test_what_is_not_identifys_output_names_the_file(tmp_path, content, says):
         read_identified(path)
     assert str(e.value).startswith(f"{path}: ") and says in str(e.value)
     assert "\n" not in str(e.value)
+
+
+def test_the_data_are_checked_file_by_file(tmp_path):
+    from orthocontact.identification.identified_file import check_data
+    from orthocontact.identification.measurements import data_digest
+    data = tmp_path / "id" / "data"
+    data.mkdir(parents=True)
+    (data / "rig.toml").write_text("mass_kg = 1.875\n")
+    (data / "forces.csv").write_text("mat_angle_deg,force_N\n0,12.5\n")
+    files = {n: hashlib.sha256((data / n).read_bytes()).hexdigest() for n in ("forces.csv", "rig.toml")}
+    d = {"data": {"folder": "data", "files": files, "sha256": data_digest(files)}}
+    path = tmp_path / "id" / "identified.json"
+    got = check_data(path, d)         # data.folder found relative to the file's folder too
+    assert got.folder == path.parent / "data" and got.files == files
+    (data / "forces.csv").unlink()
+    with pytest.raises(InputError) as e:
+        check_data(path, d)
+    assert str(e.value).startswith(f"{path}: data.files: 1 of the 2 files the identification read")
+    assert "forces.csv (missing)" in str(e.value)
 
 
 def test_a_value_that_cannot_be_right_is_refused_by_the_one_reader(tmp_path):

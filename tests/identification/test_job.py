@@ -3,7 +3,10 @@ data made by the FMU harness (not by the closed forms the fit uses) and by an
 independent simulator of the rig (tools/rig_reference.py, none of the
 package's code): exact recovery, honest intervals, clear non-identifiability."""
 import json
+import shutil
+import subprocess
 from pathlib import Path
+
 import pytest
 
 from orthocontact import closed_forms as cf
@@ -120,6 +123,26 @@ def test_cli_identify_on_the_bundled_example(tmp_path, capsys):
     assert j["max_rule"]["l1_l2_ratio"] > 0 and j["eq41"]["note"]
     assert j["validation_fmu"]["angles_deg"]["rms"] < 1.0
     assert (out / "fit.png").stat().st_size > 0 and "| eps2 |" in (out / "identified.md").read_text()
+
+
+def test_identified_json_names_every_file_read_with_its_sha256(tmp_path):
+    """data.files: each file the identification read, its SHA-256 as
+    sha256sum prints it; data.sha256: sha256sum's listing of them, hashed
+    (as the README says to recompute it); both from the shell, not the package."""
+    data = tmp_path / "data"
+    shutil.copytree(EXAMPLE, data)
+    (data / "notes.txt").write_text("a file identify does not read")
+    out = tmp_path / "id"
+    assert main(["identify", str(data), "--out", str(out), "--no-validate"]) == 0
+    d = json.loads((out / "identified.json").read_text())["data"]
+    names = ["angles.csv", "forces.csv", "ramp.csv", "rig.toml"]
+    listing = subprocess.run(["sha256sum", *names], cwd=data, capture_output=True, text=True,
+                             check=True).stdout
+    assert d["files"] == {ln.split()[1]: ln.split()[0] for ln in listing.splitlines()}
+    assert list(d["files"]) == names    # sorted: the order the digest lists them in
+    digest = subprocess.run("sha256sum " + " ".join(names) + " | sha256sum", shell=True, cwd=data,
+                            capture_output=True, text=True, check=True).stdout.split()[0]
+    assert d["sha256"] == digest
 
 
 BAD_DATA = [

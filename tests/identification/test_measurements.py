@@ -9,8 +9,9 @@ import numpy as np
 from cli_run import one_error_line, run_cli as run
 
 from orthocontact.experiment.rig_setup import RigSetup
-from orthocontact.identification.measurements import (data_digest, load_data, visible,
+from orthocontact.identification.measurements import (data_digest, data_files, load_data, visible,
                                                       write_measurements)
+from orthocontact.textfiles import files_read
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"
@@ -60,11 +61,17 @@ def test_written_measurements_read_back(tmp_path):
     np.testing.assert_array_equal(data.forces, forces)
     np.testing.assert_array_equal(data.angles, angles)
     assert data.ramp is None
-    # the digest covers the data files: one changed digit changes it
-    digest = data_digest(tmp_path / "d")
-    f = tmp_path / "d" / "forces.csv"
-    f.write_text(f.read_text().replace("16.5", "16.6"))
-    assert data_digest(tmp_path / "d") != digest
+    # the digest covers the files read: one changed digit changes it
+    digests = []
+    for _ in range(2):
+        with files_read() as read:
+            load_data(tmp_path / "d")
+        files = data_files(tmp_path / "d", read)
+        assert sorted(files) == ["angles.csv", "forces.csv", "rig.toml"]
+        digests.append(data_digest(files))
+        f = tmp_path / "d" / "forces.csv"
+        f.write_text(f.read_text().replace("16.5", "16.6"))
+    assert digests[0] != digests[1]
 
 
 def test_a_ramp_in_mm_is_refused_naming_the_unit(tmp_path):

@@ -2,12 +2,13 @@
 physical, seeded and follow the covariance; a bad identified.json is one line."""
 import json
 import math
+import shutil
 import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import CMD
+from cli_run import CMD, one_error_line, run_cli
 
 from orthocontact.uq.estimates import Estimates, draw, load_estimates
 
@@ -56,3 +57,25 @@ def test_bad_identification_file_one_line_and_nothing_written(identified, tmp_pa
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and says in lines[0] and "Traceback" not in p.stderr, p.stderr
     assert not (tmp_path / "o").exists()
+
+
+def test_hand_mixed_outputs_of_two_identify_runs_are_refused(identified, tmp_path):
+    """A run's folder with the identified.json of another run (of other data)
+    put in its place: uq and export name the file, exit 2, write nothing."""
+    mine = tmp_path / "mine"
+    shutil.copytree(identified.parent, mine)          # a run's folder, its manifest included
+    data = tmp_path / "data"
+    shutil.copytree(ROOT / "scenarios/example_identification", data)
+    forces = data / "forces.csv"
+    forces.write_text("".join(forces.read_text().splitlines(keepends=True)[:-1]))   # one run fewer
+    other = tmp_path / "other"
+    p = run_cli(["identify", data, "--out", other, "--no-validate"], tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert load_estimates(mine / "identified.json").names    # the run's own files: read
+    shutil.copy(other / "identified.json", mine / "identified.json")
+    for args in (["uq", mine / "identified.json", "--scenario", ROOT / "scenarios/mat_aged.toml",
+                  "--samples", 10, "--out", tmp_path / "o"],
+                 ["export", mine / "identified.json", "--out", tmp_path / "o"]):
+        p = run_cli(args, tmp_path)
+        one_error_line(p, f"{mine / 'identified.json'}: not the file `orthocontact identify` run")
+        assert not (tmp_path / "o").exists()

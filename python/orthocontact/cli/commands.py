@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..experiment.scenario import load
+from ..output.manifest import one_run
 from .output import staged_output, warn
 
 
@@ -60,7 +61,7 @@ def packaged_scenarios() -> Path:
 def cmd_run(args) -> int:
     from ..output.figures import FigureDrawer
     sc = load_scenario(args.scenario, args.yes)
-    with staged_output(args.out) as stage, _dask_for(args) as dask, \
+    with staged_output(args.out, args.cmd) as stage, _dask_for(args) as dask, \
             FigureDrawer(args.workers or _default_workers()) as draw:
         summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
                                 dask=dask)
@@ -88,7 +89,7 @@ def cmd_reproduce(args) -> int:
         taken[sc.name] = f"the name of {sc.path}"
     t0 = time.time()
     runs, rows = [], []
-    with staged_output(args.out) as stage:
+    with staged_output(args.out, args.cmd) as stage:
         # The figures are drawn in worker processes while the rig runs on.
         with _dask_for(args) as dask, FigureDrawer(args.workers or _default_workers()) as draw:
             # The rig's hidden assumptions, on the calibrated experiment: a
@@ -122,7 +123,7 @@ def cmd_identify(args) -> int:
     data, recordings = identify.load_folder(args.data)
     for line in data.warnings:
         warn(line)
-    with staged_output(args.out) as stage:
+    with staged_output(args.out, args.cmd) as stage:
         from ..fmu.files import find_fmu
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
                               fmu_path=str(find_fmu(fmi_version=args.fmi)), recordings=recordings)
@@ -146,7 +147,7 @@ def cmd_sensitivity(args) -> int:
     from ..output.figures import FigureDrawer
     from ..reproduction import sensitivity
     sc = load_scenario(args.scenario)
-    with staged_output(args.out) as stage, _dask_for(args) as dask, \
+    with staged_output(args.out, args.cmd) as stage, _dask_for(args) as dask, \
             FigureDrawer(1) as draw:
         res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
                               dask=dask)
@@ -169,12 +170,13 @@ def cmd_uq(args) -> int:
     from .. import uq
     from ..runs.size import check_uq_size
     est = uq.load_estimates(args.identification)
+    one_run(args.identification, args.scenario)   # the law and the rig of one identify run
     sc = load_scenario(args.scenario)
     uq.check_geometry(sc, est)  # before any work
     # every run uq makes: the draws and the step check at the scenario's own step
     check_uq_size(sc, args.yes, args.samples, uq.uq_step(sc, args.step_s), "--samples",
                   "--step-s or rig.travel_m")
-    with staged_output(args.out) as stage:
+    with staged_output(args.out, args.cmd) as stage:
         res = uq.propagate(est, sc, args.samples, args.seed, None,
                            scheduler=None if args.scheduler == "none" else args.scheduler,
                            workers=args.workers or _default_workers(), step_s=args.step_s,
@@ -229,12 +231,13 @@ def cmd_export(args) -> int:
     from ..identification.export import export, load_calibration, plausible_calibration
     cal = load_calibration(args.identification, force=args.force)
     forced, unusual = plausible_calibration(cal, force=args.force)
+    one_run(args.identification, args.scenario)
     for line in unusual:
         warn(line)
     if forced:
         warn(f"--force: exporting {len(forced)} value(s) that cannot be right (said in "
              f"documentation/calibration.html): " + "; ".join(forced))
-    with staged_output(args.out) as stage:
+    with staged_output(args.out, args.cmd) as stage:
         res = export(cal, stage, args.angle, args.scenario, forced)
     from ..rig.checks import system_settling_warning
     line = system_settling_warning(f"{res['ssp'].name}", res["ssp_params"], res["ssp_rig"])

@@ -1,6 +1,7 @@
 """Where a command's results go: output paths checked before any work, a
-staging folder committed only when everything is written, and the warning
-lines that --strict counts."""
+staging folder committed only when everything is written, the folder's
+manifest (output.manifest: a new run removes its predecessor's files, never
+another's), and the warning lines that --strict counts."""
 from __future__ import annotations
 
 import contextlib
@@ -11,6 +12,7 @@ import tempfile
 from pathlib import Path
 
 from ..errors import InputError
+from ..output.manifest import new_manifest, read_manifest, remove_earlier, write_manifest
 from .interrupts import interrupted
 
 
@@ -32,6 +34,8 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
         tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=probe).cleanup()
     except OSError as e:
         raise InputError(f"{option} {out}: {probe} is not writable ({e.strerror})") from None
+    if out.is_dir():
+        read_manifest(out)   # its list decides what the run removes: a bad one is refused now
 
 
 def check_output_file(out: Path, option: str = "--out") -> None:
@@ -49,10 +53,12 @@ def check_output_file(out: Path, option: str = "--out") -> None:
 
 
 @contextlib.contextmanager
-def staged_output(out: Path):
+def staged_output(out: Path, command: str | None = None):
     """A scratch folder beside `out`; its files move into `out` only if the
     block completes, so a failure or an interrupt leaves nothing behind: not
-    the scratch folder, nor parent folders made for it, nor a half-written `out`."""
+    the scratch folder, nor parent folders made for it, nor a half-written `out`.
+    On success `out` is this run's (commit_run): the files an earlier run's
+    manifest lists are replaced or removed, the user's own stay."""
     out = Path(out)
     made = []
     for parent in reversed(out.parents):
@@ -72,8 +78,24 @@ def staged_output(out: Path):
             with contextlib.suppress(OSError):
                 parent.rmdir()
         raise
-    _move_into(stage, out)
+    commit_run(stage, out, command)
     shutil.rmtree(stage, ignore_errors=True)
+
+
+def commit_run(stage: Path, out: Path, command: str | None) -> None:
+    """Moves the run's files from `stage` into `out`, removes what the
+    folder's earlier manifest lists and this run did not write, and writes
+    this run's manifest last (a reader that finds it finds its files)."""
+    from .. import __version__
+    earlier = read_manifest(out) if out.is_dir() else None
+    run = new_manifest(stage, command, __version__)
+    _move_into(stage, out)
+    if earlier is not None:
+        kept = remove_earlier(out, earlier, run.files)
+        if kept:
+            warn(f"{out}: kept {', '.join(kept)} of {earlier.describe()}: changed since that run "
+                 "wrote them, so they are taken as yours; they are not this run's outputs")
+    write_manifest(out, run)
 
 
 def _move_into(src: Path, dst: Path) -> None:

@@ -2,8 +2,9 @@
 identification's estimates as their parameters' start values, in the model
 description and in the binary's resources (fmu.start_values), so that an
 importer that sets nothing runs the calibrated model; the estimates, their
-95 % intervals, the data set's digest, the date and the package version in
-documentation/calibration.html and in the description; beside them an SSV
+95 % intervals, the data's digests (each file the identification read in
+documentation/calibration.html, their overall digest in the description), the
+date and the package version; beside them an SSV
 parameter file and an SSP of the rig at one angle built on the calibrated
 FMU (experiment.ssp), whose FMUs carry the values too.
 
@@ -28,8 +29,7 @@ from ..experiment.ssp import parameter_values_file, write_ssp
 from ..fmu.files import MODEL_IDENTIFIER, find_fmu
 from ..fmu.params import RULES, ContactParams
 from ..fmu.start_values import write_with_start_values
-from .identified_file import read_identified
-from .measurements import data_digest
+from .identified_file import check_data, read_identified
 
 ESTIMATED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
 
@@ -45,7 +45,8 @@ class Calibration:
     rig: RigSetup            # rig.toml of the data, with the identification's rule and offsets
     c_strip: float           # N s/m, as the identification used it
     data_folder: Path
-    digest: str
+    digest: str              # SHA-256 over the data files' listing (measurements.data_digest)
+    data_files: dict = dataclasses.field(default_factory=dict)   # path under data_folder -> SHA-256
 
 
 def _field(path, d, name, key="value"):
@@ -57,19 +58,6 @@ def _field(path, d, name, key="value"):
         why = f" ({name} was not identified: {entry['reason']})" if "reason" in entry else ""
         raise InputError(f"{path}: {name}.{key}: expected a finite number > 0, got {v!r}{why}")
     return float(v)
-
-
-def _data_folder(path: Path, d: dict) -> Path:
-    data = d.get("data") or {}
-    folder = data.get("folder")
-    if not isinstance(folder, str) or not folder:
-        raise InputError(f"{path}: data.folder: expected the measurement folder's path")
-    absolute = data.get("absolute_folder")
-    for candidate in (Path(folder), path.parent / folder) + ((Path(absolute),) if absolute else ()):
-        if (candidate / "rig.toml").is_file():
-            return candidate
-    raise InputError(f"{path}: data.folder: {folder} not found (relative to the working folder or "
-                     f"to {path.parent}): the calibration names the data it came from")
 
 
 def load_calibration(path, force: bool = False) -> Calibration:
@@ -90,12 +78,8 @@ def load_calibration(path, force: bool = False) -> Calibration:
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             raise InputError(f"{path}: assumptions.{k}: expected a finite number [deg], got {v!r}")
         offsets[k] = float(v)
-    folder = _data_folder(path, d)
-    digest = data_digest(folder)
-    stated = (d.get("data") or {}).get("sha256")
-    if stated is not None and stated != digest:
-        raise InputError(f"{path}: data.sha256: the files in {folder} changed since the identification "
-                         f"(now {digest[:12]}..., identified on {str(stated)[:12]}...)")
+    data = check_data(path, d)   # every file the identification read, unchanged
+    folder = data.folder
     rig = dataclasses.replace(load_rig_toml(folder / "rig.toml"), rule=rule, **offsets)
     eps2_identified = isinstance(d.get("eps2"), dict) and "value" in d["eps2"]
     eps2 = _field(path, d, "eps2") if eps2_identified else rig.eps2_nominal_N_m
@@ -116,7 +100,8 @@ def load_calibration(path, force: bool = False) -> Calibration:
         law = ContactParams(mu1, mu2, eps1, eps2, rule=rule)
     except ValueError as e:
         raise InputError(f"{path}: {e}") from None
-    return Calibration(path, law, intervals, eps2_identified, rig, float(c_strip), folder, digest)
+    return Calibration(path, law, intervals, eps2_identified, rig, float(c_strip), folder, data.digest,
+                       data.files)
 
 
 def contact_start_values(cal: Calibration, angle_deg: float) -> dict:
@@ -192,7 +177,13 @@ there on the data's rig (strip: mu_strip = {cal.rig.mu_strip:g}, c_strip = {cal.
 <ul>
 <li>identification: <code>{e(str(cal.path))}</code> (<code>orthocontact identify</code>)</li>
 <li>data: <code>{e(str(cal.data_folder))}</code>, SHA-256 {cal.digest}
-(<code>sha256sum angles.csv forces.csv ramp.csv rig.toml | sha256sum</code> over the files present, sorted)</li>
+(of the listing <code>sha256sum</code> prints for the {len(cal.data_files)} files below in this order:
+<code>cd DATA &amp;&amp; sha256sum FILE... | sha256sum</code>); every file the identification read,
+with its SHA-256:
+<table border="1"><tr><th>file</th><th>SHA-256</th></tr>
+{chr(10).join(f"<tr><td><code>{e(n)}</code></td><td><code>{h}</code></td></tr>"
+              for n, h in sorted(cal.data_files.items()))}
+</table></li>
 <li>intervals: 95 %, Student t with Welch-Satterthwaite degrees of freedom, Gauss-Newton covariance</li>
 <li>exported {date} by orthocontact {e(version)}</li>
 </ul>
@@ -250,7 +241,8 @@ def export(cal: Calibration, out: Path, angle_deg: float, scenario=None, forced=
         doc = doc[:at] + forced_html(forced) + doc[at:]
     note = (f"Calibrated: mu1 = {values['mu1']:.6g}, mu2 = {values['mu2']:.6g}, eps1 = {values['eps1']:.6g} "
             f"N/m, eps2 = {values['eps2']:.6g} N/m{'' if cal.eps2_identified else ' (nominal)'}, "
-            f"{cal.law.rule} rule, axes at {angle_deg:g} deg; data sha256 {cal.digest}; {date}; "
+            f"{cal.law.rule} rule, axes at {angle_deg:g} deg; data sha256 {cal.digest} "
+            f"(of {len(cal.data_files)} files, each in documentation/calibration.html); {date}; "
             f"orthocontact {__version__}; 95 % intervals in documentation/calibration.html.")
     if forced:
         note += (f" Exported with --force: {len(forced)} value(s) outside the plausible range, listed "

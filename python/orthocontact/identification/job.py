@@ -18,7 +18,7 @@ from .. import plausibility
 from ..experiment.rig_setup import RigSetup
 from ..fmu.params import ContactParams
 from .estimators import REPORTED, JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
-from .measurements import MeasurementSet, data_digest, load_data, write_measurements
+from .measurements import MeasurementSet, data_digest, data_files, load_data, write_measurements
 from .statistics import json_dof, res_stats
 
 # The whole job here; its parts importable from here as before.
@@ -176,7 +176,11 @@ class Identification:
                        "forces": 0 if d.forces is None else len(d.forces),
                        "angles": 0 if d.angles is None else len(d.angles),
                        "ramp": 0 if d.ramp is None else len(d.ramp),
-                       "sha256": data_digest(d.folder)}
+                       # every file the identification read, and one digest over them
+                       "files": d.files,
+                       "sha256": None if d.files is None else data_digest(d.files),
+                       "sha256_of": "the listing `sha256sum` prints for data.files, in that "
+                                    "(sorted) order: cd FOLDER && sha256sum FILE... | sha256sum"}
         r = d.rig
         out["assumptions"] = {"rule": r.rule, "alpha_offset_deg": r.alpha_offset_deg,
                               "beta_offset_deg": r.beta_offset_deg, "mass_kg": r.mass_kg, "g": r.g,
@@ -235,15 +239,20 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
 def load_folder(folder):
     """(MeasurementSet, the raw recordings and their reduction or None) of a
     measurement folder: raw recordings if it has a runs.csv, reduced data
-    otherwise.  Raises InputError (one line)."""
+    otherwise; the set's `files` are those read, with their SHA-256.
+    Raises InputError (one line)."""
+    from ..textfiles import files_read
     from .recordings import is_recordings, load_recordings
-    if not is_recordings(folder):
-        return load_data(folder), None
-    from .reduction import reduce_recordings
-    from .reduction_output import to_measurements
-    rec = load_recordings(folder)
-    red = reduce_recordings(rec)
-    return to_measurements(rec, red), (rec, red)
+    with files_read() as read:
+        if not is_recordings(folder):
+            data, recordings = load_data(folder), None
+        else:
+            from .reduction import reduce_recordings
+            from .reduction_output import to_measurements
+            rec = load_recordings(folder)
+            red = reduce_recordings(rec)
+            data, recordings = to_measurements(rec, red), (rec, red)
+    return dataclasses.replace(data, files=data_files(folder, read)), recordings
 
 
 def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,

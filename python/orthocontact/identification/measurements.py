@@ -17,6 +17,7 @@ from __future__ import annotations
 import csv
 import hashlib
 import math
+import os
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -51,6 +52,9 @@ class MeasurementSet:
     force_velocities: np.ndarray | None = None  # (n,) m/s (None: rig.velocity_m_s)
     carriage: np.ndarray | None = None      # (n, 2): F_int [N], its standard error
     stiffness: np.ndarray | None = None     # (n, 3): mat angle [deg], dF/dx1 [N/m], its standard error
+    # Provenance: every file read to make the set, its path under `folder`
+    # (POSIX) -> SHA-256 (data_files); None for a set not read from files.
+    files: dict | None = None
 
     @property
     def f_int_free(self) -> bool:
@@ -163,18 +167,38 @@ def load_data(folder) -> MeasurementSet:
     return MeasurementSet(folder, rig, forces, angles, ramp, velocities, tuple(warnings))
 
 
-DATA_FILES = ("angles.csv", "forces.csv", "ramp.csv", "rig.toml")   # sorted by name
+def data_files(folder, read: dict) -> dict:
+    """The files read (textfiles.files_read's record: path -> FileRead) as
+    {path under `folder`, POSIX: SHA-256}, sorted by path."""
+    root = Path(folder).resolve()
+    files = {Path(os.path.relpath(Path(f.path).resolve(), root)).as_posix(): f.sha256 for f in read.values()}
+    return {k: files[k] for k in sorted(files)}
 
 
-def data_digest(folder) -> str:
-    """The measurement set's SHA-256: of the listing `sha256sum` prints for
-    its files present, sorted by name (`cd DATA && sha256sum angles.csv
-    forces.csv ramp.csv rig.toml | sha256sum` gives the same, for a set with
-    all four), so that a calibration names exactly the data it came from."""
-    folder = Path(folder)
-    listing = "".join(f"{hashlib.sha256((folder / n).read_bytes()).hexdigest()}  {n}\n"
-                      for n in DATA_FILES if (folder / n).is_file())
+def data_digest(files: dict) -> str:
+    """The data set's SHA-256 [hex]: of the listing `sha256sum` prints for
+    the files (data_files: path under the data folder -> SHA-256) in sorted
+    order, so that `cd DATA && sha256sum FILE... | sha256sum`, the files in
+    that order, gives the same; for reduced data, `sha256sum angles.csv
+    forces.csv ramp.csv rig.toml | sha256sum` over those present."""
+    listing = "".join(f"{files[n]}  {n}\n" for n in sorted(files))
     return hashlib.sha256(listing.encode()).hexdigest()
+
+
+def changed_files(folder, files: dict) -> list[str]:
+    """The files of `files` (path under `folder` -> SHA-256) that are
+    missing or whose bytes differ now, each as "PATH (missing)" or "PATH"."""
+    out = []
+    for name in sorted(files):
+        p = Path(folder) / name
+        try:
+            now = hashlib.sha256(p.read_bytes()).hexdigest()
+        except OSError:
+            out.append(f"{name} (missing)")
+            continue
+        if now != files[name]:
+            out.append(name)
+    return out
 
 
 RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |mat angle| [deg] of a sweep typed in rad

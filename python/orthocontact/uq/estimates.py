@@ -1,5 +1,6 @@
 """What uq draws from: identified.json's estimates and joint covariance,
-validated field by field, and the seeded draws of physical parameter sets."""
+validated field by field (the file as its identify run wrote it, the data it
+names unchanged), and the seeded draws of physical parameter sets."""
 from __future__ import annotations
 
 import math
@@ -9,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..identification.identified_file import read_identified
+from ..identification.identified_file import check_data, read_identified
 
 LAW_PARAMETERS = ("mu1", "mu2", "eps_ratio", "eps2")
 
@@ -49,9 +50,11 @@ class Estimates:
 
 
 def load_estimates(path) -> Estimates:
-    """identified.json -> Estimates; InputError naming the file and the field."""
+    """identified.json -> Estimates; InputError naming the file and the field,
+    or the data files that changed since the identification read them."""
     path = Path(path)
     d = read_identified(path)
+    check_data(path, d)
     cov = d.get("covariance")
     if not isinstance(cov, dict) or not {"parameters", "values", "matrix"} <= set(cov):
         raise InputError(f"{path}: covariance: expected parameters, values and matrix "
