@@ -88,7 +88,7 @@ def test_cli_serial_and_local_cluster_give_the_same_files(identified, tmp_path):
     d = json.loads((tmp_path / "local" / "uq.json").read_text())
     assert d["runs"] == 600 and d["samples"] == 60 and len(d["bands"]) == 10
     assert sorted(p.name for p in (tmp_path / "local").iterdir()) == [
-        "samples.csv", "uq.json", "uq.png", "uq_bands.csv"]
+        ".orthocontact-manifest.json", "samples.csv", "uq.json", "uq.png", "uq_bands.csv"]
     assert "100%" in p2.stderr  # the progress
 
 
