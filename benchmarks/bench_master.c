@@ -84,12 +84,18 @@ int main(int argc, char **argv) {
         t0 = now();
         for (int k = 0; k < REPS; ++k)
             for (int i = 0; i < ANGLES; ++i) {
-                const fmi2ValueReference vr[6] = {1, 2, 3, 4, 5, 6}, vr_rule = 7;
-                const fmi2ValueReference in[3] = {8, 9, 10}, vr_T[2] = {11, 12};
-                const double v[6] = {p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2, p[i].alpha, p[i].beta};
+#define LAW_VR(name, vr, ...) vr,
+#define LAW_VALUE(name, ...) p[i].name,
+                const fmi2ValueReference vr[] = {OC_LAW_PARAMETERS(LAW_VR)},
+                                         vr_rule = OC_VR_slidingRule;
+                const fmi2ValueReference in[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N},
+                                         vr_T[2] = {OC_VR_T1, OC_VR_T2};
+                const double v[] = {OC_LAW_PARAMETERS(LAW_VALUE)};
+#undef LAW_VR
+#undef LAW_VALUE
                 const fmi2Integer rule = p[i].rule;
                 reset(c);
-                set_real(c, vr, 6, v);
+                set_real(c, vr, sizeof vr / sizeof vr[0], v);
                 set_int(c, &vr_rule, 1, &rule);
                 setup(c, fmi2False, 0, 0, fmi2False, 0);
                 enter(c);

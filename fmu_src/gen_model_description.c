@@ -10,7 +10,7 @@
  * by construction, and any change of the description changes the token.
  * The version comes from the build (-DFMU_VERSION="...").
  *
- * Usage: gen_model_description fmi2|fmi3|build|html2|html3|token [OUTPUT]   (stdout without OUTPUT) */
+ * Usage: gen_model_description fmi2|fmi3|build|html2|html3|token|manifest [OUTPUT]   (stdout without OUTPUT) */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -31,6 +31,7 @@ typedef struct {
     const char *name, *type, *causality, *variability, *initial, *unit, *display, *desc;
     unsigned int vr;
     double start, min, max;
+    int grouped; /* a row of the table's group (FMU_GROUP: the law's parameters) */
 } row;
 
 #ifndef FMU_PROVIDES_DERIVATIVES
@@ -39,9 +40,19 @@ typedef struct {
 #define TF(x) ((x) ? "true" : "false")
 
 #define ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc) \
-    {#name, #type, #caus, #var, #init, unit, disp, desc, vr, start, lo, hi},
+    {#name, #type, #caus, #var, #init, unit, disp, desc, vr, start, lo, hi, 0},
+#define GROUP_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc) \
+    {#name, #type, #caus, #var, #init, unit, disp, desc, vr, start, lo, hi, 1},
+/* A table may mark a group of rows (FMU_GROUPED_VARIABLES(X, G), named
+ * FMU_GROUP): the manifest lists it for the package. */
+#ifdef FMU_GROUPED_VARIABLES
+static const row ROWS[] = {FMU_GROUPED_VARIABLES(ROW, GROUP_ROW)};
+#else
+#define FMU_GROUP ""
 static const row ROWS[] = {FMU_VARIABLES(ROW)};
+#endif
 #undef ROW
+#undef GROUP_ROW
 enum { NROWS = sizeof ROWS / sizeof ROWS[0] };
 
 typedef struct {
@@ -521,6 +532,84 @@ static void html(FILE *f, int v) {
                "</body>\n</html>\n", v == 2 ? "LICENSE.txt" : "licenses/LICENSE.txt");
 }
 
+/* A JSON string: the table's texts are ASCII with no control characters
+ * but quotes and backslashes are escaped all the same. */
+static void json_str(FILE *f, const char *s) {
+    fputc('"', f);
+    for (; *s; ++s) {
+        if (*s == '"' || *s == '\\') fputc('\\', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* A number, or null for none (an infinite bound). */
+static void json_num(FILE *f, const row *r, double x) {
+    char b[64];
+    if (!isfinite(x)) fputs("null", f);
+    else if (is_int(r)) fprintf(f, "%d", (int)x);
+    else {
+        num(b, sizeof b, x);
+        fputs(b, f);
+    }
+}
+
+/* The manifest the Python package reads instead of typing the table's
+ * facts: every variable with its columns, the enumerations' items and the
+ * table's group (the law's parameters, in the table's order). */
+static void manifest(FILE *f) {
+    fputs("{\n  \"generated\": \"by gen_model_description from the variable table: edit the "
+          "table, not this file\",\n  \"modelIdentifier\": ", f);
+    json_str(f, FMU_MODEL_IDENTIFIER);
+    fprintf(f, ",\n  \"version\": \"%s\",\n  \"providesDerivatives\": %s,\n  \"variables\": [\n",
+            FMU_VERSION, TF(FMU_PROVIDES_DERIVATIVES));
+    for (int i = 0; i < NROWS; ++i) {
+        const row *r = &ROWS[i];
+        fputs("    {\"name\": ", f);
+        json_str(f, r->name);
+        fprintf(f, ", \"valueReference\": %u, \"type\": ", r->vr);
+        json_str(f, is_enum(r) ? "Enumeration" : r->type);
+        fputs(", \"declaredType\": ", f);
+        if (is_enum(r)) json_str(f, r->type);
+        else fputs("null", f);
+        fputs(", \"causality\": ", f);
+        json_str(f, r->causality);
+        fputs(", \"variability\": ", f);
+        json_str(f, r->variability);
+        fputs(", \"initial\": ", f);
+        json_str(f, r->initial);
+        fputs(", \"unit\": ", f);
+        json_str(f, is(r->unit, "1") ? "" : r->unit);
+        fputs(", \"displayUnit\": ", f);
+        json_str(f, r->display);
+        fputs(", \"start\": ", f);
+        if (has_start(r)) json_num(f, r, r->start);
+        else fputs("null", f);
+        fputs(", \"min\": ", f);
+        json_num(f, r, r->min);
+        fputs(", \"max\": ", f);
+        json_num(f, r, r->max);
+        fputs(", \"group\": ", f);
+        json_str(f, r->grouped ? FMU_GROUP : "");
+        fputs(", \"description\": ", f);
+        json_str(f, r->desc);
+        fputs(i + 1 < NROWS ? "},\n" : "}\n", f);
+    }
+    fputs("  ],\n  \"enumerations\": {", f);
+    for (int e = 0; e < NENUMS; ++e) {
+        fputs(e ? ",\n    " : "\n    ", f);
+        json_str(f, ENUMS[e].name);
+        fputs(": {", f);
+        for (int k = 0; k < ENUMS[e].n; ++k) {
+            if (k) fputs(", ", f);
+            json_str(f, ENUMS[e].items[k].name);
+            fprintf(f, ": %d", ENUMS[e].items[k].value);
+        }
+        fputc('}', f);
+    }
+    fputs(NENUMS ? "\n  }\n}\n" : "}\n}\n", f);
+}
+
 /* FNV-1a over everything written to f, in two lanes with different bases. */
 static void hash_file(FILE *f, uint64_t h[2]) {
     rewind(f);
@@ -548,7 +637,7 @@ static void compute_token(char token[39]) {
 
 int main(int argc, char **argv) {
     if (argc < 2) {
-        fprintf(stderr, "usage: %s fmi2|fmi3|build|html2|html3|token [OUTPUT]\n", argv[0]);
+        fprintf(stderr, "usage: %s fmi2|fmi3|build|html2|html3|token|manifest [OUTPUT]\n", argv[0]);
         return 2;
     }
     if (check_dependencies()) return 1;
@@ -568,6 +657,7 @@ int main(int argc, char **argv) {
     else if (is(argv[1], "build")) build(f);
     else if (is(argv[1], "html2")) html(f, 2);
     else if (is(argv[1], "html3")) html(f, 3);
+    else if (is(argv[1], "manifest")) manifest(f);
     else {
         fprintf(stderr, "unknown output %s\n", argv[1]);
         return 2;

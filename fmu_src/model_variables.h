@@ -6,7 +6,8 @@
  * references, types, start values and min/max from it.
  *
  * X(name, vr, type, causality, variability, initial, start, min, max, unit,
- *   displayUnit, description)
+ *   displayUnit, description); a row of the law's parameters is written
+ *   L(...) with the same columns (see OC_LAW_PARAMETERS below).
  *   type: Float64, Int32 or the name of an enumeration type of FMU_ENUM_TYPES
  *         (an Integer with min/max in FMI 2.0, an Enumeration in FMI 3.0);
  *   initial: exact or calculated ("calculated" entries have no start);
@@ -37,7 +38,8 @@
     "Coupled orthotropic adhesion-friction contact interface (Konyukhov and Schweizerhof "   \
     "2007): tangential force from the displacement of a body on a surface by an implicit " \
     "return mapping"
-/* Sources of the binary besides the version's glue (fmi2_glue.c / fmi3_glue.c). */
+/* Sources and headers of the binary besides the version's glue (fmi2_glue.c /
+ * fmi3_glue.c); CMake's fmu_add reads both lists from here. */
 #define FMU_SOURCES(S) S(contact_law.c) S(oc_model.c) S(fmu_instance.c)
 #define FMU_HEADERS(S) \
     S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(model_variables.h) S(fmu_token.h)
@@ -140,7 +142,8 @@
  * gen_model_description refuses an output without its row and a name that
  * is not a known of the mode; tests/fmus/test_model_structure.py checks each
  * list against what the binary does. */
-#define OC_INIT_KNOWNS_NO_RULE "mu1 mu2 eps1 eps2 alpha beta u1 u2 N initialSlip s1Start s2Start"
+#define OC_NAME_SPACE(name, ...) #name " "
+#define OC_INIT_KNOWNS_NO_RULE OC_LAW_PARAMETERS(OC_NAME_SPACE) "u1 u2 N initialSlip s1Start s2Start"
 #define OC_INIT_KNOWNS OC_INIT_KNOWNS_NO_RULE " slidingRule"
 #define FMU_DEPENDENCIES(D)                                                                    \
     D(T1, "u1 u2 N", OC_INIT_KNOWNS) D(T2, "u1 u2 N", OC_INIT_KNOWNS)                          \
@@ -148,19 +151,19 @@
     D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE)                                         \
     D(dissipatedEnergy, "u1 u2 N", OC_INIT_KNOWNS)
 
-#define FMU_VARIABLES(X)                                                                       \
+#define OC_VARIABLES(X, L)                                                                     \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "", "Simulation time")     \
-    X(mu1, 1, Float64, parameter, fixed, exact, 0.408, 1e-150, 1e150, "1", "",             \
+    L(mu1, 1, Float64, parameter, fixed, exact, 0.408, 1e-150, 1e150, "1", "",             \
       "Friction coefficient along friction axis 1 (at angle beta)")                            \
-    X(mu2, 2, Float64, parameter, fixed, exact, 0.625, 1e-150, 1e150, "1", "",             \
+    L(mu2, 2, Float64, parameter, fixed, exact, 0.625, 1e-150, 1e150, "1", "",             \
       "Friction coefficient along friction axis 2 (at angle beta + 90 deg)")                   \
-    X(eps1, 3, Float64, parameter, fixed, exact, 12510.0, 1e-300, 1e300, "N/m", "",        \
+    L(eps1, 3, Float64, parameter, fixed, exact, 12510.0, 1e-300, 1e300, "N/m", "",        \
       "Tangential (adhesion) stiffness along adhesion axis 1 (at angle alpha)")                \
-    X(eps2, 4, Float64, parameter, fixed, exact, 10000.0, 1e-300, 1e300, "N/m", "",        \
+    L(eps2, 4, Float64, parameter, fixed, exact, 10000.0, 1e-300, 1e300, "N/m", "",        \
       "Tangential (adhesion) stiffness along adhesion axis 2 (at angle alpha + 90 deg)")       \
-    X(alpha, 5, Float64, parameter, fixed, exact, 1.5707963267948966, -12.566370614359172,        \
+    L(alpha, 5, Float64, parameter, fixed, exact, 1.5707963267948966, -12.566370614359172,        \
       12.566370614359172, "rad", "deg", "Angle of adhesion axis 1, counterclockwise from X1") \
-    X(beta, 6, Float64, parameter, fixed, exact, 0.0, -12.566370614359172,                    \
+    L(beta, 6, Float64, parameter, fixed, exact, 0.0, -12.566370614359172,                    \
       12.566370614359172, "rad", "deg", "Angle of friction axis 1, counterclockwise from X1") \
     X(slidingRule, 7, SlidingRule, parameter, fixed, exact, 2, 1, 3, "", "",                      \
       "Sliding rule: 1 associated (G = F), 2 coupled (G = (B F B)^-1), "                       \
@@ -190,6 +193,17 @@
       "Initial slip along X1 when initialSlip = explicit")                                     \
     X(s2Start, 19, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",              \
       "Initial slip along X2 when initialSlip = explicit")
+
+/* The law's rows are marked L in OC_VARIABLES: they are oc_params' fields
+ * (contact_law.h), in this order, and their names are the fields' names.
+ * oc_model.c stores and serializes them, the compiled master fills them and
+ * the package's manifest (gen_model_description manifest) lists them as
+ * the group "law", all from here. */
+#define FMU_VARIABLES(X) OC_VARIABLES(X, X)
+#define FMU_NO_ROW(...)
+#define OC_LAW_PARAMETERS(L) OC_VARIABLES(FMU_NO_ROW, L)
+#define FMU_GROUPED_VARIABLES(X, L) OC_VARIABLES(X, L)
+#define FMU_GROUP "law"
 
 #define OC_VR_ENUM_ENTRY(name, vr, ...) OC_VR_##name = vr,
 enum { FMU_VARIABLES(OC_VR_ENUM_ENTRY) OC_VR_COUNT_PLUS_ONE };

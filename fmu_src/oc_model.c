@@ -8,14 +8,12 @@
 #include "model_variables.h"
 
 /* Where each variable of the table lives: the glue reads and writes them
- * there, and the outputs are kept current by evaluate. */
+ * there, and the outputs are kept current by evaluate.  The law's
+ * parameters (the table's L rows) live in params under their own names. */
+#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...) \
+    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus, start, lo, hi,   \
+            offsetof(oc_model, params.name), unit},
 #define FMU_SLOT_time offsetof(oc_model, time)
-#define FMU_SLOT_mu1 offsetof(oc_model, params.mu1)
-#define FMU_SLOT_mu2 offsetof(oc_model, params.mu2)
-#define FMU_SLOT_eps1 offsetof(oc_model, params.eps1)
-#define FMU_SLOT_eps2 offsetof(oc_model, params.eps2)
-#define FMU_SLOT_alpha offsetof(oc_model, params.alpha)
-#define FMU_SLOT_beta offsetof(oc_model, params.beta)
 #define FMU_SLOT_slidingRule offsetof(oc_model, params.rule)
 #define FMU_SLOT_u1 offsetof(oc_model, u[0])
 #define FMU_SLOT_u2 offsetof(oc_model, u[1])
@@ -32,7 +30,7 @@
 
 enum { FMU_ENUM_TYPES(FMU_ENUM_KIND) OC_ENUM_KINDS_END };
 
-static const fmu_var VARS[OC_VR_COUNT_PLUS_ONE] = {FMU_VARIABLES(FMU_VAR_ROW)};
+static const fmu_var VARS[OC_VR_COUNT_PLUS_ONE] = {OC_VARIABLES(FMU_VAR_ROW, LAW_ROW)};
 
 static fmu_status derivative(const oc_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
@@ -201,7 +199,8 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
 
 /* ---- serialized state: field by field, little-endian --------------------- */
 
-enum { N_PARAM_F64 = 6, N_STATE_F64 = 8 };
+#define LAW_COUNT(...) +1
+enum { N_PARAM_F64 = 0 OC_LAW_PARAMETERS(LAW_COUNT), N_STATE_F64 = 8 };
 /* parameters, rule, inputs, committed state, initial slip (kind, s1, s2),
  * commit flag */
 static size_t state_bytes(void) {
@@ -225,8 +224,9 @@ static const unsigned char *get_state(const unsigned char *p, oc_state *s) {
 
 void fmu_model_state_write(const oc_model *m, unsigned char *p) {
     const oc_params *q = &m->params;
-    const double pf[N_PARAM_F64] = {q->mu1, q->mu2, q->eps1, q->eps2, q->alpha, q->beta};
-    for (int i = 0; i < N_PARAM_F64; ++i) p = fmu_put_f64(p, pf[i]);
+#define PUT_LAW(name, ...) p = fmu_put_f64(p, q->name);
+    OC_LAW_PARAMETERS(PUT_LAW)
+#undef PUT_LAW
     p = fmu_put_u32(p, (uint32_t)q->rule);
     p = fmu_put_f64(p, m->u[0]);
     p = fmu_put_f64(p, m->u[1]);
@@ -241,9 +241,10 @@ void fmu_model_state_write(const oc_model *m, unsigned char *p) {
 fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *msg) {
     oc_model t;
     memset(&t, 0, sizeof t);
-    double pf[N_PARAM_F64];
     uint32_t rule, done, initial;
-    for (int i = 0; i < N_PARAM_F64; ++i) p = fmu_get_f64(p, &pf[i]);
+#define GET_LAW(name, ...) p = fmu_get_f64(p, &t.params.name);
+    OC_LAW_PARAMETERS(GET_LAW)
+#undef GET_LAW
     p = fmu_get_u32(p, &rule);
     p = fmu_get_f64(p, &t.u[0]);
     p = fmu_get_f64(p, &t.u[1]);
@@ -253,14 +254,16 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
     p = fmu_get_f64(p, &t.s_start[0]);
     p = fmu_get_f64(p, &t.s_start[1]);
     fmu_get_u32(p, &done);
-    t.params = (oc_params){pf[0], pf[1], pf[2], pf[3], pf[4], pf[5], (int)rule};
-    static const unsigned pvr[N_PARAM_F64] = {OC_VR_mu1, OC_VR_mu2, OC_VR_eps1, OC_VR_eps2,
-                                              OC_VR_alpha, OC_VR_beta};
-    for (int i = 0; i < N_PARAM_F64; ++i)
-        if (fmu_model_check_range(pvr[i], pf[i], "serialized state", msg) != FMU_OK)
-            return FMU_ERR;
-    if (rule < 1 || rule > 3)
-        return fmu_fail(msg, "serialized state: slidingRule = %u is not 1, 2 or 3", (unsigned)rule);
+    t.params.rule = (int)rule;
+#define CHECK_LAW(name, vr, ...)                                                          \
+    if (fmu_model_check_range(vr, t.params.name, "serialized state", msg) != FMU_OK) \
+        return FMU_ERR;
+    OC_LAW_PARAMETERS(CHECK_LAW)
+#undef CHECK_LAW
+    /* the rule's range is the table's (its enumeration's values) */
+    if (rule > (uint32_t)INT32_MAX ||
+        fmu_model_check_range(OC_VR_slidingRule, (double)rule, "serialized state", msg) != FMU_OK)
+        return FMU_ERR;
     if (initial != OC_INITIAL_AT_INPUTS && initial != OC_INITIAL_EXPLICIT)
         return fmu_fail(msg, "serialized state: initialSlip = %u is not 1 or 2", (unsigned)initial);
     t.initial_slip = (int)initial;
@@ -271,9 +274,10 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
      * it already has: keep their tensors instead of recomputing them. */
     /* Bit patterns, not ==: -0.0 and +0.0 give tensors that differ in the
      * sign of zero entries, and a restored state must continue bit for bit. */
-    const double mine[N_PARAM_F64] = {m->law.p.mu1, m->law.p.mu2, m->law.p.eps1, m->law.p.eps2,
-                                      m->law.p.alpha, m->law.p.beta};
-    const int same = memcmp(mine, pf, sizeof mine) == 0 && m->law.p.rule == t.params.rule;
+    int same = m->law.p.rule == t.params.rule;
+#define SAME_LAW(name, ...) same = same && memcmp(&m->law.p.name, &t.params.name, sizeof(double)) == 0;
+    OC_LAW_PARAMETERS(SAME_LAW)
+#undef SAME_LAW
     if (same) t.law = m->law;
     else if (oc_law_init(&t.law, &t.params) != 0)
         return fmu_fail(msg, "serialized state: the parameters give non-finite tensors");

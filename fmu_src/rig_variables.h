@@ -30,7 +30,11 @@
     "Carriage/block rig of Konyukhov and Schweizerhof's experiment: a block pushed along X1 " \
     "at constant velocity, laterally free but for a strip's friction; couple its u1, u2, N " \
     "to OrthotropicContact's inputs and T1, T2 back"
+/* Sources and headers of the binary besides the version's glue (CMake's
+ * fmu_add reads both lists from here). */
 #define FMU_SOURCES(S) S(rig_model.c) S(rig_core.c) S(fmu_instance.c)
+#define FMU_HEADERS(S) \
+    S(rig_core.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(rig_variables.h) S(fmu_token.h)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"2.05\" stepSize=\"0.0002\""
 #define FMU_PROVIDES_DERIVATIVES 0
 #define FMU_DOC_HTML                                                                           \

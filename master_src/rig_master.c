@@ -115,17 +115,17 @@ int rm_layout(char *buf, size_t n) {
 #define RM_STRUCT(S) RM_PUT("struct %s %zu\n", #S, sizeof(S));
 #define RM_FIELD_OF(S) RM_FIELD_##S
 #define RM_FIELD(S, type, name) RM_PUT("%s %zu %s\n", #name, offsetof(S, name), #type);
-#define RM_FIELD_rm_contact(type, name) RM_FIELD(rm_contact, type, name)
 #define RM_FIELD_rig_setup(type, name) RM_FIELD(rig_setup, type, name)
 #define RM_FIELD_rig_figures(type, name) RM_FIELD(rig_figures, type, name)
-    RM_STRUCT(rm_contact) RM_CONTACT_FIELDS(RM_FIELD_rm_contact)
+#define RM_LAW_LAYOUT(name, ...) RM_FIELD(rm_contact, double, name)
+    RM_STRUCT(rm_contact) OC_LAW_PARAMETERS(RM_LAW_LAYOUT) RM_FIELD(rm_contact, int, rule)
     RM_STRUCT(rig_setup) RIG_SETUP_FIELDS(RM_FIELD_rig_setup)
     RM_STRUCT(rig_figures) RIG_FIGURES_FIELDS(RM_FIELD_rig_figures)
 #undef RM_PUT
 #undef RM_STRUCT
 #undef RM_FIELD_OF
 #undef RM_FIELD
-#undef RM_FIELD_rm_contact
+#undef RM_LAW_LAYOUT
 #undef RM_FIELD_rig_setup
 #undef RM_FIELD_rig_figures
     return total;
@@ -252,13 +252,16 @@ typedef struct {
  * parameters.  1, or 0 with err. */
 static int lane_start(lane *L, int i, const rm_contact *p, const rig_setup *r, char *err, size_t n) {
     rm_master *m = L->F.m;
-    static const fmi2ValueReference vr[6] = {OC_VR_mu1, OC_VR_mu2, OC_VR_eps1,
-                                             OC_VR_eps2, OC_VR_alpha, OC_VR_beta};
+#define LAW_VR(name, vr, ...) vr,
+#define LAW_VALUE(name, ...) p[i].name,
+    static const fmi2ValueReference vr[] = {OC_LAW_PARAMETERS(LAW_VR)};
     static const fmi2ValueReference vr_rule = OC_VR_slidingRule;
-    const double v[6] = {p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2, p[i].alpha, p[i].beta};
+    const double v[] = {OC_LAW_PARAMETERS(LAW_VALUE)};
+#undef LAW_VR
+#undef LAW_VALUE
     const fmi2Integer rule = p[i].rule;
     fmi2Component c = L->F.c;
-    if ((L->used && m->reset(c) > fmi2Warning) || m->set_real(c, vr, 6, v) > fmi2Warning ||
+    if ((L->used && m->reset(c) > fmi2Warning) || m->set_real(c, vr, sizeof vr / sizeof vr[0], v) > fmi2Warning ||
         m->set_integer(c, &vr_rule, 1, &rule) > fmi2Warning ||
         m->setup(c, fmi2False, 0.0, 0.0, fmi2False, 0.0) > fmi2Warning ||
         m->enter_init(c) > fmi2Warning || m->exit_init(c) > fmi2Warning) {

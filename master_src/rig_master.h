@@ -13,19 +13,20 @@
 
 #include <stddef.h>
 
+#include "model_variables.h"
 #include "rig_core.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* A contact parameter set: mu [-], eps [N/m], angles [rad], rule 1
- * associated, 2 coupled, 3 eq20 (the contact's slidingRule). */
-#define RM_CONTACT_FIELDS(F)                                                                \
-    F(double, mu1) F(double, mu2) F(double, eps1) F(double, eps2) F(double, alpha)         \
-    F(double, beta) F(int, rule)
+/* A contact parameter set: the law's parameters as the contact's table
+ * names them (its L rows, model_variables.h; mu [-], eps [N/m], angles
+ * [rad]) and the rule, the value of its slidingRule. */
+#define RM_LAW_FIELD(name, ...) double name;
 typedef struct {
-    RM_CONTACT_FIELDS(RIG_DECLARE_FIELD)
+    OC_LAW_PARAMETERS(RM_LAW_FIELD)
+    int rule;
 } rm_contact;
 
 /* The structs a caller passes, one per line: "struct <name> <size>", then

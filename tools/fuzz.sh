@@ -23,7 +23,8 @@ if [ -z "${FMI_HEADERS_DIR:-}" ]; then
 fi
 CC=${CC:-clang} cmake -S "$root" -B "$build" -DOC_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DFMI_HEADERS_DIR="$FMI_HEADERS_DIR" >/dev/null
-targets=${*:-"fuzz_OrthotropicContact_fmi2 fuzz_OrthotropicContact_fmi3 fuzz_CarriageBlock_fmi2 fuzz_CarriageBlock_fmi3"}
+# every model's targets, as CMake's list of models (OC_MODELS) makes them
+targets=${*:-$(cat "$build/fuzz_targets.txt")}
 # shellcheck disable=SC2086
 cmake --build "$build" -j2 --target $targets
 mkdir -p "$build/artifacts"

@@ -81,48 +81,48 @@ int peer_set_real(peer *P, unsigned vr, double v) {
     if (!isfinite(v)) return -1;
     const int params = P->phase == PEER_INSTANTIATED || P->phase == PEER_INIT;
     switch (vr) {
-    case PEER_VR_mu1: if (!params) return -1; P->mu1 = v; return 0;
-    case PEER_VR_mu2: if (!params) return -1; P->mu2 = v; return 0;
-    case PEER_VR_eps1: if (!params) return -1; P->eps1 = v; return 0;
-    case PEER_VR_eps2: if (!params) return -1; P->eps2 = v; return 0;
-    case PEER_VR_alpha: if (!params) return -1; P->alpha = v; return 0;
-    case PEER_VR_beta: if (!params) return -1; P->beta = v; return 0;
-    case PEER_VR_u1: P->u[0] = v; return 0;
-    case PEER_VR_u2: P->u[1] = v; return 0;
-    case PEER_VR_N: P->N = v; return 0;
+    case OC_VR_mu1: if (!params) return -1; P->mu1 = v; return 0;
+    case OC_VR_mu2: if (!params) return -1; P->mu2 = v; return 0;
+    case OC_VR_eps1: if (!params) return -1; P->eps1 = v; return 0;
+    case OC_VR_eps2: if (!params) return -1; P->eps2 = v; return 0;
+    case OC_VR_alpha: if (!params) return -1; P->alpha = v; return 0;
+    case OC_VR_beta: if (!params) return -1; P->beta = v; return 0;
+    case OC_VR_u1: P->u[0] = v; return 0;
+    case OC_VR_u2: P->u[1] = v; return 0;
+    case OC_VR_N: P->N = v; return 0;
     default: return -1;
     }
 }
 
 int peer_set_int(peer *P, unsigned vr, int v) {
-    if (vr != PEER_VR_rule || !(P->phase == PEER_INSTANTIATED || P->phase == PEER_INIT)) return -1;
+    if (vr != OC_VR_slidingRule || !(P->phase == PEER_INSTANTIATED || P->phase == PEER_INIT)) return -1;
     P->rule = v;
     return 0;
 }
 
 int peer_get_real(const peer *P, unsigned vr, double *v) {
     switch (vr) {
-    case PEER_VR_mu1: *v = P->mu1; return 0;
-    case PEER_VR_mu2: *v = P->mu2; return 0;
-    case PEER_VR_eps1: *v = P->eps1; return 0;
-    case PEER_VR_eps2: *v = P->eps2; return 0;
-    case PEER_VR_alpha: *v = P->alpha; return 0;
-    case PEER_VR_beta: *v = P->beta; return 0;
-    case PEER_VR_u1: *v = P->u[0]; return 0;
-    case PEER_VR_u2: *v = P->u[1]; return 0;
-    case PEER_VR_N: *v = P->N; return 0;
-    case PEER_VR_T1: *v = P->T[0]; return 0;
-    case PEER_VR_T2: *v = P->T[1]; return 0;
-    case PEER_VR_s1: *v = P->s[0]; return 0;
-    case PEER_VR_s2: *v = P->s[1]; return 0;
-    case PEER_VR_energy: *v = P->energy; return 0;
+    case OC_VR_mu1: *v = P->mu1; return 0;
+    case OC_VR_mu2: *v = P->mu2; return 0;
+    case OC_VR_eps1: *v = P->eps1; return 0;
+    case OC_VR_eps2: *v = P->eps2; return 0;
+    case OC_VR_alpha: *v = P->alpha; return 0;
+    case OC_VR_beta: *v = P->beta; return 0;
+    case OC_VR_u1: *v = P->u[0]; return 0;
+    case OC_VR_u2: *v = P->u[1]; return 0;
+    case OC_VR_N: *v = P->N; return 0;
+    case OC_VR_T1: *v = P->T[0]; return 0;
+    case OC_VR_T2: *v = P->T[1]; return 0;
+    case OC_VR_s1: *v = P->s[0]; return 0;
+    case OC_VR_s2: *v = P->s[1]; return 0;
+    case OC_VR_dissipatedEnergy: *v = P->energy; return 0;
     default: return -1;
     }
 }
 
 int peer_get_int(const peer *P, unsigned vr, int *v) {
-    if (vr == PEER_VR_state) *v = P->contact;
-    else if (vr == PEER_VR_rule) *v = P->rule;
+    if (vr == OC_VR_contactState) *v = P->contact;
+    else if (vr == OC_VR_slidingRule) *v = P->rule;
     else return -1;
     return 0;
 }

@@ -14,16 +14,13 @@
  *   s = u - B^-1 q; dissipated energy += dgamma q . G q (eq. 20: q . ds, >= 0).
  * No care for extreme scales: it is not shipped.
  *
- * Value references are those of the shipped FMU's modelDescription.xml.
+ * Value references are those of the shipped FMU's table (OC_VR_*).
  */
 #ifndef PEER_H
 #define PEER_H
 
-enum {
-    PEER_VR_mu1 = 1, PEER_VR_mu2, PEER_VR_eps1, PEER_VR_eps2, PEER_VR_alpha, PEER_VR_beta,
-    PEER_VR_rule, PEER_VR_u1, PEER_VR_u2, PEER_VR_N, PEER_VR_T1, PEER_VR_T2, PEER_VR_s1,
-    PEER_VR_s2, PEER_VR_state, PEER_VR_energy
-};
+/* The value references, and nothing else, from the shipped FMU's table. */
+#include "model_variables.h"
 
 enum { PEER_INSTANTIATED, PEER_INIT, PEER_STEP, PEER_TERMINATED };
 
