@@ -33,7 +33,15 @@ SLOW = {
     "identification/test_export.py": {   # identifies the bundled recordings twice
         "test_force_logs_changed_after_identify_are_refused_by_export_and_uq_naming_them",
     },
-    "cli/test_output.py": {"test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs"},
+    "cli/test_output.py": {"test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs",
+                           "test_reproduce_into_the_same_folder_leaves_no_scenario_of_the_earlier_run"},
+    "test_textfiles.py": {   # every file format and case through identify, run and uq
+        "test_reduced_data_every_file_every_case",
+        "test_raw_recordings_every_file_altered_read_as_the_original",
+        "test_raw_recordings_with_decimal_commas_in_a_comma_file_are_one_line",
+        "test_a_scenario_file_every_case",
+        "test_identified_json_with_a_bom_or_crlf_is_read",
+    },
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
     "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results"},
