@@ -18,7 +18,7 @@ def test_an_object_reads_back_as_written(tmp_path):
 
 
 @pytest.mark.parametrize("content,says", [
-    (None, "cannot read"),
+    (None, "not found"),
     ("{'mu1': 1}", "expected JSON written by `orthocontact identify`"),
     ("[1, 2]", "expected a JSON object written by `orthocontact identify`"),
     ("", "expected JSON"),

@@ -11,6 +11,7 @@ from pathlib import Path
 from .. import closed_forms as cf
 from ..errors import InputError
 from ..fmu.params import RULES, ContactParams
+from ..textfiles import read_toml
 from .geometry import AxisGeometry
 from .keys import ANGLE_DEG, POSITIVE, REQUIRED, choice, read_table, rig_spec
 
@@ -85,10 +86,8 @@ RIG_TOML = {
 
 def load_rig_toml(path: Path) -> RigSetup:
     """Reads and validates rig.toml (experiment.keys); raises InputError."""
-    try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError(f"{path}: expected a rig.toml in the data folder (mass_kg, f_int_N, ...)") from None
+    try:   # a BOM, CRLF, a decimal comma, a missing file: textfiles
+        raw = read_toml(path, "a rig.toml in the data folder (mass_kg, f_int_N, ...)")
     except tomllib.TOMLDecodeError as e:
         raise InputError(f"{path}: expected valid TOML ({e})") from None
     values, warnings = read_table(path, "", raw, RIG_TOML, InputError)

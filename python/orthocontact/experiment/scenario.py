@@ -13,8 +13,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..closed_forms.paper import G_STANDARD, isotropic_eps_ratio
+from ..errors import InputError
 from ..fmu.params import RULES, ContactParams
 from ..rig.harness import Rig
+from ..textfiles import read_toml
 from .geometry import AxisGeometry
 from .keys import (ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, file_name, list_of,
                    number, read_table, rig_spec, text)
@@ -130,11 +132,9 @@ def load(path) -> Scenario:
     """Reads and validates a scenario file; raises ScenarioError."""
     path = Path(path)
     try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # -sig: a byte-order mark, as Notepad writes
-    except FileNotFoundError:
-        raise ScenarioError(path, "(file)", "an existing scenario file") from None
-    except (OSError, UnicodeDecodeError) as e:
-        raise ScenarioError(path, "(file)", f"a readable UTF-8 file ({e})") from None
+        raw = read_toml(path, "a scenario file (TOML)")   # a BOM, CRLF, a decimal comma: textfiles
+    except InputError as e:
+        raise ScenarioError(str(e)) from None
     except tomllib.TOMLDecodeError as e:
         raise ScenarioError(path, "(syntax)", f"valid TOML ({e})") from None
 

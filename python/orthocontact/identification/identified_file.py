@@ -11,6 +11,7 @@ from pathlib import Path
 
 from .. import plausibility
 from ..errors import InputError
+from ..textfiles import read_text
 from ..output.manifest import written_by
 from .measurements import changed_files, data_digest
 
@@ -21,10 +22,8 @@ def read_identified(path, force: bool = False, override: str = "") -> dict:
     that cannot be right is refused (`override`: what lets it through, named
     in the message) unless `force`."""
     path = Path(path)
-    try:
-        d = json.loads(path.read_text())
-    except OSError as e:
-        raise InputError(f"{path}: cannot read ({e.strerror})") from None
+    try:   # a BOM, CRLF, an unreadable file: textfiles
+        d = json.loads(read_text(path, "identified.json written by `orthocontact identify`"))
     except ValueError as e:
         raise InputError(f"{path}: expected JSON written by `orthocontact identify` ({e})") from None
     if not isinstance(d, dict):

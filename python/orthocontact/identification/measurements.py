@@ -14,7 +14,6 @@ A bad file is an InputError naming the file, the line and the column.
 Units: N, m, deg."""
 from __future__ import annotations
 
-import csv
 import hashlib
 import math
 import os
@@ -27,6 +26,7 @@ import numpy as np
 from .. import plausibility
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup, load_rig_toml
+from ..textfiles import read_rows
 from .recordings import parse_number
 
 if sys.version_info >= (3, 11):
@@ -95,14 +95,8 @@ def _load_csv(path: Path, columns: tuple[str, ...], checks, min_rows: int, why: 
     optional = optional or {}
     if not path.exists():
         return None
-    try:
-        # utf-8-sig: Excel's "CSV UTF-8" starts with a byte-order mark.
-        with open(path, newline="", encoding="utf-8-sig") as fh:
-            rows = list(csv.reader(fh))
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"{path}: expected a readable UTF-8 CSV file ({e})") from None
-    rows = [(i + 1, r) for i, r in enumerate(rows) if r and any(c.strip() for c in r)
-            and not r[0].lstrip().startswith("#")]
+    # One CSV reader for every format: BOM, CRLF, semicolons, decimal commas.
+    rows = read_rows(path, f"a CSV file with columns {','.join(columns)}")
     if not rows:
         raise InputError(f"{path}: expected a header line with columns {','.join(columns)}")
     line0, header = rows[0]

@@ -13,10 +13,8 @@ A bad file is an InputError naming the file, the line and the column.
 Units: s, m, N, deg, m/s."""
 from __future__ import annotations
 
-import csv
 import math
 import re
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -25,11 +23,7 @@ import numpy as np
 from .. import plausibility
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup, load_rig_toml
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
+from ..textfiles import read_rows, read_toml
 
 KINDS = ("carriage", "slide", "ramp")
 RUN_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
@@ -63,16 +57,10 @@ def is_recordings(folder) -> bool:
 
 
 def _rows(path: Path, what: str):
-    try:
-        with open(path, newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
-    except FileNotFoundError:
-        raise InputError(f"{path}: expected {what}") from None
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"{path}: expected a readable UTF-8 CSV file ({e})") from None
-    rows = [(i + 1, [c.strip() for c in r]) for i, r in enumerate(rows)
-            if r and any(c.strip() for c in r) and not r[0].lstrip().startswith("#")]
-    return rows
+    # One CSV reader for every format: BOM, CRLF, semicolons, decimal commas.
+    if not path.exists():
+        raise InputError(f"{path}: expected {what}")
+    return read_rows(path, what)
 
 
 def _header(path: Path, rows, columns) -> list:
@@ -126,8 +114,8 @@ def load_recordings(folder) -> Recordings:
     folder = Path(folder)
     rig = load_rig_toml(folder / "rig.toml")
     try:
-        f_int_given = "f_int_N" in tomllib.loads((folder / "rig.toml").read_text(encoding="utf-8"))
-    except (OSError, ValueError):  # pragma: no cover - load_rig_toml read it already
+        f_int_given = "f_int_N" in read_toml(folder / "rig.toml", "rig.toml")
+    except (InputError, ValueError):  # pragma: no cover - load_rig_toml read it already
         f_int_given = False
     path = folder / "runs.csv"
     rows = _rows(path, "runs.csv")
