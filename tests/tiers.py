@@ -42,13 +42,6 @@ SLOW = {
         "test_a_scenario_file_every_case",
         "test_identified_json_with_a_bom_or_crlf_is_read",
     },
-    "test_textfiles.py": {   # every file format and case through identify, run and uq
-        "test_reduced_data_every_file_every_case",
-        "test_raw_recordings_every_file_altered_read_as_the_original",
-        "test_raw_recordings_with_decimal_commas_in_a_comma_file_are_one_line",
-        "test_a_scenario_file_every_case",
-        "test_identified_json_with_a_bom_or_crlf_is_read",
-    },
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
     "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results"},

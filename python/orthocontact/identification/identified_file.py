@@ -5,14 +5,14 @@ still the bytes the identification read (check_data)."""
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 from .. import plausibility
 from ..errors import InputError
-from ..textfiles import read_text
 from ..output.manifest import written_by
+from ..textfiles import read_text
 from .measurements import changed_files, data_digest
 
 
