@@ -54,19 +54,19 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     if (!functions) return NULL;
     const char *name = instanceName ? instanceName : "";
     const char *why = NULL;
-    if (!instanceName || !*instanceName) why = "fmi2Instantiate: instanceName is empty";
+    if (!instanceName || !*instanceName) why = "instanceName is empty";
     else if (fmuType != fmi2CoSimulation)
-        why = "fmi2Instantiate: this FMU supports Co-Simulation only";
+        why = "this FMU supports Co-Simulation only";
     else if (!fmuGUID || strcmp(fmuGUID, FMU_MODEL_INFO.token) != 0)
-        why = "fmi2Instantiate: GUID does not match this FMU's modelDescription.xml";
+        why = "GUID does not match this FMU's modelDescription.xml";
     /* Memory from the importer must go back to the importer: one callback
      * without the other cannot be honoured. */
     else if ((functions->allocateMemory == NULL) != (functions->freeMemory == NULL))
-        why = "fmi2Instantiate: allocateMemory and freeMemory must be given together";
+        why = "allocateMemory and freeMemory must be given together";
     if (why) {
         if (functions->logger)
             functions->logger(functions->componentEnvironment, name, fmi2Error, "logStatusError",
-                              why);
+                              "%s: %s", __func__, why);
         return NULL;
     }
     void *(*alloc)(size_t, size_t) = functions->allocateMemory ? functions->allocateMemory : calloc2;
@@ -78,12 +78,12 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     if (!I) {
         if (functions->logger)
             functions->logger(functions->componentEnvironment, name, fmi2Error, "logStatusError",
-                              "fmi2Instantiate: out of memory");
+                              "%s: out of memory", __func__);
         release(cb);
         return NULL;
     }
-    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi2Instantiate");
-    if (fmu_load_start_values(I, "fmi2Instantiate", fmuResourceLocation, 1) != 0) {
+    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, __func__);
+    if (fmu_load_start_values(I, __func__, fmuResourceLocation, 1) != 0) {
         fmu_instance_free(I);
         release(cb);
         return NULL;
@@ -94,7 +94,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
 void fmi2FreeInstance(fmi2Component c) {
     fmu_instance *I = INST(c);
     if (!I) return;
-    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi2FreeInstance");
+    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, __func__);
     void (*release)(void *) = I->release;
     void *cb = I->glue;
     fmu_instance_free(I);
@@ -104,8 +104,8 @@ void fmi2FreeInstance(fmi2Component c) {
 fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
                                const fmi2String categories[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2SetDebugLogging", FMU_ALIVE)) return fmi2Error;
-    return fmu_set_debug_logging(I, "fmi2SetDebugLogging", loggingOn, nCategories, categories)
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
+    return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories)
                ? fmi2Error : fmi2OK;
 }
 
@@ -117,41 +117,41 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
     fmu_instance *I = INST(c);
     (void)toleranceDefined;
     (void)tolerance; /* the law is solved to machine precision */
-    if (!fmu_allowed(I, "fmi2SetupExperiment", FMU_INSTANTIATED)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_INSTANTIATED)) return fmi2Error;
     if (!isfinite(startTime) || (stopTimeDefined && !(stopTime >= startTime))) {
-        FMU_ERROR(I, "fmi2SetupExperiment: startTime = %g, stopTime = %g are not a valid interval",
+        FMU_ERROR(I, "%s: startTime = %g, stopTime = %g are not a valid interval", __func__,
                   startTime, stopTime);
         return fmi2Error;
     }
     fmu_msg msg;
     return status2(
-        fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, "fmi2SetupExperiment"));
+        fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, __func__));
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2EnterInitializationMode", FMU_INSTANTIATED)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_INSTANTIATED)) return fmi2Error;
     I->phase = FMU_INIT;
     return fmi2OK;
 }
 
 fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2ExitInitializationMode", FMU_INIT)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_INIT)) return fmi2Error;
     fmu_msg msg;
-    return status2(fmu_result(I, fmu_exit_init(I, &msg), &msg, "fmi2ExitInitializationMode"));
+    return status2(fmu_result(I, fmu_exit_init(I, &msg), &msg, __func__));
 }
 
 fmi2Status fmi2Terminate(fmi2Component c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2Terminate", FMU_INIT | FMU_STEP)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_INIT | FMU_STEP)) return fmi2Error;
     I->phase = FMU_TERMINATED;
     return fmi2OK;
 }
 
 fmi2Status fmi2Reset(fmi2Component c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2Reset", FMU_ALIVE)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
     fmu_reset(I);
     return fmi2OK;
 }
@@ -161,23 +161,23 @@ fmi2Status fmi2Reset(fmi2Component c) {
 fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        fmi2Real value[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2GetReal", FMU_READABLE) || !arrays_ok(I, "fmi2GetReal", nvr, vr, value))
+    if (!fmu_allowed(I, __func__, FMU_READABLE) || !arrays_ok(I, __func__, nvr, vr, value))
         return fmi2Error;
     fmu_msg msg;
     return status2(fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, value, &msg), &msg,
-                              "fmi2GetReal"));
+                              __func__));
 }
 
 fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Integer value[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2GetInteger", FMU_READABLE) ||
-        !arrays_ok(I, "fmi2GetInteger", nvr, vr, value))
+    if (!fmu_allowed(I, __func__, FMU_READABLE) ||
+        !arrays_ok(I, __func__, nvr, vr, value))
         return fmi2Error;
     fmu_msg msg;
     return status2(fmu_result(I, fmu_model_get_int(I->model, vr, nvr, value, sizeof(fmi2Integer),
                                                    FMU_INT32 | FMU_ENUM, &msg),
-                              &msg, "fmi2GetInteger"));
+                              &msg, __func__));
 }
 
 static fmi2Status no_such_variables(fmu_instance *I, const char *fn, int phases, size_t nvr,
@@ -192,13 +192,13 @@ static fmi2Status no_such_variables(fmu_instance *I, const char *fn, int phases,
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Boolean value[]) {
     (void)value;
-    return no_such_variables(INST(c), "fmi2GetBoolean", FMU_READABLE, nvr, vr);
+    return no_such_variables(INST(c), __func__, FMU_READABLE, nvr, vr);
 }
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                          fmi2String value[]) {
     (void)value;
-    return no_such_variables(INST(c), "fmi2GetString", FMU_READABLE, nvr, vr);
+    return no_such_variables(INST(c), __func__, FMU_READABLE, nvr, vr);
 }
 
 #define SETTABLE (FMU_INSTANTIATED | FMU_INIT | FMU_STEP)
@@ -206,36 +206,36 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        const fmi2Real value[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2SetReal", SETTABLE) || !arrays_ok(I, "fmi2SetReal", nvr, vr, value))
+    if (!fmu_allowed(I, __func__, SETTABLE) || !arrays_ok(I, __func__, nvr, vr, value))
         return fmi2Error;
     fmu_msg msg;
     return status2(fmu_result(
         I, fmu_model_set_float64(I->model, vr, nvr, value, fmu_settable(I), &msg), &msg,
-        "fmi2SetReal"));
+        __func__));
 }
 
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer value[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2SetInteger", SETTABLE) ||
-        !arrays_ok(I, "fmi2SetInteger", nvr, vr, value))
+    if (!fmu_allowed(I, __func__, SETTABLE) ||
+        !arrays_ok(I, __func__, nvr, vr, value))
         return fmi2Error;
     fmu_msg msg;
     return status2(fmu_result(I, fmu_model_set_int(I->model, vr, nvr, value, sizeof(fmi2Integer),
                                                    FMU_INT32 | FMU_ENUM, fmu_settable(I), &msg),
-                              &msg, "fmi2SetInteger"));
+                              &msg, __func__));
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Boolean value[]) {
     (void)value;
-    return no_such_variables(INST(c), "fmi2SetBoolean", SETTABLE, nvr, vr);
+    return no_such_variables(INST(c), __func__, SETTABLE, nvr, vr);
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                          const fmi2String value[]) {
     (void)value;
-    return no_such_variables(INST(c), "fmi2SetString", SETTABLE, nvr, vr);
+    return no_such_variables(INST(c), __func__, SETTABLE, nvr, vr);
 }
 
 /* ---- FMU state ------------------------------------------------------------ */
@@ -244,42 +244,42 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2GetFMUstate", FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_get(I, "fmi2GetFMUstate", FMUstate));
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
+    return status2(fmu_state_get(I, __func__, FMUstate));
 }
 
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2SetFMUstate", FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_set(I, "fmi2SetFMUstate", FMUstate));
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
+    return status2(fmu_state_set(I, __func__, FMUstate));
 }
 
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2FreeFMUstate", FMU_ALIVE)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
     return status2(fmu_state_free(I, FMUstate));
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t *size) {
     fmu_instance *I = INST(c);
     (void)FMUstate;
-    if (!fmu_allowed(I, "fmi2SerializedFMUstateSize", FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_size_of(I, "fmi2SerializedFMUstateSize", size));
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
+    return status2(fmu_state_size_of(I, __func__, size));
 }
 
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byte serializedState[],
                                  size_t size) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2SerializeFMUstate", FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_serialize(I, "fmi2SerializeFMUstate", FMUstate,
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
+    return status2(fmu_state_serialize(I, __func__, FMUstate,
                                        (unsigned char *)serializedState, size));
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2DeSerializeFMUstate", FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_deserialize(I, "fmi2DeSerializeFMUstate",
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
+    return status2(fmu_state_deserialize(I, __func__,
                                          (const unsigned char *)serializedState, size, FMUstate));
 }
 
@@ -288,7 +288,7 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
                                         size_t nKnown, const fmi2Real dvKnown[],
                                         fmi2Real dvUnknown[]) {
     fmu_instance *I = INST(c);
-    const char *fn = "fmi2GetDirectionalDerivative";
+    const char *fn = __func__;
     if (!fmu_allowed(I, fn, FMU_READABLE) || !arrays_ok(I, fn, nUnknown, vUnknown_ref, dvUnknown) ||
         !arrays_ok(I, fn, nKnown, vKnown_ref, dvKnown))
         return fmi2Error;
@@ -305,9 +305,9 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference
                                        const fmi2Integer order[], const fmi2Real value[]) {
     fmu_instance *I = INST(c);
     (void)vr; (void)order; (void)value;
-    if (!fmu_allowed(I, "fmi2SetRealInputDerivatives", FMU_INIT | FMU_STEP)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_INIT | FMU_STEP)) return fmi2Error;
     if (nvr == 0) return fmi2OK;
-    FMU_ERROR(I, "fmi2SetRealInputDerivatives: canInterpolateInputs is false");
+    FMU_ERROR(I, "%s: canInterpolateInputs is false", __func__);
     return fmi2Error;
 }
 
@@ -315,9 +315,9 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
                                         const fmi2Integer order[], fmi2Real value[]) {
     fmu_instance *I = INST(c);
     (void)vr; (void)order; (void)value;
-    if (!fmu_allowed(I, "fmi2GetRealOutputDerivatives", FMU_READABLE)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi2Error;
     if (nvr == 0) return fmi2OK;
-    FMU_ERROR(I, "fmi2GetRealOutputDerivatives: maxOutputDerivativeOrder is 0");
+    FMU_ERROR(I, "%s: maxOutputDerivativeOrder is 0", __func__);
     return fmi2Error;
 }
 
@@ -325,65 +325,65 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
                       fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
     fmu_instance *I = INST(c);
     (void)noSetFMUStatePriorToCurrentPoint;
-    if (!fmu_allowed(I, "fmi2DoStep", FMU_STEP)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_STEP)) return fmi2Error;
     fmu_msg msg;
     return status2(fmu_result(
         I, fmu_do_step(I, currentCommunicationPoint, communicationStepSize, &msg), &msg,
-        "fmi2DoStep"));
+        __func__));
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2CancelStep", FMU_STEP)) return fmi2Error;
-    FMU_ERROR(I, "fmi2CancelStep: doStep never runs asynchronously here");
+    if (!fmu_allowed(I, __func__, FMU_STEP)) return fmi2Error;
+    FMU_ERROR(I, "%s: doStep never runs asynchronously here", __func__);
     return fmi2Error;
 }
 
 /* A status kind that is not provided is fmi2Discard, not an error (FMI 2.0, 4.2.3). */
-static fmi2Status discard(fmu_instance *I, const char *what) {
-    fmu_log(I, FMU_S_DISCARD, FMU_LOG_WARNING, "%s", what);
+static fmi2Status discard(fmu_instance *I, const char *fn, const char *what) {
+    fmu_log(I, FMU_S_DISCARD, FMU_LOG_WARNING, "%s: %s", fn, what);
     return fmi2Discard;
 }
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value) {
     fmu_instance *I = INST(c);
     (void)s; (void)value;
-    if (!fmu_allowed(I, "fmi2GetStatus", FMU_STEP | FMU_TERMINATED)) return fmi2Error;
-    return discard(I, "fmi2GetStatus: no status kind of type fmi2Status is provided (doStep is synchronous)");
+    if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
+    return discard(I, __func__, "no status kind of type fmi2Status is provided (doStep is synchronous)");
 }
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2GetRealStatus", FMU_STEP | FMU_TERMINATED)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
     if (s == fmi2LastSuccessfulTime && value) {
         *value = *fmu_model_time(I->model);
         return fmi2OK;
     }
-    return discard(I, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is provided");
+    return discard(I, __func__, "only fmi2LastSuccessfulTime is provided");
 }
 
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value) {
     fmu_instance *I = INST(c);
     (void)s; (void)value;
-    if (!fmu_allowed(I, "fmi2GetIntegerStatus", FMU_STEP | FMU_TERMINATED)) return fmi2Error;
-    return discard(I, "fmi2GetIntegerStatus: no Integer status is provided");
+    if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
+    return discard(I, __func__, "no Integer status is provided");
 }
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi2GetBooleanStatus", FMU_STEP | FMU_TERMINATED)) return fmi2Error;
+    if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
     if (s == fmi2Terminated && value) {
         *value = fmi2False; /* the FMU never asks to end the simulation */
         return fmi2OK;
     }
-    return discard(I, "fmi2GetBooleanStatus: only fmi2Terminated is provided");
+    return discard(I, __func__, "only fmi2Terminated is provided");
 }
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value) {
     fmu_instance *I = INST(c);
     (void)s; (void)value;
-    if (!fmu_allowed(I, "fmi2GetStringStatus", FMU_STEP | FMU_TERMINATED)) return fmi2Error;
-    return discard(I, "fmi2GetStringStatus: no String status is provided");
+    if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
+    return discard(I, __func__, "no String status is provided");
 }
 
 /* ---- Model Exchange: not supported, exported so every symbol resolves ---- */
@@ -393,40 +393,40 @@ static fmi2Status not_me(fmi2Component c, const char *fn) {
     return fmi2Error;
 }
 
-fmi2Status fmi2EnterEventMode(fmi2Component c) { return not_me(c, "fmi2EnterEventMode"); }
+fmi2Status fmi2EnterEventMode(fmi2Component c) { return not_me(c, __func__); }
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *e) {
     (void)e;
-    return not_me(c, "fmi2NewDiscreteStates");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) {
-    return not_me(c, "fmi2EnterContinuousTimeMode");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet, fmi2Boolean *enter,
                                        fmi2Boolean *term) {
     (void)noSet; (void)enter; (void)term;
-    return not_me(c, "fmi2CompletedIntegratorStep");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time) {
     (void)time;
-    return not_me(c, "fmi2SetTime");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx) {
     (void)x; (void)nx;
-    return not_me(c, "fmi2SetContinuousStates");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t nx) {
     (void)dx; (void)nx;
-    return not_me(c, "fmi2GetDerivatives");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real ei[], size_t ni) {
     (void)ei; (void)ni;
-    return not_me(c, "fmi2GetEventIndicators");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx) {
     (void)x; (void)nx;
-    return not_me(c, "fmi2GetContinuousStates");
+    return not_me(c, __func__);
 }
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real n[], size_t nx) {
     (void)n; (void)nx;
-    return not_me(c, "fmi2GetNominalsOfContinuousStates");
+    return not_me(c, __func__);
 }

@@ -7,6 +7,7 @@
  */
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -56,6 +57,15 @@ static int arrays_refused(fmu_instance *I, const char *fn, size_t nvr, const voi
 
 const char *fmi3GetVersion(void) { return fmi3Version; }
 
+/* An instantiation refused before an instance exists: "<function>: <why>"
+ * to the importer's logger, if it gave one. */
+static void refuse3(fmi3InstanceEnvironment env, fmi3LogMessageCallback log, const char *fn,
+                    const char *why) {
+    char text[256];
+    snprintf(text, sizeof text, "%s: %s", fn, why);
+    if (log) log(env, fmi3Error, "logStatusError", text);
+}
+
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken,
                                          fmi3String resourcePath, fmi3Boolean visible,
                                          fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
@@ -68,20 +78,18 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     (void)visible; (void)earlyReturnAllowed;
     (void)requiredIntermediateVariables; (void)intermediateUpdate;
     const char *why = NULL;
-    if (!instanceName || !*instanceName) why = "fmi3InstantiateCoSimulation: instanceName is empty";
+    if (!instanceName || !*instanceName) why = "instanceName is empty";
     else if (!instantiationToken || strcmp(instantiationToken, FMU_MODEL_INFO.token) != 0)
-        why = "fmi3InstantiateCoSimulation: instantiationToken does not match this FMU's "
-              "modelDescription.xml";
+        why = "instantiationToken does not match this FMU's modelDescription.xml";
     else if (eventModeUsed)
-        why = "fmi3InstantiateCoSimulation: this FMU has no event mode (hasEventMode = false)";
+        why = "this FMU has no event mode (hasEventMode = false)";
     /* A request for intermediate variables is allowed and answered by
      * providing none (as the Reference-FMUs do): intermediateUpdate is never
      * called, since doStep never returns early or stops between points. */
     else if (nRequiredIntermediateVariables > 0 && !requiredIntermediateVariables)
-        why = "fmi3InstantiateCoSimulation: requiredIntermediateVariables is NULL with "
-              "nRequiredIntermediateVariables > 0";
+        why = "requiredIntermediateVariables is NULL with nRequiredIntermediateVariables > 0";
     if (why) {
-        if (logMessage) logMessage(instanceEnvironment, fmi3Error, "logStatusError", why);
+        refuse3(instanceEnvironment, logMessage, __func__, why);
         return NULL;
     }
     glue3 *g = calloc(1, sizeof *g);
@@ -90,14 +98,12 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
     g->log = logMessage;
     fmu_instance *I = fmu_instance_new(instanceName, calloc3, free, log_fmi3, g, loggingOn);
     if (!I) {
-        if (logMessage)
-            logMessage(instanceEnvironment, fmi3Error, "logStatusError",
-                       "fmi3InstantiateCoSimulation: out of memory");
+        refuse3(instanceEnvironment, logMessage, __func__, "out of memory");
         free(g);
         return NULL;
     }
-    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi3InstantiateCoSimulation");
-    if (fmu_load_start_values(I, "fmi3InstantiateCoSimulation", resourcePath, 0) != 0) {
+    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, __func__);
+    if (fmu_load_start_values(I, __func__, resourcePath, 0) != 0) {
         fmu_instance_free(I);
         free(g);
         return NULL;
@@ -107,7 +113,7 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String ins
 
 static fmi3Instance refuse_interface(fmi3InstanceEnvironment env, fmi3LogMessageCallback log,
                                      const char *fn) {
-    if (log) log(env, fmi3Error, "logStatusError", fn);
+    refuse3(env, log, fn, "this is a Co-Simulation FMU only");
     return NULL;
 }
 
@@ -117,8 +123,7 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String in
                                           fmi3InstanceEnvironment instanceEnvironment,
                                           fmi3LogMessageCallback logMessage) {
     (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
-    return refuse_interface(instanceEnvironment, logMessage,
-                            "fmi3InstantiateModelExchange: this is a Co-Simulation FMU only");
+    return refuse_interface(instanceEnvironment, logMessage, __func__);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(
@@ -128,14 +133,13 @@ fmi3Instance fmi3InstantiateScheduledExecution(
     fmi3LockPreemptionCallback lockPreemption, fmi3UnlockPreemptionCallback unlockPreemption) {
     (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
     (void)clockUpdate; (void)lockPreemption; (void)unlockPreemption;
-    return refuse_interface(instanceEnvironment, logMessage,
-                            "fmi3InstantiateScheduledExecution: this is a Co-Simulation FMU only");
+    return refuse_interface(instanceEnvironment, logMessage, __func__);
 }
 
 void fmi3FreeInstance(fmi3Instance c) {
     fmu_instance *I = INST(c);
     if (!I) return;
-    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "fmi3FreeInstance");
+    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, __func__);
     void *g = I->glue;
     fmu_instance_free(I);
     free(g);
@@ -144,8 +148,8 @@ void fmi3FreeInstance(fmi3Instance c) {
 fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3SetDebugLogging", FMU_ALIVE)) return fmi3Error;
-    return fmu_set_debug_logging(I, "fmi3SetDebugLogging", loggingOn, nCategories, categories)
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories)
                ? fmi3Error : fmi3OK;
 }
 
@@ -157,14 +161,14 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
     fmu_instance *I = INST(c);
     (void)toleranceDefined;
     (void)tolerance; /* the law is solved to machine precision */
-    if (!fmu_allowed(I, "fmi3EnterInitializationMode", FMU_INSTANTIATED)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_INSTANTIATED)) return fmi3Error;
     if (!isfinite(startTime) || (stopTimeDefined && !(stopTime >= startTime))) {
-        FMU_ERROR(I, "fmi3EnterInitializationMode: startTime = %g, stopTime = %g are not a valid "
-                     "interval", startTime, stopTime);
+        FMU_ERROR(I, "%s: startTime = %g, stopTime = %g are not a valid interval", __func__,
+                  startTime, stopTime);
         return fmi3Error;
     }
     fmu_msg msg;
-    if (fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, "fmi3EnterInitializationMode"))
+    if (fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, __func__))
         return fmi3Error;
     I->phase = FMU_INIT;
     return fmi3OK;
@@ -172,21 +176,21 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3ExitInitializationMode", FMU_INIT)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_INIT)) return fmi3Error;
     fmu_msg msg;
-    return status3(fmu_result(I, fmu_exit_init(I, &msg), &msg, "fmi3ExitInitializationMode"));
+    return status3(fmu_result(I, fmu_exit_init(I, &msg), &msg, __func__));
 }
 
 fmi3Status fmi3Terminate(fmi3Instance c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3Terminate", FMU_INIT | FMU_STEP)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_INIT | FMU_STEP)) return fmi3Error;
     I->phase = FMU_TERMINATED;
     return fmi3OK;
 }
 
 fmi3Status fmi3Reset(fmi3Instance c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3Reset", FMU_ALIVE)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
     fmu_reset(I);
     return fmi3OK;
 }
@@ -198,24 +202,24 @@ fmi3Status fmi3Reset(fmi3Instance c) {
 fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                           fmi3Float64 values[], size_t nValues) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3GetFloat64", FMU_READABLE) ||
-        !arrays_ok(I, "fmi3GetFloat64", nvr, vr, values, nValues))
+    if (!fmu_allowed(I, __func__, FMU_READABLE) ||
+        !arrays_ok(I, __func__, nvr, vr, values, nValues))
         return fmi3Error;
     fmu_msg msg;
     return status3(fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, values, &msg), &msg,
-                              "fmi3GetFloat64"));
+                              __func__));
 }
 
 fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                           const fmi3Float64 values[], size_t nValues) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3SetFloat64", SETTABLE) ||
-        !arrays_ok(I, "fmi3SetFloat64", nvr, vr, values, nValues))
+    if (!fmu_allowed(I, __func__, SETTABLE) ||
+        !arrays_ok(I, __func__, nvr, vr, values, nValues))
         return fmi3Error;
     fmu_msg msg;
     return status3(fmu_result(
         I, fmu_model_set_float64(I->model, vr, nvr, values, fmu_settable(I), &msg), &msg,
-        "fmi3SetFloat64"));
+        __func__));
 }
 
 /* Int32 variables through the Int32 functions, Enumerations through Int64. */
@@ -223,25 +227,25 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
     fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
                              CTYPE values[], size_t nValues) {                                   \
         fmu_instance *I = INST(c);                                                               \
-        if (!fmu_allowed(I, "fmi3Get" #TYPE, FMU_READABLE) ||                                   \
-            !arrays_ok(I, "fmi3Get" #TYPE, nvr, vr, values, nValues))                            \
+        if (!fmu_allowed(I, __func__, FMU_READABLE) ||                                   \
+            !arrays_ok(I, __func__, nvr, vr, values, nValues))                            \
             return fmi3Error;                                                                    \
         fmu_msg msg;                                                                             \
         return status3(fmu_result(                                                               \
             I, fmu_model_get_int(I->model, vr, nvr, values, sizeof(CTYPE), KIND, &msg), &msg,   \
-            "fmi3Get" #TYPE));                                                                   \
+            __func__));                                                                   \
     }                                                                                            \
     fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
                              const CTYPE values[], size_t nValues) {                             \
         fmu_instance *I = INST(c);                                                               \
-        if (!fmu_allowed(I, "fmi3Set" #TYPE, SETTABLE) ||                                       \
-            !arrays_ok(I, "fmi3Set" #TYPE, nvr, vr, values, nValues))                            \
+        if (!fmu_allowed(I, __func__, SETTABLE) ||                                       \
+            !arrays_ok(I, __func__, nvr, vr, values, nValues))                            \
             return fmi3Error;                                                                    \
         fmu_msg msg;                                                                             \
         return status3(fmu_result(I,                                                             \
                                   fmu_model_set_int(I->model, vr, nvr, values, sizeof(CTYPE),   \
                                                     KIND, fmu_settable(I), &msg),                \
-                                  &msg, "fmi3Set" #TYPE));                                       \
+                                  &msg, __func__));                                       \
     }
 INT_ACCESS(Int32, fmi3Int32, FMU_INT32)
 INT_ACCESS(Int64, fmi3Int64, FMU_ENUM)
@@ -260,12 +264,12 @@ static fmi3Status no_such_variables(fmu_instance *I, const char *fn, int phases,
     fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
                              CTYPE values[], size_t nValues) {                                   \
         (void)values; (void)nValues;                                                             \
-        return no_such_variables(INST(c), "fmi3Get" #TYPE, FMU_READABLE, nvr, vr);              \
+        return no_such_variables(INST(c), __func__, FMU_READABLE, nvr, vr);              \
     }                                                                                            \
     fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
                              const CTYPE values[], size_t nValues) {                             \
         (void)values; (void)nValues;                                                             \
-        return no_such_variables(INST(c), "fmi3Set" #TYPE, SETTABLE, nvr, vr);                  \
+        return no_such_variables(INST(c), __func__, SETTABLE, nvr, vr);                  \
     }
 NO_VARIABLES(Float32, fmi3Float32)
 NO_VARIABLES(Int8, fmi3Int8)
@@ -280,39 +284,39 @@ NO_VARIABLES(String, fmi3String)
 fmi3Status fmi3GetBinary(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                          size_t valueSizes[], fmi3Binary values[], size_t nValues) {
     (void)valueSizes; (void)values; (void)nValues;
-    return no_such_variables(INST(c), "fmi3GetBinary", FMU_READABLE, nvr, vr);
+    return no_such_variables(INST(c), __func__, FMU_READABLE, nvr, vr);
 }
 
 fmi3Status fmi3SetBinary(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                          const size_t valueSizes[], const fmi3Binary values[], size_t nValues) {
     (void)valueSizes; (void)values; (void)nValues;
-    return no_such_variables(INST(c), "fmi3SetBinary", SETTABLE, nvr, vr);
+    return no_such_variables(INST(c), __func__, SETTABLE, nvr, vr);
 }
 
 fmi3Status fmi3GetClock(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                         fmi3Clock values[]) {
     (void)values;
-    return no_such_variables(INST(c), "fmi3GetClock", FMU_ALIVE, nvr, vr);
+    return no_such_variables(INST(c), __func__, FMU_ALIVE, nvr, vr);
 }
 
 fmi3Status fmi3SetClock(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                         const fmi3Clock values[]) {
     (void)values;
-    return no_such_variables(INST(c), "fmi3SetClock", FMU_ALIVE, nvr, vr);
+    return no_such_variables(INST(c), __func__, FMU_ALIVE, nvr, vr);
 }
 
 /* ---- What this FMU does not provide ----------------------------------------- */
 
-static fmi3Status unsupported(fmi3Instance c, const char *why) {
+static fmi3Status unsupported(fmi3Instance c, const char *fn, const char *why) {
     fmu_instance *I = INST(c);
-    if (I) FMU_ERROR(I, "%s", why);
+    if (I) FMU_ERROR(I, "%s: %s", fn, why);
     return fmi3Error;
 }
 
 fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance c, fmi3ValueReference valueReference,
                                                size_t *nDependencies) {
     (void)valueReference; (void)nDependencies;
-    return unsupported(c, "fmi3GetNumberOfVariableDependencies: dependencies are given in the "
+    return unsupported(c, __func__, "dependencies are given in the "
                           "model description's ModelStructure only");
 }
 
@@ -323,74 +327,74 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference depend
                                        fmi3DependencyKind dependencyKinds[], size_t nDependencies) {
     (void)dependent; (void)elementIndicesOfDependent; (void)independents;
     (void)elementIndicesOfIndependents; (void)dependencyKinds; (void)nDependencies;
-    return unsupported(c, "fmi3GetVariableDependencies: dependencies are given in the model "
+    return unsupported(c, __func__, "dependencies are given in the model "
                           "description's ModelStructure only");
 }
 
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) {
-    return unsupported(c, "fmi3EnterConfigurationMode: this FMU has no structural parameters");
+    return unsupported(c, __func__, "this FMU has no structural parameters");
 }
 fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) {
-    return unsupported(c, "fmi3ExitConfigurationMode: this FMU has no structural parameters");
+    return unsupported(c, __func__, "this FMU has no structural parameters");
 }
 
 #define NO_CLOCKS "this FMU has no clocks"
 fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                   fmi3Float64 intervals[], fmi3IntervalQualifier q[]) {
     (void)vr; (void)n; (void)intervals; (void)q;
-    return unsupported(c, "fmi3GetIntervalDecimal: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3GetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                    fmi3UInt64 counters[], fmi3UInt64 resolutions[],
                                    fmi3IntervalQualifier q[]) {
     (void)vr; (void)n; (void)counters; (void)resolutions; (void)q;
-    return unsupported(c, "fmi3GetIntervalFraction: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3GetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                fmi3Float64 shifts[]) {
     (void)vr; (void)n; (void)shifts;
-    return unsupported(c, "fmi3GetShiftDecimal: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3GetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                 fmi3UInt64 counters[], fmi3UInt64 resolutions[]) {
     (void)vr; (void)n; (void)counters; (void)resolutions;
-    return unsupported(c, "fmi3GetShiftFraction: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                   const fmi3Float64 intervals[]) {
     (void)vr; (void)n; (void)intervals;
-    return unsupported(c, "fmi3SetIntervalDecimal: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                    const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
     (void)vr; (void)n; (void)counters; (void)resolutions;
-    return unsupported(c, "fmi3SetIntervalFraction: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                const fmi3Float64 shifts[]) {
     (void)vr; (void)n; (void)shifts;
-    return unsupported(c, "fmi3SetShiftDecimal: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                 const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
     (void)vr; (void)n; (void)counters; (void)resolutions;
-    return unsupported(c, "fmi3SetShiftFraction: " NO_CLOCKS);
+    return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference clockReference,
                                       fmi3Float64 activationTime) {
     (void)clockReference; (void)activationTime;
-    return unsupported(c, "fmi3ActivateModelPartition: this is a Co-Simulation FMU only");
+    return unsupported(c, __func__, "this is a Co-Simulation FMU only");
 }
 
 #define NO_EVENTS "this FMU has no event mode (hasEventMode = false)"
 fmi3Status fmi3EnterEventMode(fmi3Instance c) {
-    return unsupported(c, "fmi3EnterEventMode: " NO_EVENTS);
+    return unsupported(c, __func__, NO_EVENTS);
 }
 fmi3Status fmi3EnterStepMode(fmi3Instance c) {
-    return unsupported(c, "fmi3EnterStepMode: " NO_EVENTS);
+    return unsupported(c, __func__, NO_EVENTS);
 }
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance c) {
-    return unsupported(c, "fmi3EvaluateDiscreteStates: " NO_EVENTS);
+    return unsupported(c, __func__, NO_EVENTS);
 }
 fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *discreteStatesNeedUpdate,
                                     fmi3Boolean *terminateSimulation,
@@ -400,49 +404,49 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *discreteStatesN
     (void)discreteStatesNeedUpdate; (void)terminateSimulation;
     (void)nominalsOfContinuousStatesChanged; (void)valuesOfContinuousStatesChanged;
     (void)nextEventTimeDefined; (void)nextEventTime;
-    return unsupported(c, "fmi3UpdateDiscreteStates: " NO_EVENTS);
+    return unsupported(c, __func__, NO_EVENTS);
 }
 
 #define NO_ME "this is a Co-Simulation FMU only"
 fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c) {
-    return unsupported(c, "fmi3EnterContinuousTimeMode: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet, fmi3Boolean *enter,
                                        fmi3Boolean *term) {
     (void)noSet; (void)enter; (void)term;
-    return unsupported(c, "fmi3CompletedIntegratorStep: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 time) {
     (void)time;
-    return unsupported(c, "fmi3SetTime: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64 x[], size_t n) {
     (void)x; (void)n;
-    return unsupported(c, "fmi3SetContinuousStates: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], size_t n) {
     (void)dx; (void)n;
-    return unsupported(c, "fmi3GetContinuousStateDerivatives: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 ei[], size_t n) {
     (void)ei; (void)n;
-    return unsupported(c, "fmi3GetEventIndicators: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t n) {
     (void)x; (void)n;
-    return unsupported(c, "fmi3GetContinuousStates: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance c, fmi3Float64 nominals[], size_t n) {
     (void)nominals; (void)n;
-    return unsupported(c, "fmi3GetNominalsOfContinuousStates: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n) {
     (void)n;
-    return unsupported(c, "fmi3GetNumberOfEventIndicators: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
     (void)n;
-    return unsupported(c, "fmi3GetNumberOfContinuousStates: " NO_ME);
+    return unsupported(c, __func__, NO_ME);
 }
 
 /* ---- FMU state ------------------------------------------------------------ */
@@ -451,41 +455,41 @@ fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
 
 fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3GetFMUState", FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_get(I, "fmi3GetFMUState", FMUState));
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    return status3(fmu_state_get(I, __func__, FMUState));
 }
 
 fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState FMUState) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3SetFMUState", FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_set(I, "fmi3SetFMUState", FMUState));
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    return status3(fmu_state_set(I, __func__, FMUState));
 }
 
 fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3FreeFMUState", FMU_ALIVE)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
     return status3(fmu_state_free(I, FMUState));
 }
 
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState FMUState, size_t *size) {
     fmu_instance *I = INST(c);
     (void)FMUState;
-    if (!fmu_allowed(I, "fmi3SerializedFMUStateSize", FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_size_of(I, "fmi3SerializedFMUStateSize", size));
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    return status3(fmu_state_size_of(I, __func__, size));
 }
 
 fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState FMUState, fmi3Byte serializedState[],
                                  size_t size) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3SerializeFMUState", FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_serialize(I, "fmi3SerializeFMUState", FMUState, serializedState, size));
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    return status3(fmu_state_serialize(I, __func__, FMUState, serializedState, size));
 }
 
 fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedState[], size_t size,
                                    fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, "fmi3DeserializeFMUState", FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_deserialize(I, "fmi3DeserializeFMUState", serializedState, size,
+    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    return status3(fmu_state_deserialize(I, __func__, serializedState, size,
                                          FMUState));
 }
 
@@ -517,7 +521,7 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference
                                         size_t nUnknowns, const fmi3ValueReference knowns[],
                                         size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                         fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative3(c, "fmi3GetDirectionalDerivative", unknowns, nUnknowns, knowns, nKnowns,
+    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns,
                       seed, nSeed, sensitivity, nSensitivity, 0);
 }
 
@@ -525,7 +529,7 @@ fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference unk
                                     size_t nUnknowns, const fmi3ValueReference knowns[],
                                     size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                     fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative3(c, "fmi3GetAdjointDerivative", unknowns, nUnknowns, knowns, nKnowns, seed,
+    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns, seed,
                       nSeed, sensitivity, nSensitivity, 1);
 }
 
@@ -535,9 +539,9 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[
                                     const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues) {
     fmu_instance *I = INST(c);
     (void)vr; (void)orders; (void)values; (void)nValues;
-    if (!fmu_allowed(I, "fmi3GetOutputDerivatives", FMU_READABLE)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi3Error;
     if (nvr == 0) return fmi3OK;
-    FMU_ERROR(I, "fmi3GetOutputDerivatives: maxOutputDerivativeOrder is 0");
+    FMU_ERROR(I, "%s: maxOutputDerivativeOrder is 0", __func__);
     return fmi3Error;
 }
 
@@ -547,11 +551,11 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint,
                       fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime) {
     fmu_instance *I = INST(c);
     (void)noSetFMUStatePriorToCurrentPoint;
-    if (!fmu_allowed(I, "fmi3DoStep", FMU_STEP)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_STEP)) return fmi3Error;
     fmu_msg msg;
     const int st = fmu_result(
         I, fmu_do_step(I, currentCommunicationPoint, communicationStepSize, &msg), &msg,
-        "fmi3DoStep");
+        __func__);
     if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;
