@@ -10,13 +10,14 @@ from functools import partial
 
 from .files import MODEL_IDENTIFIER, find_fmu, model_description, unzipped
 from .params import RULES, ContactParams
+from .variables import contact, law_parameters
 
 
 class FMUError(RuntimeError):
     """An FMI call returned an error; the message carries what the FMU logged."""
 
 
-INITIAL_SLIP = {"atInputs": 1, "explicit": 2}   # the FMU's parameter initialSlip
+INITIAL_SLIP = dict(contact().enumerations["InitialSlip"])   # the FMU's parameter initialSlip
 
 
 class ContactFMU:
@@ -157,7 +158,7 @@ class ContactFMU:
             raise ValueError(f"s_start is used only with initial_slip='explicit', not {initial_slip!r}")
         if len(inputs) != 3:
             raise ValueError(f"inputs must be (u1 [m], u2 [m], N [N]), got {inputs!r}")
-        names = ["mu1", "mu2", "eps1", "eps2", "alpha", "beta"]
+        names = list(law_parameters())
         values = [float(getattr(params, n)) for n in names]
         if initial_slip == "explicit":
             names += ["s1Start", "s2Start"]

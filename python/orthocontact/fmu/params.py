@@ -6,7 +6,11 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-RULES = {"associated": 1, "coupled": 2, "eq20": 3}
+from .variables import contact
+
+# The sliding rules' names and the numbers the FMU's slidingRule takes (the
+# table's enumeration SlidingRule).
+RULES: dict[str, int] = dict(contact().enumerations["SlidingRule"])
 
 
 ANGLE_LIMIT_RAD = 4 * math.pi   # the FMU's range of alpha and beta [rad]

@@ -20,6 +20,7 @@ import numpy as np
 from ..fmu.contact import FMUError
 from ..fmu.files import MODEL_IDENTIFIER, fmi_version_of, installed_file, model_description, unzipped
 from ..fmu.params import RULES, ContactParams
+from ..fmu.variables import law_parameters
 from .harness import Rig, RigResult, RunFigures
 
 _CTYPES = {"double": ctypes.c_double, "int": ctypes.c_int, "long": ctypes.c_long}
@@ -113,8 +114,8 @@ def _filled(cls, **values):
 
 
 def _structs(p: ContactParams, r: Rig):
-    return (_filled(_Contact, mu1=p.mu1, mu2=p.mu2, eps1=p.eps1, eps2=p.eps2, alpha=p.alpha,
-                    beta=p.beta, rule=RULES[p.rule]),
+    law = {name: getattr(p, name) for name in law_parameters()}
+    return (_filled(_Contact, **law, rule=RULES[p.rule]),
             _filled(_Rig, mass=r.mass_kg, g=r.g, f_int=r.f_int_N, velocity=r.velocity_m_s,
                     travel=r.travel_m, mu_strip=r.mu_strip, step=r.step_s, fit_from=r.fit_from,
                     c_strip=r.c_strip, quasistatic=1 if r.mode == "quasistatic" else 0))
@@ -178,15 +179,12 @@ class CMaster:
             return np.empty((nl, na, len(out_fields)))
         n = nl * na
         cdt, rdt, fdt = np.dtype(_Contact), np.dtype(_Rig), np.dtype(_Figures)
-        columns = {
-            "mu1": np.repeat(np.array([p.mu1 for p in laws], dtype=float), na),
-            "mu2": np.repeat(np.array([p.mu2 for p in laws], dtype=float), na),
-            "eps1": np.repeat(np.array([p.eps1 for p in laws], dtype=float), na),
-            "eps2": np.repeat(np.array([p.eps2 for p in laws], dtype=float), na),
-            "alpha": np.tile(np.array([a for a, _ in axes], dtype=float), nl),
-            "beta": np.tile(np.array([b for _, b in axes], dtype=float), nl),
-            "rule": np.repeat(np.array([RULES[p.rule] for p in laws]), na),
-        }
+        # every law parameter law after law, but the axes' angles, which take turns
+        columns = {name: np.repeat(np.array([getattr(p, name) for p in laws], dtype=float), na)
+                   for name in law_parameters()}
+        columns["alpha"] = np.tile(np.array([a for a, _ in axes], dtype=float), nl)
+        columns["beta"] = np.tile(np.array([b for _, b in axes], dtype=float), nl)
+        columns["rule"] = np.repeat(np.array([RULES[p.rule] for p in laws]), na)
         if sorted(columns) != sorted(cdt.names):  # as _filled: no field left at 0
             raise FMUError(f"struct {_Contact.__name__} of the compiled master has the fields "
                            f"{list(cdt.names)}, this package fills {sorted(columns)}")

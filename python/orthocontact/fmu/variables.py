@@ -1,0 +1,87 @@
+"""The models and their variables as the build generated them from the
+variable tables (fmu_src/*_variables.h): models.json (CMake's list of
+models, OC_MODELS) and variables/<model>.json (gen_model_description
+manifest), installed with the package.  The package reads names, value
+references, units, ranges, starts, the enumerations and the law's
+parameters from here instead of typing them.
+
+Units as the tables give them ("" for none); angles in rad."""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+from .files import installed_file
+
+
+@dataclass(frozen=True)
+class Variable:
+    """One row of a model's variable table."""
+    name: str
+    value_reference: int
+    type: str                 # Float64, Int32 or Enumeration
+    declared_type: str | None  # the enumeration's type, e.g. SlidingRule
+    causality: str
+    variability: str
+    unit: str
+    start: float | int | None  # None: calculated or independent
+    min: float | int | None    # None: unbounded
+    max: float | int | None
+    group: str                # "law" for the law's parameters, else ""
+
+
+@dataclass(frozen=True)
+class Manifest:
+    """A model's variables (in the table's order) and enumerations."""
+    model_identifier: str
+    variables: tuple[Variable, ...]
+    enumerations: dict[str, dict[str, int]]
+
+    def group(self, name: str) -> tuple[str, ...]:
+        """The names of the variables of a group, in the table's order."""
+        return tuple(v.name for v in self.variables if v.group == name)
+
+    def value_references(self) -> dict[str, int]:
+        return {v.name: v.value_reference for v in self.variables}
+
+    def variable(self, name: str) -> Variable:
+        for v in self.variables:
+            if v.name == name:
+                return v
+        raise KeyError(f"{self.model_identifier} has no variable {name!r}")
+
+
+def _read(rel: str) -> dict:
+    path = installed_file(rel)
+    if path is None:
+        raise FileNotFoundError(f"{rel} (generated from the variable tables) is not installed with "
+                                "the package; run `pip install .` from the repository")
+    return json.loads(Path(path).read_text())
+
+
+@lru_cache(maxsize=None)
+def models() -> dict[str, str]:
+    """role ("contact", "rig") -> model identifier, in CMake's order."""
+    return {m["role"]: m["modelIdentifier"] for m in _read("models.json")["models"]}
+
+
+@lru_cache(maxsize=None)
+def manifest(model: str) -> Manifest:
+    """The manifest of `model` (a model identifier of models())."""
+    d = _read(f"variables/{model}.json")
+    rows = tuple(Variable(v["name"], v["valueReference"], v["type"], v["declaredType"], v["causality"],
+                          v["variability"], v["unit"], v["start"], v["min"], v["max"], v["group"])
+                 for v in d["variables"])
+    return Manifest(d["modelIdentifier"], rows, d["enumerations"])
+
+
+def contact() -> Manifest:
+    """The contact model's manifest."""
+    return manifest(models()["contact"])
+
+
+def law_parameters() -> tuple[str, ...]:
+    """The law's parameters in the table's order (mu1, mu2, ... as ContactParams names them)."""
+    return contact().group("law")

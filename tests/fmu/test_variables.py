@@ -1,0 +1,54 @@
+"""The generated manifests (orthocontact.fmu.variables) against the FMUs'
+own model descriptions, read by fmpy: the package's facts are the tables'."""
+import dataclasses
+
+import pytest
+from fmpy import read_model_description
+
+from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.params import RULES, ContactParams
+from orthocontact.fmu.variables import contact, law_parameters, manifest, models
+
+
+def _number(text):
+    return None if text is None else float(text)
+
+
+@pytest.mark.parametrize("fmi_version", [2, 3])
+@pytest.mark.parametrize("role", ["contact", "rig"])
+def test_manifest_is_the_model_description(role, fmi_version):
+    model = models()[role]
+    md = read_model_description(str(find_fmu(fmi_version=fmi_version, model=model)))
+    assert md.coSimulation.modelIdentifier == model
+    m = manifest(model)
+    assert [v.name for v in m.variables] == [v.name for v in md.modelVariables]
+    for ours, theirs in zip(m.variables, md.modelVariables):
+        assert ours.value_reference == theirs.valueReference, ours.name
+        assert ours.causality == theirs.causality, ours.name
+        assert ours.variability == theirs.variability, ours.name
+        assert ours.unit == (theirs.unit or ""), ours.name
+        if ours.start is not None or theirs.start is not None:
+            assert float(ours.start) == float(theirs.start), ours.name
+        assert _number(ours.min) == _number(theirs.min), ours.name
+        assert _number(ours.max) == _number(theirs.max), ours.name
+        if fmi_version == 3:
+            assert ours.type == theirs.type, ours.name
+            assert ours.declared_type == (theirs.declaredType.name if theirs.declaredType else None)
+
+
+def test_enumerations_are_the_fmi3_type_definitions():
+    md = read_model_description(str(find_fmu(fmi_version=3)))
+    theirs = {t.name: {i.name: int(i.value) for i in t.items} for t in md.typeDefinitions}
+    assert contact().enumerations == theirs
+    assert RULES == theirs["SlidingRule"] == {"associated": 1, "coupled": 2, "eq20": 3}
+
+
+def test_the_typed_parameters_follow_the_tables_law_group():
+    assert law_parameters() == ("mu1", "mu2", "eps1", "eps2", "alpha", "beta")
+    fields = [f.name for f in dataclasses.fields(ContactParams)]
+    assert fields == [*law_parameters(), "rule"]
+
+
+def test_a_missing_manifest_is_one_clear_error():
+    with pytest.raises(FileNotFoundError, match=r"variables/NoSuchModel.json .*pip install"):
+        manifest("NoSuchModel")
