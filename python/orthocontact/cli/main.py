@@ -9,23 +9,85 @@ Exit status: 0 success, 1 a result that does not match the paper (or, with
 sliding), 2 bad input (one line on stderr naming the file, option, key or row, and what was
 expected), 130 interrupted (Ctrl-C, SIGINT or SIGTERM).  Arguments and the
 output folder are checked before any work; the output folder is written all at
-once or not at all."""
+once or not at all.
+74 (sysexits.h's EX_IOERR): the system refused a read or a write -- the disk
+is full, permission denied, a read-only file system: one line naming what
+failed, the system's reason and the path; the results' scratch folder is
+removed, as on any failure.
+A closed standard output (`orthocontact ... | head -1`) is no error: the rest
+of the text is dropped and the command ends as it would have.  Python and
+numpy warnings never reach the terminal as such: numpy's floating-point ones
+(nan, overflow: the results they concern are checked where they are used)
+are dropped, any other is one `orthocontact: warning:` line."""
 from __future__ import annotations
 
 import os
+import re
 import sys
+import warnings
+from pathlib import Path
 
 from ..errors import InputError
 from ..experiment.scenario import ScenarioError
 from .interrupts import install_signal_handlers, interrupted, quiet_interrupts
-from .output import check_output_file, check_output_folder, forget_warnings, warnings_said
+from .output import check_output_file, check_output_folder, forget_warnings, warn, warnings_said
 from .parser import build_parser
 
-__all__ = ["main", "entry", "InputError"]
+__all__ = ["main", "entry", "InputError", "OS_ERROR"]
+
+OS_ERROR = 74   # the system refused a read or a write (sysexits.h: EX_IOERR)
+STDOUT = "standard output"
+# numpy's floating-point and empty/all-nan reductions' RuntimeWarnings
+NUMPY_NOISE = re.compile(r"encountered|Mean of empty slice|Degrees of freedom <= 0")
 
 
 def main(argv=None) -> int:
     """Runs the command line `argv` (default: sys.argv[1:]); returns the exit status."""
+    _warned.clear()
+    with warnings.catch_warnings():   # the command's own way of saying them, undone after
+        warnings.showwarning = show_warning
+        return run_command(argv)
+
+
+def show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    """warnings.showwarning of the command: numpy's floating-point noise
+    dropped, any other warning one line (no source line), once per text."""
+    text = (str(message).strip().splitlines() or [category.__name__])[0]
+    if issubclass(category, RuntimeWarning) and NUMPY_NOISE.search(text):
+        return
+    if (category, text) in _warned:
+        return
+    _warned.add((category, text))
+    warn(f"{text} ({category.__name__} in {Path(filename).stem})")
+
+
+_warned: set = set()
+
+
+def os_error_line(e: OSError, out) -> str:
+    """The one line for an error the system raised: what failed, the
+    system's reason, the path (the user's --out for a file of the results,
+    whose scratch folder's name means nothing to them)."""
+    path, results = e.filename, False
+    if path == STDOUT:
+        return f"orthocontact: error: cannot write the command's text: {e.strerror} ({STDOUT})"
+    if out is not None:
+        out = Path(out)
+        if path is None:   # a write through an open file: the results are the only ones
+            path, results = out, True
+        else:
+            try:
+                rel = Path(path).absolute().relative_to(out.absolute().parent).parts
+            except ValueError:
+                rel = ()
+            if rel and (rel[0] == out.name or rel[0].startswith(f".{out.name}.partial-")):
+                path, results = out.joinpath(*rel[1:]), True   # the scratch folder's: as in --out
+    what = "cannot write the results" if results else "cannot read or write a file"
+    return f"orthocontact: error: {what}: {e.strerror or e} ({path})"
+
+
+def run_command(argv=None) -> int:
+    """main() without its warnings' setting."""
     args = build_parser().parse_args(argv)
     install_signal_handlers()
     forget_warnings()
@@ -57,6 +119,44 @@ def main(argv=None) -> int:
     except FileNotFoundError as e:  # e.g. the FMU is missing
         print(f"orthocontact: error: {e}", file=sys.stderr)
         return 2
+    except OSError as e:   # disk full, permission denied, a read-only file system
+        print(os_error_line(e, out), file=sys.stderr)
+        return OS_ERROR
+
+
+class ClosedPipeSafe:
+    """sys.stdout of the command: a reader that went away (`| head -1`) ends
+    the text, not the command (the rest goes to the null device, so that no
+    BrokenPipeError comes from a print or from the interpreter's last flush);
+    any other error writing it names standard output."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def write(self, text):
+        return self._guard(self._stream.write, text, len(text))
+
+    def flush(self):
+        return self._guard(self._stream.flush)
+
+    def _guard(self, fn, *args):
+        value = args[1] if len(args) > 1 else None
+        try:
+            return fn(*args[:1])
+        except BrokenPipeError:
+            self._drop()
+            return value
+        except OSError as e:   # said once (main, entry); the rest is dropped
+            self._drop()
+            raise OSError(e.errno, e.strerror, STDOUT) from None
+
+    def _drop(self):
+        null = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(null, self._stream.fileno())
+        os.close(null)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
 
 
 def entry() -> None:
@@ -66,7 +166,19 @@ def entry() -> None:
     so that a second Ctrl-C during it would end the process by the signal
     instead of with the status documented above."""
     sys.unraisablehook = quiet_interrupts
-    status = main()
+    sys.stdout = ClosedPipeSafe(sys.stdout)
+    try:
+        status = main()
+    except SystemExit as e:   # argparse's: --help, --version, a bad argument (said already)
+        status = e.code if isinstance(e.code, int) else int(e.code is not None)
+    except OSError as e:      # writing argparse's --help or --version
+        print(os_error_line(e, None), file=sys.stderr)
+        status = OS_ERROR
+    try:
+        sys.stdout.flush()    # here, not at the interpreter's exit, where an error has no line
+    except OSError as e:
+        print(os_error_line(e, None), file=sys.stderr)
+        status = status or OS_ERROR
     if status == 130:
         from ..fmu.files import remove_unzipped
         remove_unzipped()  # os._exit skips atexit

@@ -109,7 +109,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "measurements.",
         epilog="Exit status: 0 success, 1 a result that does not match the paper (or, with "
                "--strict, any warning), 2 bad input "
-               "(one line naming the file or option), 130 interrupted.  Angles in scenario and "
+               "(one line naming the file or option), 74 the system refused a read or a write "
+               "(disk full, permission denied, a read-only file system; one line), 130 "
+               "interrupted; a closed standard output (| head) is no error.  CSV "
+               "files separated by semicolons are read with decimal commas (0,5).  Angles in scenario and "
                "data files are in degrees, counterclockwise from the driving axis X1.")
     ap.add_argument("--version", action=_Version, help="print the package version and the "
                     "installed FMUs (FMI 2.0 and 3.0), then exit")
