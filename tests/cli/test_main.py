@@ -65,21 +65,22 @@ def test_a_full_disk_is_one_line_with_its_own_exit_status_and_nothing_left(tmp_p
 
 
 @needs_root
-def test_a_read_only_file_system_met_while_writing_is_one_line(tmp_path):
-    # --out a writable folder inside a read-only one (a container's volume
-    # under a read-only root): the check of --out passes, the scratch folder
-    # beside it cannot be made.  Root ignores file modes, not a read-only mount.
-    ro = tmp_path / "ro"
-    with tmpfs(ro, "size=1m"):
-        (ro / "out").mkdir()
+@pytest.mark.parametrize("made", [False, True])
+def test_a_read_only_file_system_is_one_line_with_the_same_exit_status(tmp_path, made):
+    # Root ignores file modes, not a read-only mount.  Refused by the check
+    # of --out before any work (was: exit 2, "bad input").
+    with tmpfs(tmp_path / "ro", "size=1m") as ro:
+        if made:
+            (ro / "out").mkdir()
         subprocess.run(["mount", "-o", "remount,ro", str(ro)], check=True)
-        with tmpfs(ro / "out", "size=5m") as out:
-            p = run_cli(["identify", SCENARIOS / "example_identification", "--out", out,
-                         "--no-validate"], tmp_path)
-            assert p.returncode == 74, p.stderr
-            assert error_lines(p) == [f"orthocontact: error: cannot write the results: Read-only file "
-                                      f"system ({out})"], p.stderr
-            assert list(out.iterdir()) == [] and list(ro.iterdir()) == [out]
+        p = run_cli(["identify", SCENARIOS / "example_identification", "--out", ro / "out",
+                     "--no-validate"], tmp_path)
+        where = ro / "out" if made else ro
+        assert p.returncode == 74, p.stderr
+        assert error_lines(p) == [f"orthocontact: error: cannot write the results: Read-only file "
+                                  f"system ({where})"], p.stderr
+        assert list(ro.iterdir()) == ([ro / "out"] if made else [])
+        subprocess.run(["mount", "-o", "remount,rw", str(ro)], check=True)
 
 
 def test_a_full_standard_output_is_one_line(tmp_path):
@@ -144,3 +145,17 @@ def test_uq_at_a_step_that_never_settles_prints_no_warning_text(tmp_path, identi
     assert "Warning:" not in p.stderr and "RuntimeWarning" not in p.stderr
     assert all(ln.startswith(("orthocontact: warning: ", "uq mat_aged: ")) for ln in p.stderr.splitlines()), \
         p.stderr
+
+
+@needs_root
+def test_an_output_folder_that_is_a_file_system_of_its_own_is_written(tmp_path):
+    # --out a mount point (a container's volume): the scratch folder beside
+    # it was on another file system, and the commit's rename failed
+    # ("Invalid cross-device link"), leaving .out.partial-* beside it.
+    with tmpfs(tmp_path / "out", "size=5m") as out:
+        p = run_cli(["identify", SCENARIOS / "example_identification", "--out", out, "--no-validate"],
+                    tmp_path)
+        assert p.returncode == 0, p.stderr
+        assert (out / "identified.json").is_file()
+        assert not [f for f in out.iterdir() if "partial" in f.name]
+    assert [f.name for f in tmp_path.iterdir()] == ["out"]

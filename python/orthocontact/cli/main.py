@@ -80,8 +80,12 @@ def os_error_line(e: OSError, out) -> str:
                 rel = Path(path).absolute().relative_to(out.absolute().parent).parts
             except ValueError:
                 rel = ()
-            if rel and (rel[0] == out.name or rel[0].startswith(f".{out.name}.partial-")):
-                path, results = out.joinpath(*rel[1:]), True   # the scratch folder's: as in --out
+            scratch = f".{out.name}.partial-"
+            if rel and (rel[0] == out.name or rel[0].startswith(scratch)):
+                # the scratch folder's (beside --out or in it) named as in --out
+                path, results = out.joinpath(*(r for r in rel[1:] if not r.startswith(scratch))), True
+            elif out.absolute().is_relative_to(Path(path).absolute()):
+                results = True   # the folder --out is in (checked before any work)
     what = "cannot write the results" if results else "cannot read or write a file"
     return f"orthocontact: error: {what}: {e.strerror or e} ({path})"
 

@@ -5,6 +5,7 @@ another's), and the warning lines that --strict counts."""
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import shutil
 import sys
@@ -16,9 +17,15 @@ from ..output.manifest import new_manifest, read_manifest, remove_earlier, write
 from .interrupts import interrupted
 
 
+# What the system answers a write it refuses: permission, a read-only file
+# system, a full disk or quota, an I/O error.
+REFUSALS = (errno.EACCES, errno.EPERM, errno.EROFS, errno.ENOSPC, errno.EDQUOT, errno.EIO)
+
+
 def check_output_folder(out: Path, option: str = "--out") -> None:
     """Raises InputError, naming the user's path, unless `out` is (or can be
-    created as) a writable folder.  Leaves nothing behind."""
+    created as) a writable folder; OSError naming the folder where the system
+    refuses the write (REFUSALS: the command's exit 74).  Leaves nothing behind."""
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise InputError(f"{option} {out}: is a file; expected a folder to write the results into")
@@ -33,6 +40,8 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
     try:
         tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=probe).cleanup()
     except OSError as e:
+        if e.errno in REFUSALS:   # the system's refusal: its own exit status (cli.main)
+            raise OSError(e.errno, e.strerror, str(probe)) from None
         raise InputError(f"{option} {out}: {probe} is not writable ({e.strerror})") from None
     if out.is_dir():
         read_manifest(out)   # its list decides what the run removes: a bad one is refused now
@@ -40,7 +49,7 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
 
 def check_output_file(out: Path, option: str = "--out") -> None:
     """Raises InputError, naming the user's path, unless a file can be written
-    at `out` (in an existing, writable folder)."""
+    at `out` (in an existing, writable folder); OSError as check_output_folder."""
     out = Path(out)
     if out.is_dir():
         raise InputError(f"{option} {out}: is a folder; expected a file name")
@@ -49,6 +58,8 @@ def check_output_file(out: Path, option: str = "--out") -> None:
     try:
         tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=out.parent).cleanup()
     except OSError as e:
+        if e.errno in REFUSALS:   # the system's refusal: its own exit status (cli.main)
+            raise OSError(e.errno, e.strerror, str(out.parent)) from None
         raise InputError(f"{option} {out}: {out.parent} is not writable ({e.strerror})") from None
 
 
@@ -65,7 +76,11 @@ def staged_output(out: Path, command: str | None = None):
         if not parent.exists():
             parent.mkdir()
             made.append(parent)
-    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out.parent))
+    # Beside `out`, or in it where `out` is a file system of its own (a
+    # mount point, a container's volume): a file moves by renaming only
+    # within one file system.
+    inside = out.is_dir() and out.stat().st_dev != out.parent.stat().st_dev
+    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out if inside else out.parent))
     try:
         yield stage
         # An interrupt that a finalizer swallowed ("Exception ignored in
@@ -78,8 +93,10 @@ def staged_output(out: Path, command: str | None = None):
             with contextlib.suppress(OSError):
                 parent.rmdir()
         raise
-    commit_run(stage, out, command)
-    shutil.rmtree(stage, ignore_errors=True)
+    try:
+        commit_run(stage, out, command)
+    finally:   # a commit the system refused (disk full) leaves no scratch folder either
+        shutil.rmtree(stage, ignore_errors=True)
 
 
 def commit_run(stage: Path, out: Path, command: str | None) -> None:
