@@ -14,7 +14,7 @@ def test_an_input_error_is_an_exception_whose_text_is_the_message():
     e = InputError("data/forces.csv: line 3: expected a number, got 'x'")
     assert isinstance(e, Exception) and not isinstance(e, (ValueError, OSError))
     assert str(e) == "data/forces.csv: line 3: expected a number, got 'x'"
-    with pytest.raises(InputError, match="nowhere.json: cannot read"):
+    with pytest.raises(InputError, match="nowhere.json: not found"):
         read_identified("nowhere.json")   # a layer below the CLI raises it
 
 
