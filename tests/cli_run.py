@@ -1,5 +1,6 @@
 """The command line as the tests run it: `python -m orthocontact` in a
 subprocess, as a user does, with its output captured."""
+import os
 import socket
 import subprocess
 import sys
@@ -8,6 +9,12 @@ from pathlib import Path
 
 CMD = [sys.executable, "-m", "orthocontact"]
 SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
+
+# PYTHONPATH=python (the source tree shadowing the installed package) must
+# hold in a command started in another folder (cwd=tmp_path) too.
+if os.environ.get("PYTHONPATH"):
+    os.environ["PYTHONPATH"] = os.pathsep.join(str(Path(p).resolve()) for p in
+                                               os.environ["PYTHONPATH"].split(os.pathsep) if p)
 
 
 def run_cli(args, cwd, timeout=120, env=None):

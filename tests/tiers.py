@@ -44,7 +44,13 @@ SLOW = {
     },
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
-    "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results"},
+    "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results",
+                             "test_a_local_cluster_listens_on_the_loopback_interface_only",
+                             "test_no_dask_process_outlives_the_command"},   # Dask clusters
+    "runs/test_pool.py": {"test_no_worker_outlives_the_main_process_at_the_most_workers"},  # 4 per core
+    "cli/test_interrupts.py": {"test_a_dask_run_signalled_after_writing_everything_reports_success"},
+    "fmu/test_files.py": {"test_ctrl_c_on_reproduce_leaves_no_unpacked_fmu",
+                          "test_a_killed_commands_folder_goes_with_the_next_command"},
     "runs/test_size.py": {"test_uqs_estimate_is_the_runs_it_makes"},   # identifies the example first
     "reproduction/test_sensitivity.py": "*",   # the rig's assumptions, 168 rig runs
     "contracts/test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv

@@ -1,9 +1,17 @@
 """The common look of every figure (orthocontact.output.figures): overlapping
 curves stay distinguishable, legends say what the angle is and sit outside
-the data."""
+the data; the drawing workers end with their parent."""
+import contextlib
+import os
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import matplotlib
+import pytest
+from procs import alive
 
 matplotlib.use("Agg")
 
@@ -44,3 +52,34 @@ def test_legend_outside_the_axes(tmp_path):
     finally:
         plt.close = orig
     assert seen["legend"].x0 >= seen["axes"].x1  # right of the data, not over it
+
+
+# -- the drawing workers: they end with the process that started them -------------------
+
+_HOLDS_A_DRAWER = """
+import os, sys, time
+from orthocontact.output.figures import FigureDrawer
+with FigureDrawer(2) as draw:
+    draw.submit(int).result()
+    print(" ".join(str(p) for p in draw._ex._processes), flush=True)
+    time.sleep(120)
+"""
+
+
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM], ids=["SIGKILL", "SIGTERM"])
+def test_drawing_workers_end_with_their_parent(sig):
+    proc = subprocess.Popen([sys.executable, "-c", _HOLDS_A_DRAWER], stdout=subprocess.PIPE, text=True)
+    workers = [int(x) for x in proc.stdout.readline().split()]
+    try:
+        assert len(workers) == 2 and all(alive(w) for w in workers)
+        os.kill(proc.pid, sig)  # SIGTERM: Python's default, no handler, no cleanup
+        proc.wait(timeout=30)
+        t0 = time.monotonic()
+        while any(alive(w) for w in workers) and time.monotonic() - t0 < 10:
+            time.sleep(0.05)
+        assert [w for w in workers if alive(w)] == []
+    finally:
+        for w in [proc.pid] + workers:
+            with contextlib.suppress(OSError):
+                os.kill(w, signal.SIGKILL)
+        proc.wait(timeout=10)

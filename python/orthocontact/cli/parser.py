@@ -58,7 +58,15 @@ def _out_path(text):
     return Path(text)
 
 
-_workers = _positive_int("worker processes")
+def _workers(text):
+    # Checked here, before any work, for every command that takes --workers:
+    # above the machine's bound a run would fork until memory runs out.
+    from ..runs.pool import check_workers
+    n = _positive_int("worker processes")(text)
+    try:
+        return check_workers(n)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
 
 
 def _version_text() -> str:
@@ -111,7 +119,8 @@ def build_parser() -> argparse.ArgumentParser:
                "--strict, any warning), 2 bad input "
                "(one line naming the file or option), 74 the system refused a read or a write "
                "(disk full, permission denied, a read-only file system; one line), 130 "
-               "interrupted; a closed standard output (| head) is no error.  CSV "
+               "interrupted before the output was written; a closed standard output (| head) "
+               "is no error.  CSV "
                "files separated by semicolons are read with decimal commas (0,5).  Angles in scenario and "
                "data files are in degrees, counterclockwise from the driving axis X1.")
     ap.add_argument("--version", action=_Version, help="print the package version and the "
@@ -133,7 +142,9 @@ def build_parser() -> argparse.ArgumentParser:
     def common(p, out_help, scheduler=True):
         p.add_argument("--out", required=True, type=_out_path, metavar="DIR", help=out_help)
         p.add_argument("--workers", type=_workers, default=None, metavar="N",
-                       help="worker processes for sweeps (default: the number of cores, at most 8)")
+                       help="worker processes for sweeps (default: the number of cores, at most 8; "
+                            "refused above 4 per core or what the free memory holds, about 128 MB "
+                            "each); they end with this command, however it ends")
         p.add_argument("--fmi", type=int, choices=(2, 3), default=2,
                        help="FMI version of the contact FMU the harness runs: 2 (default) or 3; "
                             "both give the same results bit for bit")
@@ -254,7 +265,8 @@ def build_parser() -> argparse.ArgumentParser:
                         "process, no Dask)")
     u.add_argument("--workers", type=_workers, default=None, metavar="N",
                    help="worker processes of the local cluster (default: the number of cores, at "
-                        "most 8)")
+                        "most 8; refused above 4 per core or what the free memory holds); the "
+                        "cluster listens on 127.0.0.1 only and ends with this command")
     u.add_argument("--step-s", type=_positive_float, default=None, metavar="SECONDS",
                    help="communication step of the rig [s] (default: 0.004 for the implicit rules, "
                         "step-size independent; the scenario's for eq20); checked against the "

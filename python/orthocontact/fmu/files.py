@@ -69,34 +69,118 @@ def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
         + (f", or set {env}" if env else ""))
 
 
+# -- one temporary folder per command ----------------------------------------------
+#
+# Every unpacked FMU goes into one folder per command: the first process of
+# the command makes it and removes it when it ends, whatever its workers
+# (forked or Dask's) unpacked there.  A worker killed mid-run cannot clean up
+# after itself, so its files must be somewhere its parent removes.  The folder
+# holds a lock (flock on .lock) for as long as any process of the command
+# lives; a folder whose lock is free belongs to a command that was killed
+# (SIGKILL), and the next command removes it.
+
+TEMP_PREFIX = "orthocontact-"
+
+ABANDONED_AFTER_S = 60.0  # age [s] of a folder before its free lock means abandoned
+
+TEMP_ENV = "ORTHOCONTACT_TEMP"  # a command's folder, given to its spawned workers (Dask's)
+
+_temp: tuple[Path, int | None, int | None] | None = None  # (folder, pid of its owner, lock fd)
+
+_cleanup_registered = False
+
+
+def temp_folder() -> Path:
+    """This command's temporary folder: $ORTHOCONTACT_TEMP in a worker the
+    command started, else one made here under the system's temp folder
+    ($TMPDIR), removed when this process ends (remove_unzipped)."""
+    global _temp, _cleanup_registered
+    if _temp is not None:
+        return _temp[0]
+    given = os.environ.get(TEMP_ENV)
+    if given and Path(given).is_dir():
+        _temp = (Path(given), None, None)  # its owner removes it
+        return _temp[0]
+    import fcntl
+    import tempfile
+    remove_abandoned()
+    folder = Path(tempfile.mkdtemp(prefix=TEMP_PREFIX))
+    fd = os.open(folder / ".lock", os.O_CREAT | os.O_RDWR | os.O_CLOEXEC, 0o600)
+    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    if not _cleanup_registered:
+        _cleanup_registered = True
+        import atexit
+        from multiprocessing import util
+        atexit.register(remove_unzipped)
+        # A multiprocessing child (a Dask worker, a spawned pool worker)
+        # ends by os._exit, which skips atexit but runs these.
+        util.Finalize(None, remove_unzipped, exitpriority=0)
+    _temp = (folder, os.getpid(), fd)
+    return folder
+
+
+def remove_abandoned() -> list[Path]:
+    """Removes the temporary folders of earlier commands that were killed
+    (their lock is free: no process of theirs lives); returns them."""
+    import fcntl
+    import shutil
+    import tempfile
+    import time
+    gone = []
+    for folder in Path(tempfile.gettempdir()).glob(TEMP_PREFIX + "*"):
+        lock = folder / ".lock"
+        try:
+            if folder.is_symlink() or not folder.is_dir() or folder.stat().st_uid != os.getuid():
+                continue
+            # A folder just made may not hold its lock yet (the lock file is
+            # created, then locked): only one older than a minute is judged.
+            if time.time() - lock.lstat().st_mtime < ABANDONED_AFTER_S:
+                continue
+            fd = os.open(lock, os.O_RDWR | os.O_CLOEXEC | os.O_NOFOLLOW)
+        except OSError:
+            continue  # not one of ours, or being made or removed right now
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            continue  # in use
+        finally:
+            os.close(fd)
+        shutil.rmtree(folder, ignore_errors=True)
+        gone.append(folder)
+    return gone
+
+
 _extracted: dict[Path, tuple[str, int]] = {}  # FMU -> (its unpacked folder, the pid that made it)
 
 
 def unzipped(path: Path) -> str:
     """One extraction per FMU file and process (instances share it; forked
-    workers share the parent's).  Removed when the process that made it ends
-    (remove_unzipped), so no run leaves an unpacked FMU in the temp folder."""
+    workers share the parent's), in the command's temporary folder
+    (temp_folder), so no run leaves an unpacked FMU in the temp folder, not
+    even one of a worker that was killed."""
+    import tempfile
     key = path.resolve()
     if key not in _extracted:
-        if not _extracted:
-            import atexit
-            from multiprocessing import util
-            atexit.register(remove_unzipped)
-            # A multiprocessing child (a Dask worker, a spawned pool worker)
-            # ends by os._exit, which skips atexit but runs these.
-            util.Finalize(None, remove_unzipped, exitpriority=0)
-        _extracted[key] = (extract(str(key)), os.getpid())
+        folder = tempfile.mkdtemp(prefix="fmu-", dir=temp_folder())
+        _extracted[key] = (extract(str(key), unzipdir=folder), os.getpid())
     return _extracted[key][0]
 
 
 def remove_unzipped() -> None:
     """Removes the unpacked FMUs this process made (not those of a parent it
-    was forked from, which the parent still uses)."""
+    was forked from, which the parent still uses) and, in the process that
+    made it, the command's temporary folder with everything its workers left
+    there."""
     import shutil
+    global _temp
     for key, (folder, pid) in list(_extracted.items()):
         if pid == os.getpid():
             shutil.rmtree(folder, ignore_errors=True)
             del _extracted[key]
+    if _temp is not None and _temp[1] == os.getpid():
+        shutil.rmtree(_temp[0], ignore_errors=True)
+        os.close(_temp[2])
+        _temp = None
 
 
 _descriptions: dict = {}

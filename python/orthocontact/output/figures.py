@@ -64,8 +64,6 @@ def draw_here(fn, *args):
 
 
 def _init_drawer():
-    from ..runs.pool import worker_signals
-    worker_signals()
     pyplot()  # matplotlib's import, once per worker, while the rig still runs
 
 
@@ -90,11 +88,15 @@ class FigureDrawer:
 
     def __enter__(self):
         if self.workers > 1:
-            from ..runs.pool import process_pool
+            from ..runs.pool import process_pool, stop_pool
             self._ex = process_pool(self.workers, _init_drawer)
-            # Start the workers now, so that matplotlib's import in them
-            # overlaps the first rig runs instead of delaying the first figure.
-            self._ex.submit(int)
+            try:
+                # Start the workers now, so that matplotlib's import in them
+                # overlaps the first rig runs instead of delaying the first figure.
+                self._ex.submit(int)
+            except BaseException:  # an interrupt held while they forked: __exit__ will not run
+                stop_pool(self._ex)
+                raise
         return self
 
     def __call__(self, fn, *args):

@@ -10,7 +10,7 @@ from concurrent.futures import as_completed
 from ..fmu.contact import ContactFMU
 from ..fmu.params import ContactParams
 from ..rig.harness import Rig, RunFigures, run
-from .pool import Progress, process_pool, stop_pool, worker_signals
+from .pool import Progress, process_pool, stop_pool
 
 # -- workers ----------------------------------------------------------------------
 
@@ -19,7 +19,6 @@ _worker_fmu: ContactFMU | None = None
 
 def _init_worker(fmu_path):
     global _worker_fmu
-    worker_signals()
     _worker_fmu = ContactFMU(fmu_path, instance_name=f"worker{os.getpid()}")
 
 
@@ -53,7 +52,6 @@ _worker_cmaster = None
 
 def _init_cworker(fmu_path):
     global _worker_cmaster
-    worker_signals()
     from ..fmu.files import find_fmu
     from ..rig.compiled import CMaster
     _worker_cmaster = CMaster(find_fmu(fmu_path))

@@ -1,8 +1,8 @@
 """Batches of rig runs on a Dask cluster (dask.distributed).
 
 A `DaskRunner` either starts a `distributed.LocalCluster` with one
-single-threaded worker process per core, or connects to an existing
-scheduler (`tcp://HOST:PORT`).  The contact FMU travels to the workers as
+single-threaded worker process per core, listening on the loopback interface
+only, or connects to an existing scheduler (`tcp://HOST:PORT`).  The contact FMU travels to the workers as
 bytes (scattered to every worker once; no shared file system is assumed);
 each worker process unpacks it once into its own temporary folder and runs
 its chunks on the compiled master.  A chunk's result depends on nothing but
@@ -34,8 +34,9 @@ def _master_for(fmu):
     unpacked once per worker process."""
     digest, name, blob = fmu
     if digest not in _masters:
+        from ..fmu.files import temp_folder
         from ..rig.compiled import CMaster
-        folder = Path(tempfile.mkdtemp(prefix=f"orthocontact-fmu-{digest[:16]}-{os.getpid()}-"))
+        folder = Path(tempfile.mkdtemp(prefix=f"fmu-{digest[:16]}-{os.getpid()}-", dir=temp_folder()))
         try:
             path = folder / name
             path.write_bytes(blob)
@@ -47,12 +48,23 @@ def _master_for(fmu):
     return _masters[digest]
 
 
+PARENT_ENV = "ORTHOCONTACT_PARENT"  # the pid of the command that started a local cluster
+
+
 def dask_setup(worker):
     """A local cluster's worker (this module is its preload): Ctrl-C reaches
-    the whole process group, and the command, not the worker, decides."""
+    the whole process group, and the command, not the worker, decides; the
+    worker ends when the command's process ends, however it ends (Dask's own
+    watch, a pipe, stays open while any process forked from the command
+    holds it)."""
     import threading
+
+    from .pool import end_with_parent
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if os.environ.get(PARENT_ENV, "").isdigit():
+        # started by one of the nanny's threads: PR_SET_PDEATHSIG would fire when that thread ends
+        end_with_parent(int(os.environ[PARENT_ENV]), forked_by_main_thread=False)
 
 
 def fmu_payload(fmu_path) -> tuple:
@@ -73,6 +85,9 @@ def run_grid(fmu, laws, axes, rig):
 
 
 # -- the client's side ------------------------------------------------------------
+
+LOOPBACK = "127.0.0.1"  # where a local cluster listens
+
 
 def check_address(scheduler: str) -> None:
     """InputError unless `scheduler` is 'local' or a Dask address."""
@@ -128,7 +143,11 @@ class DaskRunner:
 
     def _local_cluster(self, LocalCluster):
         import dask
-        self._scratch = tempfile.mkdtemp(prefix="orthocontact-dask-")
+
+        from ..fmu.files import TEMP_ENV, temp_folder
+        from .pool import check_workers
+        check_workers(self.workers)
+        self._scratch = tempfile.mkdtemp(prefix="dask-", dir=temp_folder())
         # Ctrl-C reaches the whole process group; the command decides (it
         # stops the cluster and says one line).  A worker ignores SIGINT from
         # its preload on (dask_setup); one interrupted while it starts would
@@ -140,16 +159,21 @@ class DaskRunner:
             with open(os.devnull, "w") as null:
                 os.dup2(null.fileno(), 2)
             # Every scratch folder of the cluster (the scheduler's too) in
-            # one of ours, removed when the cluster stops.  No dashboard:
-            # nobody looks at it during a command; the scheduler's HTTP
-            # server (health, metrics) listens anyway, on a free port, as
-            # 8787 may be busy (a UserWarning).
+            # one of ours, removed when the cluster stops; the workers unpack
+            # the FMU in the command's temporary folder (TEMP_ENV).  No
+            # dashboard: nobody looks at it during a command; the
+            # scheduler's HTTP server (health, metrics) listens anyway, on a
+            # free port, as 8787 may be busy (a UserWarning).  A local
+            # cluster serves this machine only: the scheduler, its HTTP
+            # server and the workers listen on the loopback interface.
             with dask.config.set({"temporary-directory": self._scratch}):
                 return LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
-                                    dashboard_address=None,
-                                    scheduler_kwargs={"dashboard": False, "dashboard_address": ":0"},
+                                    host=LOOPBACK, dashboard_address=None,
+                                    scheduler_kwargs={"dashboard": False,
+                                                      "dashboard_address": f"{LOOPBACK}:0"},
                                     silence_logs=logging.CRITICAL + 1, local_directory=self._scratch,
-                                    preload=[__name__])
+                                    preload=[__name__],
+                                    env={TEMP_ENV: str(temp_folder()), PARENT_ENV: str(os.getpid())})
         finally:
             os.dup2(saved, 2)
             os.close(saved)
