@@ -1,6 +1,7 @@
 """Interrupts (orthocontact.cli.interrupts), through the real command in a
 subprocess: a signal to the main process or one swallowed by a finalizer
-stops every worker and leaves nothing behind."""
+stops every worker and leaves nothing behind; one after the output was
+written leaves it and reports success."""
 import os
 import signal
 import subprocess
@@ -111,3 +112,50 @@ def test_ctrl_c_on_uq_is_one_line_and_leaves_nothing(tmp_path, identified, after
     assert sorted(os.listdir(tmp)) == []  # no unpacked FMU, no dask-scratch-space
     time.sleep(0.5)
     assert [k for k in kids if alive(k)] == []
+
+
+# -- an interrupt after the output was written ----------------------------------------
+
+def test_an_interrupt_after_the_commit_is_noted_not_raised(tmp_path):
+    """In process: once staged_output has begun its commit, SIGTERM no
+    longer raises; the folder is complete and named as written."""
+    from orthocontact.cli import interrupts, output
+
+    old = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    try:
+        interrupts.install_signal_handlers()
+        with output.staged_output(tmp_path / "results") as stage:
+            (stage / "summary.json").write_text("{}")
+        os.kill(os.getpid(), signal.SIGTERM)  # no KeyboardInterrupt: the results stand
+        time.sleep(0.05)
+        assert interrupts.interrupted() and interrupts.written() == tmp_path / "results"
+        assert (tmp_path / "results" / "summary.json").read_text() == "{}"
+        interrupts.install_signal_handlers()  # the next command starts afresh
+        assert not interrupts.interrupted() and interrupts.written() is None
+        with pytest.raises(KeyboardInterrupt):
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(0.05)
+    finally:
+        signal.signal(signal.SIGINT, old[0])
+        signal.signal(signal.SIGTERM, old[1])
+
+
+def test_a_dask_run_signalled_after_writing_everything_reports_success(tmp_path):
+    """SIGTERM the moment the output folder is there: exit 0, complete files,
+    and a note (not "interrupted; nothing written", exit 130, as before)."""
+    out = tmp_path / "out"
+    proc = subprocess.Popen(CMD + ["run", str(SCEN / "case4.toml"), "--out", str(out), "--workers", "2",
+                                   "--scheduler", "local"], cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    t0 = time.monotonic()
+    while not (out / "summary.json").exists() and proc.poll() is None and time.monotonic() - t0 < 120:
+        time.sleep(0.002)
+    assert proc.poll() is None, "the run ended before it could be signalled"
+    os.kill(proc.pid, signal.SIGTERM)
+    stdout, err = proc.communicate(timeout=60)
+    lines = [x for x in err.splitlines() if not x.startswith("case4: ")]
+    assert proc.returncode == 0, err
+    assert lines in ([], [f"orthocontact: interrupted after writing {out}; the results there are complete"]), err
+    assert f"wrote {out}/summary.json" in stdout
+    assert {"summary.json", "sweep.csv", "phi_vs_angle.png"} <= set(os.listdir(out))
+    assert leftovers(tmp_path) == ["out"]  # no .out.partial-*

@@ -1,5 +1,8 @@
 """Interrupts: Ctrl-C, SIGINT and SIGTERM end a command as interrupted
-(exit 130, nothing written), even when the signal lands in a finalizer."""
+(exit 130, nothing written), even when the signal lands in a finalizer; once
+the command has begun to commit its results, an interrupt is noted, not
+raised, so that a complete output folder is reported as written (exit 0 or
+the command's own status), never as "nothing written"."""
 from __future__ import annotations
 
 import contextlib
@@ -7,6 +10,8 @@ import signal
 import sys
 
 _interrupted = False
+_held = False       # the commit has begun: an interrupt no longer raises
+_written = None     # the output folder the command committed, once it has
 
 
 def _interrupt(signum, frame):
@@ -15,12 +20,13 @@ def _interrupt(signum, frame):
     # end as interrupted.
     global _interrupted
     _interrupted = True
-    raise KeyboardInterrupt
+    if not _held:
+        raise KeyboardInterrupt
 
 
 def install_signal_handlers():
-    global _interrupted
-    _interrupted = False
+    global _interrupted, _held, _written
+    _interrupted, _held, _written = False, False, None
     with contextlib.suppress(ValueError):  # not in the main thread: leave them
         # SIGTERM (a job runner, an IDE's stop button) ends a run like Ctrl-C.
         signal.signal(signal.SIGINT, _interrupt)
@@ -30,6 +36,27 @@ def install_signal_handlers():
 def interrupted() -> bool:
     """Whether an interrupt arrived since install_signal_handlers."""
     return _interrupted
+
+
+def hold_interrupts() -> None:
+    """From here on an interrupt is noted, not raised: the command is about
+    to commit its results, and a commit cut in half would leave a folder of
+    two runs.  Call it before the last interrupted() check ahead of the
+    commit, so that an earlier interrupt still stops the command."""
+    global _held
+    _held = True
+
+
+def results_written(out) -> None:
+    """The command's results are all in `out`: an interrupt after this does
+    not make it 'interrupted; nothing written'."""
+    global _written
+    _written = out
+
+
+def written():
+    """The output folder the command committed, or None."""
+    return _written
 
 
 def quiet_interrupts(unraisable):

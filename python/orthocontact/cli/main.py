@@ -7,9 +7,9 @@
 Exit status: 0 success, 1 a result that does not match the paper (or, with
 --strict, any warning: an implausible input, a rig run that is not steady
 sliding), 2 bad input (one line on stderr naming the file, option, key or row, and what was
-expected), 130 interrupted (Ctrl-C, SIGINT or SIGTERM).  Arguments and the
-output folder are checked before any work; the output folder is written all at
-once or not at all.
+expected), 130 interrupted (Ctrl-C, SIGINT or SIGTERM) before the output was
+written.  Arguments and the output folder are checked before any work; the
+output folder is written all at once or not at all.
 74 (sysexits.h's EX_IOERR): the system refused a read or a write -- the disk
 is full, permission denied, a read-only file system: one line naming what
 failed, the system's reason and the path; the results' scratch folder is
@@ -29,7 +29,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..experiment.scenario import ScenarioError
-from .interrupts import install_signal_handlers, interrupted, quiet_interrupts
+from .interrupts import install_signal_handlers, interrupted, quiet_interrupts, written
 from .output import check_output_file, check_output_folder, forget_warnings, warn, warnings_said
 from .parser import build_parser
 
@@ -108,8 +108,11 @@ def run_command(argv=None) -> int:
         elif out is not None:
             check_output_folder(out)
         status = args.func(args)
-        if interrupted():
+        if interrupted() and written() is None:
             raise KeyboardInterrupt
+        if interrupted():  # it came after the commit: the results stand
+            print(f"orthocontact: interrupted after writing {written()}; the results there are "
+                  "complete", file=sys.stderr)
         if status == 0 and warnings_said() and getattr(args, "strict", False):
             print(f"orthocontact: --strict: {warnings_said()} warning(s); exit status 1", file=sys.stderr)
             return 1

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..output.manifest import new_manifest, read_manifest, remove_earlier, write_manifest
-from .interrupts import interrupted
+from .interrupts import hold_interrupts, interrupted, results_written
 
 
 # What the system answers a write it refuses: permission, a read-only file
@@ -83,6 +83,7 @@ def staged_output(out: Path, command: str | None = None):
     stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out if inside else out.parent))
     try:
         yield stage
+        hold_interrupts()  # one arriving during the commit must not cut it in half
         # An interrupt that a finalizer swallowed ("Exception ignored in
         # __del__") still means the user asked to stop: commit nothing.
         if interrupted():
@@ -97,6 +98,7 @@ def staged_output(out: Path, command: str | None = None):
         commit_run(stage, out, command)
     finally:   # a commit the system refused (disk full) leaves no scratch folder either
         shutil.rmtree(stage, ignore_errors=True)
+    results_written(out)
 
 
 def commit_run(stage: Path, out: Path, command: str | None) -> None:
