@@ -86,20 +86,22 @@ def test_a_heartbeat_counts_runs_and_speaks_only_when_due(capsys):
 
 # -- how many workers: the machine's bound, checked before any work -----------------
 
-def _never_forks(proc, timeout=10):
-    """Waits for `proc`; True if no process of it was ever seen (polled
-    every 5 ms from its start)."""
-    seen = set()
+def _most_children_at_once(proc, timeout=10) -> int:
+    """Waits for `proc`; the most processes of it seen alive at one time
+    (polled every 5 ms from its start)."""
+    most, seen = 0, set()
     t0 = time.monotonic()
     try:
         while proc.poll() is None and time.monotonic() - t0 < timeout:
-            seen |= set(descendants(proc.pid))
+            now = descendants(proc.pid)
+            seen |= set(now)
+            most = max(most, len(now))
             time.sleep(0.005)
     finally:
         if proc.poll() is None:  # a run that forks on: stop it and what it started
             _kill_all([proc.pid] + descendants(proc.pid) + list(seen))
         proc.wait(timeout=10)
-    return not seen
+    return most
 
 
 def test_workers_above_the_machines_bound_are_one_line_at_once_and_start_nothing(tmp_path):
@@ -109,7 +111,9 @@ def test_workers_above_the_machines_bound_are_one_line_at_once_and_start_nothing
     t0 = time.monotonic()
     proc = subprocess.Popen(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out", "--workers", "1000"],
                             cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    assert _never_forks(proc)
+    # No worker: at most the one short-lived `ldconfig -p` that fmpy's import
+    # runs (ctypes.util.find_library), where a pool forks all its workers at once.
+    assert _most_children_at_once(proc) <= 1
     elapsed = time.monotonic() - t0
     p = subprocess.CompletedProcess(proc.args, proc.returncode, proc.stdout.read(), proc.stderr.read())
     one_error_line(p, "--workers", f"at most {bound.most} worker processes", "got 1000",
