@@ -79,6 +79,11 @@ def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
 # lives; a folder whose lock is free belongs to a command that was killed
 # (SIGKILL), and the next command removes it.
 
+try:
+    import fcntl as _fcntl
+except ImportError:  # Windows: no flock, so no judging of other commands' folders
+    _fcntl = None
+
 TEMP_PREFIX = "orthocontact-"
 
 ABANDONED_AFTER_S = 60.0  # age [s] of a folder before its free lock means abandoned
@@ -101,12 +106,12 @@ def temp_folder() -> Path:
     if given and Path(given).is_dir():
         _temp = (Path(given), None, None)  # its owner removes it
         return _temp[0]
-    import fcntl
     import tempfile
     remove_abandoned()
     folder = Path(tempfile.mkdtemp(prefix=TEMP_PREFIX))
-    fd = os.open(folder / ".lock", os.O_CREAT | os.O_RDWR | os.O_CLOEXEC, 0o600)
-    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    fd = os.open(folder / ".lock", os.O_CREAT | os.O_RDWR | getattr(os, "O_CLOEXEC", 0), 0o600)
+    if _fcntl is not None:
+        _fcntl.flock(fd, _fcntl.LOCK_EX | _fcntl.LOCK_NB)
     if not _cleanup_registered:
         _cleanup_registered = True
         import atexit
@@ -121,12 +126,14 @@ def temp_folder() -> Path:
 
 def remove_abandoned() -> list[Path]:
     """Removes the temporary folders of earlier commands that were killed
-    (their lock is free: no process of theirs lives); returns them."""
-    import fcntl
+    (their lock is free: no process of theirs lives); returns them.  None
+    are judged where the system has no flock (Windows)."""
     import shutil
     import tempfile
     import time
     gone = []
+    if _fcntl is None:
+        return gone
     for folder in Path(tempfile.gettempdir()).glob(TEMP_PREFIX + "*"):
         lock = folder / ".lock"
         try:
@@ -140,7 +147,7 @@ def remove_abandoned() -> list[Path]:
         except OSError:
             continue  # not one of ours, or being made or removed right now
         try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            _fcntl.flock(fd, _fcntl.LOCK_EX | _fcntl.LOCK_NB)
         except OSError:
             continue  # in use
         finally:
