@@ -4,7 +4,7 @@
 # and the fast tier for every change:
 #   make check       set up and run the law, the FMUs, the rig and the CLI's core
 #                    (release C tests, pytest -m "not slow"): under 2 minutes
-.PHONY: setup reproduce test check bench fmus crosscheck clean
+.PHONY: setup reproduce test check bench fmus crosscheck docs clean
 
 setup:
 	tools/bootstrap.sh
@@ -29,6 +29,13 @@ fmus:
 # Regenerates the cross-check files under cross-check/ from the FMUs.
 crosscheck: setup
 	.venv/bin/python tools/make_crosscheck.py
+
+# Regenerates docs/reference/variables.md (from the variable tables, through the
+# installed package's manifests and FMUs: hence setup, which rebuilds what changed)
+# and docs/reference/cli.md (from the parser); tests/contracts/test_reference_docs.py
+# fails while either differs from what this writes.
+docs: setup
+	.venv/bin/python tools/make_reference.py
 
 clean:
 	rm -rf build results .venv
