@@ -13,6 +13,9 @@ from orthocontact.fmu.params import ContactParams
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from cli_run import run_cli  # noqa: E402  (tests/ is on sys.path: the shared helpers)
+# The optional parts' summary and the session's failure when a required one is missing.
+from optional_parts import (pytest_addoption, pytest_configure,  # noqa: E402,F401
+                            pytest_runtest_setup, pytest_sessionfinish, pytest_terminal_summary)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -82,10 +85,6 @@ def identified(tmp_path_factory):
                  "--no-validate"], cwd=ROOT)
     assert p.returncode == 0, p.stderr
     return out / "identified.json"
-
-
-def pytest_configure(config):
-    config.addinivalue_line("markers", "slow: not in the fast tier (`make check`); listed in tests/tiers.py")
 
 
 @pytest.hookimpl(tryfirst=True)   # before -m deselects by marker

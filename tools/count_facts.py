@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Counts where facts of the code are typed by hand (issue 24, "each fact
-once"): every place that spells out the law's six parameters together, maps
+"""Counts where facts of the code are typed by hand ("each fact once"):
+every place that spells out the law's six parameters together, maps
 the sliding rules to their numbers, lists the models, lists a model's
 sources, dispatches on the closed forms' names, or types an FMI function's
 name as a string in the glues.  CONTRIBUTING.md quotes its figures.

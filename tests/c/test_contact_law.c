@@ -506,7 +506,7 @@ static void test_model_state(void) {
     CHECK(fmu_model_state_read(&b, again, &msg) == FMU_ERR, "commit flag 2 accepted");
 }
 
-/* ---- issue 19: the law's promises at the edges --------------------------- */
+/* ---- the law's promises at the edges ------------------------------------ */
 
 /* An independent reference, for tests only: the return map for alpha = beta,
  * where B, F and G are diagonal in the shared axes and each component
@@ -593,10 +593,10 @@ static double aligned_error(int rule, double mu1, double mu2, double e1, double 
     return (double)(dT / (DBL_EPSILON * hypotl(T[0], T[1]) + sT));
 }
 
-/* Point 1: both implicit rules as accurate as their inputs allow at every
+/* Both implicit rules as accurate as their inputs allow at every
  * contrast, with the friction and stiffness axes shared (alpha = beta). */
 static void test_accuracy_aligned_axes(void) {
-    /* The issue's case: mu1/mu2 = eps1/eps2 = r, slides in all directions.
+    /* The reported case: mu1/mu2 = eps1/eps2 = r, slides in all directions.
      * The error was 7e-13 at r = 1e2 .. 6 % at 1e8 and |T| 1000x off at 1e10. */
     double worst = 0, worstE = 0;
     for (int rule = 1; rule <= 2; ++rule)
@@ -646,7 +646,7 @@ static void test_accuracy_aligned_axes(void) {
     CHECK(worstE <= 4, "aligned axes, random: energy error %.3g x bound", worstE);
 }
 
-/* Point 2: a trial at the top of the exponent range is seen as what it is. */
+/* A trial at the top of the exponent range is seen as what it is. */
 static void test_huge_trial(void) {
     CHECK(oc_norm2(1.2e308, 0) == 1.2e308, "norm2(1.2e308, 0) = %g", oc_norm2(1.2e308, 0));
     CHECK(oc_norm2(-1e308, 1e308) == 1e308 * sqrt(2.0), "norm2(-1e308, 1e308) = %g",
@@ -670,7 +670,7 @@ static void test_huge_trial(void) {
     }
 }
 
-/* Point 4: whatever the law commits, it accepts back, and it sticks with held
+/* Whatever the law commits, it accepts back, and it sticks with held
  * inputs, also for subnormal N (through the FMU's state, into itself). */
 static void test_subnormal_normal_force(void) {
     int refused = 0, moved = 0, restored = 0;
@@ -702,7 +702,7 @@ static void test_subnormal_normal_force(void) {
     CHECK(restored == 1197, "the FMU refused %d of 1197 of its own states", 1197 - restored);
 }
 
-/* Point 5: a tiny N with an ordinary displacement is an ordinary slip. */
+/* A tiny N with an ordinary displacement is an ordinary slip. */
 static void test_tiny_normal_force(void) {
     oc_model m;
     fmu_model_init(&m); /* the default parameters */
@@ -728,7 +728,7 @@ static void test_tiny_normal_force(void) {
     }
 }
 
-/* Point 6: eq. (20) at a friction ratio of 1e10 along friction axis 1. */
+/* Eq. (20) at a friction ratio of 1e10 along friction axis 1. */
 static void test_eq20_strong_friction_contrast(void) {
     for (int rule = 1; rule <= 3; ++rule)
         for (int a = 0; a < 3; ++a) {
@@ -749,7 +749,7 @@ static void test_eq20_strong_friction_contrast(void) {
         }
 }
 
-/* Point 7: power-of-two units give the same bits, wherever the outputs are
+/* Power-of-two units give the same bits, wherever the outputs are
  * normal numbers (the distribution of tests/test_scale_properties.py, and
  * the corner the fuzzer found: mu2 ~ 1e-10, k = 2^-455). */
 static int subnormal(double x) { return x != 0 && fabs(x) < DBL_MIN; }

@@ -224,7 +224,7 @@ static void test_instances_and_state(void) {
 /* Absolute positions wired from t0 (inputs set in initialization mode): by
  * default the contact starts unloaded there, for every rule; the explicit
  * initial slip 0 gives the behaviour of the earlier versions, a full slide
- * (8.55 J for the default coupled rule, issue 14), bit for bit what inputs
+ * (8.55 J for the default coupled rule), bit for bit what inputs
  * set only after initialization give. */
 static void first_step(int rule, int initial, double s0, int inputs_in_init, double y[5], int *state) {
     fmi2Component c = make("initial");

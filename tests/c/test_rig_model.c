@@ -209,7 +209,7 @@ static void test_state_into_fresh_instance(void) {
     fmi2FreeInstance(b);
 }
 
-/* Every output finite before OK (issue 19 point 3): x1 = u1 = velocity time
+/* Every output finite before OK: x1 = u1 = velocity time
  * can overflow from a velocity and a time each inside its range.  Each way
  * in is refused with an error and a logged reason, and changes nothing. */
 static void all_outputs(fmi2Component c, double out[RIG_VR_COUNT_PLUS_ONE]) {

@@ -3,7 +3,6 @@
 disk, a read-only file system, a full or closed standard output) one line
 with exit 74 or none, and no Python or numpy warning text."""
 import contextlib
-import os
 import re
 import subprocess
 from pathlib import Path
@@ -39,7 +38,7 @@ def error_lines(p):
     return [ln for ln in p.stderr.strip().splitlines() if not re.match(r"^\S+: \d+/\d+ \(", ln)]
 
 
-needs_root = pytest.mark.skipif(os.geteuid() != 0, reason="mounting a tmpfs needs root (CI has it)")
+needs_root = pytest.mark.needs("root")   # mounting a tmpfs (tests/optional_parts.py)
 
 
 @contextlib.contextmanager

@@ -17,7 +17,7 @@ def user_facing_files():
     yield from (ROOT / "scenarios").rglob("*.md")
 
 
-# Lines being rewritten by the plausibility gate's work (issue 23 item 1) when
+# Lines being rewritten by the plausibility gate's work when
 # the name was unified: each must still be there (else drop it here), and
 # nothing else may use another name.
 PENDING = {

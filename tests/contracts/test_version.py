@@ -3,7 +3,6 @@ orthocontact.__version__, all four FMUs (their model descriptions and
 documentation), the repository's copies of the descriptions, the cross-check
 folder and `orthocontact --version` say; and the GUID / instantiationToken
 changes whenever a model description does."""
-import importlib.util
 import re
 import shutil
 import subprocess
@@ -12,8 +11,6 @@ import zipfile
 from importlib.metadata import version as installed_version
 from pathlib import Path
 from xml.etree import ElementTree
-
-import pytest
 
 from orthocontact.fmu.files import find_fmu
 
@@ -71,9 +68,7 @@ def _compiler():
     cc = shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
     if cc:
         return [cc]
-    if importlib.util.find_spec("ziglang") is None:
-        pytest.skip("no C compiler")
-    return [sys.executable, "-m", "ziglang", "cc"]
+    return [sys.executable, "-m", "ziglang", "cc"]   # the package's build requirement
 
 
 def _token(tmp, fmu_src: Path, table: str, version: str) -> tuple[str, str]:

@@ -8,7 +8,6 @@ floating-point operations (and, in Ecos, a last-digit reading of the SSD's
 decimal values): measured 6e-11 deg.  1e-6 deg is far above that and far
 below anything a wrong parameter gives (the FMUs' defaults give 0 deg here,
 the answer is -11.526 deg)."""
-import importlib
 import json
 import subprocess
 import sys
@@ -65,8 +64,8 @@ def steps(sc) -> int:
     return int(np.ceil(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) - 1e-9))
 
 
+@pytest.mark.needs("libcosimpy")
 def test_ssp_runs_in_libcosim_with_the_harness_angle(tmp_path):
-    pytest.importorskip("libcosimpy")
     ssp = tmp_path / "aged.ssp"
     p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"),
                         "--angle", "39.2", "--out", str(ssp)], capture_output=True, text=True, timeout=120)
@@ -139,12 +138,9 @@ print(json.dumps({"rows": rows, "alpha": alpha}))
 """
 
 
+@pytest.mark.needs("ecospy")   # its library needs Debian's libtbb12 (tools/run_tests.sh installs it)
 @pytest.mark.parametrize("parameter_set", ["", "scenario"], ids=["no-set", "named-set"])
 def test_ssp_runs_in_ecos_with_the_harness_angle(package, aged, harness, parameter_set):
-    try:   # its library needs Debian's libtbb12 (tools/run_tests.sh installs it)
-        importlib.import_module("ecospy")
-    except (ImportError, OSError) as e:
-        pytest.skip(f"Ecos not usable: {e}")
     q = subprocess.run([sys.executable, "-c", _ECOS, str(package), str(steps(aged)), repr(aged.rig.step_s),
                         parameter_set], capture_output=True, text=True, timeout=600)
     assert q.returncode == 0, q.stderr[-2000:]
@@ -173,6 +169,7 @@ print(json.dumps([r["x1"].tolist(), r["x2"].tolist(), r["driveForce"].tolist()])
 """
 
 
+@pytest.mark.needs("fmu_manipulation_toolbox")
 def test_ssp_runs_as_fmu_manipulation_toolbox_container_with_the_harness_angle(package, aged, harness,
                                                                                tmp_path):
     """The container is built from the SSP itself (in a process of its own,
@@ -181,7 +178,6 @@ def test_ssp_runs_as_fmu_manipulation_toolbox_container_with_the_harness_angle(p
     SSD cannot declare (libcosim refuses a connection to the system's own
     connectors: "No such node (<xmlattr>.endElement)"), so the three
     measured outputs are added through the toolbox's API."""
-    pytest.importorskip("fmu_manipulation_toolbox")
     (tmp_path / "aged.ssp").write_bytes(package.read_bytes())
     q = subprocess.run([sys.executable, "-c", _CONTAINER, str(tmp_path), str(steps(aged)),
                         repr(aged.rig.step_s)], capture_output=True, text=True, timeout=600)

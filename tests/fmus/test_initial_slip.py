@@ -1,4 +1,4 @@
-"""The contact FMU's initial condition through fmpy (issue 14): a system
+"""The contact FMU's initial condition through fmpy: a system
 simulator that wires absolute positions from t0 sets the inputs in
 initialization mode; by default the contact starts unloaded there (no force,
 no slip, no dissipation on the first step), and the explicit initial slip 0
@@ -12,7 +12,7 @@ from fmpy import extract, read_model_description
 
 from orthocontact.fmu import RULES, ContactFMU, ContactParams, find_fmu
 
-U = (1.0, 0.5, 18.39)  # the issue's absolute position and normal force
+U = (1.0, 0.5, 18.39)  # an absolute position from t0 and the rig's normal force
 
 
 def _slave(version):
@@ -89,7 +89,7 @@ def test_explicit_initial_slip_zero_is_the_old_behaviour(version, rule):
     assert explicit == old  # bit for bit
     assert explicit["contactState"] == 2 and explicit["dissipatedEnergy"] > 0
     if rule == 2:
-        assert explicit["dissipatedEnergy"] == pytest.approx(8.55, abs=5e-3)  # issue 14
+        assert explicit["dissipatedEnergy"] == pytest.approx(8.55, abs=5e-3)  # the first step's full slide
 
 
 @pytest.mark.parametrize("version", [2, 3])

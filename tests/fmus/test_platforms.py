@@ -50,16 +50,9 @@ def test_binary_format_architecture_and_exports(version, platform):
         assert newest <= (2, 17), f"needs GLIBC_{'.'.join(map(str, newest))}"
 
 
-def _qemu():
-    q = shutil.which("qemu-aarch64")
-    sysroot = Path("/usr/aarch64-linux-gnu")
-    if not q or not (sysroot / "lib" / "ld-linux-aarch64.so.1").exists():
-        pytest.skip("qemu-user or the arm64 C library (libc6-arm64-cross) is not installed")
-    return q, sysroot
-
-
+@pytest.mark.needs("qemu-aarch64")
 def test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one(tmp_path):
-    qemu, sysroot = _qemu()
+    qemu, sysroot = shutil.which("qemu-aarch64"), Path("/usr/aarch64-linux-gnu")
     fmu = find_fmu(fmi_version=3)
     z = zipfile.ZipFile(fmu)
     so = tmp_path / "OrthotropicContact.so"

@@ -23,8 +23,11 @@ different force)."""
 import math
 
 import numpy as np
-from hypothesis import HealthCheck, assume, given, settings
-from hypothesis import strategies as st
+from optional_parts import need
+
+need("hypothesis", module_level=True)
+from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
 
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.params import ContactParams

@@ -18,7 +18,7 @@ FA, AA = [0, 15, 30, 45, 60, 75, 90], list(range(5, 90, 5))
 
 @pytest.fixture(scope="module")
 def reference_data():
-    """Noise-free data of the issue's truth (mu 0.30 / 0.55, eps1/eps2 0.8,
+    """Noise-free data of a known truth (mu 0.30 / 0.55, eps1/eps2 0.8,
     eps2 3e4 N/m) from the independent simulator (tools/rig_reference.py)."""
     import math
 

@@ -109,10 +109,10 @@ def test_the_exported_fmu_runs_calibrated_in_fmpy_with_nothing_set(identified, e
     assert abs(res.phi_deg - expected) <= 1e-9   # measured 4e-15 deg
 
 
+@pytest.mark.needs("libcosimpy")
 def test_the_exported_ssp_runs_calibrated_in_libcosim_with_no_parameter_set(identified, exported, tmp_path):
     """The SSP's parameter bindings are taken out: the FMUs' own start values
     alone make the calibrated experiment (CarriageBlock's dynamic rig)."""
-    pytest.importorskip("libcosimpy")
     bare = tmp_path / "bare.ssp"
     with zipfile.ZipFile(exported / f"rig_{ANGLE:g}.ssp") as z, zipfile.ZipFile(bare, "w") as o:
         for info in z.infolist():

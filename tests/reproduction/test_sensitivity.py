@@ -43,7 +43,7 @@ def test_strip_closed_form_is_the_quasistatic_rigs_steady_state(rule, mu_s, c, v
     np.testing.assert_allclose(want, scalar, rtol=0, atol=1e-12)
 
 
-def test_the_issues_measured_figures():
+def test_the_strip_and_viscosity_peaks_match_the_independently_measured_figures():
     """Figures measured with an independent simulation (docs/model-notes.md)."""
     peak = lambda **kw: abs(S.peak_closed(AGED, **kw)[0])
     assert peak(mu_strip=0.0) == pytest.approx(11.53, abs=0.01)

@@ -47,7 +47,7 @@ def warnings_of(p):
 
 
 def test_a_dynamic_rig_that_never_settled_is_flagged_everywhere(tmp_path):
-    """Case 2's law in the dynamic rig over the default 0.5 m: the issue's
+    """Case 2's law in the dynamic rig over the default 0.5 m: a reported
     -59.13 deg at 23.6 deg where the steady state is -67.38 deg at 11.31."""
     sc = scenario(tmp_path, "c2dyn", CASE2_LAW + '[rig]\nmode = "dynamic"\n')
     p = run(["run", str(sc), "--out", "o"], tmp_path)

@@ -115,7 +115,7 @@ SHORT = ("travel_m = 0.5", "travel_m = 0.05")   # 205 steps a run: quick
 
 
 def test_a_one_angle_sweeps_estimate_is_the_runs_it_makes(tmp_path, counted):
-    """The issue's case: a 1-angle sweep's estimate said 1 run and the sweep
+    """A 1-angle sweep's estimate once said 1 run and the sweep
     made 9 (the other rule at the extremum, 7 recorded trajectories)."""
     from orthocontact.runs.sweep import run_sweep
     sc = load(_variant(tmp_path, SCEN / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 45.0"),
