@@ -1,6 +1,15 @@
-/* Return mapping for the coupled orthotropic adhesion-friction law.
- * The derivation of the yield coordinates and of the tangent is in
- * docs/law.md; the comments here say why the code takes its shape.
+/* The coupled orthotropic adhesion-friction law (Konyukhov & Schweizerhof):
+ * one return-mapping step and its consistent tangent.  The derivations are in
+ * docs/law.md, whose sections these follow; the comments here say why the
+ * code takes its shape.
+ *
+ *   1. Arithmetic: 2x2 products, norms without overflow, power-of-two scales
+ *   2. The parameters and the tensors they fix (B, F, the yield coordinates)
+ *   3. Slip by the implicit rules: the plastic multiplier on the yield surface
+ *   4. Slip by the paper's explicit eq. (20)
+ *   5. One step: trial, stick test, return map, commit
+ *   6. The consistent tangent
+ *   7. A committed state's admissibility
  *
  * Scale: the law is homogeneous (N, eps -> k N, k eps scales forces and
  * energy by k; u, eps -> m u, eps / m scales slip and energy by m).  So
@@ -14,9 +23,13 @@
 #include <stdint.h>
 #include <string.h>
 
-/* The slip solve's one call site takes it inline, as gcc does on its own
- * and clang (the shipped binaries) does not: called, it spills the registers
- * the step keeps live (1 ns of uq's 97 ns rig step, bench_master). */
+/* ==== 1. Arithmetic: 2x2 products, norms without overflow, power-of-two scales ==== */
+
+/* Inlined even where the compiler would make a call: the slip solve and the
+ * parts of a step (sections 3 to 5) are pieces of the step's one body, and
+ * as calls they would spill the registers the step keeps live.  gcc inlines
+ * them on its own; clang, which builds the shipped binaries, leaves the slip
+ * solve a call (docs/benchmarks.md). */
 #if defined(__GNUC__) || defined(__clang__)
 #define OC_ALWAYS_INLINE __attribute__((always_inline)) inline
 #else
@@ -47,19 +60,10 @@ static void matvec(const double A[2][2], const double x[2], double y[2]) {
     y[1] = y1;
 }
 
-/* q = Minv a in its factored form (see oc_law.R): a rotation, then
- * G = Q(beta) diag(mu), whose entries never mix mu1 with mu2. */
-static inline void force_of(const oc_law *L, const double a[2], double q[2]) {
-    const double r0 = L->R[0][0] * a[0] + L->R[0][1] * a[1];
-    const double r1 = L->R[1][0] * a[0] + L->R[1][1] * a[1];
-    q[0] = L->G[0][0] * r0 + L->G[0][1] * r1;
-    q[1] = L->G[1][0] * r0 + L->G[1][1] * r1;
-}
-
 /* fmax, NaN handling included (the other argument), without the libm call
- * it compiles to on x86-64 (fmax is a call there: in the slip step it cost
- * more than the arithmetic around it).  Zeros of both signs tie
- * differently, which no caller meets (they compare positive numbers). */
+ * it compiles to on x86-64 (a call in the middle of the slip solve's
+ * arithmetic).  Zeros of both signs tie differently, which no caller meets
+ * (they compare positive numbers). */
 static inline double max2(double a, double b) { return a > b || b != b ? a : b; }
 
 static int all_finite(const double *v, size_t n) {
@@ -139,10 +143,7 @@ static inline double norm2(double x, double y) {
 
 double oc_norm2(double x, double y) { return norm2(x, y); }
 
-oc_state oc_state_unloaded(double s1, double s2, double energy) {
-    oc_state st = {{s1, s2}, 0.0, {0.0, 0.0}, {s1, s2}, energy};
-    return st;
-}
+/* ==== 2. The parameters and the tensors they fix (B, F, the yield coordinates) ==== */
 
 const char *oc_params_check(const oc_params *p) {
     /* Written as !(x > 0) so that NaN is rejected too. */
@@ -157,25 +158,29 @@ const char *oc_params_check(const oc_params *p) {
     return NULL;
 }
 
-int oc_law_init(oc_law *out, const oc_params *p) {
-    if (oc_params_check(p)) return -1;
-    oc_law L;
-    L.p = *p;
-    rotated_diag(p->alpha, p->eps1, p->eps2, L.B);
-    rotated_diag(p->alpha, 1.0 / p->eps1, 1.0 / p->eps2, L.Binv);
-    rotated_diag(p->beta, 1.0 / (p->mu1 * p->mu1), 1.0 / (p->mu2 * p->mu2), L.F);
-    /* With p = F^(1/2) q the slip step reads p = (I + dgamma S)^-1 p_tr for a
-     * symmetric positive definite S, whatever the rule:
-     * S = F^(1/2) B F^(1/2) (associated) or F^(-1/2) B^-1 F^(-1/2) (coupled).
-     * Both are formed in the friction axes, S = Q(beta) S' Q(beta)^T with
-     * S' = D Q(gamma) E Q(gamma)^T D, gamma = alpha - beta, D = diag(1/mu) or
-     * diag(mu), E = diag(eps) or diag(1/eps): every entry of S' is one product
-     * of the parameters with a rotated diagonal, so nothing cancels however
-     * different mu1, mu2, eps1, eps2 are.  Formed from rotated factors
-     * instead, S loses its small part to the cancellation of its large ones,
-     * and its eigenbasis (exactly the shared axes when alpha = beta) comes out
-     * off by DBL_EPSILON times the contrast, which then moves the strong-axis
-     * part of the force onto the weak axis. */
+/* The elastic tensor B = Q(alpha) diag(eps) Q(alpha)^T, its inverse, and the
+ * friction tensor F = Q(beta) diag(1/mu^2) Q(beta)^T of the yield function. */
+static void elastic_and_friction_tensors(const oc_params *p, oc_law *L) {
+    rotated_diag(p->alpha, p->eps1, p->eps2, L->B);
+    rotated_diag(p->alpha, 1.0 / p->eps1, 1.0 / p->eps2, L->Binv);
+    rotated_diag(p->beta, 1.0 / (p->mu1 * p->mu1), 1.0 / (p->mu2 * p->mu2), L->F);
+}
+
+/* The slip operator S and its eigenbasis V (in the friction axes).
+ * With p = F^(1/2) q the slip step reads p = (I + dgamma S)^-1 p_tr for a
+ * symmetric positive definite S, whatever the rule:
+ * S = F^(1/2) B F^(1/2) (associated) or F^(-1/2) B^-1 F^(-1/2) (coupled).
+ * Both are formed in the friction axes, S = Q(beta) S' Q(beta)^T with
+ * S' = D Q(gamma) E Q(gamma)^T D, gamma = alpha - beta, D = diag(1/mu) or
+ * diag(mu), E = diag(eps) or diag(1/eps): every entry of S' is one product
+ * of the parameters with a rotated diagonal, so nothing cancels however
+ * different mu1, mu2, eps1, eps2 are.  Formed from rotated factors
+ * instead, S loses its small part to the cancellation of its large ones,
+ * and its eigenbasis (exactly the shared axes when alpha = beta) comes out
+ * off by DBL_EPSILON times the contrast, which then moves the strong-axis
+ * part of the force onto the weak axis.  Sets sigma, sigma_ref, sig_hat,
+ * kappa; V is the rotation from the eigenbasis to the friction axes. */
+static void slip_operator_eigenbasis(const oc_params *p, oc_law *L, double V[2][2]) {
     const int assoc = p->rule == OC_RULE_ASSOCIATED;
     const double gamma = p->alpha - p->beta;
     const double D[2] = {assoc ? 1.0 / p->mu1 : p->mu1, assoc ? 1.0 / p->mu2 : p->mu2};
@@ -191,82 +196,112 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     if (th > 0.25 * 3.14159265358979323846) th -= 0.5 * 3.14159265358979323846;
     else if (th < -0.25 * 3.14159265358979323846) th += 0.5 * 3.14159265358979323846;
     const double c = cos(th), s = sin(th);
-    const double V[2][2] = {{c, -s}, {s, c}};
-    const double Vt[2][2] = {{c, s}, {-s, c}};
-    L.sigma[0] = c * c * S[0][0] + 2 * c * s * S[0][1] + s * s * S[1][1];
-    L.sigma[1] = s * s * S[0][0] - 2 * c * s * S[0][1] + c * c * S[1][1];
+    V[0][0] = c;
+    V[0][1] = -s;
+    V[1][0] = s;
+    V[1][1] = c;
+    L->sigma[0] = c * c * S[0][0] + 2 * c * s * S[0][1] + s * s * S[1][1];
+    L->sigma[1] = s * s * S[0][0] - 2 * c * s * S[0][1] + c * c * S[1][1];
     /* The rotation gets the larger eigenvalue to full relative accuracy, the
      * smaller one only to DBL_EPSILON times the larger.  det S is known
      * exactly from the parameters, so the smaller follows from it; the
      * factors are ordered so that no intermediate product overflows. */
-    const int big = L.sigma[0] >= L.sigma[1] ? 0 : 1;
-    const double mm = p->mu1 * p->mu2, sb = L.sigma[big];
-    L.sigma[1 - big] = assoc ? ((p->eps1 / mm) / sb) * (p->eps2 / mm)
-                             : ((mm / p->eps1) / sb) * (mm / p->eps2);
-    L.sigma_ref = sb;
-    L.inv_sigma_ref = 1.0 / sb;
-    L.sig_hat[big] = 1.0;
-    L.sig_hat[1 - big] = L.sigma[1 - big] / sb;
-    L.kappa = sb / L.sigma[1 - big];
+    const int big = L->sigma[0] >= L->sigma[1] ? 0 : 1;
+    const double mm = p->mu1 * p->mu2, sig_big = L->sigma[big];
+    L->sigma[1 - big] = assoc ? ((p->eps1 / mm) / sig_big) * (p->eps2 / mm)
+                              : ((mm / p->eps1) / sig_big) * (mm / p->eps2);
+    L->sigma_ref = sig_big;
+    L->inv_sigma_ref = 1.0 / sig_big;
+    L->sig_hat[big] = 1.0;
+    L->sig_hat[1 - big] = L->sigma[1 - big] / sig_big;
+    L->kappa = sig_big / L->sigma[1 - big];
+}
 
-    /* The eigenbasis of S is Q(beta) V, so every map between forces and
-     * yield coordinates is a product of factors with at most one sum of two
-     * terms per entry (none when alpha = beta and V = I):
-     *   q = G R a,  G = Q(beta) diag(mu), R = V
-     *   a = Y q,    Y = V^T diag(1/mu) Q(beta)^T
-     *   a = P du,   P = Y B = V^T diag(1/mu) Q(gamma) diag(eps) Q(alpha)^T
-     *   B^-1 q = K a, K = Q(alpha) diag(1/eps) Q(gamma)^T diag(mu) V. */
+/* The maps between forces, displacements and yield coordinates.  The
+ * eigenbasis of S is Q(beta) V, so every map is a product of factors with at
+ * most one sum of two terms per entry (none when alpha = beta and V = I):
+ *   q = G R a,  G = Q(beta) diag(mu), R = V
+ *   a = Y q,    Y = V^T diag(1/mu) Q(beta)^T
+ *   a = P du,   P = Y B = V^T diag(1/mu) Q(gamma) diag(eps) Q(alpha)^T
+ *   B^-1 q = K a, K = Q(alpha) diag(1/eps) Q(gamma)^T diag(mu) V. */
+static void yield_coordinate_maps(const oc_params *p, const double V[2][2], oc_law *L) {
+    const double gamma = p->alpha - p->beta;
+    const double Vt[2][2] = {{V[0][0], V[1][0]}, {V[0][1], V[1][1]}};
     const double ca = cos(p->alpha), sa = sin(p->alpha);
-    const double cb = cos(p->beta), sb_ = sin(p->beta);
+    const double cb = cos(p->beta), sb = sin(p->beta);
     const double cg = cos(gamma), sg = sin(gamma);
     const double Qa[2][2] = {{ca, -sa}, {sa, ca}}, Qat[2][2] = {{ca, sa}, {-sa, ca}};
-    L.G[0][0] = cb * p->mu1;
-    L.G[0][1] = -sb_ * p->mu2;
-    L.G[1][0] = sb_ * p->mu1;
-    L.G[1][1] = cb * p->mu2;
-    memcpy(L.R, V, sizeof L.R);
-    matmul(L.G, L.R, L.Minv);
-    const double Ymu[2][2] = {{cb / p->mu1, sb_ / p->mu1}, {-sb_ / p->mu2, cb / p->mu2}};
-    matmul(Vt, Ymu, L.Y);
+    L->G[0][0] = cb * p->mu1;
+    L->G[0][1] = -sb * p->mu2;
+    L->G[1][0] = sb * p->mu1;
+    L->G[1][1] = cb * p->mu2;
+    memcpy(L->R, V, sizeof L->R);
+    matmul(L->G, L->R, L->Minv);
+    const double Ymu[2][2] = {{cb / p->mu1, sb / p->mu1}, {-sb / p->mu2, cb / p->mu2}};
+    matmul(Vt, Ymu, L->Y);
     const double Pmu[2][2] = {{(cg / p->mu1) * p->eps1, (-sg / p->mu1) * p->eps2},
                               {(sg / p->mu2) * p->eps1, (cg / p->mu2) * p->eps2}};
-    matmul(Pmu, Qat, L.P);
-    matmul(Vt, L.P, L.P);
+    matmul(Pmu, Qat, L->P);
+    matmul(Vt, L->P, L->P);
     const double Keps[2][2] = {{(cg / p->eps1) * p->mu1, (sg / p->eps1) * p->mu2},
                                {(-sg / p->eps2) * p->mu1, (cg / p->eps2) * p->mu2}};
-    matmul(Keps, V, L.K);
-    matmul(Qa, L.K, L.K);
-    /* eq. (20) needs only the direction of E t: E is formed from factors
-     * scaled to at most 1 (the C of eps / its largest entry, mu_min / mu_i),
-     * so that it can neither overflow nor cancel (every entry is a product),
-     * and then scaled to max|E| = 1.  Scaling by a power of two of eps
-     * leaves it unchanged bit for bit. */
-    {
-        double C[2][2];
-        rotated_diag(gamma, p->eps1, p->eps2, C);
-        const double cm = fmax(fmax(C[0][0], C[1][1]), fabs(C[0][1]));
-        const double mmin = fmin(p->mu1, p->mu2);
-        const double f[2] = {mmin / p->mu1, mmin / p->mu2};
-        double m = 0.0;
-        for (int i = 0; i < 2; ++i)
-            for (int j = 0; j < 2; ++j) {
-                L.E20[i][j] = ((C[i][j] / cm) * f[i]) * f[j];
-                m = fmax(m, fabs(L.E20[i][j]));
-            }
-        for (int i = 0; i < 2; ++i)
-            for (int j = 0; j < 2; ++j) L.E20[i][j] /= m;
-    }
+    matmul(Keps, V, L->K);
+    matmul(Qa, L->K, L->K);
+}
 
+/* eq. (20)'s matrix E (oc_law.E20).  The rule needs only the direction of
+ * E t: E is formed from factors scaled to at most 1 (the C of eps / its
+ * largest entry, mu_min / mu_i), so that it can neither overflow nor cancel
+ * (every entry is a product), and then scaled to max|E| = 1.  Scaling by a
+ * power of two of eps leaves it unchanged bit for bit. */
+static void eq20_matrix(const oc_params *p, oc_law *L) {
+    double C[2][2];
+    rotated_diag(p->alpha - p->beta, p->eps1, p->eps2, C);
+    const double cm = fmax(fmax(C[0][0], C[1][1]), fabs(C[0][1]));
+    const double mmin = fmin(p->mu1, p->mu2);
+    const double f[2] = {mmin / p->mu1, mmin / p->mu2};
+    double m = 0.0;
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+            L->E20[i][j] = ((C[i][j] / cm) * f[i]) * f[j];
+            m = fmax(m, fabs(L->E20[i][j]));
+        }
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) L->E20[i][j] /= m;
+}
+
+int oc_law_init(oc_law *out, const oc_params *p) {
+    if (oc_params_check(p)) return -1;
+    oc_law L;
+    double V[2][2];
+    L.p = *p;
+    elastic_and_friction_tensors(p, &L);
+    slip_operator_eigenbasis(p, &L, V);
+    yield_coordinate_maps(p, V, &L);
+    eq20_matrix(p, &L);
+    /* Parameters far apart enough can still overflow a tensor: refused. */
     if (!all_finite(&L.B[0][0], 4) || !all_finite(&L.Binv[0][0], 4) ||
         !all_finite(&L.F[0][0], 4) || !all_finite(&L.P[0][0], 4) ||
         !all_finite(&L.Minv[0][0], 4) || !all_finite(&L.Y[0][0], 4) || !all_finite(L.sigma, 2) ||
         !all_finite(&L.R[0][0], 4) || !all_finite(&L.G[0][0], 4) || !all_finite(&L.K[0][0], 4) ||
         !all_finite(&L.E20[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
-        !(L.sig_hat[1 - big] > 0) || !isfinite(L.kappa) || !isfinite(L.inv_sigma_ref))
+        !(L.sig_hat[0] > 0) || !(L.sig_hat[1] > 0) || !isfinite(L.kappa) ||
+        !isfinite(L.inv_sigma_ref))
         return -1;
     *out = L;
     return 0;
 }
+
+/* q = Minv a in its factored form (see oc_law.R): a rotation, then
+ * G = Q(beta) diag(mu), whose entries never mix mu1 with mu2. */
+static inline void force_of(const oc_law *L, const double a[2], double q[2]) {
+    const double r0 = L->R[0][0] * a[0] + L->R[0][1] * a[1];
+    const double r1 = L->R[1][0] * a[0] + L->R[1][1] * a[1];
+    q[0] = L->G[0][0] * r0 + L->G[0][1] * r1;
+    q[1] = L->G[1][0] * r0 + L->G[1][1] * r1;
+}
+
+/* ==== 3. Slip by the implicit rules: the plastic multiplier on the yield surface ==== */
 
 /* Solves sum_i a_i^2 / (1 + y s_i)^2 = rho^2 for y > 0, given |a| = 1 > rho
  * and s_i = sigma_i / sigma_ref in (0, 1] (so y = dgamma sigma_ref is
@@ -285,8 +320,9 @@ int oc_law_init(oc_law *out, const oc_params *p) {
  * that an evaluation costs one square root and one division; its products
  * (up to W^7) stay finite while W < 1e40, which the caller guarantees
  * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest. */
-static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr, double N,
-                           const double sh[2], double p[2], double *inv_norm) {
+static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr,
+                                             double N, const double sh[2], double p[2],
+                                             double *inv_norm) {
     /* The divisions depend only on the trial, not on its square root:
      * they run beside it.  Moments are taken over a_i^2 / |a|^2. */
     const double A0 = a_raw[0] * a_raw[0], A1 = a_raw[1] * a_raw[1];
@@ -383,135 +419,162 @@ static double solve_dgamma_far(const double a[2], const double sh[2], double rho
     return v;
 }
 
-void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], double N,
-                 oc_step *out) {
-    /* The caller has typically just stored the inputs, one value at a time
-     * (a master's set call).  Read as a pair, as clang vectorizes the
-     * difference below, the load waits until both stores have retired
-     * (store forwarding fails): 3 ns of a 21 ns stick step and 18 ns of a
-     * slip step in the shipped binaries.  A volatile read is never paired. */
-    const double u[2] = {*(const volatile double *)&u_in[0], *(const volatile double *)&u_in[1]};
-    /* Each field of the result is written once, by the branch that knows
-     * it: a stick step, most steps, writes 10 numbers, not a copy of the
-     * start followed by the fields that change (a fifth of its stores). */
-    out->next.u[0] = u[0];
-    out->next.u[1] = u[1];
-    out->next.N = N;
-
-    if (!(N > 0)) {
-        /* Open: no force, and the slip follows the body so that a new contact
-         * starts unloaded.  Released elastic energy is not dissipation. */
-        out->contact = OC_OPEN;
-        out->q[0] = out->q[1] = 0.0;
-        out->next.a[0] = out->next.a[1] = 0.0;
-        out->next.s[0] = u[0];
-        out->next.s[1] = u[1];
-        out->next.energy = start->energy;
-        return;
+/* The return map of the implicit rules (associated, coupled): the slipped
+ * force a = a_tr / (1 + dgamma sigma) on the yield surface |a| = N, as the
+ * direction p and the radial scale with a = p scale; yp = y a as the
+ * dissipation needs it (y = dgamma sigma_ref), and what the tangent needs
+ * (oc_step.dgamma, w, inv_wmax).  The trial a (|a| = n_tr, |a|^2 = sq) lies
+ * outside the surface. */
+static OC_ALWAYS_INLINE void return_map_implicit(const oc_law *L, const double a[2], double sq,
+                                                 double n_tr, double N, double p[2],
+                                                 double *scale_out, double yp[2], oc_step *out) {
+    /* The fast solve needs W <= kappa / rho^2 < 1e40.  It runs on the
+     * trial scaled by the power of two that brings |a| to [1, 2): the
+     * same numbers in any units, down to which squares of a small
+     * component underflow (scaled only where |a|^2 left a range, the
+     * units decided whether a_i^2 was subnormal). */
+    double inv_np, scale, w[2], wfac; /* w = wfac (1 + dgamma sigma) */
+    if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
+        const double sc = trial_scale(sq, n_tr);
+        const double as[2] = {a[0] * sc, a[1] * sc};
+        const double y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc,
+                                      L->sig_hat, p, &inv_np);
+        w[0] = 1.0 + y * L->sig_hat[0];
+        w[1] = 1.0 + y * L->sig_hat[1];
+        scale = N * inv_np;
+        /* y a_i with a = p scale, as the energy needs it */
+        yp[0] = y * (p[0] * scale);
+        yp[1] = y * (p[1] * scale);
+        out->dgamma = y * L->inv_sigma_ref;
+        wfac = 1.0;
+    } else {
+        const double an[2] = {a[0] / n_tr, a[1] / n_tr}, rho = N / n_tr;
+        const double v = solve_dgamma_far(an, L->sig_hat, rho, p, &inv_np);
+        /* wt_i = rho w_i; y a_i = v (p_i / |p|) n_tr, without y = v / rho */
+        w[0] = rho + v * L->sig_hat[0];
+        w[1] = rho + v * L->sig_hat[1];
+        scale = N * inv_np;
+        yp[0] = v * (p[0] * inv_np) * n_tr;
+        yp[1] = v * (p[1] * inv_np) * n_tr;
+        out->dgamma = (v / rho) * L->inv_sigma_ref;
+        wfac = rho;
     }
+    const double wmax = max2(w[0], w[1]);
+    out->w[0] = w[0] / wmax;
+    out->w[1] = w[1] / wmax;
+    out->inv_wmax = wfac / wmax;
+    *scale_out = scale;
+}
 
-    /* The trial in yield coordinates: the committed force plus the elastic
-     * response to the change of the inputs. */
+/* The energy the implicit rules dissipate in a slip to the force ap:
+ * dgamma q.Gq = sum_i dgamma c_i a_i^2 with c_i = 1 (associated) or
+ * sigma_i^2 (coupled): a sum of products of equal signs, so it is >= 0 by
+ * construction, in an order that does not overflow where the result does
+ * not: (dgamma c_i a_i), of the size of the slip in yield coordinates,
+ * times a_i, the force. */
+static OC_ALWAYS_INLINE double dissipation_implicit(const oc_law *L, const double yp[2],
+                                                    const double ap[2]) {
+    if (L->p.rule == OC_RULE_ASSOCIATED)
+        return (yp[0] * L->inv_sigma_ref) * ap[0] + (yp[1] * L->inv_sigma_ref) * ap[1];
+    return ((L->sig_hat[0] * yp[0]) * L->sigma[0]) * ap[0] +
+           ((L->sig_hat[1] * yp[1]) * L->sigma[1]) * ap[1];
+}
+
+/* ==== 4. Slip by the paper's explicit eq. (20) ==== */
+
+/* The return map of eq. (20): t = N z / |z|, z = E t_tr, t_tr = R a (see
+ * oc_law.E20), as the direction p (in yield coordinates) and the scale that
+ * puts it exactly on the yield surface, like the implicit rules' states.
+ * No multiplier: the tangent differentiates the formula itself. */
+static OC_ALWAYS_INLINE void return_map_eq20(const oc_law *L, const double a[2], double sq,
+                                             double n_tr, double N, double p[2], double *scale,
+                                             oc_step *out) {
+    out->dgamma = 0.0;
+    out->w[0] = out->w[1] = out->inv_wmax = 1.0;
+    /* On a trial scaled to |t_tr| in [1, 2) by a power of two: the direction
+     * of z is the same in any units.  Back in yield coordinates, p = R^T z. */
+    const double sc = trial_scale(sq, n_tr);
+    const double as[2] = {a[0] * sc, a[1] * sc};
+    double t[2], z[2];
+    matvec(L->R, as, t);
+    matvec(L->E20, t, z);
+    p[0] = L->R[0][0] * z[0] + L->R[1][0] * z[1];
+    p[1] = L->R[0][1] * z[0] + L->R[1][1] * z[1];
+    *scale = N / norm2(p[0], p[1]);
+}
+
+/* The energy eq. (20) dissipates in a slip from the trial a to the force ap
+ * (q in global axes).  The rule is not derived from a dissipation potential,
+ * yet its q . ds is positive (docs/law.md: Cauchy-Schwarz, since N < |t|
+ * when it slides); the clip only catches rounding.  ds = B^-1 (q_tr - q) =
+ * K (a_tr - a), formed from yield coordinates rather than as a difference
+ * of slips, which may be large and nearly equal. */
+static OC_ALWAYS_INLINE double dissipation_eq20(const oc_law *L, const double a[2],
+                                                const double ap[2], const double q[2]) {
+    const double da[2] = {a[0] - ap[0], a[1] - ap[1]};
+    double ds[2];
+    matvec(L->K, da, ds);
+    const double dE = q[0] * ds[0] + q[1] * ds[1];
+    return dE > 0 ? dE : 0.0;
+}
+
+/* ==== 5. One step: trial, stick test, return map, commit ==== */
+
+/* Open (N <= 0): no force, and the slip follows the body so that a new
+ * contact starts unloaded.  Released elastic energy is not dissipation. */
+static OC_ALWAYS_INLINE void step_open(const oc_state *start, const double u[2], oc_step *out) {
+    out->contact = OC_OPEN;
+    out->q[0] = out->q[1] = 0.0;
+    out->next.a[0] = out->next.a[1] = 0.0;
+    out->next.s[0] = u[0];
+    out->next.s[1] = u[1];
+    out->next.energy = start->energy;
+}
+
+/* The trial in yield coordinates: the committed force plus the elastic
+ * response to the change of the inputs, a_tr = a_n + P (u - u_n). */
+static OC_ALWAYS_INLINE void trial(const oc_law *L, const oc_state *start, const double u[2],
+                                   double a[2]) {
     const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
-    double a[2];
     matvec(L->P, du, a);
     a[0] += start->a[0];
     a[1] += start->a[1];
+}
 
-    /* A committed force lies on or inside the yield surface to a few
-     * rounding errors of N; such a trial sticks, so held inputs stick:
-     * n_tr <= lim.  Most steps stick well inside, which the squares tell
-     * without the square root (a third of a stick step): sq <= lim^2
-     * exactly implies sqrt(sq) <= lim after rounding, and the factor
-     * (1 - 4 eps) covers the two roundings of lim2c, which is normal
-     * wherever sq >= 2^-900 passes.  Within it the decision is the square
-     * root's, bit for bit (sq is what norm2 takes the root of in this
-     * range), and is taken by it everywhere else. */
-    const double lim = N * (1.0 + 8 * DBL_EPSILON);
-    const double sq = a[0] * a[0] + a[1] * a[1];
-    const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
-    const int surely_inside = sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000;
-    const double n_tr = surely_inside ? 0.0 : norm2(a[0], a[1]);
-    if (surely_inside || n_tr <= lim) {
-        out->contact = OC_STICK;
-        force_of(L, a, out->q);
-        out->next.a[0] = a[0];
-        out->next.a[1] = a[1];
-        out->next.s[0] = start->s[0];
-        out->next.s[1] = start->s[1];
-        out->next.energy = start->energy;
-        return;
-    }
+/* Stick: the trial is the force; the slip and the energy stay. */
+static OC_ALWAYS_INLINE void step_stick(const oc_law *L, const oc_state *start, const double a[2],
+                                        oc_step *out) {
+    out->contact = OC_STICK;
+    force_of(L, a, out->q);
+    out->next.a[0] = a[0];
+    out->next.a[1] = a[1];
+    out->next.s[0] = start->s[0];
+    out->next.s[1] = start->s[1];
+    out->next.energy = start->energy;
+}
 
-    out->contact = OC_SLIP;
-    /* Both rules end in a direction p in yield coordinates and the radial
-     * scale that puts it on the yield surface; the elastic displacement is
-     * formed from p while the scale is being computed. */
-    double p[2], scale, yp[2] = {0.0, 0.0};
-    if (L->p.rule == OC_RULE_EQ20) {
-        /* no multiplier: the tangent differentiates the formula itself */
-        out->dgamma = 0.0;
-        out->w[0] = out->w[1] = out->inv_wmax = 1.0;
-        /* t = N z / |z|, z = E t_tr, t_tr = R a (see oc_law.E20), on a trial
-         * scaled to |t_tr| in [1, 2) by a power of two: the direction of z
-         * is the same in any units.  Back in yield coordinates, p = R^T z. */
-        const double sc = trial_scale(sq, n_tr);
-        const double as[2] = {a[0] * sc, a[1] * sc};
-        double t[2], z[2];
-        matvec(L->R, as, t);
-        matvec(L->E20, t, z);
-        p[0] = L->R[0][0] * z[0] + L->R[1][0] * z[1];
-        p[1] = L->R[0][1] * z[0] + L->R[1][1] * z[1];
-        /* on the yield surface exactly, like the implicit rules' states */
-        scale = N / norm2(p[0], p[1]);
-    } else {
-        /* The fast solve needs W <= kappa / rho^2 < 1e40.  It runs on the
-         * trial scaled by the power of two that brings |a| to [1, 2): the
-         * same numbers in any units, down to which squares of a small
-         * component underflow (scaled only where |a|^2 left a range, the
-         * units decided whether a_i^2 was subnormal). */
-        double inv_np, w[2], wfac; /* w = wfac (1 + dgamma sigma) */
-        if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
-            const double sc = trial_scale(sq, n_tr);
-            const double as[2] = {a[0] * sc, a[1] * sc};
-            const double y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc,
-                                          L->sig_hat, p, &inv_np);
-            w[0] = 1.0 + y * L->sig_hat[0];
-            w[1] = 1.0 + y * L->sig_hat[1];
-            scale = N * inv_np;
-            /* y a_i with a = p scale, as the energy needs it */
-            yp[0] = y * (p[0] * scale);
-            yp[1] = y * (p[1] * scale);
-            out->dgamma = y * L->inv_sigma_ref;
-            wfac = 1.0;
-        } else {
-            const double an[2] = {a[0] / n_tr, a[1] / n_tr}, rho = N / n_tr;
-            const double v = solve_dgamma_far(an, L->sig_hat, rho, p, &inv_np);
-            /* wt_i = rho w_i; y a_i = v (p_i / |p|) n_tr, without y = v / rho */
-            w[0] = rho + v * L->sig_hat[0];
-            w[1] = rho + v * L->sig_hat[1];
-            scale = N * inv_np;
-            yp[0] = v * (p[0] * inv_np) * n_tr;
-            yp[1] = v * (p[1] * inv_np) * n_tr;
-            out->dgamma = (v / rho) * L->inv_sigma_ref;
-            wfac = rho;
-        }
-        const double wmax = max2(w[0], w[1]);
-        out->w[0] = w[0] / wmax;
-        out->w[1] = w[1] / wmax;
-        out->inv_wmax = wfac / wmax;
-    }
-    double ap[2] = {p[0] * scale, p[1] * scale};
+/* The slipped force in yield coordinates, p scale, inside the stick test:
+ * near the subnormal range it is rounded to a multiple of 2^-1074, which can
+ * put it a unit outside, so that the state would slip again with held
+ * inputs (and be refused on restore): it is then shrunk to inside, a unit
+ * at a time. */
+static OC_ALWAYS_INLINE void on_yield_surface(const double p[2], double scale, double N,
+                                              double ap[2]) {
+    ap[0] = p[0] * scale;
+    ap[1] = p[1] * scale;
     if (N < 0x1p-1016) {
-        /* Near the subnormal range ap is rounded to a multiple of 2^-1074,
-         * which can put it a unit outside the stick test, so that the state
-         * would slip again with held inputs (and be refused on restore):
-         * shrink it to inside, a unit at a time. */
         while (norm2(ap[0], ap[1]) > N * (1.0 + 8 * DBL_EPSILON)) {
             const int i = fabs(ap[0]) >= fabs(ap[1]) ? 0 : 1;
             ap[i] = nextafter(ap[i], 0.0);
         }
     }
+}
+
+/* Slip: commits the force ap on the yield surface, the slip that leaves
+ * the elastic displacement B^-1 q = K ap, and the dissipated energy. */
+static OC_ALWAYS_INLINE void step_slip(const oc_law *L, const oc_state *start, const double u[2],
+                                       const double a[2], const double ap[2], const double yp[2],
+                                       oc_step *out) {
     /* The elastic displacement from the committed force, not from p: K p
      * is a product of a scale-dependent K with a scale-free p, whose small
      * terms underflow in some units only. */
@@ -524,32 +587,125 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
     force_of(L, ap, out->q);
     out->next.s[0] = u[0] - ge[0];
     out->next.s[1] = u[1] - ge[1];
-    if (L->p.rule != OC_RULE_EQ20) {
-        /* Dissipation dgamma q.Gq = sum_i dgamma c_i a_i^2 with c_i = 1
-         * (associated) or sigma_i^2 (coupled): a sum of products of equal
-         * signs, so it is >= 0 by construction, in an order that does not
-         * overflow where the result does not: (dgamma c_i a_i), of the size
-         * of the slip in yield coordinates, times a_i, the force. */
-        double dE;
-        if (L->p.rule == OC_RULE_ASSOCIATED)
-            dE = (yp[0] * L->inv_sigma_ref) * ap[0] + (yp[1] * L->inv_sigma_ref) * ap[1];
-        else
-            dE = ((L->sig_hat[0] * yp[0]) * L->sigma[0]) * ap[0] +
-                 ((L->sig_hat[1] * yp[1]) * L->sigma[1]) * ap[1];
-        out->next.energy = start->energy + dE;
-    } else {
-        /* The explicit rule is not derived from a dissipation potential,
-         * yet its q . ds is positive (docs/law.md: Cauchy-Schwarz, since
-         * N < |t| when it slides); the clip only catches rounding.
-         * ds = B^-1 (q_tr - q) = K (a_tr - a), formed from yield coordinates
-         * rather than as a difference of slips, which may be large and
-         * nearly equal. */
-        const double da[2] = {a[0] - ap[0], a[1] - ap[1]};
-        double ds[2];
-        matvec(L->K, da, ds);
-        const double dE = out->q[0] * ds[0] + out->q[1] * ds[1];
-        out->next.energy = start->energy + (dE > 0 ? dE : 0.0);
+    out->next.energy = start->energy + (L->p.rule != OC_RULE_EQ20
+                                            ? dissipation_implicit(L, yp, ap)
+                                            : dissipation_eq20(L, a, ap, out->q));
+}
+
+void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], double N,
+                 oc_step *out) {
+    /* The caller has typically just stored the inputs, one value at a time
+     * (a master's set call).  Read as a pair, as clang vectorizes the
+     * difference in trial(), the load waits until both stores have retired
+     * (store forwarding fails).  A volatile read is never paired. */
+    const double u[2] = {*(const volatile double *)&u_in[0], *(const volatile double *)&u_in[1]};
+    /* Each field of the result is written once, by the part that knows it:
+     * a stick step, most steps, writes 10 numbers, not a copy of the start
+     * followed by the fields that change. */
+    out->next.u[0] = u[0];
+    out->next.u[1] = u[1];
+    out->next.N = N;
+    /* The steps of docs/law.md, "One step".  1: open. */
+    if (!(N > 0)) {
+        step_open(start, u, out);
+        return;
     }
+    /* 2: the elastic trial, and the stick test. */
+    double a[2];
+    trial(L, start, u, a);
+
+    /* The stick test |a_tr| <= N, i.e. Phi(q_tr, N) <= 0.  A committed force
+     * lies on or inside the yield surface to a few rounding errors of N;
+     * such a trial sticks, so held inputs stick: n_tr <= lim.  Most steps
+     * stick well inside, which the squares tell without the square root:
+     * sq <= lim^2 exactly implies sqrt(sq) <= lim after rounding, and the
+     * factor (1 - 4 eps) covers the two roundings of lim2c, which is normal
+     * wherever sq >= 2^-900 passes.  Within it the decision is the square
+     * root's, bit for bit (sq is what norm2 takes the root of in this
+     * range), and is taken by it everywhere else.  (Written out here, not
+     * as a function of its own: so gcc keeps the trial in registers on the
+     * way to a stick.) */
+    const double lim = N * (1.0 + 8 * DBL_EPSILON);
+    const double sq = a[0] * a[0] + a[1] * a[1];
+    const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
+    const int surely_inside = sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000;
+    const double n_tr = surely_inside ? 0.0 : norm2(a[0], a[1]);
+    if (surely_inside || n_tr <= lim) {
+        step_stick(L, start, a, out);
+        return;
+    }
+
+    /* 3: slip, the return map onto the yield surface by the rule, and the
+     * state it commits. */
+    out->contact = OC_SLIP;
+    double p[2], scale, yp[2] = {0.0, 0.0}, ap[2];
+    if (L->p.rule == OC_RULE_EQ20)
+        return_map_eq20(L, a, sq, n_tr, N, p, &scale, out);
+    else
+        return_map_implicit(L, a, sq, n_tr, N, p, &scale, yp, out);
+    on_yield_surface(p, scale, N, ap);
+    step_slip(L, start, u, a, ap, yp, out);
+}
+
+/* ==== 6. The consistent tangent ==== */
+
+/* dq/du and dq/dN of an eq. (20) slip: q = G t, t = N z / |z|, z = E t_tr,
+ * t_tr = R a_tr, a_tr = P du + a_start (see oc_law.E20): dq/du = G D E R P
+ * with D = N (I - zh zh^T) / |z|, zh = z / |z|, and dq/dN = G zh.  D E is
+ * homogeneous of degree 0 in the scale of E and -1 in t_tr: it is formed at
+ * t_tr scaled to [1, 2) and then divided by that scale.  Returns 1 where the
+ * step's energy increment was clipped to 0 (its derivative is then 0). */
+static int tangent_eq20(const oc_law *L, const oc_state *start, const double u[2], double N,
+                        const oc_step *st, double dq_du[2][2], double dq_dN[2]) {
+    double a[2], t[2], z[2];
+    trial(L, start, u, a);
+    double sc;
+    pow2_of(oc_norm2(a[0], a[1]), &sc);
+    a[0] *= sc;
+    a[1] *= sc;
+    matvec(L->R, a, t);
+    matvec(L->E20, t, z);
+    const double nz = oc_norm2(z[0], z[1]);
+    const double zh[2] = {z[0] / nz, z[1] / nz};
+    double D[2][2], M[2][2];
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+            D[i][j] = ((i == j ? 1.0 : 0.0) - zh[i] * zh[j]) * ((N * sc) / nz);
+    matmul(D, L->E20, M);
+    matmul(M, L->R, M);
+    matmul(M, L->P, M);
+    matmul(L->G, M, dq_du);
+    dq_dN[0] = L->G[0][0] * zh[0] + L->G[0][1] * zh[1];
+    dq_dN[1] = L->G[1][0] * zh[0] + L->G[1][1] * zh[1];
+    const double dE = st->q[0] * (st->next.s[0] - start->s[0]) +
+                      st->q[1] * (st->next.s[1] - start->s[1]);
+    return !(dE > 0);
+}
+
+/* dq/du and dq/dN of an implicit rule's slip.  a_i(final) = a_tr,i / w_i
+ * with |a| = N: differentiating the constraint gives d dgamma = (g . da_tr -
+ * N dN) / c, with g_i = a_i / w_i, v_i = sigma_i a_i / w_i, c = a . v, so
+ * dq/du = Minv (W^-1 - v g^T / c) P and dq/dN = Minv v N / c.  v g^T / c and
+ * v N / c are homogeneous of degree 0 in sigma and in a, so they are formed
+ * from sig_hat and a / N: no overflow.  W^-1 - v g^T / c is homogeneous of
+ * degree -1 in w: formed from w / max w and multiplied by 1 / max w (see
+ * oc_step.w). */
+static void tangent_implicit(const oc_law *L, double N, const oc_step *st, double dq_du[2][2],
+                             double dq_dN[2]) {
+    const double *w = st->w, *sh = L->sig_hat;
+    const double ah[2] = {st->next.a[0] / N, st->next.a[1] / N};
+    const double g[2] = {ah[0] / w[0], ah[1] / w[1]};
+    const double v[2] = {sh[0] * ah[0] / w[0], sh[1] * ah[1] / w[1]};
+    const double c = ah[0] * v[0] + ah[1] * v[1];
+    double Da[2][2];
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+            Da[i][j] = ((i == j ? 1.0 / w[i] : 0.0) - (v[i] / c) * g[j]) * st->inv_wmax;
+    double T[2][2];
+    matmul(Da, L->P, T);
+    matmul(L->Minv, T, dq_du);
+    const double daN[2] = {v[0] / c, v[1] / c};
+    matvec(L->Minv, daN, dq_dN);
 }
 
 void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], double N,
@@ -561,66 +717,17 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
     int eq20_clamped = 0;
 
     if (st->contact == OC_OPEN) {
+        /* no force; the slip follows the body */
         ds_du[0][0] = ds_du[1][1] = 1.0;
     } else if (st->contact == OC_STICK) {
+        /* q = B (u - s) with s held */
         for (int i = 0; i < 2; ++i)
             for (int j = 0; j < 2; ++j) dq_du[i][j] = L->B[i][j];
     } else {
-        if (L->p.rule == OC_RULE_EQ20) {
-            /* q = G t, t = N z / |z|, z = E t_tr, t_tr = R a_tr, a_tr = P du
-             * + a_start (see oc_law.E20): dq/du = G D E R P with
-             * D = N (I - zh zh^T) / |z|, zh = z / |z|.  D E is homogeneous
-             * of degree 0 in the scale of E and -1 in t_tr: it is formed at
-             * t_tr scaled to [1, 2) and then divided by that scale. */
-            const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
-            double a[2], t[2], z[2];
-            matvec(L->P, du, a);
-            a[0] += start->a[0];
-            a[1] += start->a[1];
-            double sc;
-            pow2_of(oc_norm2(a[0], a[1]), &sc);
-            a[0] *= sc;
-            a[1] *= sc;
-            matvec(L->R, a, t);
-            matvec(L->E20, t, z);
-            const double nz = oc_norm2(z[0], z[1]);
-            const double zh[2] = {z[0] / nz, z[1] / nz};
-            double D[2][2], M[2][2];
-            for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 2; ++j)
-                    D[i][j] = ((i == j ? 1.0 : 0.0) - zh[i] * zh[j]) * ((N * sc) / nz);
-            matmul(D, L->E20, M);
-            matmul(M, L->R, M);
-            matmul(M, L->P, M);
-            matmul(L->G, M, dq_du);
-            dq_dN[0] = L->G[0][0] * zh[0] + L->G[0][1] * zh[1];
-            dq_dN[1] = L->G[1][0] * zh[0] + L->G[1][1] * zh[1];
-            const double dE = st->q[0] * (st->next.s[0] - start->s[0]) +
-                              st->q[1] * (st->next.s[1] - start->s[1]);
-            eq20_clamped = !(dE > 0);
-        } else {
-            /* a_i(final) = a_tr,i / w_i with |a| = N: differentiating the
-             * constraint gives d dgamma = (g . da_tr - N dN) / c, with
-             * g_i = a_i / w_i, v_i = sigma_i a_i / w_i, c = a . v.  v g^T / c
-             * and v N / c are homogeneous of degree 0 in sigma and in a, so
-             * they are formed from sig_hat and a / N: no overflow. */
-            /* Da is homogeneous of degree -1 in w: formed from w / max w
-             * and multiplied by 1 / max w (see oc_step.w). */
-            const double *w = st->w, *sh = L->sig_hat;
-            const double ah[2] = {st->next.a[0] / N, st->next.a[1] / N};
-            const double g[2] = {ah[0] / w[0], ah[1] / w[1]};
-            const double v[2] = {sh[0] * ah[0] / w[0], sh[1] * ah[1] / w[1]};
-            const double c = ah[0] * v[0] + ah[1] * v[1];
-            double Da[2][2];
-            for (int i = 0; i < 2; ++i)
-                for (int j = 0; j < 2; ++j)
-                    Da[i][j] = ((i == j ? 1.0 / w[i] : 0.0) - (v[i] / c) * g[j]) * st->inv_wmax;
-            double T[2][2];
-            matmul(Da, L->P, T);
-            matmul(L->Minv, T, dq_du);
-            const double daN[2] = {v[0] / c, v[1] / c};
-            matvec(L->Minv, daN, dq_dN);
-        }
+        if (L->p.rule == OC_RULE_EQ20)
+            eq20_clamped = tangent_eq20(L, start, u, N, st, dq_du, dq_dN);
+        else
+            tangent_implicit(L, N, st, dq_du, dq_dN);
         /* s = u - B^-1 q */
         double Bi_dq[2][2];
         matmul(L->Binv, dq_du, Bi_dq);
@@ -632,8 +739,9 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
         ds_dN[1] = -Bi_dqN[1];
     }
 
-    /* energy = E_n + q . (s - s_n): the dissipation increment's derivative
-     * (the law computes the same increment in a sign-safe form). */
+    /* The outputs: T = -q, s, and energy = E_n + q . (s - s_n), whose
+     * derivative is the dissipation increment's (the step computes the same
+     * increment in a sign-safe form). */
     const double ds[2] = {st->next.s[0] - start->s[0], st->next.s[1] - start->s[1]};
     for (int j = 0; j < 2; ++j) {
         J[0][j] = -dq_du[0][j];
@@ -651,6 +759,13 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
     J[4][2] = eq20_clamped ? 0.0
                            : dq_dN[0] * ds[0] + dq_dN[1] * ds[1] + st->q[0] * ds_dN[0] +
                                  st->q[1] * ds_dN[1];
+}
+
+/* ==== 7. A committed state's admissibility ==== */
+
+oc_state oc_state_unloaded(double s1, double s2, double energy) {
+    oc_state st = {{s1, s2}, 0.0, {0.0, 0.0}, {s1, s2}, energy};
+    return st;
 }
 
 const char *oc_state_check(const oc_law *L, const oc_state *st) {

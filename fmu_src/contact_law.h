@@ -2,8 +2,8 @@
  * Coupled orthotropic adhesion-friction interface law (Konyukhov & Schweizerhof).
  *
  * This core knows nothing of FMI.  It holds the parameters, the derived
- * tensors, one return-mapping step and its consistent tangent.  Conventions
- * (see README and shared/design/model-notes.md):
+ * tensors, one return-mapping step and its consistent tangent (contact_law.c;
+ * the derivations in docs/law.md).  Conventions (docs/model-notes.md):
  *   q = B (u - s)  elastic tangential force [N]; the surface acts on the
  *                  body with T = -q.
  *   B = Q(alpha) diag(eps1, eps2) Q(alpha)^T        [N/m]
@@ -117,8 +117,8 @@ void oc_law_jacobian(const oc_law *law, const oc_state *start,
  * committed state); the tangent's internals (dgamma, w) are not checked.
  * Inline: it runs on every step, right after the law stored these field by
  * field.  One at a time on purpose: read in pairs (as compilers vectorize a
- * branch-free form) each pair waits for both stores to retire, which cost
- * a third of a stick step. */
+ * branch-free form) each 16-byte load waits for both 8-byte stores to
+ * retire, because store forwarding fails. */
 static inline int oc_step_is_finite(const oc_step *st) {
     return isfinite(st->q[0]) && isfinite(st->q[1]) && isfinite(st->next.a[0]) &&
            isfinite(st->next.a[1]) && isfinite(st->next.s[0]) && isfinite(st->next.s[1]) &&
