@@ -5,8 +5,8 @@
  * those runs, are replayed through the same FMU binary with nothing but
  * fmi2SetReal(u1, u2, N) + fmi2DoStep + fmi2GetReal(T1, T2): the contact's
  * own cost on exactly those steps.  Both in one run, interleaved, the least
- * disturbed of `rounds`, thread CPU time.  Target (issue 16): rig step <=
- * 1.5x contact step.
+ * disturbed of `rounds`, thread CPU time.  Target: rig step <= 1.5x
+ * contact step.
  *
  *   bench_master [rounds]
  * Environment: BENCH_OURS_FMI2 (the contact binary to run instead of the

@@ -8,9 +8,9 @@
  * sliding rule, stick and slip paths (bench_common.h).  Runs are interleaved
  * (ours and the peer one after the other, stick then slip, `rounds` rounds),
  * each figure the least disturbed of its rounds; the ratio is ours / peer of
- * those, with the range of the rounds' own ratios beside it.  Targets (issue
- * 16): stick <= 1.0x the peer, slip <= 0.5x (eq. (20), a formula with no
- * solve to beat, <= 1.0x).
+ * those, with the range of the rounds' own ratios beside it.  Targets:
+ * stick <= 1.0x the peer, slip <= 0.5x (eq. (20), a formula with no solve
+ * to beat, <= 1.0x).
  *
  *   bench_peer [steps [rounds]]       ns per step and ratios, and the floor
  *                                     of the calls alone (a null FMU)

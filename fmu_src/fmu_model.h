@@ -32,8 +32,8 @@ typedef enum { FMU_OK = 0, FMU_ERR = 1 } fmu_status;
  * the model's update and do_step, get outputs): inlined into the FMI entry
  * points.  Each FMU binary is compiled as one unit (CMake's fmu_add), so the
  * compiler sees their bodies there; elsewhere (the tests' libraries) they
- * are ordinary calls.  A chain of five calls per entry point cost a fifth
- * of a stick step (docs/benchmarks.md).  Declarations stay plain, so that
+ * are ordinary calls.  A chain of five calls per entry point showed in the
+ * time of a stick step (docs/benchmarks.md).  Declarations stay plain, so that
  * a unit without the body calls it as usual. */
 #if defined(__clang__)
 #define FMU_HOT __attribute__((always_inline))

@@ -1,8 +1,9 @@
 /*
  * The one table of the OrthotropicContact FMU's variables.  gen_model_description
  * writes both model descriptions (FMI 2.0 and 3.0) and documentation/index.html
- * from it (the committed copies under model/ are checked against the generated
- * ones by the CTest `model_description_in_sync`), and the C code takes its value
+ * from it (the committed copies modelDescription.xml and modelDescription-fmi3.xml
+ * at the repository's root are checked against the generated ones by the CTests
+ * `model_description_in_sync_*`), and the C code takes its value
  * references, types, start values and min/max from it.
  *
  * X(name, vr, type, causality, variability, initial, start, min, max, unit,

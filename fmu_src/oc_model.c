@@ -48,7 +48,7 @@ static const oc_state *committed(const oc_model *m) {
 /* A number the law has just stored, read on its own.  The law stores its
  * results one by one; a wider load across two of those stores (compilers
  * pair adjacent loads into one) must wait until both have retired, because
- * store forwarding fails: it cost 2 ns a step.  A volatile read is never
+ * store forwarding fails (docs/benchmarks.md).  A volatile read is never
  * paired. */
 static inline double fresh(const double *p) { return *(const volatile double *)p; }
 

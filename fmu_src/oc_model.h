@@ -35,7 +35,7 @@ struct fmu_model {
      * the other and it is shown only if it is finite, so that a refused
      * step changes nothing without copying a whole step back and forth (a
      * step copied right after the law stored it field by field stalls the
-     * CPU's store forwarding: it cost a fifth of a stick step). */
+     * CPU's store forwarding; docs/benchmarks.md). */
     oc_step steps[2];
     int shown;
     /* The shown result's outputs, where the table reads them: */

@@ -1,9 +1,12 @@
-/* The rig once (rig_core.h).  Expressions keep rig.py's order of operations:
- * the tests compare the two bit for bit. */
+/* The carriage/block rig of the paper's experiment (rig_core.h). */
 #include "rig_core.h"
 
 #include <math.h>
 
+/* fmax and fmin of two numbers, without the libm calls these compile to on
+ * x86-64 (no NaN reaches them: the contact refuses a non-finite force). */
+static inline double larger(double a, double b) { return b > a ? b : a; }
+static inline double smaller(double a, double b) { return b < a ? b : a; }
 
 long rig_step_count(double travel, double velocity, double step) {
     const double n = ceil(travel / (velocity * step) - 1e-9);
@@ -24,19 +27,19 @@ double rig_fit_end(const rig_setup *r, long n_steps) {
 double rig_fit_middle(double x1_fit, double x1_end) { return x1_fit + 0.5 * (x1_end - x1_fit); }
 
 double rig_lateral_scale(double mu1, double mu2, double eps1, double eps2, double N) {
-    return rig_py_min(mu1, mu2) * N / rig_py_max(eps1, eps2);
+    return smaller(mu1, mu2) * N / larger(eps1, eps2);
 }
 
 void rig_lateral_step(double *x2, double *v2, double T1, double T2, double mass, double mu_strip,
                       double damp, double h) {
-    const double P = rig_py_max(-T1, 0.0); /* the carriage can only push */
-    const double f_max = mu_strip * P, a_free = T2 / mass;
+    const double f_max = mu_strip * rig_push(T1), a_free = T2 / mass;
     double v;
     if (f_max > 0.0) {
         /* the strip's friction inside the implicit viscous update, as every
-         * force: a steady state balances T2 + f = c_strip v2 exactly */
-        const double w = *v2 + h * a_free;
-        const double f = -copysign(rig_py_min(f_max, fabs(mass * w / h)), w);
+         * force: a steady state balances T2 + f = c_strip v2 exactly.  It
+         * opposes the motion and at most stops the block within the step. */
+        const double w = *v2 + h * a_free, f_stop = fabs(mass * w / h);
+        const double f = -copysign(f_stop < f_max ? f_stop : f_max, w);
         v = (w + h * f / mass) / damp;
     } else {
         v = (*v2 + h * a_free) / damp;
@@ -62,8 +65,7 @@ void rig_fit_add(rig_line_fit *f, double x1, double x2, double drive) {
 double rig_fit_angle_deg(const rig_line_fit *f) {
     const double n = (double)f->n, den = n * f->sxx - f->sx * f->sx;
     if (f->n < 2 || den <= 0) return NAN;
-    /* math.degrees(x) is x * (180 / pi) */
-    return atan((n * f->sxy - f->sx * f->sy) / den) * (180.0 / 3.141592653589793);
+    return atan((n * f->sxy - f->sx * f->sy) / den) * (180.0 / 3.141592653589793); /* degrees */
 }
 
 double rig_fit_mean_drive(const rig_line_fit *f) { return f->n ? f->sf / (double)f->n : NAN; }
@@ -78,8 +80,8 @@ int rig_solve_lateral(const rig_contact *c, double u1, double *u2p, double N, do
         *iterations = it;
         if (!c->set_inputs(c->ctx, u1, u2, N) || !c->force(c->ctx, &T1, &T2))
             return RIG_CONTACT_FAILED;
-        const double r = T2 - strip * rig_py_max(-T1, 0.0) - visc * (u2 - u2_ref);
-        if (fabs(r) <= tol * rig_py_max(fabs(N), 1e-300)) {
+        const double r = T2 - strip * rig_push(T1) - visc * (u2 - u2_ref);
+        if (fabs(r) <= tol * larger(fabs(N), 1e-300)) {
             *u2p = u2;
             return RIG_OK;
         }
@@ -95,9 +97,9 @@ int rig_solve_lateral(const rig_contact *c, double u1, double *u2p, double N, do
         const double d = dT2 + (T1 < 0 ? strip * dT1 : 0.0) - visc;
         double cand = d < 0 ? u2 - r / d : NAN;
         if (have_lo && have_hi) {
-            if (!(rig_py_min(lo, hi) < cand && cand < rig_py_max(lo, hi))) cand = 0.5 * (lo + hi);
+            if (!(smaller(lo, hi) < cand && cand < larger(lo, hi))) cand = 0.5 * (lo + hi);
             /* bracket at rounding level: r jumps across zero */
-            if (fabs(hi - lo) <= 4e-16 * rig_py_max(fabs(lo), fabs(hi))) {
+            if (fabs(hi - lo) <= 4e-16 * larger(fabs(lo), fabs(hi))) {
                 *u2p = u2;
                 return RIG_OK;
             }

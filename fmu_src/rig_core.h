@@ -7,9 +7,11 @@
  * (master_src/rig_master.c) its whole loop.  No FMI in it: the contact is
  * reached through rig_contact's functions.
  *
- * The Python harness (python/orthocontact/rig.py) is the independent
- * reference the tests pin this to, bit for bit: every expression here is
- * evaluated in the order rig.py writes it.
+ * The fmpy harness (python/orthocontact/rig/harness.py) runs the same rig
+ * in Python, and tests/rig/test_compiled.py holds the two to the same
+ * numbers bit for bit.  That asks nothing of this code: both write each
+ * formula the plain way, and IEEE arithmetic without fused multiply-adds
+ * (OC_C_FLAGS in CMakeLists.txt) rounds the same operations alike.
  */
 #ifndef RIG_CORE_H
 #define RIG_CORE_H
@@ -25,10 +27,11 @@ extern "C" {
  * (rm_layout in master_src/rig_master.h) from the same list. */
 #define RIG_DECLARE_FIELD(type, name) type name;
 
-/* Python's max(a, b) and min(a, b): the first argument unless the second is
- * strictly larger (smaller); fmax/fmin may differ on signed zeros. */
-static inline double rig_py_max(double a, double b) { return b > a ? b : a; }
-static inline double rig_py_min(double a, double b) { return b < a ? b : a; }
+/* The carriage's push on the block, P = max(-T1, 0) [N] for the mat's force
+ * T1 on the block [N]: the carriage can only push, so where the mat pulls
+ * the block along (T1 > 0) it pushes nothing.  (A comparison, not fmax:
+ * that is a libm call on x86-64, and this runs every step.) */
+static inline double rig_push(double T1) { return T1 > 0.0 ? 0.0 : -T1; }
 
 /* The rig, as orthocontact.rig.Rig.  kg, m/s^2, N, m/s, m, s, N s/m;
  * quasistatic: 0 dynamic, 1 quasi-static. */
@@ -146,8 +149,8 @@ int rig_advance(rig_runner *run, rig_observer observe, void *observer_ctx, doubl
 /* The same with the contact given by value: where the caller's contact
  * functions are known at compile time, the compiler calls them directly
  * (or inlines them) instead of through the pointers.  Always inlined: gcc
- * -O2 leaves it a call at a second call site, and the pointers then cost a
- * fifth of a rig step (123 against 104 ns in uq's grid). */
+ * -O2 leaves it a call at a second call site, which then calls through the
+ * pointers again (docs/benchmarks.md, the compiled master). */
 #if defined(__GNUC__) || defined(__clang__)
 __attribute__((always_inline))
 #endif
@@ -168,7 +171,7 @@ static inline int rig_advance_on(rig_runner *s, const rig_contact contact, rig_o
          * the committed state. */
         if (!c->save(c->ctx) || !c->set_inputs(c->ctx, x1, x2, N) || !c->force(c->ctx, &T1, &T2))
             return RIG_CONTACT_FAILED;
-        if (fabs(T2) > mu_s * rig_py_max(-T1, 0.0)) {
+        if (fabs(T2) > mu_s * rig_push(T1)) {
             if (!c->restore(c->ctx)) return RIG_CONTACT_FAILED;
             long it = 0;
             const int st = rig_solve_lateral(c, x1, &x2, N, copysign(mu_s, T2), s->scale, s->visc, &it);

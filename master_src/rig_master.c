@@ -236,9 +236,9 @@ static void run_error(const fmu_contact *F, int st, const rig_setup *r, const re
 
 /* A run in progress on its own contact instance.  run_sets advances up to
  * LANES runs in turn, a step each: one rig step waits on its contact's
- * result, and the other run's step fills that wait (rig_runner, rig_core.h),
- * 116 -> 106 ns a rig step in `orthocontact uq` (docs/benchmarks.md).  Each
- * run is alone on its instance, so its numbers do not depend on the lanes. */
+ * result, and the other run's step fills that wait (rig_runner, rig_core.h;
+ * the gain in docs/benchmarks.md).  Each run is alone on its instance, so
+ * its numbers do not depend on the lanes. */
 enum { LANES = 2 };
 typedef struct {
     fmu_contact F;

@@ -1,10 +1,10 @@
 /*
  * The compiled master's interface: runs the rig (fmu_src/rig_core.h) over a
  * contact FMU's FMI 2.0 functions for batches of parameter sets, called from
- * Python (python/orthocontact/cmaster.py, through ctypes).
+ * Python (python/orthocontact/rig/compiled.py, through ctypes).
  *
  * The structs' layouts reach Python from here only: rm_layout describes
- * them (from the same field lists that declare them), and cmaster.py builds
+ * them (from the same field lists that declare them), and compiled.py builds
  * its ctypes structures from that description and checks every offset and
  * size before its first call.
  */
