@@ -1,7 +1,7 @@
 /* The coupled orthotropic adhesion-friction law (Konyukhov & Schweizerhof):
- * one return-mapping step and its consistent tangent.  The derivations are in
- * docs/law.md, whose sections these follow; the comments here say why the
- * code takes its shape.
+ * one return-mapping step and its consistent tangent.  The derivations are
+ * in docs/explanation/law.md, whose sections these follow; the comments here
+ * say why the code takes its shape.
  *
  *   1. Arithmetic: 2x2 products, norms without overflow, power-of-two scales
  *   2. The parameters and the tensors they fix (B, F, the yield coordinates)
@@ -505,8 +505,8 @@ static OC_ALWAYS_INLINE void return_map_eq20(const oc_law *L, const double a[2],
 
 /* The energy eq. (20) dissipates in a slip from the trial a to the force ap
  * (q in global axes).  The rule is not derived from a dissipation potential,
- * yet its q . ds is positive (docs/law.md: Cauchy-Schwarz, since N < |t|
- * when it slides); the clip only catches rounding.  ds = B^-1 (q_tr - q) =
+ * yet its q . ds is positive (docs/explanation/law.md: Cauchy-Schwarz, since
+ * N < |t| when it slides); the clip only catches rounding.  ds = B^-1 (q_tr - q) =
  * K (a_tr - a), formed from yield coordinates rather than as a difference
  * of slips, which may be large and nearly equal. */
 static OC_ALWAYS_INLINE double dissipation_eq20(const oc_law *L, const double a[2],
@@ -605,7 +605,7 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
     out->next.u[0] = u[0];
     out->next.u[1] = u[1];
     out->next.N = N;
-    /* The steps of docs/law.md, "One step".  1: open. */
+    /* The steps of docs/explanation/law.md, "One step".  1: open. */
     if (!(N > 0)) {
         step_open(start, u, out);
         return;

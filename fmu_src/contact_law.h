@@ -3,7 +3,8 @@
  *
  * This core knows nothing of FMI.  It holds the parameters, the derived
  * tensors, one return-mapping step and its consistent tangent (contact_law.c;
- * the derivations in docs/law.md).  Conventions (docs/model-notes.md):
+ * the derivations in docs/explanation/law.md).  Conventions
+ * (docs/explanation/model-notes.md):
  *   q = B (u - s)  elastic tangential force [N]; the surface acts on the
  *                  body with T = -q.
  *   B = Q(alpha) diag(eps1, eps2) Q(alpha)^T        [N/m]
