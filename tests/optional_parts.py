@@ -61,14 +61,18 @@ class Part:
     what: str
     probe: Optional[Callable[[], Optional[str]]]   # None: the test itself decides (record())
     required: bool = True
+    distribution: Optional[str] = None   # the Python distribution providing it (pyproject's test extra)
 
 
 PARTS = {p.name: p for p in (
-    Part("libcosimpy", "libcosim runs the FMUs and the SSPs", _module("libcosimpy.CosimExecution")),
-    Part("ecospy", "Ecos runs the SSPs (its library needs libtbb12)", _module("ecospy")),
+    Part("libcosimpy", "libcosim runs the FMUs and the SSPs", _module("libcosimpy.CosimExecution"),
+         distribution="libcosimpy"),
+    Part("ecospy", "Ecos runs the SSPs (its library needs libtbb12)", _module("ecospy"),
+         distribution="ecospy"),
     Part("fmu_manipulation_toolbox", "the SSP as an FMU container",
-         _module("fmu_manipulation_toolbox.assembly")),
-    Part("hypothesis", "the law's properties at every scale", _module("hypothesis")),
+         _module("fmu_manipulation_toolbox.assembly"), distribution="fmu-manipulation-toolbox"),
+    Part("hypothesis", "the law's properties at every scale", _module("hypothesis"),
+         distribution="hypothesis"),
     Part("qemu-aarch64", "the aarch64 Linux binary run under qemu-user", _qemu),
     Part("root", "a full disk, a read-only folder: tmpfs mounts", _root, required=False),
     Part("cffconvert", "CITATION.cff against the CFF schema", _module("cffconvert"), required=False),

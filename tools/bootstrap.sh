@@ -2,7 +2,10 @@
 # Installs what the project needs on a fresh machine: system tools (apt),
 # a virtual environment in .venv with the Python dependencies, and the
 # orthocontact package itself (whose install builds the FMU through CMake).
-# Idempotent: a second run only rebuilds what changed.
+# Idempotent: when nothing the install reads has changed since it last
+# succeeded (.venv/setup.stamp: a hash of pyproject.toml, VERSION, the
+# sources, these scripts and the Python), it installs nothing; otherwise it
+# rebuilds only what changed.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Two cores: compile the cross targets side by side.
@@ -26,14 +29,54 @@ if [ ! -x .venv/bin/python ]; then
   echo "bootstrap: creating .venv"
   python3 -m venv .venv
 fi
-# Build requirements too, so that the package builds without isolation
-# (faster, and incremental through build/); ziglang cross-compiles the FMU
-# binaries for Linux, Windows and macOS.
-echo "bootstrap: Python packages into .venv (fmpy, ziglang, numpy, casadi, matplotlib, dask, pytest;" \
-     "downloaded the first time)"
-.venv/bin/python -m pip install -q --disable-pip-version-check \
-  "scikit-build-core>=0.9" "fmpy>=0.3.20" "ziglang>=0.13" "numpy>=1.22" "casadi>=3.6" \
-  "matplotlib>=3.5" "dask>=2024.1" "distributed>=2024.1" "pytest>=7"
+
+# What the install reads: the package's metadata and sources, the build's,
+# the set-up's own scripts, and the Python it installs into.
+stamp_file=.venv/setup.stamp
+stamp=$(.venv/bin/python - <<'EOF'
+import hashlib, os, sys
+h = hashlib.sha256(f"{sys.version} {sys.executable} {os.getcwd()}".encode())
+inputs = ["pyproject.toml", "VERSION", "README.md", "LICENSE", "CMakeLists.txt", "fmu_src", "master_src",
+          "python", "tools/bootstrap.sh", "tools/requirements.py"]
+for top in inputs:
+    files = [top] if os.path.isfile(top) else sorted(
+        os.path.join(d, f) for d, dirs, fs in os.walk(top) if "__pycache__" not in d for f in fs)
+    for f in files:
+        h.update(f.encode() + b"\0")
+        with open(f, "rb") as fh:
+            h.update(hashlib.sha256(fh.read()).digest())
+print(h.hexdigest())
+EOF
+)
+# ... and what was installed is still there (not uninstalled by hand, both
+# FMUs found), asked without the source tree on the path.
+installed() {
+  local venv_python="$PWD/.venv/bin/python"
+  (cd / && env -u PYTHONPATH -u ORTHOCONTACT_FMU -u ORTHOCONTACT_FMU3 "$venv_python" -c \
+    "from orthocontact.fmu.files import find_fmu; find_fmu(fmi_version=2); find_fmu(fmi_version=3)") \
+    >/dev/null 2>&1
+}
+if [ -f "$stamp_file" ] && [ "$(cat "$stamp_file")" = "$stamp" ] && installed; then
+  echo "bootstrap: up to date (nothing the install reads changed since the last set-up;" \
+       "rm $stamp_file to redo it)"
+  exit 0
+fi
+rm -f "$stamp_file"
+
+# pyproject.toml is read with tomllib (tomli before Python 3.11).
+.venv/bin/python -c "import tomllib" 2>/dev/null || .venv/bin/python -c "import tomli" 2>/dev/null ||
+  .venv/bin/python -m pip install -q --disable-pip-version-check "tomli>=1.1"
+# The build requirements (pyproject's [build-system]), so that the package
+# builds without isolation (faster, and incremental through build/); ziglang
+# cross-compiles the FMU binaries for Linux, Windows and macOS.  The
+# package's own dependencies (fmpy, numpy, casadi, matplotlib, dask) come
+# with its install below.
+build_reqs=()
+while IFS= read -r req; do build_reqs+=("$req"); done < <(.venv/bin/python tools/requirements.py build --missing)
+if [ ${#build_reqs[@]} -gt 0 ]; then
+  echo "bootstrap: build requirements into .venv (${build_reqs[*]}; downloaded the first time)"
+  .venv/bin/python -m pip install -q --disable-pip-version-check "${build_reqs[@]}"
+fi
 echo "bootstrap: building both models' FMUs (FMI 2.0 and 3.0) and installing orthocontact:" \
      "zig cross-compiles the binaries for 5 platforms; the first time zig also builds each" \
      "platform's C runtime (cached in ~/.cache/zig), which takes minutes: the Windows binaries" \
@@ -54,3 +97,4 @@ if [ $status -ne 0 ]; then
   cat build/setup.log >&2
   exit $status
 fi
+echo "$stamp" > "$stamp_file"

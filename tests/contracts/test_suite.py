@@ -53,7 +53,9 @@ def session(tmp_path, *args, ci=None, body=TESTS_PY):
     env = {k: v for k, v in os.environ.items() if k != "CI"}
     if ci is not None:
         env["CI"] = ci
-    p = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-q", *args],
+    # (hypothesis's plugin, where installed, takes a second to load)
+    p = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-p", "no:hypothesispytest",
+                        "-q", *args],
                        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     return p.returncode, p.stdout
 
@@ -111,6 +113,32 @@ def test_a_module_that_needs_a_missing_part_is_skipped_whole_and_reported(tmp_pa
     assert "gone (a part that is missing): NOT RUN: no module named gone" in summary(out)
     status, out = session(tmp_path, body=body, ci="true")
     assert status == 1, out
+
+
+# -- what installs them: pyproject's test extra, read by the set-up -----------------
+
+def test_every_required_python_part_is_in_the_test_extra_the_test_command_installs():
+    from optional_parts import PARTS
+    from requirements import declared
+    extra = {re.split(r"[<>=!~;\s]", r, 1)[0].lower().replace("_", "-") for r in declared("test")}
+    wanted = {p.distribution for p in PARTS.values() if p.required and p.distribution}
+    assert wanted == {"libcosimpy", "ecospy", "fmu-manipulation-toolbox", "hypothesis"}
+    assert wanted | {"pytest"} == extra
+
+
+def test_the_set_up_scripts_declare_no_requirement_of_their_own():
+    """Every Python requirement is pyproject's, read by tools/requirements.py;
+    bootstrap names tomli only to be able to read pyproject before 3.11."""
+    for script, own in (("tools/bootstrap.sh", ["tomli>=1.1"]), ("tools/run_tests.sh", []), ("Makefile", [])):
+        text = (ROOT / script).read_text()
+        assert re.findall(r'"([A-Za-z0-9_.-]+ *(?:>=|==|~=|<=)[^"]*)"', text) == own, script
+
+
+def test_only_the_requirements_not_satisfied_here_are_missing():
+    from requirements import missing
+    assert missing(["pytest>=1", "pytest>=999", "surely-not-installed-anywhere>=1",
+                    "surely-not-installed-anywhere>=1; python_version<'3'"]) == \
+        ["pytest>=999", "surely-not-installed-anywhere>=1"]
 
 
 # -- no skip but for a missing part --------------------------------------------------
