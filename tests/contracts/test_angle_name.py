@@ -15,6 +15,7 @@ def user_facing_files():
     yield ROOT / "README.md"
     yield from (ROOT / "docs").rglob("*.md")
     yield from (ROOT / "scenarios").rglob("*.md")
+    yield from (ROOT / "scenarios").rglob("*.toml")   # a scenario's title and description
 
 
 # Lines being rewritten by the plausibility gate's work when
