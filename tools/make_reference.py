@@ -137,6 +137,11 @@ def depends_cell(deps: tuple[tuple[str, str], ...] | None) -> str:
         return "every variable (not stated)"
     if not deps:
         return "nothing: no direct feedthrough"
+    kinds = {kind for _, kind in deps}
+    if len(kinds) == 1:     # one kind for all: said once
+        kind = kinds.pop()
+        return ", ".join(f"`{n}`" for n, _ in deps) + \
+            (f" ({'all ' if len(deps) > 1 else ''}{kind})" if kind else "")
     return ", ".join(f"`{n}`" + (f" ({kind})" if kind else "") for n, kind in deps)
 
 
@@ -195,7 +200,9 @@ def model_section(src: ModelSources) -> list[str]:
     deps = dependencies(md)
     out += ["", "### Outputs and the inputs they depend on", "",
             "What an output depends on directly, within the same step (direct feedthrough), "
-            "as the model structure of both model descriptions states it:", "",
+            "as the model structure of both model descriptions states it, with FMI's kind of the "
+            "dependency in parentheses (constant: linearly, with a constant factor; dependent: "
+            "in any other way):", "",
             *table(("output", "depends on"), [(f"`{o}`", depends_cell(d)) for o, d in deps.items()])]
     return out
 

@@ -165,6 +165,7 @@ def test_every_variable_is_on_the_page_as_the_model_description_has_it(model):
         line = re.search(rf"^\| `{o.variable.name}` \| (.*) \|$", page.split(f"\n## {model}\n")[1]
                          .split("### Outputs")[1].split("\n## ")[0], re.M).group(1)
         assert re.findall(r"`(\w+)`", line) == [d.name for d in o.dependencies], o.variable.name
+        assert set(re.findall(r"\((?:all )?(\w+)\)", line)) == set(o.dependenciesKind or ()), o.variable.name
 
 
 def test_a_manifest_its_model_description_contradicts_is_refused():
