@@ -1,5 +1,5 @@
 """Synthetic raw recordings of the paper's experiment, with known truth: the
-folder format `orthocontact identify` reads (scenarios/README_recordings.md):
+folder format `orthocontact identify` reads (docs/reference/file-formats.md, "Raw recordings"):
 rig.toml, runs.csv, trajectories/<run>.csv (t_s,x1_m,x2_m), forces/<run>.csv
 (t_s,force_N).
 

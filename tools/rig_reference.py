@@ -1,7 +1,7 @@
 """An independent simulator of the paper's rig, for testing the identification
 on data that the code under test did not make.
 
-Written from the law's definition alone (docs/law.md: q = B(u - s), yield
+Written from the law's definition alone (docs/explanation/law.md: q = B(u - s), yield
 sqrt(q.Fq) <= N, implicit slip s = s_c + dgamma G q with G = F or (B F B)^-1),
 in plain Python floats, with none of the package's code: no FMU, no
 yield-coordinate series, no closed form.  The return map is a bracketed

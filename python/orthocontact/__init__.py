@@ -2,7 +2,7 @@
 Konyukhov & Schweizerhof as FMI 2.0 and 3.0 co-simulation FMUs, a rig harness
 that reproduces the paper's analyses, and parameter identification.
 
-The public API (see README, "Python API"):
+The public API (docs/reference/python-api.md):
 
     ContactFMU            one instance of the contact FMU (FMI 2.0 or 3.0)
     ContactParams         the law's parameters; angles in rad, or

@@ -10,7 +10,7 @@ the identified values before they are written and again before export,
 ContactParams and Rig.  gate() is the one verdict over it; the cross-checks
 below judge a value against another that bounds it (a ramp's extent and
 the elastic length mu N / eps against the rig's travel, a force against
-F_int and m g).  README, "Plausible inputs", lists the ranges."""
+F_int and m g).  docs/reference/plausible-inputs.md lists the ranges."""
 from __future__ import annotations
 
 import math

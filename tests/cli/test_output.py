@@ -156,7 +156,7 @@ def test_reproduce_into_the_same_folder_leaves_no_scenario_of_the_earlier_run(tm
 
 
 def test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs(tmp_path):
-    """The README's sequence: the recordings, then the example set, both
+    """The guides' sequence: the recordings, then the example set, both
     into out/identify; before, the first run's reduction and rig scenario
     stayed beside the second run's identified.json (and uq took that rig)."""
     out = tmp_path / "out" / "identify"

@@ -5,7 +5,7 @@
  * The input is read as a program: each byte picks a call, the bytes after it
  * its arguments (value references from the table or any number, values from
  * a list of edge cases or any 8 bytes).  Besides the sanitizers' findings,
- * the target aborts where a promise of the README does not hold:
+ * the target aborts where a promise of docs/reference/fmus.md does not hold:
  *   - every call returns a defined status;
  *   - a successful read or derivative is finite (never NaN/inf with OK);
  *   - a rejected call changes nothing (the serialized instance is the same

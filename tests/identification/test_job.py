@@ -128,7 +128,7 @@ def test_cli_identify_on_the_bundled_example(tmp_path, capsys):
 def test_identified_json_names_every_file_read_with_its_sha256(tmp_path):
     """data.files: each file the identification read, its SHA-256 as
     sha256sum prints it; data.sha256: sha256sum's listing of them, hashed
-    (as the README says to recompute it); both from the shell, not the package."""
+    (as docs/reference/file-formats.md says to recompute it); both from the shell, not the package."""
     data = tmp_path / "data"
     shutil.copytree(EXAMPLE, data)
     (data / "notes.txt").write_text("a file identify does not read")

@@ -44,11 +44,11 @@ def small_set(folder: Path, seed: int, physics) -> Path:
     return folder
 
 
-def test_bundled_recordings_identify_and_uq_by_the_readme_commands(tmp_path):
-    """The README section's commands, as written, on the bundled set (uq
+def test_bundled_recordings_identify_and_uq_by_the_guides_commands(tmp_path):
+    """The recordings guide's commands, as written, on the bundled set (uq
     with fewer samples): every step runs, and what they write holds up."""
-    text = (ROOT / "README.md").read_text()
-    section = text.split("## From your recordings to your simulator")[1].split("\n## ")[0]
+    text = (ROOT / "docs" / "guides" / "recordings-to-fmu.md").read_text()
+    section = text.split("## The three commands")[1].split("\n## ")[0]
     block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
     lines = [ln for ln in block.replace("\\\n", " ").splitlines() if ln.startswith(".venv/bin/orthocontact")]
     assert [ln.split()[1] for ln in lines] == ["identify", "uq", "export"]

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-NOTES = (ROOT / "docs" / "model-notes.md").read_text()
+NOTES = (ROOT / "docs" / "explanation" / "model-notes.md").read_text()
 
 
 def _errata_numbers():

@@ -1,7 +1,7 @@
 """The paper's closed-form results, in one place for tests, figures and
 identification.  Equation numbers are those of Konyukhov & Schweizerhof (2007).
 
-Conventions (see README, "Angles and signs"):
+Conventions (docs/explanation/model-notes.md, "Conventions"):
 * All angles turn counterclockwise from the driving axis X1, in rad unless a
   name ends in _deg.
 * phi is the angle of the block's path, tan(phi) = dx2/dx1, counterclockwise;
@@ -181,7 +181,7 @@ def eps_ratio_from_r(r: float, mu1: float, mu2: float) -> float:
 
 def isotropic_eps_ratio(mu1: float, mu2: float) -> float:
     """eps1/eps2 that makes the mat's motion geometrically isotropic (r = 1):
-    mu2/mu1 (docs/model-notes.md, erratum 1: not mu1/mu2 as sec. 4.5 says)."""
+    mu2/mu1 (docs/explanation/model-notes.md, erratum 1: not mu1/mu2 as sec. 4.5 says)."""
     return mu2 / mu1
 
 
@@ -198,7 +198,7 @@ def eq40_objective(r2: float, tan_alpha, tan_phi) -> float:
 def eq41_r2(tan_alpha, tan_phi) -> float:
     """The paper's published closed form eq. (41) for r^2 (its tan beta_k is
     tan_alpha here, as in eq. 40).  It is not the minimiser of eq. (40)
-    (docs/model-notes.md, erratum 4); kept to show the difference."""
+    (docs/explanation/model-notes.md, erratum 4); kept to show the difference."""
     tb = np.asarray(tan_alpha, dtype=float)
     tphi = np.asarray(tan_phi, dtype=float)
     num = np.sum(tb * (1 + tb**2) * (tb - tphi))

@@ -1,6 +1,6 @@
 """Measurement data for identification and their files.
 
-A measurement set is a folder (see scenarios/example_identification/README.md):
+A measurement set is a folder (docs/reference/file-formats.md, "Reduced data"):
   rig.toml     mass_kg, g, f_int_N, velocity_m_s, rule, geometry (required file)
   forces.csv   mat_angle_deg,force_N    driving force at a mat angle (repeats allowed)
   angles.csv   mat_angle_deg,phi_deg    trajectory angle (repeats allowed)

@@ -1,4 +1,4 @@
-"""A lab's raw recordings and their files (scenarios/example_recordings/README.md).
+"""A lab's raw recordings and their files (docs/reference/file-formats.md, "Raw recordings").
 
 A recordings folder is recognised by its runs.csv:
   rig.toml                 as for reduced data; f_int_N optional when carriage runs are given

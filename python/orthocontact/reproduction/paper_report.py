@@ -221,7 +221,7 @@ SIGN_READING = [
     "because that is the only reading under which the paper's printed numbers agree with each "
     "other and with its calibrated ε1/ε2 = 1.251: keeping Case 5's printed sign for the mat would "
     "turn the measured 11.5° into ε1/ε2 = 1.875. Its consequence: in one physical frame Case 5's "
-    "law and the calibrated mat turn the block in opposite directions (docs/model-notes.md, "
+    "law and the calibrated mat turn the block in opposite directions (docs/explanation/model-notes.md, "
     "erratum 6).", ""]
 
 
@@ -252,7 +252,7 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
     lines += ["", "Signed angles are in the paper's convention where it gives one (the column "
               "says which); the other implicit rule's value at the same angle stands beside the "
               "scenario's own. Conventions and the paper's errata these results depend on: "
-              "docs/model-notes.md in the repository.", "",
+              "docs/explanation/model-notes.md in the repository.", "",
               "| scenario | quantity | kind | paper | here | other rule, here | tolerance | match |",
               "|---|---|---|---|---|---|---|---|"]
     for r in rows:

@@ -7,7 +7,7 @@ form with the rig's strip terms?
 - on the closed form: |phi - phi_steady| <= STEADY_TOL_DEG, phi_steady from
   closed_forms.steady_tan_phi_with_strip_array at the run's law, rule,
   strip friction, strip viscosity and velocity.  The literal eq. (20) rule
-  slides with a step-dependent angle (docs/model-notes.md): no closed form
+  slides with a step-dependent angle (docs/explanation/model-notes.md): no closed form
   is claimed for it, only the settling is checked.
 
 A run that fails either is flagged; the commands print one warning line per
@@ -111,7 +111,7 @@ def warning_line(label: str, angles_deg, checks: RunChecks, phi_deg, tasks,
     sets the step (uq: --step-s).  Runs of the literal eq. (20) rule are
     flagged in the tables but not warned about: it has no step-independent
     steady state, and the step study shows exactly that
-    (docs/model-notes.md).  No number in it is nan: a value that could not
+    (docs/explanation/model-notes.md).  No number in it is nan: a value that could not
     be fitted is said as such."""
     implicit = np.array([p.rule != "eq20" for p, _ in tasks], dtype=bool)
     bad = np.flatnonzero(~checks.ok & implicit)
