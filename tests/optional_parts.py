@@ -4,9 +4,10 @@ it needs (`@pytest.mark.needs("libcosimpy")`, or `need("hypothesis")` at a
 module's top); where the part is not usable its tests are skipped, and the
 part is recorded as not run, with why.  At the end pytest prints one line per
 part (ran / not run and why / not needed by the tests selected), and a
-required part that did not run fails the session: every part is required in
-CI (CI=true) and under --require-parts (`make test`); `make check` runs
-without some.  Only a missing tool may skip a test here: a failure of our own
+required part that did not run fails the session in CI (CI=true) and under
+--require-parts (`make test`); `make check` runs without some.  Not
+required: a platform's condition (root) and what the project does not
+install (cffconvert, an FMI 3.0 libcosim).  Only a missing tool may skip a test here: a failure of our own
 code, in a tool that is there, is a failure.
 
 conftest.py hands pytest the hooks below (pytest_addoption, ...), the
