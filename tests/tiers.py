@@ -51,9 +51,12 @@ SLOW = {
     "cli/test_interrupts.py": {"test_a_dask_run_signalled_after_writing_everything_reports_success"},
     "fmu/test_files.py": {"test_ctrl_c_on_reproduce_leaves_no_unpacked_fmu",
                           "test_a_killed_commands_folder_goes_with_the_next_command"},
-    "runs/test_size.py": {"test_uqs_estimate_is_the_runs_it_makes"},   # identifies the example first
+    "runs/test_size.py": {"test_uqs_estimate_is_the_runs_it_makes",    # identifies the example first
+                          "test_identifys_estimate_is_its_validations_runs",   # the recordings: 19 s
+                          "test_identify_refuses_validation_runs_above_the_limits"},   # an identify run
     "reproduction/test_sensitivity.py": "*",   # the rig's assumptions, 168 rig runs
     "contracts/test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
+    "contracts/test_doc_blocks.py": {"test_slow_page"},   # the pages' blocks marked slow: identify, run, uq
     "fmus/test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
     "fmus/test_fmu.py": {"test_sources_compile_into_a_working_binary"},           # builds from sources/
     "closed_forms/test_rig.py": {

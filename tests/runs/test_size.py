@@ -78,15 +78,25 @@ def test_a_scenarios_size_is_its_angles_times_its_runs_steps():
 
 @pytest.fixture
 def counted(monkeypatch):
-    """The rig runs the compiled master makes in this process, counted where
-    they are made (CMaster.run, record, run_grid: each still runs)."""
+    """The rig runs made in this process, counted where they are made: the
+    compiled master's (CMaster.run, record, run_grid) and the Python
+    harness's (its loop, harness._simulate); each still runs.  made[0]: the
+    runs, made[1]: the steps of CMaster.run's and the harness's runs."""
+    from orthocontact.rig import harness
     from orthocontact.rig.compiled import CMaster
-    made = [0]
-    run_, record_, grid_ = CMaster.run, CMaster.record, CMaster.run_grid
+    made = [0, 0]
+    run_, record_, grid_, simulate_ = CMaster.run, CMaster.record, CMaster.run_grid, harness._simulate
 
     def run(self, tasks):
         made[0] += len(tasks)
+        made[1] += sum(steps_per_run(r.travel_m, r.velocity_m_s, r.step_s) for _, r in tasks)
         return run_(self, tasks)
+
+    def simulate(fmu, params, rig, *a, **k):
+        made[0] += 1
+        made[1] += steps_per_run(rig.travel_m, rig.velocity_m_s, rig.step_s)
+        return simulate_(fmu, params, rig, *a, **k)
+    monkeypatch.setattr(harness, "_simulate", simulate)
 
     def record(self, *a, **k):
         made[0] += 1
@@ -174,4 +184,94 @@ def test_work_the_old_estimate_let_through_is_refused_with_every_run_named(tmp_p
     lines = [x for x in p.stderr.strip().splitlines() if ": warning: " not in x]
     assert p.returncode == 2 and len(lines) == 1, p.stderr
     assert "9 rig runs (1 at the mat angles, 1 by the other rule, 7 recorded trajectories) x 300," in lines[0], lines[0]
+    assert "--yes" in lines[0] and not (tmp_path / "out").exists()
+
+
+# -- the runs other layers add: identify's validation, the sensitivity study ---------
+
+DATA = SCEN / "example_identification"
+
+
+@pytest.mark.parametrize("data", ["example_identification", "example_recordings"])
+def test_identifys_estimate_is_its_validations_runs(data, counted):
+    """The fit runs no rig; the validation runs one at each (mat angle,
+    velocity) of the data and one over the ramp (the Python harness): the
+    estimate counted none of them."""
+    from orthocontact.fmu.files import find_fmu
+    from orthocontact.identification import job
+    d, _ = job.load_folder(SCEN / data)
+    work = job.validation_work(d)
+    job.identify(d, validate=True, workers=1, fmu_path=str(find_fmu()))
+    assert counted[0] == work.runs and counted[1] == work.steps, work.parts
+    # by hand: 19 distinct (angle, velocity) points and the ramp; raw recordings: 7 angles at 2 velocities
+    assert work.runs == {"example_identification": 19 + 1, "example_recordings": 14}[data]
+
+
+def test_identify_without_forces_validates_nothing_and_estimates_nothing(tmp_path, counted):
+    """mu1, mu2 need the driving forces: without them the validation is
+    skipped, and the estimate says so."""
+    import shutil
+
+    from orthocontact.identification import job
+    folder = tmp_path / "data"
+    shutil.copytree(DATA, folder)
+    (folder / "forces.csv").unlink()
+    d, _ = job.load_folder(folder)
+    work = job.validation_work(d)
+    res = job.identify(d, validate=True, workers=1)
+    assert work.runs == 0 == counted[0] and "skipped" in res.validation
+
+
+def test_the_sensitivity_studys_estimate_is_the_runs_it_makes(counted):
+    from orthocontact.reproduction import sensitivity
+    sc = load(SCEN / "mat_aged.toml")
+    planned = sensitivity.plan(sc)
+    work = sensitivity.work(planned)
+    res = sensitivity.run(sc, 1, master="c", progress=False, planned=planned)
+    assert counted[0] == work.runs == res.checks["runs"] and counted[1] == work.steps, work.parts
+    # 7 strip frictions and the 5 viscous strips whose ratio is reachable, at both velocities,
+    # 7 whole degrees about each peak; a run at 4 ms over 0.5 m: 1000 steps at 0.125 m/s, 513 at 0.244
+    reached = sum(r["eps_ratio"] is not None for r in planned.viscous)
+    assert work.runs == (7 + reached) * 2 * 7
+    assert work.steps == (7 + reached) * 7 * (1000 + 513)
+
+
+def test_identify_refuses_validation_runs_above_the_limits(tmp_path):
+    """A rig.toml step of 1e-8 s (plausible, with a warning): 19 validation
+    runs of 2e8 steps each; refused before any run unless --no-validate or
+    --yes."""
+    import shutil
+    folder = tmp_path / "data"
+    shutil.copytree(DATA, folder)
+    with open(folder / "rig.toml", "a") as f:
+        f.write("step_s = 1e-8\n")
+    p = run(["identify", folder, "--out", tmp_path / "out"], tmp_path)
+    lines = [x for x in p.stderr.strip().splitlines() if ": warning: " not in x]
+    assert p.returncode == 2 and len(lines) == 1, p.stderr
+    assert "20 rig runs (19 validation runs, 1 validation ramp run)" in lines[0], lines[0]
+    assert "--no-validate" in lines[0] and "--yes" in lines[0] and not (tmp_path / "out").exists()
+    p = run(["identify", folder, "--out", tmp_path / "out", "--no-validate"], tmp_path)
+    assert p.returncode == 0, p.stderr
+
+
+def test_reproduce_counts_its_scenarios_together(tmp_path):
+    """Two scenarios each within the limits, together above them: reproduce
+    makes both (and the sensitivity study), so it is refused before any run,
+    naming each part."""
+    folder = tmp_path / "scenarios"
+    folder.mkdir()
+    sc = load(SCEN / "mat_aged.toml")
+    steps = LIMIT_STEPS * 0.6 / scenario_work(sc).runs     # each 60 % of the limit
+    h = sc.rig.travel_m / sc.rig.velocity_m_s / steps
+    for name in ("one", "two"):
+        _variant(tmp_path, SCEN / "mat_aged.toml", ('name = "mat_aged"', f'name = "{name}"'),
+                 ("step_s = 2.0e-4", f"step_s = {h:.6g}")).rename(folder / f"{name}.toml")
+    for f in folder.glob("*.toml"):
+        check_scenario_size(load(f), yes=False)     # each alone passes
+    p = run(["reproduce", "--scenarios", folder, "--out", tmp_path / "out"], tmp_path)
+    lines = [x for x in p.stderr.strip().splitlines() if ": warning: " not in x]
+    assert p.returncode == 2 and len(lines) == 1, p.stderr
+    n = scenario_work(sc).runs
+    assert lines[0].startswith(f"orthocontact: error: {folder}: {2 * n + 168:,} rig runs ({n} one, {n} two, "
+                               "168 sensitivity)"), lines[0]
     assert "--yes" in lines[0] and not (tmp_path / "out").exists()

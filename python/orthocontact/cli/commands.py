@@ -80,6 +80,15 @@ def cmd_reproduce(args) -> int:
     if not files:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
     scenarios = [load_scenario(f, args.yes) for f in files]  # all validated before anything runs
+    from ..reproduction import sensitivity
+    from ..runs.size import Work, check_work, scenario_work
+    sens_sc = next((sc for sc in scenarios if sc.kind == "sweep" and sc.closed_form == "mat"
+                    and "extremum_phi_deg" in sc.paper), None)   # the rig's hidden assumptions, on it
+    planned = sensitivity.plan(sens_sc) if sens_sc is not None else None
+    work = sum((scenario_work(sc).named(sc.name) for sc in scenarios), Work())
+    if planned is not None:
+        work += sensitivity.work(planned).named("sensitivity")
+    check_work(str(folder), work, "the scenarios' sweep.step_deg", "their rig.step_s", args.yes)
     taken = {"sensitivity": "the report's sensitivity folder", "report.md": "the report",
              "summary.json": "the report's summary"}
     for sc in scenarios:
@@ -95,12 +104,10 @@ def cmd_reproduce(args) -> int:
             # The rig's hidden assumptions, on the calibrated experiment: a
             # job of its own beside the sweeps.
             sens = None
-            for sc in scenarios:
-                if sc.kind == "sweep" and sc.closed_form == "mat" and "extremum_phi_deg" in sc.paper:
-                    (stage / "sensitivity").mkdir()
-                    sens = draw.submit(_sensitivity_job, sc, _fmu_for(sc, args), args.master,
-                                       stage / "sensitivity")
-                    break
+            if sens_sc is not None:
+                (stage / "sensitivity").mkdir()
+                sens = draw.submit(_sensitivity_job, sens_sc, _fmu_for(sens_sc, args), args.master,
+                                   stage / "sensitivity", planned)
             for sc in scenarios:
                 (stage / sc.name).mkdir()
                 summary = _run_scenario(sc, stage / sc.name, args.workers, _fmu_for(sc, args),
@@ -123,6 +130,11 @@ def cmd_identify(args) -> int:
     data, recordings = identify.load_folder(args.data)
     for line in data.warnings:
         warn(line)
+    if not args.no_validate:   # the fit runs no rig; its validation does
+        from ..runs.size import check_work
+        check_work(str(args.data), identify.validation_work(data), "the data's points", "rig.toml's step_s",
+                   args.yes, remedy="raise rig.toml's step_s (steps per run), or pass --no-validate (no "
+                                    "validation runs) or --yes to run them anyway")
     with staged_output(args.out, args.cmd) as stage:
         from ..fmu.files import find_fmu
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
@@ -136,21 +148,27 @@ def cmd_identify(args) -> int:
     return 0
 
 
-def _sensitivity_job(sc, fmu_path, master, out) -> dict:
-    """sensitivity.run and its files, in one process (a figure worker's)."""
+def _sensitivity_job(sc, fmu_path, master, out, planned) -> dict:
+    """sensitivity.run of the planned runs and its files, in one process (a
+    figure worker's)."""
     from ..reproduction import sensitivity
-    res = sensitivity.run(sc, 1, fmu_path, master, progress=False)
+    res = sensitivity.run(sc, 1, fmu_path, master, progress=False, planned=planned)
     return sensitivity.write_outputs(res, sc, out)
 
 
 def cmd_sensitivity(args) -> int:
     from ..output.figures import FigureDrawer
     from ..reproduction import sensitivity
+    from ..runs.size import check_work
     sc = load_scenario(args.scenario)
+    planned = sensitivity.plan(sc)
+    check_work(str(sc.path), sensitivity.work(planned), "its runs", "rig.travel_m", args.yes,
+               remedy="lower rig.travel_m (steps per run, at the study's 4 ms step), or pass --yes to "
+                      "run it anyway")
     with staged_output(args.out, args.cmd) as stage, _dask_for(args) as dask, \
             FigureDrawer(1) as draw:
         res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
-                              dask=dask)
+                              dask=dask, planned=planned)
         summary = sensitivity.write_outputs(res, sc, stage, draw)
     if res.checks["warning"]:
         warn(res.checks["warning"])

@@ -47,12 +47,8 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     eps2 = values.get("eps2", rig.eps2_nominal_N_m)
     law = ContactParams(mu1, mu2, ratio * eps2, eps2)
     c_strip = values.get("c_strip", rig.c_strip or 0.0)
-    h = rig.harness(c_strip=c_strip)
     fv = data.velocities_of_forces()
-    points = [] if data.forces is None else [(float(a), float(v)) for a, v in zip(data.forces[:, 0], fv)]
-    if data.angles is not None:
-        points += [(float(a), float(v)) for a, v in zip(data.angles[:, 0], data.velocities_of_angles())]
-    points = sorted(set(points))
+    points = validation_points(data)
     tasks = [(rig.params_at(law, a), rig.harness(c_strip=c_strip, velocity_m_s=v)) for a, v in points]
     sims = run_many(tasks, workers or default_workers(), fmu_path, "validation", progress=False)
     sim = dict(zip(points, sims))
@@ -76,16 +72,52 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
                                             zip(data.angles[:, 0], data.velocities_of_angles())])
         out["angles_deg"] = res_stats(res)
     if data.ramp is not None:
-        xmax = float(data.ramp[:, 0].max())
-        # fine steps: the comparison interpolates the simulation at the data's x1
-        r = run(rig.params_at(law, rig.ramp_angle_deg),
-                rig.harness(c_strip=c_strip, travel_m=max(xmax * 1.01, 1e-6),
-                            step_s=min(h.step_s, xmax / rig.velocity_m_s / 4000)))
+        r = run(rig.params_at(law, rig.ramp_angle_deg), ramp_rig(data.ramp, rig, c_strip))
         x = np.concatenate([[0.0], r.x1])
         F = np.concatenate([[rig.f_int_N], r.drive])
         res = data.ramp[:, 1] - np.interp(data.ramp[:, 0], x, F)
         out["ramp_N"] = res_stats(res)
     return out
+
+
+def validation_points(data: MeasurementSet) -> list[tuple[float, float]]:
+    """The validation's sliding runs: each distinct (mat angle [deg],
+    velocity [m/s]) of the measured forces and angles, sorted."""
+    points = [] if data.forces is None else [(float(a), float(v)) for a, v in
+                                             zip(data.forces[:, 0], data.velocities_of_forces())]
+    if data.angles is not None:
+        points += [(float(a), float(v)) for a, v in zip(data.angles[:, 0], data.velocities_of_angles())]
+    return sorted(set(points))
+
+
+def ramp_rig(ramp: np.ndarray, rig: RigSetup, c_strip: float = 0.0):
+    """The validation's ramp run over the data's ramp (rows x1 [m], force
+    [N]): 1 % beyond its largest x1, in steps fine enough (4000 over it at
+    least) for a comparison that interpolates the simulation at the data's x1."""
+    xmax = float(ramp[:, 0].max())
+    return rig.harness(c_strip=c_strip, travel_m=max(xmax * 1.01, 1e-6),
+                       step_s=min(rig.step_s, xmax / rig.velocity_m_s / 4000))
+
+
+def validation_work(data: MeasurementSet):
+    """Every rig run validate_with_fmu makes, known before the fit, for the
+    work estimate (runs.size.Work): none when mu1, mu2 will not be
+    identified (no driving forces: identifiability), else a run at each
+    validation point and one over the ramp."""
+    from ..runs.size import Work, steps_per_run
+    work = Work()
+    if "mu1" not in identifiability(data)[0]:
+        return work
+    rig = data.rig
+    by_velocity: dict = {}
+    for _, v in validation_points(data):
+        by_velocity[v] = by_velocity.get(v, 0) + 1
+    for v, n in sorted(by_velocity.items()):
+        work = work.plus("validation runs", n, steps_per_run(rig.travel_m, v, rig.step_s))
+    if data.ramp is not None:
+        r = ramp_rig(data.ramp, rig)
+        work = work.plus("validation ramp run", 1, steps_per_run(r.travel_m, r.velocity_m_s, r.step_s))
+    return work
 
 
 @dataclass

@@ -131,14 +131,23 @@ class Sensitivity:
     checks: dict          # rig_checks of the rig's runs: counts and the warning line
 
 
-def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", progress: bool = True,
-        dask=None) -> Sensitivity:
-    """The tables above for a mat scenario; the rig runs over the scenario's
-    angles at a 4 ms step."""
-    import time
+@dataclass(frozen=True)
+class Plan:
+    """The rig runs of a sensitivity study, known before any runs: the
+    viscous rows' calibrated ratios, the (kind, mu_strip, velocity, c_strip,
+    ratio) combinations, each one's (first task, angles [deg]) and closed-form
+    peak, and the tasks (params, rig) in order."""
+    measured: float
+    viscous: list
+    combos: list
+    spans: list
+    closed: list
+    tasks: list
 
-    from ..runs.batch import run_many
-    t0 = time.time()
+
+def plan(sc: Scenario) -> Plan:
+    """What run() will run for a mat scenario (closed forms only, no rig
+    run); InputError for another scenario."""
     if sc.closed_form != "mat" or sc.kind != "sweep":
         raise InputError(f"{sc.path}: geometry.closed_form: expected \"mat\" (the experiment's "
                          "geometry) for a sensitivity study")
@@ -165,6 +174,33 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
         spans.append((len(tasks), angles))
         closed.append(cl)
         tasks += [(s.params_at(a), rig) for a in angles]
+    return Plan(measured, viscous, combos, spans, closed, tasks)
+
+
+def work(p: Plan):
+    """The plan's rig runs for the work estimate (runs.size.Work): how
+    many at each velocity, and each one's steps (the scenario's travel at
+    RIG_STEP_S)."""
+    from ..runs.size import Work, steps_per_run
+    w = Work()
+    for v in VELOCITIES:
+        rigs = [r for _, r in p.tasks if r.velocity_m_s == v]
+        if rigs:
+            w = w.plus(f"at {v:g} m/s", len(rigs), steps_per_run(rigs[0].travel_m, v, rigs[0].step_s))
+    return w
+
+
+def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", progress: bool = True,
+        dask=None, planned: Plan | None = None) -> Sensitivity:
+    """The tables above for a mat scenario; the rig runs over the scenario's
+    angles at a 4 ms step (those of `planned`, plan(sc) if not given)."""
+    import time
+
+    from ..runs.batch import run_many
+    t0 = time.time()
+    pl = planned or plan(sc)
+    measured, combos, spans, closed, tasks = pl.measured, pl.combos, pl.spans, pl.closed, pl.tasks
+    viscous = [dict(row) for row in pl.viscous]   # filled below; the plan stays as planned
     res = run_many(tasks, workers, fmu_path or sc.fmu, f"sensitivity {sc.name}", progress, master, dask)
     checks = check_runs(tasks, res)
     line = warning_line(f"sensitivity {sc.name}", [math.degrees(p.beta) - sc.geometry.beta_offset_deg

@@ -38,6 +38,17 @@ class Work:
     def plus(self, what: str, runs: float, steps: float) -> "Work":
         return Work(self.parts + ((what, runs, steps),)) if runs else self
 
+    def __add__(self, other: "Work") -> "Work":
+        """The runs of both: a command that makes another layer's runs too
+        (identify's validation, reproduce's sensitivity study) adds their
+        Work to its own, so one estimate is checked against the limits."""
+        return Work(self.parts + other.parts)
+
+    def named(self, what: str) -> "Work":
+        """The same runs, every part called `what` (a scenario's name in
+        reproduce's estimate): describe() counts them together."""
+        return Work(tuple((what, r, n) for _, r, n in self.parts))
+
     @property
     def runs(self) -> float:
         return sum(r for _, r, _ in self.parts)
@@ -53,17 +64,25 @@ class Work:
         return max((n for _, _, n in self.parts), default=0.0)
 
     def describe(self) -> str:
-        """'N rig runs (n what, ...)'; the parts when there are several."""
+        """'N rig runs (n what, ...)'; the parts when there are several, the
+        runs of parts of one name (of several step counts) counted together."""
         head = f"{self.runs:,.0f} rig runs"
-        if len(self.parts) < 2:
+        by_name: dict = {}
+        for w, r, _ in self.parts:
+            by_name[w] = by_name.get(w, 0) + r
+        if len(by_name) < 2:
             return head
-        return head + " (" + ", ".join(f"{r:,.0f} {w}" for w, r, _ in self.parts) + ")"
+        return head + " (" + ", ".join(f"{r:,.0f} {w}" for w, r in by_name.items()) + ")"
 
 
-def check_work(what: str, work: Work, runs_key: str, steps_key: str, yes: bool) -> None:
+def check_work(what: str, work: Work, runs_key: str, steps_key: str, yes: bool,
+               remedy: str | None = None) -> None:
     """InputError unless `work` is a size a command takes without asking:
     naming `what` (the file or command), the keys or options that set the
-    size, and --yes."""
+    size, and --yes; `remedy`, where given, says what to do instead of
+    "raise runs_key or steps_key, or pass --yes"."""
+    if not work.parts:
+        return   # no rig run (identify --no-validate's work, or data without forces)
     steps = work.most_steps
     if not 1 <= steps <= MAX_STEPS_PER_RUN:
         raise InputError(f"{what}: {steps_key}: gives {steps:.3g} steps a run; a run takes "
@@ -77,8 +96,8 @@ def check_work(what: str, work: Work, runs_key: str, steps_key: str, yes: bool) 
         size = f"{work.describe()} of up to {steps:,.0f} steps"
     raise InputError(f"{what}: {size} = {total:.3g} rig steps "
                      f"(limits without --yes: {LIMIT_RUNS:.0e} runs, {LIMIT_STEPS:.0e} steps, about 5 "
-                     f"minutes on 2 cores); raise {runs_key} (runs) or {steps_key} (steps per run), "
-                     "or pass --yes to run it anyway")
+                     f"minutes on 2 cores); " + (remedy or f"raise {runs_key} (runs) or {steps_key} "
+                                                 "(steps per run), or pass --yes to run it anyway"))
 
 
 def check_run_size(what: str, runs: float, steps: float, runs_key: str, steps_key: str,
