@@ -71,8 +71,11 @@ rm -f "$stamp_file"
 # cross-compiles the FMU binaries for Linux, Windows and macOS.  The
 # package's own dependencies (fmpy, numpy, casadi, matplotlib, dask) come
 # with its install below.
+missing_reqs=$(.venv/bin/python tools/requirements.py build --missing)
 build_reqs=()
-while IFS= read -r req; do build_reqs+=("$req"); done < <(.venv/bin/python tools/requirements.py build --missing)
+while IFS= read -r req; do
+  if [ -n "$req" ]; then build_reqs+=("$req"); fi
+done <<< "$missing_reqs"
 if [ ${#build_reqs[@]} -gt 0 ]; then
   echo "bootstrap: build requirements into .venv (${build_reqs[*]}; downloaded the first time)"
   .venv/bin/python -m pip install -q --disable-pip-version-check "${build_reqs[@]}"

@@ -19,8 +19,11 @@ tools/bootstrap.sh
 # Ecos's library, qemu-user with the arm64 C library to run the aarch64
 # binary (`make test` only).  A part that cannot be installed is reported by
 # pytest as not run, and fails `make test` and CI (tests/optional_parts.py).
+missing_reqs=$(.venv/bin/python tools/requirements.py test --missing)
 test_reqs=()
-while IFS= read -r req; do test_reqs+=("$req"); done < <(.venv/bin/python tools/requirements.py test --missing)
+while IFS= read -r req; do
+  if [ -n "$req" ]; then test_reqs+=("$req"); fi
+done <<< "$missing_reqs"
 if [ ${#test_reqs[@]} -gt 0 ]; then
   echo "run_tests: the test extra into .venv (${test_reqs[*]})"
   if ! .venv/bin/python -m pip install -q --disable-pip-version-check "${test_reqs[@]}"; then
