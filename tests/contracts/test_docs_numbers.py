@@ -1,8 +1,9 @@
 """The numbers the documentation states are the ones the commands and the
-closed forms give: the README's uq example, the compiled master's speed-up
-(one range in README, --help and docs/benchmarks.md), the model notes' errata,
-the libcosim example; and the documentation names no "issue" a reader cannot
-see.  CITATION.cff is valid."""
+closed forms give: the uq guide's example, the compiled master's speed-up
+(one range in the README, the guides, --help and docs/benchmarks.md), the
+model notes' errata, the libcosim example of the system-simulator guide; and
+the documentation names no "issue" a reader cannot see.  CITATION.cff is
+valid."""
 import json
 import re
 import subprocess
@@ -17,7 +18,10 @@ from orthocontact.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[2]
 README = (ROOT / "README.md").read_text()
-NOTES = (ROOT / "docs" / "model-notes.md").read_text()
+DOCS = ROOT / "docs"
+NOTES = (DOCS / "explanation" / "model-notes.md").read_text()
+UQ_GUIDE = (DOCS / "guides" / "uncertainty.md").read_text()
+SYSTEM_GUIDE = (DOCS / "guides" / "system-simulator.md").read_text()
 
 
 def _help(name):
@@ -25,9 +29,12 @@ def _help(name):
     return " ".join(sub.choices[name].format_help().split())
 
 
-def test_the_readme_uq_example_prints_what_the_readme_says(tmp_path):
-    """The README's two commands (identify, then uq with 2000 draws), run
+def test_the_uq_guides_example_prints_what_the_guide_says(tmp_path):
+    """The guide's two commands (identify, then uq with 2000 draws), run
     serially: the files are the same bit for bit on any cluster."""
+    block = re.search(r"```sh\n(.*?)```", UQ_GUIDE, re.S).group(1).replace("\\\n", " ")
+    assert [ln.split()[1] for ln in block.splitlines()] == ["identify", "uq"]
+    assert "--samples 2000" in block and "scenarios/mat_aged.toml" in block
     ident = tmp_path / "identify"
     p = subprocess.run(CMD + ["identify", str(ROOT / "scenarios/example_identification"), "--out",
                               str(ident)], capture_output=True, text=True, timeout=300, cwd=ROOT)
@@ -38,25 +45,29 @@ def test_the_readme_uq_example_prints_what_the_readme_says(tmp_path):
     assert p.returncode == 0, p.stderr
     uq = json.loads((tmp_path / "uq" / "uq.json").read_text())
     inside = uq["data_inside_measurement_band"]
-    said = re.search(r"\((\d+) of (\d+) for the example set\)", README)
+    said = re.search(r"\((\d+) of (\d+) for the example set\)", UQ_GUIDE)
     assert said and (int(said.group(1)), int(said.group(2))) == (inside["inside"], inside["points"])
     w = uq["widest_band"]
-    said = re.search(r"widest parameter band is ([\d.]+)° wide \(at (\d+)°", README)
+    said = re.search(r"widest parameter band is ([\d.]+)° wide \(at\s+(\d+)°", UQ_GUIDE)
     assert said and said.group(1) == f"{w['width_deg']:.3f}" and float(said.group(2)) == w["angle_deg"]
     assert f"{w['width_deg']:.3f} deg at {w['angle_deg']:g} deg" in p.stdout
 
 
 def test_the_compiled_masters_speed_up_is_one_range_everywhere():
     """docs/benchmarks.md holds the measured table (benchmarks/bench_masters.py);
-    README and --help state its range, rounded outwards to whole numbers."""
+    the README, the rig's guide, the benchmarks' summary and --help state its
+    range, rounded outwards to whole numbers."""
     bench = (ROOT / "docs" / "benchmarks.md").read_text()
     table = bench.split("## The compiled master")[1].split("##")[0]
     ratios = [float(x) for row in re.findall(r"\| ([\d.]+–[\d.]+)× \|", table) for x in row.split("–")]
     assert len(ratios) == 4, table
     lo, hi = int(min(ratios)), int(-(-max(ratios) // 1))
     said = f"{lo}–{hi}×"
-    assert said in README.split("## The rig harness")[1].split("###")[0]
-    assert f"measured {said}" in README.split("## Benchmarks")[1]
+    rig = (DOCS / "guides" / "scenarios-and-rig.md").read_text()
+    assert said in rig.split("## Workers and masters")[1].split("\n## ")[0]
+    building = (DOCS / "guides" / "building.md").read_text()
+    assert f"measured {said}" in building.split("## Benchmarks")[1].split("\n## ")[0]
+    assert said in README.split("## Features")[1].split("\n## ")[0]
     assert f"{lo}-{hi}x faster" in _help("run")
 
 
@@ -67,10 +78,11 @@ def test_identify_help_names_every_column():
 
 
 def test_no_documentation_names_an_issue_the_reader_cannot_see():
-    files = [ROOT / "README.md", ROOT / "CITATION.cff", ROOT / "scenarios" / "README.md",
-             ROOT / "benchmarks" / "bench_coverage.py", *sorted((ROOT / "docs").glob("*.md")),
-             ROOT / "docs" / "coverage.json"]
-    texts = {f.name: f.read_text() for f in files}
+    files = [ROOT / "README.md", ROOT / "CITATION.cff", ROOT / "CONTRIBUTING.md", ROOT / "CHANGELOG.md",
+             ROOT / "benchmarks" / "bench_coverage.py", *sorted((ROOT / "scenarios").rglob("*.md")),
+             *sorted(DOCS.rglob("*.md")), DOCS / "coverage.json"]
+    assert len(files) > 20
+    texts = {str(f.relative_to(ROOT)): f.read_text() for f in files}
     texts["--help"] = " ".join(_help(c) for c in ("run", "reproduce", "identify", "ssp", "uq", "sensitivity"))
     for name, text in texts.items():
         assert not re.search(r"\bissue(?:'s|s)?\b", text, re.I), name
@@ -99,11 +111,11 @@ def test_the_sign_errata_say_what_the_closed_forms_give():
 
 
 @pytest.mark.needs("libcosimpy")
-def test_the_readme_libcosim_example_runs_as_written_and_prints_the_harness_angle(tmp_path):
-    block = re.search(r"```sh\n(\.venv/bin/pip install libcosimpy\n.*?)```", README, re.S).group(1)
+def test_the_guides_libcosim_example_runs_as_written_and_prints_the_harness_angle(tmp_path):
+    block = next(b for b in re.findall(r"```sh\n(.*?)```", SYSTEM_GUIDE, re.S) if "from_ssp_file('aged.ssp')" in b)
     lines = block.splitlines()
     ssp_line = next(x for x in lines if " ssp " in x)
-    # the README's paths are relative to the repository root
+    # the guide's paths are relative to the repository root
     p = subprocess.run(CMD + [a.replace("scenarios/", str(ROOT / "scenarios") + "/")
                               for a in ssp_line.split()[1:]], capture_output=True, text=True, timeout=120,
                        cwd=tmp_path)
@@ -112,7 +124,8 @@ def test_the_readme_libcosim_example_runs_as_written_and_prints_the_harness_angl
     q = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert q.returncode == 0, q.stderr[-2000:]
     printed = q.stdout.strip().splitlines()[-1]
-    said = re.search(r"It prints `(phi = [-\d.]+ deg)`", README).group(1)
+    said = re.search(r"from_ssp_file\('aged.ssp'\).*?```\n\n```output\n\.\.\.\n(phi = [-\d.]+ deg)\n```",
+                     SYSTEM_GUIDE, re.S).group(1)
     assert printed == said
     from orthocontact.experiment.scenario import load
     from orthocontact.rig.harness import run
