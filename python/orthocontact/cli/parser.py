@@ -164,7 +164,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Run one scenario file and write summary.json, CSV tables, "
                                    "PNG figures into DIR.")
     r.add_argument("scenario", metavar="SCENARIO", help="scenario file (TOML; format in "
-                   "scenarios/README.md); angles in degrees, forces in N, lengths in m")
+                   "docs/reference/file-formats.md); angles in degrees, forces in N, lengths in m")
     common(r, "output folder: created if missing, files replaced; written only when the run "
               "completes")
     r.set_defaults(func=cmd_run)
