@@ -2,16 +2,22 @@
 refused before any work, a staging folder committed only when everything
 is written, files the command does not write left alone, an earlier run's
 files removed (the folder's manifest)."""
+import fcntl
 import json
+import os
+import signal
+import subprocess
+import time
 from pathlib import Path
 
 import pytest
-from cli_run import case4_named, leftovers, one_error_line, run_cli as run, timed_run
+from cli_run import CMD, case4_named, leftovers, one_error_line, run_cli as run, timed_run
 
 from orthocontact.cli.main import main
 from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings,
                                      staged_output, warn, warnings_said)
 from orthocontact.errors import InputError
+from orthocontact.fmu.files import LOCK
 from orthocontact.output.manifest import MANIFEST, file_sha256
 
 SCEN = Path(__file__).resolve().parents[2] / "scenarios"
@@ -181,3 +187,54 @@ def test_warnings_are_counted_for_strict(capsys):
         "orthocontact: warning: angles.csv: a value looks like radians", "orthocontact: warning: second"]
     forget_warnings()
     assert warnings_said() == 0
+
+
+# -- a killed run's staging folder: the next run into its --out removes it ------------
+
+def _until(cond, timeout=60.0):
+    t0 = time.monotonic()
+    while not cond():
+        assert time.monotonic() - t0 < timeout, "timed out"
+        time.sleep(0.02)
+
+
+def _lock_free(folder: Path) -> bool:
+    """No process holds the folder's lock (every process of its run is gone)."""
+    fd = os.open(folder / LOCK, os.O_RDWR)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        return True
+    except OSError:
+        return False
+    finally:
+        os.close(fd)
+
+
+def test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_stays(tmp_path):
+    """SIGKILL runs no cleanup: `run` killed while it writes leaves its
+    .out.partial-* folder; the next run into that --out removes it and
+    succeeds, while the staging folder of a run still in progress (stopped
+    with SIGSTOP, its lock held) is left alone, and that run then completes."""
+    partials = lambda: sorted(tmp_path.glob(".out.partial-*"))
+    start = lambda sc: subprocess.Popen(CMD + ["run", str(sc), "--out", "out", "--workers", "2"], cwd=tmp_path,
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    live = start(SCEN / "case1.toml")
+    try:
+        _until(lambda: len(partials()) == 1)
+        os.kill(live.pid, signal.SIGSTOP)   # in progress, its lock held
+        theirs = partials()
+        killed = start(SCEN / "mat_aged.toml")
+        _until(lambda: len(partials()) == 2)
+        os.kill(killed.pid, signal.SIGKILL)
+        killed.wait(timeout=30)
+        left = [p for p in partials() if p not in theirs]
+        assert len(left) == 1 and not (tmp_path / "out").exists()
+        _until(lambda: _lock_free(left[0]), timeout=10)   # its workers end with it
+        p = run(["run", SCEN / "case4.toml", "--out", "out", "--workers", "2"], tmp_path)
+        assert p.returncode == 0, p.stderr
+        assert partials() == theirs and any(theirs[0].iterdir())   # the killed run's gone, the live one's kept
+        assert json.loads((tmp_path / "out" / "summary.json").read_text())["scenario"] == "case4"
+    finally:
+        os.kill(live.pid, signal.SIGCONT)
+    assert live.wait(timeout=120) == 0
+    assert partials() == [] and json.loads((tmp_path / "out" / "summary.json").read_text())["scenario"] == "case1"

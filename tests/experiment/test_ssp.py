@@ -202,3 +202,31 @@ def test_the_ssp_command_says_when_its_dynamic_rig_would_not_settle(tmp_path):
     p = subprocess.run(cmd + [str(root / "scenarios/mat_aged.toml"), "--angle", "39.2", "--out", "a.ssp"],
                        cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert p.returncode == 0 and p.stderr == ""
+
+
+def test_a_killed_ssps_scratch_goes_with_the_next_package_written_there(tmp_path):
+    """The FMUs and the package are made in a locked folder beside --out
+    (.rig.ssp.partial-*; they were in the system's temp folder and a
+    .rig.ssp.partial file, both left by a SIGKILL): `ssp` killed while it
+    writes leaves it, the next `ssp` into that path removes it, and a
+    package written leaves nothing else."""
+    import os
+    import signal
+    import time
+    cmd = [sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"), "--angle", "10",
+           "--out", "rig.ssp"]
+    partials = lambda: list(tmp_path.glob(".rig.ssp.partial-*"))
+    for _ in range(10):   # until the kill lands while it writes (it writes for a fraction of a second)
+        proc = subprocess.Popen(cmd, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        while proc.poll() is None and not partials():
+            time.sleep(0.002)
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait(timeout=30)
+        if partials() and not (tmp_path / "rig.ssp").exists():
+            break
+        (tmp_path / "rig.ssp").unlink(missing_ok=True)
+    assert len(partials()) == 1, sorted(os.listdir(tmp_path))
+    p = subprocess.run(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert sorted(os.listdir(tmp_path)) == ["rig.ssp"]
+    assert zipfile.ZipFile(tmp_path / "rig.ssp").testzip() is None

@@ -11,7 +11,8 @@ import time
 import pytest
 from cli_run import CMD, SCENARIOS as SCEN
 
-from orthocontact.fmu.files import ABANDONED_AFTER_S, TEMP_PREFIX, find_fmu, fmi_version_of, remove_abandoned
+from orthocontact.fmu.files import (LOCK, TEMP_PREFIX, find_fmu, fmi_version_of, locked_folder,
+                                    remove_abandoned)
 
 
 def test_find_fmu_picks_the_version():
@@ -23,11 +24,6 @@ def test_find_fmu_picks_the_version():
 
 
 # -- unpacked FMUs: in one folder per command, gone whatever ends the command ----------
-
-def _age(folder, seconds):
-    t = time.time() - seconds
-    os.utime(folder / ".lock", (t, t))
-
 
 @pytest.mark.parametrize("at", ["case3", "mat_aged", "mat_new", "step_study"])
 def test_ctrl_c_on_reproduce_leaves_no_unpacked_fmu(tmp_path, at):
@@ -62,7 +58,6 @@ def test_a_killed_commands_folder_goes_with_the_next_command(tmp_path):
     proc.wait(timeout=30)
     left = [p for p in tmp.iterdir() if p.name.startswith(TEMP_PREFIX)]
     assert len(left) == 1 and any(left[0].rglob("*.so")), left
-    _age(left[0], 2 * ABANDONED_AFTER_S)
     time.sleep(1.0)  # its workers end with it
     p = subprocess.run(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out2", "--workers", "2"], cwd=tmp_path,
                        env=env, capture_output=True, text=True, timeout=120)
@@ -71,22 +66,48 @@ def test_a_killed_commands_folder_goes_with_the_next_command(tmp_path):
 
 
 def test_only_abandoned_folders_are_removed(tmp_path, monkeypatch):
+    """A folder whose lock is free is abandoned at once (its lock file is
+    locked before it takes its name, so it is never one being made); one
+    whose lock is held, one being made (no .lock yet) and one without a
+    lock file are left."""
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
     made = {}
-    for name in ("abandoned", "in-use", "new"):
+    for name in ("abandoned", "in-use", "being-made"):
         folder = tmp_path / f"{TEMP_PREFIX}{name}"
         folder.mkdir()
-        (folder / ".lock").write_text("")
+        (folder / (LOCK if name != "being-made" else LOCK + ".new")).write_text("")
         made[name] = folder
-    _age(made["abandoned"], 2 * ABANDONED_AFTER_S)
-    _age(made["in-use"], 2 * ABANDONED_AFTER_S)
     (tmp_path / f"{TEMP_PREFIX}not-ours").mkdir()  # no lock file: not a command's folder
     (tmp_path / "other").mkdir()
-    fd = os.open(made["in-use"] / ".lock", os.O_RDWR)
+    fd = os.open(made["in-use"] / LOCK, os.O_RDWR)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX)  # as a live command holds it
         assert remove_abandoned() == [made["abandoned"]]
     finally:
         os.close(fd)
-    assert sorted(os.listdir(tmp_path)) == [f"{TEMP_PREFIX}in-use", f"{TEMP_PREFIX}new",
+    assert sorted(os.listdir(tmp_path)) == [f"{TEMP_PREFIX}being-made", f"{TEMP_PREFIX}in-use",
                                            f"{TEMP_PREFIX}not-ours", "other"]
+
+
+def test_a_locked_folder_is_held_while_its_maker_lives(tmp_path):
+    """locked_folder's lock, seen from another process: held while the
+    folder's maker lives, free once it is killed; the next folder of the
+    kind made there removes it, and only folders of its own prefix."""
+    code = ("import sys, time; from orthocontact.fmu.files import locked_folder; "
+            "print(locked_folder(sys.argv[1], '.out.partial-').path, flush=True); time.sleep(60)")
+    proc = subprocess.Popen([CMD[0], "-c", code, str(tmp_path)], stdout=subprocess.PIPE, text=True)
+    try:
+        theirs = tmp_path / os.path.basename(proc.stdout.readline().strip())
+        other = tmp_path / f"{TEMP_PREFIX}x"
+        other.mkdir()
+        (other / LOCK).write_text("")   # free, but of another prefix
+        mine = locked_folder(tmp_path, ".out.partial-")
+        assert theirs.is_dir() and (theirs / LOCK).is_file() and mine.path.is_dir()
+    finally:
+        proc.kill()
+        proc.wait()
+    again = locked_folder(tmp_path, ".out.partial-")   # removes the killed maker's, not its own live one
+    assert not theirs.exists() and mine.path.is_dir() and other.is_dir()
+    mine.remove()
+    again.remove()
+    assert sorted(os.listdir(tmp_path)) == [f"{TEMP_PREFIX}x"]

@@ -70,6 +70,7 @@ def staged_output(out: Path, command: str | None = None):
     the scratch folder, nor parent folders made for it, nor a half-written `out`.
     On success `out` is this run's (commit_run): the files an earlier run's
     manifest lists are replaced or removed, the user's own stay."""
+    from ..fmu.files import locked_folder
     out = Path(out)
     made = []
     for parent in reversed(out.parents):
@@ -80,8 +81,13 @@ def staged_output(out: Path, command: str | None = None):
     # mount point, a container's volume): a file moves by renaming only
     # within one file system.
     inside = out.is_dir() and out.stat().st_dev != out.parent.stat().st_dev
-    stage = Path(tempfile.mkdtemp(prefix=f".{out.name}.partial-", dir=out if inside else out.parent))
+    # A locked folder (fmu.files): this run's while it lives; one a killed
+    # run left there (SIGKILL cleans nothing) goes with the next run into `out`.
+    held = None
     try:
+        held = locked_folder(out if inside else out.parent, f".{out.name}.partial-")
+        stage = held.path / "files"
+        stage.mkdir()
         yield stage
         hold_interrupts()  # one arriving during the commit must not cut it in half
         # An interrupt that a finalizer swallowed ("Exception ignored in
@@ -89,7 +95,8 @@ def staged_output(out: Path, command: str | None = None):
         if interrupted():
             raise KeyboardInterrupt
     except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
+        if held is not None:
+            held.remove()
         for parent in reversed(made):
             with contextlib.suppress(OSError):
                 parent.rmdir()
@@ -97,7 +104,7 @@ def staged_output(out: Path, command: str | None = None):
     try:
         commit_run(stage, out, command)
     finally:   # a commit the system refused (disk full) leaves no scratch folder either
-        shutil.rmtree(stage, ignore_errors=True)
+        held.remove()
     results_written(out)
 
 

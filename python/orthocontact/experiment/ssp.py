@@ -16,12 +16,11 @@ own units inside (rad, N/m, kg, m/s, N)."""
 from __future__ import annotations
 
 import math
-import tempfile
 import zipfile
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
+from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu, locked_folder
 from ..fmu.params import RULES
 from ..fmu.start_values import write_with_start_values
 from .scenario import Scenario
@@ -150,14 +149,19 @@ def write_ssp(sc: Scenario, angle_deg: float, out: Path, contact_fmu=None) -> Pa
     out = Path(out)
     contact = Path(contact_fmu or sc.fmu or find_fmu(fmi_version=2))
     rig = find_fmu(fmi_version=2, model=RIG_MODEL_IDENTIFIER)
-    tmp = out.with_name(f".{out.name}.partial")
-    with tempfile.TemporaryDirectory() as work:
-        contact = write_with_start_values(contact, Path(work) / "contact.fmu",
-                                          contact_values(sc, angle_deg))
-        rig = write_with_start_values(rig, Path(work) / "rig.fmu", rig_values(sc))
+    # The FMUs and the package are made in a locked folder beside `out`
+    # (fmu.files): the package takes its name by a rename, and what a killed
+    # run left there goes with the next package written to `out`.
+    work = locked_folder(out.parent, f".{out.name}.partial-")
+    try:
+        contact = write_with_start_values(contact, work.path / "contact.fmu", contact_values(sc, angle_deg))
+        rig = write_with_start_values(rig, work.path / "rig.fmu", rig_values(sc))
+        tmp = work.path / out.name
         with zipfile.ZipFile(tmp, "w", zipfile.ZIP_DEFLATED) as z:
             z.writestr("SystemStructure.ssd", system_structure(sc, angle_deg))
             z.write(contact, f"resources/{MODEL_IDENTIFIER}.fmu")
             z.write(rig, f"resources/{RIG_MODEL_IDENTIFIER}.fmu")
-    tmp.replace(out)
+        tmp.replace(out)
+    finally:
+        work.remove()
     return out

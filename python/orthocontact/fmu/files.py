@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 from fmpy import extract, read_model_description
@@ -69,81 +70,76 @@ def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
         + (f", or set {env}" if env else ""))
 
 
-# -- one temporary folder per command ----------------------------------------------
+# -- folders that say whether their maker lives ---------------------------------
 #
-# Every unpacked FMU goes into one folder per command: the first process of
-# the command makes it and removes it when it ends, whatever its workers
-# (forked or Dask's) unpacked there.  A worker killed mid-run cannot clean up
-# after itself, so its files must be somewhere its parent removes.  The folder
-# holds a lock (flock on .lock) for as long as any process of the command
-# lives; a folder whose lock is free belongs to a command that was killed
-# (SIGKILL), and the next command removes it.
+# A command's scratch (its temporary folder of unpacked FMUs, the staging
+# folder of its output, an .ssp being zipped) is a locked folder: it holds a
+# lock (flock on .lock) for as long as any process of the command lives (a
+# forked worker shares it).  SIGKILL runs no cleanup, so a killed command's
+# folders stay; their lock is then free, and the next command that makes a
+# folder of the same kind in the same place removes them.  The lock file is
+# locked before it takes its name (.lock), so a folder whose .lock is free is
+# never one being made.
 
 try:
     import fcntl as _fcntl
 except ImportError:  # Windows: no flock, so no judging of other commands' folders
     _fcntl = None
 
-TEMP_PREFIX = "orthocontact-"
-
-ABANDONED_AFTER_S = 60.0  # age [s] of a folder before its free lock means abandoned
-
-TEMP_ENV = "ORTHOCONTACT_TEMP"  # a command's folder, given to its spawned workers (Dask's)
-
-_temp: tuple[Path, int | None, int | None] | None = None  # (folder, pid of its owner, lock fd)
-
-_cleanup_registered = False
+LOCK = ".lock"
 
 
-def temp_folder() -> Path:
-    """This command's temporary folder: $ORTHOCONTACT_TEMP in a worker the
-    command started, else one made here under the system's temp folder
-    ($TMPDIR), removed when this process ends (remove_unzipped)."""
-    global _temp, _cleanup_registered
-    if _temp is not None:
-        return _temp[0]
-    given = os.environ.get(TEMP_ENV)
-    if given and Path(given).is_dir():
-        _temp = (Path(given), None, None)  # its owner removes it
-        return _temp[0]
+@dataclass(frozen=True)
+class LockedFolder:
+    """A folder that holds its lock while the process that made it (and
+    the processes forked from it) live."""
+    path: Path
+    fd: int | None   # the lock's file descriptor (None without flock)
+
+    def remove(self) -> None:
+        """Removes the folder and everything in it, then releases the lock."""
+        import shutil
+        shutil.rmtree(self.path, ignore_errors=True)
+        if self.fd is not None:
+            os.close(self.fd)
+
+
+def locked_folder(parent, prefix: str) -> LockedFolder:
+    """A new folder `prefix` + random in `parent`, holding its lock;
+    first removes the abandoned folders of the same prefix there
+    (remove_abandoned)."""
     import tempfile
-    remove_abandoned()
-    folder = Path(tempfile.mkdtemp(prefix=TEMP_PREFIX))
-    fd = os.open(folder / ".lock", os.O_CREAT | os.O_RDWR | getattr(os, "O_CLOEXEC", 0), 0o600)
-    if _fcntl is not None:
-        _fcntl.flock(fd, _fcntl.LOCK_EX | _fcntl.LOCK_NB)
-    if not _cleanup_registered:
-        _cleanup_registered = True
-        import atexit
-        from multiprocessing import util
-        atexit.register(remove_unzipped)
-        # A multiprocessing child (a Dask worker, a spawned pool worker)
-        # ends by os._exit, which skips atexit but runs these.
-        util.Finalize(None, remove_unzipped, exitpriority=0)
-    _temp = (folder, os.getpid(), fd)
-    return folder
+    remove_abandoned(parent, prefix)
+    folder = Path(tempfile.mkdtemp(prefix=prefix, dir=parent))
+    making, fd = folder / (LOCK + ".new"), None
+    try:
+        fd = os.open(making, os.O_CREAT | os.O_EXCL | os.O_RDWR | getattr(os, "O_CLOEXEC", 0), 0o600)
+        if _fcntl is not None:
+            _fcntl.flock(fd, _fcntl.LOCK_EX | _fcntl.LOCK_NB)
+        os.replace(making, folder / LOCK)
+    except BaseException:   # a full disk, an interrupt: no folder left
+        LockedFolder(folder, fd).remove()
+        raise
+    return LockedFolder(folder, fd)
 
 
-def remove_abandoned() -> list[Path]:
-    """Removes the temporary folders of earlier commands that were killed
-    (their lock is free: no process of theirs lives); returns them.  None
-    are judged where the system has no flock (Windows)."""
+def remove_abandoned(parent=None, prefix: str | None = None) -> list[Path]:
+    """Removes the folders `prefix`* in `parent` (default: this command's
+    kind, TEMP_PREFIX in the system's temp folder) whose lock is free: their
+    command was killed, no process of theirs lives.  A folder without a lock
+    file is not judged (not one of ours, or one being made), nor any where
+    the system has no flock (Windows).  Returns those removed."""
     import shutil
     import tempfile
-    import time
     gone = []
     if _fcntl is None:
         return gone
-    for folder in Path(tempfile.gettempdir()).glob(TEMP_PREFIX + "*"):
-        lock = folder / ".lock"
+    parent = Path(tempfile.gettempdir() if parent is None else parent)
+    for folder in parent.glob((TEMP_PREFIX if prefix is None else prefix) + "*"):
         try:
             if folder.is_symlink() or not folder.is_dir() or folder.stat().st_uid != os.getuid():
                 continue
-            # A folder just made may not hold its lock yet (the lock file is
-            # created, then locked): only one older than a minute is judged.
-            if time.time() - lock.lstat().st_mtime < ABANDONED_AFTER_S:
-                continue
-            fd = os.open(lock, os.O_RDWR | os.O_CLOEXEC | os.O_NOFOLLOW)
+            fd = os.open(folder / LOCK, os.O_RDWR | os.O_CLOEXEC | os.O_NOFOLLOW)
         except OSError:
             continue  # not one of ours, or being made or removed right now
         try:
@@ -155,6 +151,48 @@ def remove_abandoned() -> list[Path]:
         shutil.rmtree(folder, ignore_errors=True)
         gone.append(folder)
     return gone
+
+
+# -- one temporary folder per command ----------------------------------------------
+#
+# Every unpacked FMU goes into one folder per command: the first process of
+# the command makes it and removes it when it ends, whatever its workers
+# (forked or Dask's) unpacked there.  A worker killed mid-run cannot clean up
+# after itself, so its files must be somewhere its parent removes.  It is a
+# locked folder: the next command removes it if the command was killed.
+
+TEMP_PREFIX = "orthocontact-"
+
+TEMP_ENV = "ORTHOCONTACT_TEMP"  # a command's folder, given to its spawned workers (Dask's)
+
+_temp: tuple[LockedFolder, int | None] | None = None  # (the folder, pid of its owner or None)
+
+_cleanup_registered = False
+
+
+def temp_folder() -> Path:
+    """This command's temporary folder: $ORTHOCONTACT_TEMP in a worker the
+    command started, else one made here under the system's temp folder
+    ($TMPDIR), removed when this process ends (remove_unzipped)."""
+    global _temp, _cleanup_registered
+    if _temp is not None:
+        return _temp[0].path
+    given = os.environ.get(TEMP_ENV)
+    if given and Path(given).is_dir():
+        _temp = (LockedFolder(Path(given), None), None)  # its owner removes it
+        return _temp[0].path
+    import tempfile
+    held = locked_folder(tempfile.gettempdir(), TEMP_PREFIX)
+    if not _cleanup_registered:
+        _cleanup_registered = True
+        import atexit
+        from multiprocessing import util
+        atexit.register(remove_unzipped)
+        # A multiprocessing child (a Dask worker, a spawned pool worker)
+        # ends by os._exit, which skips atexit but runs these.
+        util.Finalize(None, remove_unzipped, exitpriority=0)
+    _temp = (held, os.getpid())
+    return held.path
 
 
 _extracted: dict[Path, tuple[str, int]] = {}  # FMU -> (its unpacked folder, the pid that made it)
@@ -185,8 +223,7 @@ def remove_unzipped() -> None:
             shutil.rmtree(folder, ignore_errors=True)
             del _extracted[key]
     if _temp is not None and _temp[1] == os.getpid():
-        shutil.rmtree(_temp[0], ignore_errors=True)
-        os.close(_temp[2])
+        _temp[0].remove()
         _temp = None
 
 
