@@ -34,7 +34,8 @@ SLOW = {
         "test_force_logs_changed_after_identify_are_refused_by_export_and_uq_naming_them",
     },
     "cli/test_output.py": {"test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs",
-                           "test_reproduce_into_the_same_folder_leaves_no_scenario_of_the_earlier_run"},
+                           "test_reproduce_into_the_same_folder_leaves_no_scenario_of_the_earlier_run",
+                           "test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_stays"},
     "test_textfiles.py": {   # every file format and case through identify, run and uq
         "test_reduced_data_every_file_every_case",
         "test_raw_recordings_every_file_altered_read_as_the_original",
