@@ -18,6 +18,20 @@ def test_an_input_error_is_an_exception_whose_text_is_the_message():
         read_identified("nowhere.json")   # a layer below the CLI raises it
 
 
+def test_the_users_input_errors_are_one_hierarchy():
+    """A scenario file's error and a start value the FMU would refuse are
+    InputErrors (the CLI catches InputError alone); a failure of an FMU call
+    or of a solver is not the user's input and is not one."""
+    from orthocontact.experiment.scenario import ScenarioError
+    from orthocontact.fmu.contact import FMUError
+    from orthocontact.fmu.start_values import StartValueError
+    from orthocontact.rig.harness import LateralSolveError
+    assert issubclass(ScenarioError, InputError) and issubclass(StartValueError, InputError)
+    assert str(ScenarioError("s.toml", "law.mu1", "a number > 0", -1)) == "s.toml: law.mu1: expected a number > 0, got -1"
+    assert issubclass(StartValueError, ValueError)   # its callers' `except ValueError` still hold
+    assert not issubclass(FMUError, InputError) and not issubclass(LateralSolveError, InputError)
+
+
 def test_an_input_error_from_any_layer_is_one_line_and_exit_2(tmp_path, capsys, monkeypatch):
     def refuse(args):
         raise InputError("somewhere deep: expected something else")

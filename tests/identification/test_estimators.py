@@ -109,3 +109,18 @@ def test_intervals_cover_on_the_small_design(small_physics, tmp_path):
         hits = int(np.sum((e[:, 2] <= v) & (v <= e[:, 3])))
         report[k] = (hits, round(float(np.sqrt(np.mean(e[:, 1] ** 2)) / e[:, 0].std(ddof=1)), 3))
     assert all(106 <= h < n and 0.7 < r < 1.4 for h, r in report.values()), report
+
+
+def test_a_joint_fit_is_made_with_keywords_only():
+    """Fifteen fields of like types: a swapped pair given by position would
+    pass unnoticed (one did), so position is refused."""
+    import dataclasses
+
+    from orthocontact.identification.estimators import JointFit
+    given = dict(free=["mu1"], values={"mu1": 0.4}, cov=np.eye(1), stderr={"mu1": 0.01},
+                 ci95={"mu1": (0.38, 0.42)}, dof=3, sigma={"forces": 0.05}, residuals={"forces": np.zeros(4)})
+    with pytest.raises(TypeError, match="positional"):
+        JointFit(*given.values())
+    fit = JointFit(**given)
+    assert fit.dof == 3 and fit.ci95 == {"mu1": (0.38, 0.42)} and fit.not_identifiable == {}
+    assert dataclasses.replace(fit, dof=4).dof == 4

@@ -2,6 +2,7 @@
 data made by the FMU harness (not by the closed forms the fit uses) and by an
 independent simulator of the rig (tools/rig_reference.py, none of the
 package's code): exact recovery, honest intervals, clear non-identifiability."""
+import dataclasses
 import json
 import shutil
 import subprocess
@@ -52,9 +53,9 @@ def test_paper_calibration_numbers(tmp_path):
 
 
 def test_paper_sign_convention_is_accepted(tmp_path):
-    write_measurements(tmp_path, RIG, forces=[(0.0, 12.50), (90.0, 16.50)], angles=[(39.2, 11.5)])
-    with open(tmp_path / "rig.toml", "a") as fh:
-        fh.write('phi_convention = "paper"\n')
+    write_measurements(tmp_path, dataclasses.replace(RIG, phi_convention="paper"),
+                       forces=[(0.0, 12.50), (90.0, 16.50)], angles=[(39.2, 11.5)])
+    assert 'phi_convention = "paper"' in (tmp_path / "rig.toml").read_text()
     res = identify(load_data(tmp_path), validate=False)
     assert round(res.max_rule["l1_l2_ratio"], 3) == 0.817
 

@@ -69,11 +69,13 @@ def test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs(tmp_p
 
 
 def test_the_runs_section_of_identified_md_by_hand():
-    j = {"noise_model": {"angles": {"between_runs": {"0.125": 0.2, "0.244": 0.05}, "within_run_rms": 0.011},
-                         "forces": {"between_runs": 0.04, "within_run_rms": 0.0}},
-         "reduction": {"runs": {"slide": 20, "carriage": 3, "ramp": 2}, "left_out": ["s07"],
-                       "flagged": {"s03": ["dropout", "outlier"]}, "figures": ["paths_30.png"]}}
-    assert reduction_markdown(j).splitlines() == [
+    from orthocontact.identification.identified_file import ReductionSummary
+    noise_model = {"angles": {"between_runs": {"0.125": 0.2, "0.244": 0.05}, "within_run_rms": 0.011},
+                   "forces": {"between_runs": 0.04, "within_run_rms": 0.0}}
+    reduction = ReductionSummary(runs={"slide": 20, "carriage": 3, "ramp": 2}, left_out=("s07",),
+                                 flagged={"s03": ["dropout", "outlier"]}, table="reduction.csv",
+                                 figures=("paths_30.png",), scenario=None)
+    assert reduction_markdown(noise_model, reduction).splitlines() == [
         "## Runs", "",
         "- run-to-run scatter (between runs) / within-run error (rms): angles 0.2 at 0.125 m/s, "
         "0.05 at 0.244 m/s / 0.011; forces 0.04 / 0",

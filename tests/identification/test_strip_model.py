@@ -57,7 +57,7 @@ def test_strip_viscosity_estimated_from_two_velocities_through_the_cli(tmp_path,
     assert j["assumptions"]["mu_strip"] == 0.05 and j["assumptions"]["c_strip_N_s_m"] == "estimated"
     # people see it too: the terminal summary and identified.md
     assert "  c_strip = 20" in capsys.readouterr().out
-    assert "| c_strip | 20" in (tmp_path / "out" / "identified.md").read_text()
+    assert "| c_strip | N s/m | 20" in (tmp_path / "out" / "identified.md").read_text()
 
 
 def test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity():

@@ -1,8 +1,10 @@
 """A lab's rig.toml: the rig and the assumptions of a fit (mass [kg], g
 [m/s^2], F_int [N], velocity [m/s], sliding rule, axis offsets [deg], strip
-terms), validated key by key with the plausible ranges of each unit."""
+terms), validated key by key with the plausible ranges of each unit: RigSetup,
+its one reader (load_rig_toml) and its one writer (write_rig_toml)."""
 from __future__ import annotations
 
+import json
 import math
 import sys
 from dataclasses import dataclass
@@ -55,9 +57,9 @@ class RigSetup:
         return self.geometry.axes(angle_deg)
 
     def params_at(self, law: ContactParams, angle_deg: float) -> ContactParams:
-        """The law's parameters with the tensors' axes of this mat angle and rig.rule."""
-        alpha, beta = self.axes(angle_deg)
-        return law.replace(alpha=alpha, beta=beta, rule=self.rule)
+        """The law's parameters with the tensors' axes of this mat angle [deg]
+        and rig.rule (the geometry's params_at: one convention for both files)."""
+        return self.geometry.params_at(law, angle_deg, self.rule)
 
     def harness(self, **overrides):
         """The rig harness (orthocontact.rig.Rig) for this setup."""
@@ -71,7 +73,7 @@ class RigSetup:
     @property
     def beta_minus_alpha(self) -> float:
         """Angle [rad] of the friction axes from the adhesion axes."""
-        return math.radians(self.beta_offset_deg - self.alpha_offset_deg)
+        return math.radians(self.geometry.beta_minus_alpha_deg)
 
 
 RIG_TOML = {
@@ -93,3 +95,25 @@ def load_rig_toml(path: Path) -> RigSetup:
     values, warnings = read_table(path, "", raw, RIG_TOML, InputError)
     values = {k: float(v) if isinstance(v, int) and not isinstance(v, bool) else v for k, v in values.items()}
     return RigSetup(**values, warnings=tuple(warnings))
+
+
+def toml_value(v) -> str:
+    """A TOML value of a scenario's or rig.toml's key: a string, a bool, a
+    number (repr: read back to the same float) or a list of them."""
+    if isinstance(v, str):
+        return json.dumps(v)     # a JSON string is a TOML basic string
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    return repr(float(v)) if isinstance(v, float) else repr(v)
+
+
+def write_rig_toml(path: Path, rig: RigSetup) -> Path:
+    """Writes rig.toml of `rig`: every key load_rig_toml reads (those that
+    are None left out: their default), so that it reads back as `rig`."""
+    path = Path(path)
+    lines = [f"{k} = {toml_value(getattr(rig, k))}" for k in RIG_TOML if getattr(rig, k) is not None]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+

@@ -33,8 +33,8 @@ KINDS = ("sweep", "step_study")
 CLOSED_FORMS = ("general", "eq11", "eq25", "eq31", "eq33", "mat")
 
 
-class ScenarioError(Exception):
-    """A bad scenario: str(e) is the one-line message for the user.
+class ScenarioError(InputError):
+    """A bad scenario (an InputError): str(e) is the one-line message for the user.
     ScenarioError(path, key, expected[, got]), or ScenarioError(message) with
     a message that names the file already (experiment.keys)."""
 

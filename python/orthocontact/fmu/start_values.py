@@ -15,6 +15,8 @@ from pathlib import Path
 from xml.etree import ElementTree
 from xml.sax.saxutils import escape, quoteattr
 
+from ..errors import InputError
+
 DESCRIPTION = "modelDescription.xml"
 START_VALUES = "resources/start_values.txt"
 
@@ -23,9 +25,10 @@ _INTEGER_TYPES = {"Integer", "Enumeration", "Int8", "UInt8", "Int16", "UInt16", 
                   "Int64", "UInt64"}
 
 
-class StartValueError(ValueError):
+class StartValueError(InputError, ValueError):
     """A start value the FMU would refuse, or an FMU this module cannot rewrite:
-    one line naming the FMU and the parameter."""
+    one line naming the FMU and the parameter (an InputError: the values come
+    from the user's files)."""
 
 
 def _number(text):

@@ -8,6 +8,7 @@ ellipse, eq. 1 at 0 and 90 deg); steady angle eq. (10)/(23) from the tensors;
 stick branch of the ramp F_int + k x1 with k = 1/(B^-1)_11.  Units: N, m, deg."""
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -20,15 +21,6 @@ from .measurements import MeasurementSet, friction_axis_key
 from .noise_model import between_run_tau2, tau_summary, variance_parts
 from .statistics import positive_ci, satterthwaite, t975
 from .strip_model import strip_regimes, strip_steady_state
-
-REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
-
-
-def reported_names(j: dict) -> list:
-    """The parameters a summary lists: the five, l1/l2 when angles alone were
-    fitted, the strip's viscosity and F_int when they were estimated."""
-    return list(REPORTED) + [n for n in ("l1_l2_ratio", "c_strip", "f_int") if n in j]
-
 
 def eq1(data: MeasurementSet) -> dict | None:
     """mu1, mu2 by eq. (1) from the mean forces at the friction axes."""
@@ -109,14 +101,24 @@ def eq40_fit(data: MeasurementSet, mu1=None, mu2=None) -> dict | None:
     return out
 
 
+def keyword_only(cls):
+    """The dataclass `cls` with an __init__ of keywords only (kw_only=True
+    needs Python 3.10): a swapped pair is a TypeError, not a wrong result."""
+    init = cls.__init__
+    cls.__init__ = functools.wraps(init)(lambda self, **fields: init(self, **fields))   # signature: the fields
+    return cls
+
+
+@keyword_only
 @dataclass
 class JointFit:
+    """The joint fit's result; values in their parameter's unit, a group's noise in its data's."""
     free: list                      # names of the fitted parameters
     values: dict                    # name -> value (incl. derived eps1)
     cov: np.ndarray                 # covariance of the free parameters
-    stderr: dict
-    ci95: dict
-    dof: int
+    stderr: dict                    # name -> standard error
+    ci95: dict                      # name -> (low, high), the 95 % interval
+    dof: int                        # residual degrees of freedom: values less parameters
     sigma: dict                     # group -> noise estimate
     residuals: dict                 # group -> array of residuals (data - model)
     not_identifiable: dict = field(default_factory=dict)   # name -> reason
@@ -357,10 +359,11 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
         raise InputError(f"{data.folder}: expected data that separate {', '.join(free)} "
                          f"(information matrix singular, condition {cond:.1e})")
     parts = np.split(r, np.cumsum(sizes)[:-1])
-    return JointFit(free, values, cov, stderr, ci, dof, {g: sigma[g] for g in names},
-                    dict(zip(names, parts)), why, int(stick.sum()), assumed, param_dof,
-                    {g: tau_summary(tau2[g], components.get(g)) for g in names},
-                    {g: math.sqrt(float(np.mean(se2[g]))) for g in names}, group_dof)
+    return JointFit(free=free, values=values, cov=cov, stderr=stderr, ci95=ci, dof=dof, sigma=sigma,
+                    residuals=dict(zip(names, parts)), not_identifiable=why, stick_points=int(stick.sum()),
+                    sigma_assumed=assumed, param_dof=param_dof, between_runs={
+                        g: tau_summary(tau2[g], components.get(g)) for g in names},
+                    within_run={g: math.sqrt(float(np.mean(se2[g]))) for g in names}, between_runs_dof=group_dof)
 
 
 def start_values(data: MeasurementSet) -> dict:

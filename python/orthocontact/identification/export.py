@@ -29,12 +29,13 @@ from ..experiment.ssp import parameter_values_file, write_ssp
 from ..fmu.files import MODEL_IDENTIFIER, find_fmu
 from ..fmu.params import RULES, ContactParams
 from ..fmu.start_values import write_with_start_values
-from .identified_file import check_data, read_identified
+from .identified import Estimate, IdentifiedFile, NotIdentified
+from .identified_file import read_identified
 
 ESTIMATED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
 
 
-@dataclasses.dataclass
+@dataclasses.dataclass(frozen=True)
 class Calibration:
     """What identified.json says, checked: the law (alpha = beta = 0),
     the 95 % intervals of what was identified, the rig of the data."""
@@ -49,59 +50,42 @@ class Calibration:
     data_files: dict = dataclasses.field(default_factory=dict)   # path under data_folder -> SHA-256
 
 
-def _field(path, d, name, key="value"):
-    entry = d.get(name)
-    if not isinstance(entry, dict):
-        raise InputError(f"{path}: {name}: expected an object written by `orthocontact identify`")
-    v = entry.get(key)
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-        why = f" ({name} was not identified: {entry['reason']})" if "reason" in entry else ""
-        raise InputError(f"{path}: {name}.{key}: expected a finite number > 0, got {v!r}{why}")
-    return float(v)
+def _value(f: IdentifiedFile, name: str) -> float:
+    e = f.estimates.get(name)
+    if isinstance(e, Estimate):
+        return e.value
+    why = f" ({name} was not identified: {e.reason})" if isinstance(e, NotIdentified) else ""
+    raise InputError(f"{f.path}: {name}.value: expected a finite number > 0, got None{why}")
 
 
 def load_calibration(path, force: bool = False) -> Calibration:
-    """identified.json -> Calibration; InputError naming the file and the field
-    (a value that cannot be right too, unless `force`: plausible_calibration)."""
-    path = Path(path)
-    d = read_identified(path, force=force, override=FORCE_OVERRIDE)
-    mu1, mu2 = _field(path, d, "mu1"), _field(path, d, "mu2")
-    a = d.get("assumptions")
-    if not isinstance(a, dict):
-        raise InputError(f"{path}: assumptions: expected an object written by `orthocontact identify`")
-    rule = a.get("rule")
-    if rule not in RULES:
-        raise InputError(f"{path}: assumptions.rule: expected one of {', '.join(RULES)}, got {rule!r}")
-    offsets = {}
-    for k in ("alpha_offset_deg", "beta_offset_deg"):
-        v = a.get(k)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            raise InputError(f"{path}: assumptions.{k}: expected a finite number [deg], got {v!r}")
-        offsets[k] = float(v)
-    data = check_data(path, d)   # every file the identification read, unchanged
-    folder = data.folder
-    rig = dataclasses.replace(load_rig_toml(folder / "rig.toml"), rule=rule, **offsets)
-    eps2_identified = isinstance(d.get("eps2"), dict) and "value" in d["eps2"]
-    eps2 = _field(path, d, "eps2") if eps2_identified else rig.eps2_nominal_N_m
-    eps1 = _field(path, d, "eps1") if eps2_identified else _field(path, d, "eps_ratio") * eps2
-    intervals = {}
-    for n in ESTIMATED:
-        ci = (d.get(n) or {}).get("ci95") if isinstance(d.get(n), dict) else None
-        if ci is not None:
-            if not (isinstance(ci, list) and len(ci) == 2 and all(isinstance(x, (int, float)) for x in ci)):
-                raise InputError(f"{path}: {n}.ci95: expected [low, high], got {ci!r}")
-            intervals[n] = (float(ci[0]), float(ci[1]))
-    c = a.get("c_strip_N_s_m", 0.0)
-    c_strip = _field(path, d, "c_strip") if c == "estimated" else c
-    if isinstance(c_strip, bool) or not isinstance(c_strip, (int, float)) or not c_strip >= 0:
-        raise InputError(f"{path}: assumptions.c_strip_N_s_m: expected a number >= 0 or \"estimated\", "
-                         f"got {c!r}")
+    """identified.json -> Calibration (read_identified, then calibration_of);
+    InputError naming the file and the field (a value that cannot be right
+    too, unless `force`: FORCE_OVERRIDE)."""
+    return calibration_of(read_identified(path, force=force, override=FORCE_OVERRIDE))
+
+
+def calibration_of(f: IdentifiedFile) -> Calibration:
+    """The calibration an identification read back (read_identified: checked,
+    its data found unchanged) gives: mu1, mu2 must be identified; eps1, eps2
+    as identified, or eps_ratio with rig.toml's nominal eps2."""
+    path, a = f.path, f.assumptions
+    mu1, mu2 = _value(f, "mu1"), _value(f, "mu2")
+    folder = f.provenance.folder
+    rig = dataclasses.replace(load_rig_toml(folder / "rig.toml"), rule=a.rule,
+                              alpha_offset_deg=a.alpha_offset_deg, beta_offset_deg=a.beta_offset_deg)
+    eps2_identified = isinstance(f.estimates.get("eps2"), Estimate)
+    eps2 = _value(f, "eps2") if eps2_identified else rig.eps2_nominal_N_m
+    eps1 = _value(f, "eps1") if eps2_identified else _value(f, "eps_ratio") * eps2
+    intervals = {n: f.estimates[n].ci95 for n in ESTIMATED if isinstance(f.estimates.get(n), Estimate)}
+    c_strip = _value(f, "c_strip") if a.c_strip_N_s_m == "estimated" else a.c_strip_N_s_m
     try:
-        law = ContactParams(mu1, mu2, eps1, eps2, rule=rule)
+        law = ContactParams(mu1, mu2, eps1, eps2, rule=a.rule)
     except ValueError as e:
         raise InputError(f"{path}: {e}") from None
-    return Calibration(path, law, intervals, eps2_identified, rig, float(c_strip), folder, data.digest,
-                       data.files)
+    return Calibration(path=path, law=law, intervals=intervals, eps2_identified=eps2_identified, rig=rig,
+                       c_strip=float(c_strip), data_folder=folder, digest=f.provenance.digest,
+                       data_files=f.provenance.files)
 
 
 def contact_start_values(cal: Calibration, angle_deg: float) -> dict:

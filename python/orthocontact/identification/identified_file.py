@@ -1,9 +1,18 @@
-"""identified.json read back (by export and uq): the one place that says
-what a file that is not identify's output gets, that checks it is the file
-its identify run wrote (output.manifest), and that the data it names are
-still the bytes the identification read (check_data)."""
+"""identified.json, the identification's result as a file (its typed form:
+identified.IdentifiedFile): the one writer (write_identified, used by
+identify) and the one reader (read_identified, used by export and uq).
+
+The file carries SCHEMA_VERSION, and identified.schema.json beside this
+module describes it (a test validates identify's outputs against it).  The
+reader refuses a file of another schema version, checks every field it types
+(one line naming the file and the field), that the file is the one its
+identify run wrote (output.manifest), that its values pass the plausibility
+gate, and that the data it names are still the bytes the identification read
+(check_data).  Units: as each field's name or its parameter says (mu1, mu2,
+eps_ratio, l1_l2_ratio [-]; eps1, eps2 [N/m]; c_strip [N s/m]; f_int [N])."""
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import dataclass
@@ -11,66 +20,21 @@ from pathlib import Path
 
 from .. import plausibility
 from ..errors import InputError
+from ..fmu.params import RULES
 from ..output.manifest import written_by
 from ..textfiles import read_text
+from .identified import (FITTED_TOO, REPORTED, SCHEMA_VERSION, Assumptions, Covariance, DataRecord, Estimate,
+                         IdentifiedFile, NotIdentified, Points, ReductionSummary)
 from .measurements import changed_files, data_digest
 
+SCHEMA_VERSION = 1
+SCHEMA = Path(__file__).with_name("identified.schema.json")   # installed with the package
 
-def read_identified(path, force: bool = False, override: str = "") -> dict:
-    """The JSON object of identified.json; InputError naming the file.  Its
-    values with a unit pass the plausibility gate (plausible_identified): one
-    that cannot be right is refused (`override`: what lets it through, named
-    in the message) unless `force`."""
-    path = Path(path)
-    try:   # a BOM, CRLF, an unreadable file: textfiles
-        d = json.loads(read_text(path, "identified.json written by `orthocontact identify`"))
-    except ValueError as e:
-        raise InputError(f"{path}: expected JSON written by `orthocontact identify` ({e})") from None
-    if not isinstance(d, dict):
-        raise InputError(f"{path}: expected a JSON object written by `orthocontact identify`")
-    written_by(path)   # in an output folder: as its run wrote it
-    errors, _ = plausibility.split(plausible_identified(path, d))
-    if errors and not force:
-        raise InputError(f"{errors[0]}; refused" + (f" ({override})" if override else ""))
-    return d
-
-
-# identified.json's values with a unit: field -> key of plausibility.QUANTITIES
-IDENTIFIED = {"mu1": "mu1", "mu2": "mu2", "eps_ratio": "eps_ratio", "eps1": "eps1", "eps2": "eps2",
-              "c_strip": "c_strip", "f_int": "f_int_N"}
-ASSUMED = {"mass_kg": "mass_kg", "g": "g", "f_int_N": "f_int_N", "c_strip_N_s_m": "c_strip",
-           "mu_strip": "mu_strip"}
-
-
-def plausible_identified(path, d: dict) -> list:
-    """The plausibility Findings of identified.json `d`'s numbers with a unit:
-    each estimate's value, the covariance's values (what uq draws around) and
-    the assumptions (mass, g, F_int, strip terms).  Fields that are absent,
-    not numbers, or outside the quantity's domain (not finite; below 0, or 0
-    where 0 is not allowed) are left to the readers that need them, whose
-    message says what the field must be."""
-    def number(v, key):
-        q = plausibility.QUANTITIES[key]
-        return (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-                and (v > 0 or (v == 0 and q.zero_allowed)))
-    found = []
-    for name, key in IDENTIFIED.items():
-        entry = d.get(name)
-        if isinstance(entry, dict) and number(entry.get("value"), key):
-            found += plausibility.findings({key: entry["value"]},
-                                           f"{path}: " + ("" if name == key else f"{name}.value: "))
-    cov = d.get("covariance")
-    if isinstance(cov, dict) and isinstance(cov.get("parameters"), list) and isinstance(cov.get("values"), list):
-        for name, v in zip(cov["parameters"], cov["values"]):
-            if name in IDENTIFIED and number(v, IDENTIFIED[name]):
-                found += plausibility.findings({IDENTIFIED[name]: v}, f"{path}: covariance.values: ")
-    a = d.get("assumptions")
-    if isinstance(a, dict):
-        for name, key in ASSUMED.items():
-            if number(a.get(name), key):
-                found += plausibility.findings({key: a[name]}, f"{path}: assumptions."
-                                               + ("" if name == key else f"{name}: "))
-    return found
+# REPORTED (estimators) are always in the file: a value or the reason why not.
+FITTED_TOO = ("c_strip", "f_int", "l1_l2_ratio")           # in the file when they were fitted
+WRITTEN_BY = "written by `orthocontact identify`"
+SHA256_OF = ("the listing `sha256sum` prints for data.files, in that (sorted) order: "
+             "cd FOLDER && sha256sum FILE... | sha256sum")
 
 
 @dataclass(frozen=True)
@@ -81,30 +45,303 @@ class DataProvenance:
     digest: str       # SHA-256 of their sha256sum listing (measurements.data_digest)
 
 
-NAMED = 12   # changed files named in the one line; the rest counted
-
-
-def check_data(path, d: dict) -> DataProvenance:
-    """The data folder identified.json `d` (read from `path`) names, found
-    as given, relative to the file's folder, or by its absolute path, and
-    every file the identification read in it as it was then; InputError
-    naming identified.json and the files that changed or are missing."""
+def write_identified(path, f: IdentifiedFile) -> Path:
+    """Writes identified.json (indented JSON); the one writer."""
+    from ..output.tables import write_json
     path = Path(path)
-    data = d.get("data") if isinstance(d.get("data"), dict) else {}
-    folder = data.get("folder")
-    if not isinstance(folder, str) or not folder:
-        raise InputError(f"{path}: data.folder: expected the measurement folder's path")
-    files, stated = data.get("files"), data.get("sha256")
+    write_json(path, f.as_json())
+    return path
+
+
+# -- the reader ---------------------------------------------------------------------
+
+def read_identified(path, force: bool = False, override: str = "") -> IdentifiedFile:
+    """identified.json -> IdentifiedFile, checked: its schema version, every
+    field (InputError naming the file and the field), the run that wrote it
+    (output.manifest), the plausibility gate (plausible_identified: a value
+    that cannot be right is refused, `override` naming what lets it through,
+    unless `force`), and the data it names, unchanged (check_data)."""
+    path = Path(path)
+    try:   # a BOM, CRLF, an unreadable file: textfiles
+        d = json.loads(read_text(path, f"identified.json {WRITTEN_BY}"))
+    except ValueError as e:
+        raise InputError(f"{path}: expected JSON {WRITTEN_BY} ({e})") from None
+    if not isinstance(d, dict):
+        raise InputError(f"{path}: expected a JSON object {WRITTEN_BY}")
+    version = d.get("schema_version")
+    if version != SCHEMA_VERSION or isinstance(version, bool):
+        raise InputError(f"{path}: schema_version: expected {SCHEMA_VERSION}, got {_short(version)} (a file "
+                         "of another version of orthocontact: run `orthocontact identify` again)")
+    written_by(path)   # in an output folder: as its run wrote it
+    f = from_json(path, d)
+    errors, _ = plausibility.split(plausible_identified(f))
+    if errors and not force:
+        raise InputError(f"{errors[0]}; refused" + (f" ({override})" if override else ""))
+    return dataclasses.replace(f, provenance=check_data(path, f.data))
+
+
+def _short(v) -> str:
+    r = repr(v)
+    return r if len(r) <= 60 else r[:57] + "..."
+
+
+class _Fields:
+    """Typed values out of one JSON object; InputError '<file>: <field>:
+    expected <what>, got <value>'."""
+
+    def __init__(self, path: Path, where: str, d):
+        self.path, self.where = path, where
+        if not isinstance(d, dict):
+            self.fail("", f"an object {WRITTEN_BY}", d)
+        self.d = d
+
+    def fail(self, key, what, got, why=""):
+        field = ".".join(k for k in (self.where, key) if k)
+        raise InputError(f"{self.path}: {field}: expected {what}, got {_short(got)}{why}")
+
+    def sub(self, key, optional=False):
+        v = self.d.get(key)
+        if v is None and optional:
+            return None
+        if not isinstance(v, dict):
+            self.fail(key, f"an object {WRITTEN_BY}", v)
+        return _Fields(self.path, ".".join(k for k in (self.where, key) if k), v)
+
+    def number(self, key, lo=None, lo_open=False, what=None, optional=False):
+        v = self.d.get(key)
+        if v is None and optional:
+            return None
+        ok = _is_number(v) and (lo is None or (v > lo if lo_open else v >= lo))
+        if not ok:
+            self.fail(key, what or ("a finite number" + ("" if lo is None else
+                                                       f" {'>' if lo_open else '>='} {lo:g}")), v)
+        return float(v)
+
+    def integer(self, key, lo=0):
+        v = self.d.get(key)
+        if not (isinstance(v, int) and not isinstance(v, bool) and v >= lo):
+            self.fail(key, f"an integer >= {lo}", v)
+        return v
+
+    def text(self, key, optional=False):
+        v = self.d.get(key)
+        if v is None and optional:
+            return None
+        if not isinstance(v, str):
+            self.fail(key, "a string", v)
+        return v
+
+    def obj(self, key, optional=True):
+        """An object kept as written (a section of the report)."""
+        v = self.d.get(key)
+        if not (isinstance(v, dict) or (v is None and optional)):
+            self.fail(key, "an object" + (" or null" if optional else ""), v)
+        return v
+
+    def rows(self, key, width, what):
+        """None, or a list of numbers (width 1) or of rows of `width` numbers."""
+        v = self.d.get(key)
+        if v is None:
+            return None
+        one = (lambda x: _is_number(x)) if width == 1 else (
+            lambda x: isinstance(x, list) and len(x) == width and all(_is_number(y) for y in x))
+        if not (isinstance(v, list) and all(one(x) for x in v)):
+            self.fail(key, what + " or null", v)
+        return tuple(float(x) for x in v) if width == 1 else tuple(tuple(float(y) for y in x) for x in v)
+
+    def number_or_estimated(self, key, lo=0.0):
+        v = self.d.get(key)
+        if v == "estimated":
+            return v
+        return self.number(key, lo, what=f'a number >= {lo:g} or "estimated"')
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _estimate(path, name, d) -> Estimate | NotIdentified:
+    f = _Fields(path, name, d)
+    if "value" not in d:
+        if d.get("identifiable") is False:
+            return NotIdentified(f.text("reason"))
+        f.fail("value", "a finite number > 0 (or identifiable: false and the reason)", None)
+    value = f.number("value", 0, lo_open=True)
+    stderr = f.number("stderr", 0)
+    ci = d.get("ci95")
+    if not (isinstance(ci, list) and len(ci) == 2 and all(_is_number(x) for x in ci) and ci[0] <= ci[1]):
+        f.fail("ci95", "[low, high], low <= high", ci)
+    dof = d.get("dof")
+    if dof == "inf":
+        dof = math.inf
+    elif dof is not None:
+        dof = f.number("dof", 0, lo_open=True, what='a number > 0, "inf" or null')
+    return Estimate(value, stderr, (float(ci[0]), float(ci[1])), dof, f.text("unit", optional=True),
+                    f.text("note", optional=True))
+
+
+def _covariance(path, where, d) -> Covariance:
+    if not isinstance(d, dict) or not {"parameters", "values", "matrix"} <= set(d):
+        raise InputError(f"{path}: {where}: expected parameters, values and matrix "
+                         f"({WRITTEN_BY}; run it again)")
+    names = d["parameters"]
+    if not (isinstance(names, list) and names and all(isinstance(n, str) for n in names)
+            and len(set(names)) == len(names)):
+        raise InputError(f"{path}: {where}.parameters: expected the names of the estimates, got {_short(names)}")
+    k, values, matrix = len(names), d["values"], d["matrix"]
+    if not (isinstance(values, list) and len(values) == k and isinstance(matrix, list) and len(matrix) == k
+            and all(isinstance(r, list) and len(r) == k for r in matrix)):
+        raise InputError(f"{path}: {where}: expected {k} values and a {k}x{k} matrix, got "
+                         f"{len(values) if isinstance(values, list) else 0} and {_short(matrix)}")
+    if not (all(_is_number(v) for v in values) and all(_is_number(x) for r in matrix for x in r)):
+        raise InputError(f"{path}: {where}: expected finite numbers")
+    if any(v <= 0 for v in values):
+        raise InputError(f"{path}: {where}.values: expected estimates > 0, got {_short(values)}")
+    return Covariance(tuple(names), tuple(float(v) for v in values),
+                      tuple(tuple(float(x) for x in r) for r in matrix))
+
+
+def from_json(path, d: dict) -> IdentifiedFile:
+    """The typed file of identified.json's object `d` (read from `path`);
+    InputError naming the file and the first field that is not as identify
+    writes it."""
+    path = Path(path)
+    top = _Fields(path, "", d)
+    estimates = {}
+    for name in REPORTED + FITTED_TOO:
+        if name in d or name in REPORTED:
+            if not isinstance(d.get(name), dict):
+                top.fail(name, f"an object {WRITTEN_BY}", d.get(name))
+            estimates[name] = _estimate(path, name, d[name])
+    a = top.sub("assumptions")
+    rule = a.d.get("rule")
+    if rule not in RULES:
+        a.fail("rule", f"one of {', '.join(RULES)}", rule)
+    assumptions = Assumptions(
+        rule=rule, alpha_offset_deg=a.number("alpha_offset_deg", what="a finite number [deg]"),
+        beta_offset_deg=a.number("beta_offset_deg", what="a finite number [deg]"),
+        mass_kg=a.number("mass_kg", 0, lo_open=True), g=a.number("g", 0, lo_open=True),
+        f_int_N=a.number_or_estimated("f_int_N"), ramp_angle_deg=a.number("ramp_angle_deg"),
+        mu_strip=a.number("mu_strip", 0), c_strip_N_s_m=a.number_or_estimated("c_strip_N_s_m"),
+        phi_convention=a.text("phi_convention"), ci=a.text("ci"))
+    for key, name in (("f_int_N", "f_int"), ("c_strip_N_s_m", "c_strip")):
+        if getattr(assumptions, key) == "estimated" and not isinstance(estimates.get(name), Estimate):
+            top.fail(name, f'its estimate (assumptions.{key} is "estimated")', d.get(name))
+    data = top.sub("data")
+    files = data.d.get("files")
     if not isinstance(files, dict) or not files or not all(
             isinstance(k, str) and isinstance(v, str) for k, v in files.items()):
         raise InputError(f"{path}: data.files: expected the SHA-256 of every file the identification "
                          "read (`orthocontact identify` writes them; run it again)")
+    stated = data.d.get("sha256")
     if stated != data_digest(files):
         raise InputError(f"{path}: data.sha256: expected the digest of data.files' listing "
                          f"({data_digest(files)[:12]}...), got {str(stated)[:12]}...: the file was edited")
-    absolute = data.get("absolute_folder")
+    folder = data.d.get("folder")
+    if not isinstance(folder, str) or not folder:
+        raise InputError(f"{path}: data.folder: expected the measurement folder's path")
+    record = DataRecord(folder=folder, absolute_folder=data.text("absolute_folder"),
+                        forces=data.integer("forces"), angles=data.integer("angles"), ramp=data.integer("ramp"),
+                        files=dict(files), sha256=stated)
+    pts = top.sub("points")
+    points = Points(angles=pts.rows("angles", 2, "[[mat angle deg, phi deg], ...]"),
+                    angle_velocities=pts.rows("angle_velocities", 1, "a velocity [m/s] per angle"),
+                    forces=pts.rows("forces", 2, "[[mat angle deg, force N], ...]"))
+    if points.angle_velocities is not None and len(points.angle_velocities) != len(points.angles or ()):
+        pts.fail("angle_velocities", f"one velocity [m/s] per angle ({len(points.angles or ())})",
+                 len(points.angle_velocities))
+    noise = top.sub("noise_estimate")
+    for k, v in noise.d.items():
+        if k == "angles_deg_by_velocity":
+            if not (isinstance(v, dict) and all(_is_number(_float(s)) and _is_number(x) and x >= 0
+                                                for s, x in v.items())):
+                noise.fail(k, "{velocity m/s: number >= 0 [deg]}", v)
+        else:
+            noise.number(k, 0, what="a number >= 0")
+    joint = d.get("covariance_joint")
+    assumed = d.get("noise_assumed", [])
+    if not (isinstance(assumed, list) and all(isinstance(g, str) for g in assumed)):
+        top.fail("noise_assumed", "a list of data groups", assumed)
+    reduction = None
+    if d.get("reduction") is not None:
+        r = top.sub("reduction")
+        runs, left, flagged, figures = (r.d.get(k) for k in ("runs", "left_out", "flagged", "figures"))
+        if not (isinstance(runs, dict) and all(isinstance(n, int) for n in runs.values())):
+            r.fail("runs", "{kind: count}", runs)
+        if not (isinstance(left, list) and isinstance(flagged, dict) and isinstance(figures, list)):
+            r.fail("", "runs, left_out, flagged, table, figures and scenario", d["reduction"])
+        reduction = ReductionSummary(runs=dict(runs), left_out=tuple(left), flagged=dict(flagged),
+                                     table=r.text("table"), figures=tuple(figures),
+                                     scenario=r.text("scenario", optional=True))
+    intervals = d.get("intervals")
+    if not isinstance(intervals, str):
+        top.fail("intervals", "a string", intervals)
+    return IdentifiedFile(
+        estimates=estimates, max_rule=top.obj("max_rule"), eq40=top.obj("eq40"), eq41=top.obj("eq41"),
+        eq1=top.obj("eq1"), noise_estimate=dict(noise.d), noise_model=top.obj("noise_model", optional=False),
+        intervals=intervals, noise_assumed=tuple(assumed),
+        fit_residuals=top.obj("fit_residuals", optional=False), dof=top.integer("dof", lo=-10**9),
+        covariance=_covariance(path, "covariance", d.get("covariance")),
+        covariance_joint=None if joint is None else _covariance(path, "covariance_joint", joint),
+        points=points, ramp_stick_points=top.integer("ramp_stick_points"),
+        validation_fmu=top.obj("validation_fmu"), data=record, assumptions=assumptions,
+        reduction=reduction, path=path)
+
+
+def _float(s):
+    try:
+        return float(s)
+    except (TypeError, ValueError):
+        return None
+
+
+# identified.json's values with a unit: estimate -> key of plausibility.QUANTITIES
+IDENTIFIED = {"mu1": "mu1", "mu2": "mu2", "eps_ratio": "eps_ratio", "eps1": "eps1", "eps2": "eps2",
+              "c_strip": "c_strip", "f_int": "f_int_N"}
+ASSUMED = {"mass_kg": "mass_kg", "g": "g", "f_int_N": "f_int_N", "c_strip_N_s_m": "c_strip",
+           "mu_strip": "mu_strip"}
+
+
+def plausible_identified(f: IdentifiedFile) -> list:
+    """The plausibility Findings of the file's numbers with a unit: each
+    estimate's value, the covariance's values (what uq draws around) and
+    the assumptions (mass, g, F_int, strip terms).  Numbers outside the
+    quantity's domain (0 where 0 is not allowed) are left to the readers
+    that need them, whose message says what the field must be."""
+    path = f.path
+
+    def number(v, key):
+        q = plausibility.QUANTITIES[key]
+        return _is_number(v) and (v > 0 or (v == 0 and q.zero_allowed))
+    found = []
+    for name, key in IDENTIFIED.items():
+        v = f.value(name)
+        if v is not None and number(v, key):
+            found += plausibility.findings({key: v}, f"{path}: " + ("" if name == key else f"{name}.value: "))
+    for name, v in zip(f.covariance.parameters, f.covariance.values):
+        if name in IDENTIFIED and number(v, IDENTIFIED[name]):
+            found += plausibility.findings({IDENTIFIED[name]: v}, f"{path}: covariance.values: ")
+    a = f.assumptions
+    for name, key in ASSUMED.items():
+        v = getattr(a, name)
+        if number(v, key):
+            found += plausibility.findings({key: v}, f"{path}: assumptions." + ("" if name == key else f"{name}: "))
+    return found
+
+
+NAMED = 12   # changed files named in the one line; the rest counted
+
+
+def check_data(path, data: DataRecord) -> DataProvenance:
+    """The data folder identified.json (read from `path`) names, found as
+    given, relative to the file's folder, or by its absolute path, and every
+    file the identification read in it as it was then; InputError naming
+    identified.json and the files that changed or are missing."""
+    path = Path(path)
+    folder, files, stated = data.folder, data.files, data.sha256
     found = None
-    for candidate in (Path(folder), path.parent / folder) + ((Path(absolute),) if absolute else ()):
+    for candidate in (Path(folder), path.parent / folder) + (
+            (Path(data.absolute_folder),) if data.absolute_folder else ()):
         if (candidate / "rig.toml").is_file():
             found = candidate
             break

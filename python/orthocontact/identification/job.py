@@ -4,11 +4,12 @@ pre-sliding ramp, with Gauss-Newton standard errors and 95% intervals.
 
 The job, by layer: measurements (data and files) -> estimators (the paper's
 formulas and the joint fit) -> uncertainty (statistics) -> here (the whole
-identification, its validation on the FMU, its JSON) -> identify_report
-(figure, Markdown, summary).  Units: N, m, deg."""
+identification, its validation on the FMU) -> identified_file (identified.json:
+its typed form, writer and reader) and report (figure, Markdown, summary).  Units: N, m, deg."""
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,7 +18,10 @@ import numpy as np
 from .. import plausibility
 from ..experiment.rig_setup import RigSetup
 from ..fmu.params import ContactParams
-from .estimators import REPORTED, JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
+from .estimators import JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
+from .identified import (REPORTED, Assumptions, Covariance, DataRecord, Estimate, IdentifiedFile, NotIdentified,
+                         Points, ReductionSummary)
+from .identified_file import write_identified
 from .measurements import MeasurementSet, data_digest, data_files, load_data, write_measurements
 from .statistics import json_dof, res_stats
 
@@ -131,58 +135,35 @@ class Identification:
     start: dict
     warnings: tuple = ()     # one line each: identified values that are unusual (plausible_values)
 
-    def as_json(self) -> dict:
+    def identified_file(self, reduction: ReductionSummary | None = None) -> IdentifiedFile:
+        """The result as identified.json holds it (identified_file), with the
+        reduction's summary when the data were raw recordings."""
         f = self.fit
-        out = {}
-        for n in REPORTED:
-            if n in f.values:
-                out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n],
-                          "dof": json_dof(f.param_dof.get(n))}
-            else:
-                out[n] = {"identifiable": False, "reason": f.not_identifiable.get(n, "not determined")}
+
+        def estimate(n, unit=None, note=None):
+            dof = f.param_dof.get(n)
+            return Estimate(value=f.values[n], stderr=f.stderr[n], ci95=tuple(f.ci95[n]),
+                            dof=None if dof is None else (math.inf if not math.isfinite(dof) else round(float(dof), 2)),
+                            unit=unit, note=note)
+        estimates = {n: estimate(n) if n in f.values else
+                     NotIdentified(f.not_identifiable.get(n, "not determined")) for n in REPORTED}
         if "c_strip" in f.values:
-            out["c_strip"] = {"value": f.values["c_strip"], "stderr": f.stderr["c_strip"],
-                              "ci95": f.ci95["c_strip"], "dof": json_dof(f.param_dof.get("c_strip")),
-                              "unit": "N s/m", "note": "the strip's lateral viscosity, from the "
-                                                       "angles' change with velocity"}
+            estimates["c_strip"] = estimate("c_strip", "N s/m", "the strip's lateral viscosity, from the "
+                                                                "angles' change with velocity")
         if "f_int" in f.values:
-            out["f_int"] = {"value": f.values["f_int"], "stderr": f.stderr["f_int"],
-                            "ci95": f.ci95["f_int"], "dof": json_dof(f.param_dof.get("f_int")),
-                            "unit": "N", "note": "the carriage's internal resistance, from the "
-                                                 "carriage runs (and every force)"}
+            estimates["f_int"] = estimate("f_int", "N", "the carriage's internal resistance, from the "
+                                                        "carriage runs (and every force)")
         if "l1_l2_ratio" in f.values:
-            n = "l1_l2_ratio"
-            out[n] = {"value": f.values[n], "stderr": f.stderr[n], "ci95": f.ci95[n],
-                      "note": "eigenvalue ratio lambda1/lambda2: what angles alone determine"}
+            estimates["l1_l2_ratio"] = estimate("l1_l2_ratio", note="eigenvalue ratio lambda1/lambda2: what "
+                                                                    "angles alone determine")
         d = self.data
-        out["max_rule"] = self.max_rule
-        out["eq40"] = {k: v for k, v in (self.eq40 or {}).items() if k != "eq41"} or None
-        out["eq41"] = (self.eq40 or {}).get("eq41")
-        out["eq1"] = self.eq1
         unit = {"forces": "forces_N", "angles": "angles_deg", "ramp": "ramp_N", "carriage": "carriage_N",
                 "stiffness": "stiffness_N_m"}
-        out["noise_estimate"] = {unit[g]: s for g, s in f.sigma.items()}
+        noise = {unit[g]: s for g, s in f.sigma.items()}
         tau = f.between_runs.get("angles")
         if isinstance(tau, dict):   # a measured angle's noise at each velocity, for uq
-            out["noise_estimate"]["angles_deg_by_velocity"] = {
-                v: (t * t + f.within_run["angles"] ** 2) ** 0.5 for v, t in tau.items()}
-        out["noise_model"] = {unit[g]: {"between_runs": f.between_runs.get(g),
-                                        "between_runs_dof": json_dof(f.between_runs_dof.get(g)),
-                                        "within_run_rms": f.within_run.get(g),
-                                        "values": int(len(f.residuals[g]))}
-                              for g in f.sigma}
-        out["intervals"] = ("ci95 = value * exp(-+ t(0.975, dof) stderr / value), on the log scale (the "
-                            "delta method's log-normal interval: every parameter is positive by nature, "
-                            "so its interval stays > 0; for a small stderr / value it is value -+ "
-                            "t(0.975, dof) stderr); stderr from the Gauss-Newton covariance "
-                            "with each value weighted by 1/(between_runs^2 + its within-run error^2); dof "
-                            "the Welch-Satterthwaite degrees of freedom of that variance over its parts: "
-                            "each group's between-run variance with its between_runs_dof (values less "
-                            "the parameters it determines), the within-run errors known (inf)")
-        if f.sigma_assumed:
-            out["noise_assumed"] = [unit[g] for g in f.sigma_assumed]
-        out["fit_residuals"] = {g: res_stats(r) for g, r in f.residuals.items()}
-        out["dof"] = f.dof
+            noise["angles_deg_by_velocity"] = {v: (t * t + f.within_run["angles"] ** 2) ** 0.5
+                                               for v, t in tau.items()}
         # What uncertainty propagation (orthocontact uq) draws from: the
         # joint Gauss-Newton covariance of the fitted parameters, and the
         # measured angles to show beside the predictions.
@@ -190,43 +171,60 @@ class Identification:
         # normal); the joint one, with F_int and the strip, beside it.
         law = [i for i, n in enumerate(f.free) if n not in ("f_int", "c_strip")]
         sym = 0.5 * (f.cov + f.cov.T)
-        out["covariance"] = {"parameters": [f.free[i] for i in law],
-                             "values": [f.values[f.free[i]] for i in law],
-                             "matrix": [[float(sym[i, j]) for j in law] for i in law]}
-        if len(law) < len(f.free):
-            out["covariance_joint"] = {"parameters": list(f.free), "values": [f.values[n] for n in f.free],
-                                       "matrix": [[float(c) for c in row] for row in sym]}
-        out["points"] = {"angles": None if d.angles is None else
-                         [[float(a), float(p)] for a, p in d.angles],
-                         "angle_velocities": None if d.angles is None or d.angle_velocities is None
-                         else [float(v) for v in d.angle_velocities],
-                         "forces": None if d.forces is None else
-                         [[float(a), float(F)] for a, F in d.forces]}
-        out["ramp_stick_points"] = f.stick_points
-        out["validation_fmu"] = self.validation
-        out["data"] = {"folder": str(d.folder), "absolute_folder": str(Path(d.folder).resolve()),
-                       "forces": 0 if d.forces is None else len(d.forces),
-                       "angles": 0 if d.angles is None else len(d.angles),
-                       "ramp": 0 if d.ramp is None else len(d.ramp),
-                       # every file the identification read, and one digest over them
-                       "files": d.files,
-                       "sha256": None if d.files is None else data_digest(d.files),
-                       "sha256_of": "the listing `sha256sum` prints for data.files, in that "
-                                    "(sorted) order: cd FOLDER && sha256sum FILE... | sha256sum"}
+        cov = Covariance(parameters=tuple(f.free[i] for i in law), values=tuple(f.values[f.free[i]] for i in law),
+                         matrix=tuple(tuple(float(sym[i, j]) for j in law) for i in law))
+        joint = None if len(law) == len(f.free) else Covariance(
+            parameters=tuple(f.free), values=tuple(f.values[n] for n in f.free),
+            matrix=tuple(tuple(float(c) for c in row) for row in sym))
+        rows = lambda a: None if a is None else tuple(tuple(float(x) for x in r) for r in a)
         r = d.rig
-        out["assumptions"] = {"rule": r.rule, "alpha_offset_deg": r.alpha_offset_deg,
-                              "beta_offset_deg": r.beta_offset_deg, "mass_kg": r.mass_kg, "g": r.g,
-                              "f_int_N": "estimated" if "f_int" in f.values else r.f_int_N,
-                              "ramp_angle_deg": r.ramp_angle_deg,
-                              "mu_strip": r.mu_strip,
-                              "c_strip_N_s_m": ("estimated" if "c_strip" in f.values else
-                                                (r.c_strip if r.c_strip is not None else 0.0)),
-                              "phi_convention": "counterclockwise (data converted)" if r.phi_convention == "paper"
-                              else "counterclockwise",
-                              "ci": "95%, on the log scale, Student t with each parameter's Welch-Satterthwaite "
-                                    "degrees of freedom over the data groups' noise estimates, "
-                                    "Gauss-Newton covariance with per-group noise estimates"}
-        return out
+        return IdentifiedFile(
+            estimates=estimates, max_rule=self.max_rule,
+            eq40={k: v for k, v in (self.eq40 or {}).items() if k != "eq41"} or None,
+            eq41=(self.eq40 or {}).get("eq41"), eq1=self.eq1, noise_estimate=noise,
+            noise_model={unit[g]: {"between_runs": f.between_runs.get(g),
+                                   "between_runs_dof": json_dof(f.between_runs_dof.get(g)),
+                                   "within_run_rms": f.within_run.get(g),
+                                   "values": int(len(f.residuals[g]))}
+                         for g in f.sigma},
+            intervals=("ci95 = value * exp(-+ t(0.975, dof) stderr / value), on the log scale (the "
+                       "delta method's log-normal interval: every parameter is positive by nature, "
+                       "so its interval stays > 0; for a small stderr / value it is value -+ "
+                       "t(0.975, dof) stderr); stderr from the Gauss-Newton covariance "
+                       "with each value weighted by 1/(between_runs^2 + its within-run error^2); dof "
+                       "the Welch-Satterthwaite degrees of freedom of that variance over its parts: "
+                       "each group's between-run variance with its between_runs_dof (values less "
+                       "the parameters it determines), the within-run errors known (inf)"),
+            noise_assumed=tuple(unit[g] for g in f.sigma_assumed),
+            fit_residuals={g: res_stats(x) for g, x in f.residuals.items()}, dof=f.dof,
+            covariance=cov, covariance_joint=joint,
+            points=Points(angles=rows(d.angles),
+                          angle_velocities=None if d.angles is None or d.angle_velocities is None
+                          else tuple(float(v) for v in d.angle_velocities),
+                          forces=rows(d.forces)),
+            ramp_stick_points=f.stick_points, validation_fmu=self.validation,
+            data=DataRecord(folder=str(d.folder), absolute_folder=str(Path(d.folder).resolve()),
+                            forces=0 if d.forces is None else len(d.forces),
+                            angles=0 if d.angles is None else len(d.angles),
+                            ramp=0 if d.ramp is None else len(d.ramp),
+                            # every file the identification read, and one digest over them
+                            files=d.files, sha256=None if d.files is None else data_digest(d.files)),
+            assumptions=Assumptions(
+                rule=r.rule, alpha_offset_deg=r.alpha_offset_deg, beta_offset_deg=r.beta_offset_deg,
+                mass_kg=r.mass_kg, g=r.g, f_int_N="estimated" if "f_int" in f.values else r.f_int_N,
+                ramp_angle_deg=r.ramp_angle_deg, mu_strip=r.mu_strip,
+                c_strip_N_s_m=("estimated" if "c_strip" in f.values else
+                               (r.c_strip if r.c_strip is not None else 0.0)),
+                phi_convention="counterclockwise (data converted)" if r.phi_convention == "paper"
+                else "counterclockwise",
+                ci="95%, on the log scale, Student t with each parameter's Welch-Satterthwaite "
+                   "degrees of freedom over the data groups' noise estimates, "
+                   "Gauss-Newton covariance with per-group noise estimates"),
+            reduction=reduction)
+
+    def as_json(self) -> dict:
+        """identified.json's object (IdentifiedFile.as_json)."""
+        return self.identified_file().as_json()
 
 
 # The identified values the gate judges, by their key in plausibility.QUANTITIES.
@@ -292,27 +290,23 @@ def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
     """identify() and write identified.json, fit.png, identified.md into
     out; with recordings (load_folder's second value) also the reduction's
     table and figures."""
-    from ..output.tables import write_json
     from .report import fit_figure, markdown_text
     res = identify(data, validate, workers, fmu_path)
-    j = res.as_json()
+    summary = None
     if recordings is not None:
-        from .reduction_output import write_figures, write_rig_scenario, write_table
+        from .reduction_output import reduction_summary, write_figures, write_rig_scenario, write_table
         rec, red = recordings
         write_table(red, out)
         figures = write_figures(rec, red, out)
         scenario = write_rig_scenario(data, res.fit.values, out)
-        j["reduction"] = {"runs": {k: sum(r.kind == k for r in red.runs) for k in ("slide", "carriage", "ramp")},
-                          "left_out": [r.run for r in red.runs if not r.used],
-                          "flagged": {r.run: r.flags for r in red.runs if r.flags},
-                          "table": "reduction.csv", "figures": [f.name for f in figures],
-                          "scenario": scenario.name if scenario else None}
-    write_json(out / "identified.json", j)
+        summary = reduction_summary(red, figures, scenario)
+    identified = res.identified_file(summary)
+    write_identified(out / "identified.json", identified)
     fit_figure(res, out / "fit.png")
     md = markdown_text(res)
-    if recordings is not None:
+    if summary is not None:
         from .report import reduction_markdown
-        md += "\n" + reduction_markdown(j)
+        md += "\n" + reduction_markdown(identified.noise_model, summary)
     (out / "identified.md").write_text(md)
     return res
 
@@ -342,6 +336,6 @@ def simulate_measurements(truth: ContactParams, rig: RigSetup, force_angles, ang
 
 
 def summary_text(res: Identification) -> str:
-    """The terminal summary of an identification (identify_report.summary_text)."""
+    """The terminal summary of an identification (report.summary_text)."""
     from .report import summary_text as text
     return text(res)

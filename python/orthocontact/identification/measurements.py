@@ -25,7 +25,7 @@ import numpy as np
 
 from .. import plausibility
 from ..errors import InputError
-from ..experiment.rig_setup import RigSetup, load_rig_toml
+from ..experiment.rig_setup import RigSetup, load_rig_toml, write_rig_toml
 from ..textfiles import read_rows
 from .recordings import parse_number
 
@@ -250,15 +250,7 @@ def write_measurements(folder: Path, rig: RigSetup, forces=None, angles=None, ra
     angles with a velocity_m_s column if angle_velocities is given."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    keys = ("mass_kg", "g", "f_int_N", "velocity_m_s", "rule", "alpha_offset_deg", "beta_offset_deg",
-            "ramp_angle_deg", "mu_strip", "c_strip")
-    lines = []
-    for k in keys:
-        v = getattr(rig, k)
-        if v is None:
-            continue
-        lines.append(f'{k} = "{v}"' if isinstance(v, str) else f"{k} = {v!r}")
-    (folder / "rig.toml").write_text("\n".join(lines) + "\n")
+    write_rig_toml(folder / "rig.toml", rig)
     if angles is not None and angle_velocities is not None:
         angles = [(a, p, v) for (a, p), v in zip(angles, angle_velocities)]
     for name, header, arr in (("forces.csv", f"{ANGLE},force_N", forces),

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .identified import ReductionSummary
 from .measurements import MeasurementSet, plausible_data
 from .recordings import Recordings
 from .reduction import Reduction
@@ -48,6 +49,16 @@ def to_measurements(rec: Recordings, red: Reduction) -> MeasurementSet:
         force_velocities=velocities,
         carriage=np.array([[r.force_N, r.force_se_N] for r in carriage]) if carriage else None,
         stiffness=stiffness)
+
+
+def reduction_summary(red: Reduction, figures, scenario: Path | None) -> ReductionSummary:
+    """What identified.json says of the reduction: runs of each kind, those
+    left out and flagged, and the files written beside it."""
+    return ReductionSummary(runs={k: sum(r.kind == k for r in red.runs) for k in ("slide", "carriage", "ramp")},
+                            left_out=tuple(r.run for r in red.runs if not r.used),
+                            flagged={r.run: r.flags for r in red.runs if r.flags},
+                            table="reduction.csv", figures=tuple(Path(f).name for f in figures),
+                            scenario=scenario.name if scenario else None)
 
 
 def rows(red: Reduction) -> list:

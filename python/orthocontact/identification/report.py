@@ -1,6 +1,6 @@
 """What identification writes for people: the fit figure, identified.md and
-the terminal summary, each from an identify.Identification `res` (identify
-imports this module, not the reverse)."""
+the terminal summary, each from a job.Identification `res` (job imports
+this module, not the reverse)."""
 from __future__ import annotations
 
 import math
@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import closed_forms as cf
 from ..experiment.rig_setup import RigSetup
-from .estimators import reported_names
+from .identified import Estimate, ReductionSummary, reported_names
 
 
 # The one name of the angle the mat (the law's axes) is turned by: every figure, message and help text.
@@ -166,57 +166,59 @@ def unit_of(name: str) -> str:
 def summary_text(res) -> str:
     """The terminal summary: each estimate with its unit, standard error and
     95 % interval; the paper's formulas beside them."""
-    j = res.as_json()
+    f = res.identified_file()
     lines = []
-    for n in reported_names(j):
-        e = j[n]
-        if "value" in e:
+    for n in reported_names(f.estimates):
+        e = f.estimates[n]
+        if isinstance(e, Estimate):
             u = unit_of(n)
-            lines.append(f"{n:>9} = {e['value']:.6g} ± {e['stderr']:.2g} {u}  "
-                         f"(95%: {e['ci95'][0]:.6g} .. {e['ci95'][1]:.6g} {u})")
+            lines.append(f"{n:>9} = {e.value:.6g} ± {e.stderr:.2g} {u}  "
+                         f"(95%: {e.ci95[0]:.6g} .. {e.ci95[1]:.6g} {u})")
         else:
-            lines.append(f"{n:>9}: not identifiable: {e['reason']}")
-    if j["max_rule"]:
-        mr = j["max_rule"]
+            lines.append(f"{n:>9}: not identifiable: {e.reason}")
+    if f.max_rule:
+        mr = f.max_rule
         lines.append(f"maximum rule (the paper's approximation): phi_ext = {mr['phi_ext_deg']:.3f} deg at "
                      f"{SWEPT_ANGLE} {mr['at_alpha_deg']:g} deg -> l1/l2 = {mr['l1_l2_ratio']:.4f} [-]"
                      + (f", eps1/eps2 = {mr['eps_ratio']:.4f} [-]" if "eps_ratio" in mr else ""))
-    if j["eq40"]:
-        lines.append(f"eq. (40) least squares: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f} [-]; "
-                     f"eq. (41) closed form: l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} [-] (not the minimiser)")
+    if f.eq40:
+        lines.append(f"eq. (40) least squares: l1/l2 = {f.eq40['l1_l2_ratio']:.4f} [-]; "
+                     f"eq. (41) closed form: l1/l2 = {f.eq41['l1_l2_ratio']:.4f} [-] (not the minimiser)")
     return "\n".join(lines)
 
 
 def markdown_text(res) -> str:
-    j = res.as_json()
+    """identified.md (its runs' section: reduction_markdown)."""
+    f = res.identified_file()
+    a = f.assumptions
     L = [f"# Identification: {res.data.folder.name}", "",
-         f"Data: {j['data']['forces']} forces, {j['data']['angles']} angles, {j['data']['ramp']} ramp points. "
-         f"Rule {j['assumptions']['rule']}, alpha = angle {j['assumptions']['alpha_offset_deg']:+g}°, "
-         f"beta = angle {j['assumptions']['beta_offset_deg']:+g}°.", "",
+         f"Data: {f.data.forces} forces, {f.data.angles} angles, {f.data.ramp} ramp points. "
+         f"Rule {a.rule}, alpha = angle {a.alpha_offset_deg:+g}°, "
+         f"beta = angle {a.beta_offset_deg:+g}°.", "",
          "| parameter | unit | value | std. error | 95% interval |", "|---|---|---|---|---|"]
-    for n in reported_names(j):
-        e = j[n]
-        if "value" in e:
-            L.append(f"| {n} | {UNITS[n]} | {e['value']:.6g} | {e['stderr']:.3g} | "
-                     f"{e['ci95'][0]:.6g} … {e['ci95'][1]:.6g} |")
+    for n in reported_names(f.estimates):
+        e = f.estimates[n]
+        if isinstance(e, Estimate):
+            L.append(f"| {n} | {UNITS[n]} | {e.value:.6g} | {e.stderr:.3g} | "
+                     f"{e.ci95[0]:.6g} … {e.ci95[1]:.6g} |")
         else:
-            L.append(f"| {n} | {UNITS[n]} | not identifiable | – | – | {e['reason']} |")
+            L.append(f"| {n} | {UNITS[n]} | not identifiable | – | – | {e.reason} |")
     L.append("")
-    if j["eq1"]:
-        L.append(f"- eq. (1) from the forces at the friction axes: μ1 = {j['eq1']['mu1']:.4f} [-], "
-                 f"μ2 = {j['eq1']['mu2']:.4f} [-]")
-    if j["max_rule"]:
-        mr = j["max_rule"]
+    if f.eq1:
+        L.append(f"- eq. (1) from the forces at the friction axes: μ1 = {f.eq1['mu1']:.4f} [-], "
+                 f"μ2 = {f.eq1['mu2']:.4f} [-]")
+    if f.max_rule:
+        mr = f.max_rule
         L.append(f"- maximum rule (eq. 29, 37–39; the paper's approximation): φ_ext = {mr['phi_ext_deg']:.3f}° "
                  f"at {SWEPT_ANGLE} {mr['at_alpha_deg']:g}° → l1/l2 = {mr['l1_l2_ratio']:.4f} [-]"
                  + (f", ε1/ε2 = {mr['eps_ratio']:.4f} [-]" if "eps_ratio" in mr else ""))
-    if j["eq40"]:
-        L.append(f"- eq. (40) by IPOPT: l1/l2 = {j['eq40']['l1_l2_ratio']:.4f} [-] (objective "
-                 f"{j['eq40']['objective']:.3e}); the paper's eq. (41): l1/l2 = {j['eq41']['l1_l2_ratio']:.4f} [-] "
-                 f"(objective {j['eq41']['objective']:.3e}) — not the minimiser")
+    if f.eq40:
+        L.append(f"- eq. (40) by IPOPT: l1/l2 = {f.eq40['l1_l2_ratio']:.4f} [-] (objective "
+                 f"{f.eq40['objective']:.3e}); the paper's eq. (41): l1/l2 = {f.eq41['l1_l2_ratio']:.4f} [-] "
+                 f"(objective {f.eq41['objective']:.3e}) — not the minimiser")
     L.append("- noise estimated from the residuals: " + ", ".join(
-        f"{k} {v:.3g}" for k, v in j["noise_estimate"].items() if not isinstance(v, dict)))
-    v = j["validation_fmu"]
+        f"{k} {v:.3g}" for k, v in f.noise_estimate.items() if not isinstance(v, dict)))
+    v = f.validation_fmu
     if v and "skipped" not in v:
         parts = [f"{k} rms {v[k]['rms']:.3g}" for k in ("forces_N", "angles_deg", "ramp_N") if k in v]
         L.append(f"- validation with the FMU in the rig harness ({v['rig_mode']}): " + ", ".join(parts))
@@ -224,18 +226,18 @@ def markdown_text(res) -> str:
     return "\n".join(L)
 
 
-def reduction_markdown(j: dict) -> str:
+def reduction_markdown(noise_model: dict, r: ReductionSummary) -> str:
     """identified.md's lines on the runs (raw recordings): the noise model's
-    two parts per data group, and what the reduction left out or flagged."""
+    two parts per data group (identified.json's noise_model), and what the
+    reduction left out or flagged."""
     tau = lambda t: (", ".join(f"{t_:.3g} at {v} m/s" for v, t_ in t.items()) if isinstance(t, dict)
                      else f"{t:.3g}")
-    r = j["reduction"]
     return "\n".join([
         "## Runs", "",
         "- run-to-run scatter (between runs) / within-run error (rms): " + "; ".join(
-            f"{k} {tau(m['between_runs'])} / {m['within_run_rms']:.2g}" for k, m in j["noise_model"].items()),
-        f"- runs: {r['runs']['slide']} slide, {r['runs']['carriage']} carriage, {r['runs']['ramp']} ramp; "
-        f"left out: {', '.join(r['left_out']) or 'none'}; flagged: "
-        f"{', '.join(f'{k} ({chr(32).join(v)})' for k, v in r['flagged'].items()) or 'none'}",
+            f"{k} {tau(m['between_runs'])} / {m['within_run_rms']:.2g}" for k, m in noise_model.items()),
+        f"- runs: {r.runs['slide']} slide, {r.runs['carriage']} carriage, {r.runs['ramp']} ramp; "
+        f"left out: {', '.join(r.left_out) or 'none'}; flagged: "
+        f"{', '.join(f'{k} ({chr(32).join(v)})' for k, v in r.flagged.items()) or 'none'}",
         "- the reduction per run: reduction.csv; the paths per mat angle: "
-        + ", ".join(f"![{f}]({f})" for f in r["figures"]), ""])
+        + ", ".join(f"![{f}]({f})" for f in r.figures), ""])

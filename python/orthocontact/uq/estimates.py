@@ -1,6 +1,7 @@
-"""What uq draws from: identified.json's estimates and joint covariance,
-validated field by field (the file as its identify run wrote it, the data it
-names unchanged), and the seeded draws of physical parameter sets."""
+"""What uq draws from: identified.json's estimates and covariance, as the one
+reader gives them (identification.identified_file: every field checked, the
+file as its identify run wrote it, the data it names unchanged), and the
+seeded draws of physical parameter sets."""
 from __future__ import annotations
 
 import math
@@ -10,7 +11,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..identification.identified_file import check_data, read_identified
+from ..identification.identified import IdentifiedFile
+from ..identification.identified_file import read_identified
 
 LAW_PARAMETERS = ("mu1", "mu2", "eps_ratio", "eps2")
 
@@ -50,33 +52,24 @@ class Estimates:
 
 
 def load_estimates(path) -> Estimates:
-    """identified.json -> Estimates; InputError naming the file and the field,
-    or the data files that changed since the identification read them."""
-    path = Path(path)
-    d = read_identified(path)
-    check_data(path, d)
-    cov = d.get("covariance")
-    if not isinstance(cov, dict) or not {"parameters", "values", "matrix"} <= set(cov):
-        raise InputError(f"{path}: covariance: expected parameters, values and matrix "
-                         "(written by `orthocontact identify` since version 0.3; run it again)")
-    names = cov["parameters"]
+    """identified.json -> Estimates (read_identified, then estimates_of);
+    InputError naming the file and the field, or the data files that
+    changed since the identification read them."""
+    return estimates_of(read_identified(path))
+
+
+def estimates_of(f: IdentifiedFile) -> Estimates:
+    """What uq draws from in an identification read back (read_identified:
+    every field checked, its data found unchanged): the covariance of the
+    law's parameters, which must be some of LAW_PARAMETERS and positive
+    semidefinite, and an implicit rule's measured angles."""
+    path, cov = f.path, f.covariance
+    names = list(cov.parameters)
     unknown = [n for n in names if n not in LAW_PARAMETERS]
-    if not isinstance(names, list) or not names or unknown:
+    if unknown:
         raise InputError(f"{path}: covariance.parameters: expected some of {', '.join(LAW_PARAMETERS)}"
                          f", got {names!r}")
-    try:
-        mean = np.array(cov["values"], dtype=float)
-        C = np.array(cov["matrix"], dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{path}: covariance: expected numbers in values and matrix") from None
-    k = len(names)
-    if mean.shape != (k,) or C.shape != (k, k):
-        raise InputError(f"{path}: covariance: expected {k} values and a {k}x{k} matrix, "
-                         f"got {mean.shape[0] if mean.ndim else 0} and {C.shape}")
-    if not (np.all(np.isfinite(mean)) and np.all(np.isfinite(C))):
-        raise InputError(f"{path}: covariance: expected finite numbers")
-    if np.any(mean <= 0):
-        raise InputError(f"{path}: covariance.values: expected estimates > 0, got {mean.tolist()}")
+    mean, C = np.array(cov.values, dtype=float), np.array(cov.matrix, dtype=float)
     # Judged in correlation form: the parameters' scales differ by 1e8.
     sd = np.sqrt(np.clip(np.diag(C), 0, None))
     norm = np.outer(sd, sd)
@@ -86,26 +79,20 @@ def load_estimates(path) -> Estimates:
             np.linalg.eigvalsh(0.5 * (C + C.T) / norm).min() < -1e-9:
         raise InputError(f"{path}: covariance.matrix: expected a symmetric positive semidefinite "
                          "matrix")
-    a = d.get("assumptions") or {}
-    rule = a.get("rule")
-    if rule not in IMPLICIT_RULES + ("eq20",):
-        raise InputError(f"{path}: assumptions.rule: expected associated, coupled or eq20, got {rule!r}")
-    pts = (d.get("points") or {}).get("angles")
-    points = np.array(pts, dtype=float).reshape(-1, 2) if pts else None
-    noise = (d.get("noise_estimate") or {}).get("angles_deg")
-    if noise is not None and not (isinstance(noise, (int, float)) and math.isfinite(noise) and noise >= 0):
-        raise InputError(f"{path}: noise_estimate.angles_deg: expected a number >= 0, got {noise!r}")
-    vel = (d.get("points") or {}).get("angle_velocities")
-    by_v = (d.get("noise_estimate") or {}).get("angles_deg_by_velocity")
-    try:
-        vel = None if vel is None or points is None else np.array(vel, dtype=float).reshape(len(points))
-        by_v = None if by_v is None else {float(k): float(v) for k, v in by_v.items()}
-    except (TypeError, ValueError, AttributeError):
-        raise InputError(f"{path}: points.angle_velocities / noise_estimate.angles_deg_by_velocity: "
-                         "expected one velocity per angle and numbers") from None
-    return Estimates(path, list(names), mean, 0.5 * (C + C.T), rule,
-                     float(a.get("alpha_offset_deg", 0.0)), float(a.get("beta_offset_deg", 0.0)), points,
-                     None if noise is None else float(noise), vel, by_v)
+    a = f.assumptions
+    if a.rule not in IMPLICIT_RULES + ("eq20",):
+        raise InputError(f"{path}: assumptions.rule: expected associated, coupled or eq20, got {a.rule!r}")
+    pts = f.points
+    points = np.array(pts.angles, dtype=float).reshape(-1, 2) if pts.angles else None
+    noise = f.noise_estimate.get("angles_deg")
+    by_v = f.noise_estimate.get("angles_deg_by_velocity")
+    return Estimates(
+        path=path, names=names, mean=mean, cov=0.5 * (C + C.T), rule=a.rule,
+        alpha_offset_deg=a.alpha_offset_deg, beta_offset_deg=a.beta_offset_deg, angle_points=points,
+        angle_noise_deg=noise,
+        angle_velocities=None if points is None or pts.angle_velocities is None
+        else np.array(pts.angle_velocities, dtype=float),
+        angle_noise_by_velocity=None if by_v is None else {float(k): float(v) for k, v in by_v.items()})
 
 
 def draw(est: Estimates, n: int, seed: int) -> tuple[np.ndarray, float]:
