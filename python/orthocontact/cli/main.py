@@ -1,8 +1,14 @@
 """The `orthocontact` command.
 
-  orthocontact run SCENARIO --out DIR        one scenario file
-  orthocontact reproduce --out DIR           every paper scenario + report.md
-  orthocontact identify DATA_DIR --out DIR   parameter identification
+  orthocontact run SCENARIO --out DIR             one scenario file
+  orthocontact reproduce --out DIR                every paper scenario + report.md
+  orthocontact identify DATA_DIR --out DIR        parameter identification
+  orthocontact export IDENTIFIED --out DIR        calibrated FMUs, SSV and SSP
+  orthocontact uq IDENTIFIED --scenario SCENARIO --samples N --out DIR
+                                                  the identification's uncertainty
+  orthocontact ssp SCENARIO --angle DEG --out FILE.ssp   the experiment as an SSP
+  orthocontact sensitivity --out DIR              the rig's unmeasured strip terms
+(`orthocontact COMMAND --help`: each command's arguments.)
 
 Exit status: 0 success, 1 a result that does not match the paper (or, with
 --strict, any warning: an implausible input, a rig run that is not steady
@@ -28,7 +34,6 @@ import warnings
 from pathlib import Path
 
 from ..errors import InputError
-from ..experiment.scenario import ScenarioError
 from .interrupts import install_signal_handlers, interrupted, quiet_interrupts, written
 from .output import check_output_file, check_output_folder, forget_warnings, warn, warnings_said
 from .parser import build_parser
@@ -120,7 +125,7 @@ def run_command(argv=None) -> int:
     except KeyboardInterrupt:
         print(f"orthocontact: interrupted; nothing written to {out}", file=sys.stderr)
         return 130
-    except (ScenarioError, InputError) as e:
+    except InputError as e:   # a scenario's (ScenarioError) too: one hierarchy
         print(f"orthocontact: error: {e}", file=sys.stderr)
         return 2
     except FileNotFoundError as e:  # e.g. the FMU is missing
