@@ -45,6 +45,7 @@ SLOW = {
     },
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
+    "uq/test_source.py": "*",                  # an identify and a uq run
     "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results",
                              "test_a_local_cluster_listens_on_the_loopback_interface_only",
                              "test_no_dask_process_outlives_the_command"},   # Dask clusters

@@ -187,7 +187,8 @@ def cmd_sensitivity(args) -> int:
 def cmd_uq(args) -> int:
     from .. import uq
     from ..runs.size import check_uq_size
-    est = uq.load_estimates(args.identification)
+    from ..uq.source import read_source
+    est, source = read_source(args.identification)
     one_run(args.identification, args.scenario)   # the law and the rig of one identify run
     sc = load_scenario(args.scenario)
     uq.check_geometry(sc, est)  # before any work
@@ -199,7 +200,7 @@ def cmd_uq(args) -> int:
                            scheduler=None if args.scheduler == "none" else args.scheduler,
                            workers=args.workers or _default_workers(), step_s=args.step_s,
                            chunk_runs=args.chunk_runs)
-        summary = uq.write_outputs(res, est, sc, args.seed, stage)
+        summary = uq.write_outputs(res, est, sc, args.seed, stage, source)
     if summary["checks"]["warning"]:
         warn(summary["checks"]["warning"])
     line = uq.step_warning(summary["step_check"])

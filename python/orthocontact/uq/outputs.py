@@ -10,11 +10,13 @@ from ..experiment.scenario import Scenario
 from ..rig.checks import SETTLE_TOL_DEG
 from .estimates import Estimates
 from .propagate import UQResult, bands, measurement_draws
+from .source import Source
 
 # -- outputs ----------------------------------------------------------------------
 
-def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: Path) -> dict:
-    """uq_bands.csv, samples.csv, uq.json, uq.png into out; returns the JSON."""
+def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: Path, source: Source) -> dict:
+    """uq_bands.csv, samples.csv, uq.json, uq.png into out; returns the JSON,
+    which names the identification drawn from (`source`)."""
     from ..output.tables import write_csv, write_json
     bp, bd = bands(res.phi), bands(res.drive)
     nan = np.full(len(res.angles_deg), np.nan)
@@ -31,7 +33,7 @@ def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: P
     write_csv(out / "samples.csv", res.names, [tuple(float(v) for v in r) for r in res.samples])
     n_nan = int(np.sum(~np.isfinite(res.phi)))
     summary = {
-        "identification": str(est.path), "scenario": sc.name, "scenario_file": str(sc.path),
+        "identification": source.as_json(), "scenario": sc.name, "scenario_file": str(sc.path),
         "rule": sc.law.rule, "parameters": res.names,
         "estimates": dict(zip(res.names, map(float, est.mean))),
         "draws": {n: {"mean": float(np.mean(res.samples[:, j])), "sd": float(np.std(res.samples[:, j]))}
