@@ -91,7 +91,7 @@ def test_angles_csv_written_in_radians_is_refused(tmp_path):
     assert p.returncode == 2 and not (tmp_path / "o").exists()
     line = p.stderr.strip()
     assert len(line.splitlines()) == 1
-    assert "angles.csv: mat_angle_deg: all orientations lie within +-pi/2" in line and "radians?" in line
+    assert "angles.csv: mat_angle_deg: all mat angles lie within +-pi/2" in line and "radians?" in line
 
 
 def test_trajectory_angles_that_all_look_like_radians_are_a_warning(tmp_path):

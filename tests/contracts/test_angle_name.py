@@ -21,10 +21,7 @@ def user_facing_files():
 # Lines being rewritten by the plausibility gate's work when
 # the name was unified: each must still be there (else drop it here), and
 # nothing else may use another name.
-PENDING = {
-    ("python/orthocontact/identification/measurements.py", "(orientations in radians, forces at or below F_int"),
-    ("python/orthocontact/identification/measurements.py", ": all orientations lie within +-pi/2"),
-}
+PENDING: set = set()   # (file, text) of a rename still to come; empty: none
 
 
 def test_the_swept_angle_has_one_name_everywhere():

@@ -208,7 +208,7 @@ def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None, ramp
                    velocities=None, stiffness=None, ramp_names=None) -> list[str]:
     """The data against the one gate (orthocontact.plausibility) and the rig
     that bounds them: raises InputError for data that cannot be right
-    (orientations in radians, forces at or below F_int or implying mu
+    (mat angles in radians, forces at or below F_int or implying mu
     outside (0, 5), a ramp reaching beyond the rig's travel, a velocity or a
     ramp run's stiffness outside its hard range); returns warnings for
     unusual ones (trajectory angles that all look like radians).  names: the
@@ -218,7 +218,7 @@ def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None, ramp
     warnings = []
     for name, arr in (("forces.csv", forces), ("angles.csv", angles)):
         if arr is not None and plausibility.looks_like_radians(arr[:, 0], RADIAN_ORIENTATIONS):
-            raise InputError(f"{folder / name}: {ANGLE}: all orientations lie within +-pi/2 "
+            raise InputError(f"{folder / name}: {ANGLE}: all mat angles lie within +-pi/2 "
                              f"({arr[:, 0].min():g} .. {arr[:, 0].max():g}): radians? the column is "
                              "in degrees")
     if angles is not None and plausibility.looks_like_radians(angles[:, 1], RADIAN_TRAJECTORY):
