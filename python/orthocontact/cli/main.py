@@ -10,16 +10,19 @@
   orthocontact sensitivity --out DIR              the rig's unmeasured strip terms
 (`orthocontact COMMAND --help`: each command's arguments.)
 
-Exit status: 0 success, 1 a result that does not match the paper (or, with
---strict, any warning: an implausible input, a rig run that is not steady
-sliding), 2 bad input (one line on stderr naming the file, option, key or row, and what was
-expected), 130 interrupted (Ctrl-C, SIGINT or SIGTERM) before the output was
-written.  Arguments and the output folder are checked before any work; the
-output folder is written all at once or not at all.
-74 (sysexits.h's EX_IOERR): the system refused a read or a write -- the disk
-is full, permission denied, a read-only file system: one line naming what
-failed, the system's reason and the path; the results' scratch folder is
-removed, as on any failure.
+Exit status:
+  0    success
+  1    a result that does not match the paper (or, with --strict, any
+       warning: an implausible input, a rig run that is not steady sliding)
+  2    bad input: one line on stderr naming the file, option, key or row, and
+       what was expected
+  74   (sysexits.h's EX_IOERR) the system refused a read or a write -- the
+       disk is full, permission denied, a read-only file system: one line
+       naming what failed, the system's reason and the path; the results'
+       scratch folder is removed, as on any failure
+  130  interrupted (Ctrl-C, SIGINT or SIGTERM) before the output was written
+Arguments and the output folder are checked before any work; the output
+folder is written all at once or not at all.
 A closed standard output (`orthocontact ... | head -1`) is no error: the rest
 of the text is dropped and the command ends as it would have.  Python and
 numpy warnings never reach the terminal as such: numpy's floating-point ones
