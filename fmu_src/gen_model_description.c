@@ -92,6 +92,7 @@ static const struct {
     {"N/m", "kg=\"1\" s=\"-2\"", NULL},
     {"N.s/m", "kg=\"1\" s=\"-1\"", NULL},
     {"J", "kg=\"1\" m=\"2\" s=\"-2\"", NULL},
+    {"N.m", "kg=\"1\" m=\"2\" s=\"-2\"", NULL},
     {"m/s", "m=\"1\" s=\"-1\"", NULL},
     {"m/s2", "m=\"1\" s=\"-2\"", NULL},
     {"rad", "rad=\"1\"", "<DisplayUnit name=\"deg\" factor=\"57.29577951308232\"/>"},

@@ -1,0 +1,519 @@
+#include "patch_model.h"
+
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "fmu_bytes.h"
+
+/* Where each variable of the table lives.  The law's parameters (the
+ * table's L rows) live in params under their own names. */
+#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...) \
+    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus, start, lo, hi,   \
+            offsetof(patch_model, params.name), unit},
+#define FMU_SLOT_time offsetof(patch_model, time)
+#define FMU_SLOT_slidingRule offsetof(patch_model, params.rule)
+#define FMU_SLOT_initialSlip offsetof(patch_model, g.initial_slip)
+#define FMU_SLOT_s1Start offsetof(patch_model, g.s_start[0])
+#define FMU_SLOT_s2Start offsetof(patch_model, g.s_start[1])
+#define FMU_SLOT_length offsetof(patch_model, g.length)
+#define FMU_SLOT_width offsetof(patch_model, g.width)
+#define FMU_SLOT_n1 offsetof(patch_model, g.n[0])
+#define FMU_SLOT_n2 offsetof(patch_model, g.n[1])
+#define FMU_SLOT_u1 offsetof(patch_model, g.u[0])
+#define FMU_SLOT_u2 offsetof(patch_model, g.u[1])
+#define FMU_SLOT_theta offsetof(patch_model, g.theta)
+#define FMU_SLOT_N offsetof(patch_model, g.N)
+#define FMU_SLOT_p1 offsetof(patch_model, g.p[0])
+#define FMU_SLOT_p2 offsetof(patch_model, g.p[1])
+#define FMU_SLOT_T1 offsetof(patch_model, T[0])
+#define FMU_SLOT_T2 offsetof(patch_model, T[1])
+#define FMU_SLOT_Mz offsetof(patch_model, Mz)
+#define FMU_SLOT_dissipatedEnergy offsetof(patch_model, energy)
+#define FMU_SLOT_slipFraction offsetof(patch_model, slip_fraction)
+#define FMU_SLOT_contactState offsetof(patch_model, contact)
+
+enum { FMU_ENUM_TYPES(FMU_ENUM_KIND) PATCH_ENUM_KINDS_END };
+
+static const fmu_var VARS[PATCH_VR_COUNT_PLUS_ONE] = {PATCH_VARIABLES(FMU_VAR_ROW, LAW_ROW)};
+
+static fmu_status derivative(const patch_model *m, const unsigned int unknown[], size_t n_unknown,
+                             const unsigned int known[], size_t n_known, const double seed[],
+                             double out[], int adjoint, fmu_msg *msg);
+static fmu_status exit_init(patch_model *m, fmu_msg *msg);
+
+const fmu_model_info FMU_MODEL_INFO = {
+    FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS, PATCH_VR_COUNT_PLUS_ONE,
+    sizeof(patch_model), NULL /* the outputs live in their slots */, exit_init, derivative};
+
+/* ---- the cells' kinematics and loads --------------------------------------- */
+
+/* What every cell of a step shares. */
+typedef struct {
+    double cm1, sn; /* cos(theta) - 1 (as -2 sin^2(theta/2): exact for small theta), sin(theta) */
+    double w;       /* a cell's share of the area, 1/(n1 n2) */
+    double k[2];    /* 12 p1/length, 12 p2/width: the pressure's slopes per unit xi, eta */
+} patch_frame;
+
+static patch_frame frame_of(const patch_setup *g) {
+    const double h = sin(0.5 * g->theta);
+    patch_frame f = {-2.0 * h * h, sin(g->theta), 1.0 / ((double)g->n[0] * (double)g->n[1]),
+                     {12.0 * (g->p[0] / g->length), 12.0 * (g->p[1] / g->width)}};
+    return f;
+}
+
+/* One cell: its centre in body coordinates r [m], relative coordinates
+ * xi, eta in (-1/2, 1/2), the centre in the surface frame R r, its
+ * displacement d [m] and its share nu of the normal force (N_c = N nu). */
+typedef struct {
+    double xi, eta, r[2], Rr[2], d[2], nu;
+} patch_cell;
+
+static patch_cell cell_of(const patch_setup *g, const patch_frame *f, int c) {
+    const int i = c % g->n[0], j = c / g->n[0];
+    patch_cell x;
+    /* (2i + 1 - n) / (2n): mirror cells get exactly opposite coordinates */
+    x.xi = (double)(2 * i + 1 - g->n[0]) / (double)(2 * g->n[0]);
+    x.eta = (double)(2 * j + 1 - g->n[1]) / (double)(2 * g->n[1]);
+    x.r[0] = x.xi * g->length;
+    x.r[1] = x.eta * g->width;
+    /* (R - I) r; none added at the centre, so that a one-cell patch's cell
+     * sees u itself, the sign of a zero included */
+    x.d[0] = g->u[0];
+    x.d[1] = g->u[1];
+    x.Rr[0] = x.r[0];
+    x.Rr[1] = x.r[1];
+    if (x.r[0] != 0.0 || x.r[1] != 0.0) {
+        const double dr0 = f->cm1 * x.r[0] - f->sn * x.r[1];
+        const double dr1 = f->sn * x.r[0] + f->cm1 * x.r[1];
+        x.d[0] += dr0;
+        x.d[1] += dr1;
+        x.Rr[0] += dr0;
+        x.Rr[1] += dr1;
+    }
+    /* the linear pressure integrated over the cell is its value at the centre
+     * times the area, exactly */
+    x.nu = f->w * (1.0 + f->k[0] * x.xi + f->k[1] * x.eta);
+    return x;
+}
+
+static int n_cells(const patch_setup *g) { return g->n[0] * g->n[1]; }
+
+/* Where each cell's committed state comes from. */
+typedef enum { FROM_INITIAL, FROM_ARRAY, FROM_STEPS, FROM_BYTES } source_kind;
+typedef struct {
+    source_kind kind;
+    const oc_state *array;      /* FROM_ARRAY: cell c's state is array[c] */
+    const oc_step *steps;       /* FROM_STEPS: steps[c].next */
+    const unsigned char *bytes; /* FROM_BYTES: serialized, N_STATE_F64 doubles a cell */
+} cell_source;
+
+enum { N_STATE_F64 = 8 };
+
+static const unsigned char *get_state(const unsigned char *p, oc_state *s) {
+    double f[N_STATE_F64];
+    for (int i = 0; i < N_STATE_F64; ++i) p = fmu_get_f64(p, &f[i]);
+    *s = (oc_state){{f[0], f[1]}, f[2], {f[3], f[4]}, {f[5], f[6]}, f[7]};
+    return p;
+}
+
+static unsigned char *put_state(unsigned char *p, const oc_state *s) {
+    const double f[N_STATE_F64] = {s->u[0], s->u[1], s->N, s->a[0], s->a[1], s->s[0], s->s[1],
+                                   s->energy};
+    for (int i = 0; i < N_STATE_F64; ++i) p = fmu_put_f64(p, f[i]);
+    return p;
+}
+
+/* Cell c's committed state; x its kinematics (for the initial slip at inputs). */
+static oc_state source_cell(const cell_source *src, const patch_setup *g, const patch_cell *x,
+                            int c) {
+    oc_state s;
+    switch (src->kind) {
+    case FROM_ARRAY: return src->array[c];
+    case FROM_STEPS: return src->steps[c].next;
+    case FROM_BYTES: get_state(src->bytes + (size_t)c * 8 * N_STATE_F64, &s); return s;
+    default:
+        return g->initial_slip == PATCH_INITIAL_EXPLICIT
+                   ? oc_state_unloaded(g->s_start[0], g->s_start[1], 0.0)
+                   : oc_state_unloaded(x->d[0], x->d[1], 0.0);
+    }
+}
+
+/* The sums the outputs are. */
+typedef struct {
+    double T[2], Mz, energy, slip_fraction;
+    int contact;
+} patch_sums;
+
+/* The centre of pressure must lie in the kern: a linear pressure of
+ * resultant N > 0 at (p1, p2) is >= 0 at every corner exactly there.
+ * A few roundings of slack, so that p1 = length/6 typed as such is in. */
+static fmu_status check_kern(const patch_setup *g, fmu_msg *msg) {
+    const double e = fabs(g->p[0]) / g->length + fabs(g->p[1]) / g->width;
+    if (6.0 * e <= 1.0 + 8 * DBL_EPSILON) return FMU_OK;
+    return fmu_fail(msg, "centre of pressure p1=%g m, p2=%g m outside the kern of the %g m x %g m "
+                         "patch: |p1|/length + |p2|/width = %g > 1/6, where a linear pressure "
+                         "would pull at a corner (no-tension pressure is not modelled)",
+                    g->p[0], g->p[1], g->length, g->width, e);
+}
+
+/* Steps every cell with `law` from `src` into out[] and sums the outputs;
+ * or fails, having written nothing but out[], if a cell's result or a sum
+ * would not be finite. */
+static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell_source *src,
+                             oc_step *out, patch_sums *S, fmu_msg *msg) {
+    const patch_frame f = frame_of(g);
+    const int n = n_cells(g);
+    double T0 = 0.0, T1 = 0.0, Mz = 0.0, energy = 0.0;
+    int pressed = 0, slipping = 0;
+    for (int c = 0; c < n; ++c) {
+        const patch_cell x = cell_of(g, &f, c);
+        const oc_state from = source_cell(src, g, &x, c);
+        oc_step *st = &out[c];
+        oc_law_step(law, &from, x.d, g->N * x.nu, st);
+        if (!oc_step_is_finite(st))
+            return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the force "
+                                 "or slip of cell (%d, %d)", g->u[0], g->u[1], g->theta, g->N,
+                            c % g->n[0] + 1, c / g->n[0] + 1);
+        /* 0.0 - q rather than -q: an open cell reads +0.0, as the point FMU */
+        const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
+        T0 += t0;
+        T1 += t1;
+        Mz += x.Rr[0] * t1 - x.Rr[1] * t0;
+        energy += st->next.energy;
+        pressed += st->contact != OC_OPEN;
+        slipping += st->contact == OC_SLIP;
+    }
+    if (!isfinite(T0) || !isfinite(T1) || !isfinite(Mz) || !isfinite(energy))
+        return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the patch's "
+                             "force, moment or energy", g->u[0], g->u[1], g->theta, g->N);
+    S->T[0] = T0;
+    S->T[1] = T1;
+    S->Mz = Mz;
+    S->energy = energy;
+    S->slip_fraction = (double)slipping / (double)n;
+    S->contact = pressed == 0 ? 0 : slipping == 0 ? 1 : slipping == pressed ? 3 : 2;
+    return FMU_OK;
+}
+
+static void show(patch_model *m, const patch_sums *S) {
+    m->T[0] = S->T[0];
+    m->T[1] = S->T[1];
+    m->Mz = S->Mz;
+    m->energy = S->energy;
+    m->slip_fraction = S->slip_fraction;
+    m->contact = S->contact;
+}
+
+/* Computes the pending step of every cell for the inputs in m from `src`
+ * with `law` (which commits nothing); or fails and changes nothing (but the
+ * hidden steps, which nothing reads). */
+static fmu_status evaluate(patch_model *m, const oc_law *law, const cell_source *src, fmu_msg *msg) {
+    const int hidden = m->shown ^ 1;
+    patch_sums S;
+    if (step_cells(law, &m->g, src, m->steps[hidden], &S, msg) != FMU_OK) return FMU_ERR;
+    if (!(src->kind == FROM_ARRAY && src->array == m->start)) {
+        const patch_frame f = frame_of(&m->g);
+        for (int c = 0, n = n_cells(&m->g); c < n; ++c) {
+            const patch_cell x = cell_of(&m->g, &f, c);
+            m->start[c] = source_cell(src, &m->g, &x, c);
+        }
+    }
+    if (law != &m->law) m->law = *law;
+    m->shown = hidden;
+    show(m, &S);
+    m->result_committed = 0;
+    return FMU_OK;
+}
+
+/* The committed states: the start before a commit, the shown step's after. */
+static cell_source committed(const patch_model *m) {
+    cell_source s = {FROM_ARRAY, m->start, NULL, NULL};
+    if (m->result_committed) {
+        s.kind = FROM_STEPS;
+        s.steps = m->steps[m->shown];
+    }
+    return s;
+}
+
+/* The cells' law: the patch's parameters with its stiffness shared by area. */
+static fmu_status cell_law(const oc_params *p, const patch_setup *g, oc_law *law, fmu_msg *msg) {
+    const char *why = oc_params_check(p);
+    if (why) return fmu_fail(msg, "%s", why);
+    const double w = 1.0 / ((double)g->n[0] * (double)g->n[1]);
+    oc_params cell = *p;
+    cell.eps1 = p->eps1 * w;
+    cell.eps2 = p->eps2 * w;
+    if (oc_law_init(law, &cell) != 0)
+        return fmu_fail(msg, "parameters mu=(%g, %g) eps=(%g, %g) over %d x %d cells give "
+                             "non-finite tensors", p->mu1, p->mu2, p->eps1, p->eps2, g->n[0], g->n[1]);
+    return FMU_OK;
+}
+
+fmu_status fmu_model_update(patch_model *m, int changed, int allow, fmu_msg *msg) {
+    if (check_kern(&m->g, msg) != FMU_OK) return FMU_ERR;
+    oc_law law;
+    const oc_law *use = &m->law;
+    if (changed & FMU_CHANGED_PARAMETERS) {
+        if (cell_law(&m->params, &m->g, &law, msg) != FMU_OK) return FMU_ERR;
+        use = &law;
+    }
+    /* Before the end of initialization the cells start where the inputs or
+     * the explicit slip put them; afterwards from what was committed. */
+    const cell_source init = {FROM_INITIAL, NULL, NULL, NULL};
+    const cell_source src = (allow & FMU_ALLOW_PARAMETERS) ? init : committed(m);
+    return evaluate(m, use, &src, msg);
+}
+
+/* Every set in initialization already derived the start from the values it
+ * left; deriving it once more here makes the end of initialization the
+ * moment that counts, whatever was restored before it. */
+static fmu_status exit_init(patch_model *m, fmu_msg *msg) {
+    const cell_source init = {FROM_INITIAL, NULL, NULL, NULL};
+    return evaluate(m, &m->law, &init, msg);
+}
+
+/* A further step with held inputs steps every cell again from what the
+ * last doStep committed. */
+fmu_status fmu_model_do_step(patch_model *m, double h, fmu_msg *msg) {
+    (void)h; /* rate-independent: the step size does not enter the law */
+    if (m->result_committed) {
+        const cell_source src = committed(m);
+        if (evaluate(m, &m->law, &src, msg) != FMU_OK) return FMU_ERR;
+    }
+    m->result_committed = 1;
+    return FMU_OK;
+}
+
+/* ---- directional derivatives ------------------------------------------------ */
+
+/* Rows: T1, T2, Mz, dissipatedEnergy; columns: u1, u2, theta, N, p1, p2. */
+enum { P_ROWS = 4, P_COLS = 6 };
+
+static int jac_row(unsigned int vr) {
+    switch (vr) {
+    case PATCH_VR_T1: return 0;
+    case PATCH_VR_T2: return 1;
+    case PATCH_VR_Mz: return 2;
+    case PATCH_VR_dissipatedEnergy: return 3;
+    default: return -1;
+    }
+}
+
+static int jac_col(unsigned int vr) {
+    switch (vr) {
+    case PATCH_VR_u1: return 0;
+    case PATCH_VR_u2: return 1;
+    case PATCH_VR_theta: return 2;
+    case PATCH_VR_N: return 3;
+    case PATCH_VR_p1: return 4;
+    case PATCH_VR_p2: return 5;
+    default: return -1;
+    }
+}
+
+/* The patch's Jacobian of the shown step: each cell's consistent tangent
+ * (oc_law_jacobian, with respect to its d and N_c) through the cell's
+ * kinematics d = u + (R(theta) - I) r, N_c = N nu(p), and the moment arm
+ * R r of Mz = sum (R r) x T_c, whose own turning adds -(R r) . T_c to
+ * dMz/dtheta. */
+static void patch_jacobian(const patch_model *m, double P[P_ROWS][P_COLS]) {
+    const patch_setup *g = &m->g;
+    const patch_frame f = frame_of(g);
+    memset(P, 0, sizeof(double) * P_ROWS * P_COLS);
+    for (int c = 0, n = n_cells(g); c < n; ++c) {
+        const patch_cell x = cell_of(g, &f, c);
+        const oc_step *st = &m->steps[m->shown][c];
+        double J[OC_JAC_ROWS][OC_JAC_COLS];
+        oc_law_jacobian(&m->law, &m->start[c], x.d, g->N * x.nu, st, J);
+        /* d(d)/dx and dN_c/dx over x = (u1, u2, theta, N, p1, p2) */
+        const double dd[2][P_COLS] = {{1, 0, -x.Rr[1], 0, 0, 0}, {0, 1, x.Rr[0], 0, 0, 0}};
+        const double dN[P_COLS] = {0, 0, 0, x.nu, g->N * f.w * 12.0 * x.xi / g->length,
+                                   g->N * f.w * 12.0 * x.eta / g->width};
+        const int law_row[3] = {0, 1, 4}; /* T1, T2, energy in the law's rows */
+        double dy[3][P_COLS];
+        for (int r = 0; r < 3; ++r)
+            for (int k = 0; k < P_COLS; ++k)
+                dy[r][k] = J[law_row[r]][0] * dd[0][k] + J[law_row[r]][1] * dd[1][k] +
+                           J[law_row[r]][2] * dN[k];
+        const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
+        for (int k = 0; k < P_COLS; ++k) {
+            P[0][k] += dy[0][k];
+            P[1][k] += dy[1][k];
+            P[2][k] += x.Rr[0] * dy[1][k] - x.Rr[1] * dy[0][k];
+            P[3][k] += dy[2][k];
+        }
+        P[2][2] -= x.Rr[0] * t0 + x.Rr[1] * t1;
+    }
+}
+
+static const char *name_or_unknown(unsigned int vr) {
+    const char *n = fmu_model_variable_name(vr);
+    return n ? n : "unknown";
+}
+
+static fmu_status derivative(const patch_model *m, const unsigned int unknown[], size_t n_unknown,
+                             const unsigned int known[], size_t n_known, const double seed[],
+                             double out[], int adjoint, fmu_msg *msg) {
+    for (size_t j = 0; j < n_known; ++j)
+        if (jac_col(known[j]) < 0)
+            return fmu_fail(msg, "known vr %u (%s) is not an input u1, u2, theta, N, p1, p2",
+                            known[j], name_or_unknown(known[j]));
+    for (size_t i = 0; i < n_unknown; ++i)
+        if (jac_row(unknown[i]) < 0)
+            return fmu_fail(msg, "unknown vr %u (%s) is not an output T1, T2, Mz, dissipatedEnergy",
+                            unknown[i], name_or_unknown(unknown[i]));
+    const size_t n_seed = adjoint ? n_unknown : n_known;
+    for (size_t k = 0; k < n_seed; ++k)
+        if (!isfinite(seed[k])) return fmu_fail(msg, "seed %zu is not finite", k);
+    double P[P_ROWS][P_COLS];
+    patch_jacobian(m, P);
+    const size_t n_out = adjoint ? n_known : n_unknown;
+    /* every index was checked above */
+#define JAC(row_vr, col_vr) P[(unsigned)jac_row(row_vr) % P_ROWS][(unsigned)jac_col(col_vr) % P_COLS]
+    for (size_t k = 0; k < n_out; ++k) {
+        double acc = 0.0;
+        if (adjoint)
+            for (size_t i = 0; i < n_unknown; ++i) acc += JAC(unknown[i], known[k]) * seed[i];
+        else
+            for (size_t j = 0; j < n_known; ++j) acc += JAC(unknown[k], known[j]) * seed[j];
+        if (!isfinite(acc)) return fmu_fail(msg, "the derivative overflows");
+        out[k] = acc;
+    }
+#undef JAC
+    return FMU_OK;
+}
+
+/* ---- serialized state: field by field, little-endian --------------------- */
+
+/* parameters, rule, initial slip (kind, s1, s2), length, width, n1, n2,
+ * inputs (u1, u2, theta, N, p1, p2), commit flag, then PATCH_MAX_CELLS
+ * committed cell states (those beyond n1 n2 zero: the size is fixed). */
+#define LAW_COUNT(...) +1
+enum { N_PARAM_F64 = 0 PATCH_LAW_PARAMETERS(LAW_COUNT) };
+static size_t head_bytes(void) { return 8 * N_PARAM_F64 + 4 + 4 + 8 * 2 + 8 * 2 + 4 * 2 + 8 * 6 + 4; }
+size_t fmu_model_state_size(void) {
+    return head_bytes() + (size_t)PATCH_MAX_CELLS * 8 * N_STATE_F64;
+}
+
+void fmu_model_state_write(const patch_model *m, unsigned char *p) {
+    const oc_params *q = &m->params;
+    const patch_setup *g = &m->g;
+#define PUT_LAW(name, ...) p = fmu_put_f64(p, q->name);
+    PATCH_LAW_PARAMETERS(PUT_LAW)
+#undef PUT_LAW
+    p = fmu_put_u32(p, (uint32_t)q->rule);
+    p = fmu_put_u32(p, (uint32_t)g->initial_slip);
+    p = fmu_put_f64(p, g->s_start[0]);
+    p = fmu_put_f64(p, g->s_start[1]);
+    p = fmu_put_f64(p, g->length);
+    p = fmu_put_f64(p, g->width);
+    p = fmu_put_u32(p, (uint32_t)g->n[0]);
+    p = fmu_put_u32(p, (uint32_t)g->n[1]);
+    const double in[6] = {g->u[0], g->u[1], g->theta, g->N, g->p[0], g->p[1]};
+    for (int k = 0; k < 6; ++k) p = fmu_put_f64(p, in[k]);
+    p = fmu_put_u32(p, (uint32_t)m->result_committed);
+    const int n = n_cells(g);
+    for (int c = 0; c < n; ++c) p = put_state(p, &m->start[c]);
+    memset(p, 0, (size_t)(PATCH_MAX_CELLS - n) * 8 * N_STATE_F64);
+}
+
+/* Reads and checks everything before it changes m: the header into locals,
+ * then each cell's state where it lies in the buffer; the shown result is
+ * not stored but recomputed (into the hidden steps, which nothing reads)
+ * from the committed states and the inputs, of which it is a function. */
+fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg *msg) {
+    oc_params q;
+    patch_setup g;
+    memset(&q, 0, sizeof q);
+    memset(&g, 0, sizeof g);
+    uint32_t rule, initial, n1, n2, done;
+#define GET_LAW(name, ...) p = fmu_get_f64(p, &q.name);
+    PATCH_LAW_PARAMETERS(GET_LAW)
+#undef GET_LAW
+    p = fmu_get_u32(p, &rule);
+    p = fmu_get_u32(p, &initial);
+    p = fmu_get_f64(p, &g.s_start[0]);
+    p = fmu_get_f64(p, &g.s_start[1]);
+    p = fmu_get_f64(p, &g.length);
+    p = fmu_get_f64(p, &g.width);
+    p = fmu_get_u32(p, &n1);
+    p = fmu_get_u32(p, &n2);
+    double in[6];
+    for (int k = 0; k < 6; ++k) p = fmu_get_f64(p, &in[k]);
+    p = fmu_get_u32(p, &done);
+    const unsigned char *cells = p;
+    const char *ctx = "serialized state";
+#define CHECK_LAW(name, vr, ...) \
+    if (fmu_model_check_range(vr, q.name, ctx, msg) != FMU_OK) return FMU_ERR;
+    PATCH_LAW_PARAMETERS(CHECK_LAW)
+#undef CHECK_LAW
+    if (rule > (uint32_t)INT32_MAX || initial > (uint32_t)INT32_MAX || n1 > (uint32_t)INT32_MAX ||
+        n2 > (uint32_t)INT32_MAX ||
+        fmu_model_check_range(PATCH_VR_slidingRule, (double)rule, ctx, msg) != FMU_OK ||
+        fmu_model_check_range(PATCH_VR_initialSlip, (double)initial, ctx, msg) != FMU_OK ||
+        fmu_model_check_range(PATCH_VR_s1Start, g.s_start[0], ctx, msg) != FMU_OK ||
+        fmu_model_check_range(PATCH_VR_s2Start, g.s_start[1], ctx, msg) != FMU_OK ||
+        fmu_model_check_range(PATCH_VR_length, g.length, ctx, msg) != FMU_OK ||
+        fmu_model_check_range(PATCH_VR_width, g.width, ctx, msg) != FMU_OK ||
+        fmu_model_check_range(PATCH_VR_n1, (double)n1, ctx, msg) != FMU_OK ||
+        fmu_model_check_range(PATCH_VR_n2, (double)n2, ctx, msg) != FMU_OK)
+        return FMU_ERR;
+    q.rule = (int)rule;
+    g.initial_slip = (int)initial;
+    g.n[0] = (int)n1;
+    g.n[1] = (int)n2;
+    for (int k = 0; k < 6; ++k)
+        if (!isfinite(in[k])) return fmu_fail(msg, "serialized state: an input is not finite");
+    g.u[0] = in[0];
+    g.u[1] = in[1];
+    g.theta = in[2];
+    g.N = in[3];
+    g.p[0] = in[4];
+    g.p[1] = in[5];
+    if (check_kern(&g, msg) != FMU_OK) return FMU_ERR;
+    if (done > 1) return fmu_fail(msg, "serialized state: commit flag %u is not 0 or 1", (unsigned)done);
+    /* A master that saves and restores every step restores the parameters
+     * it already has: keep their tensors instead of recomputing them.  Bit
+     * patterns, not ==: -0.0 and +0.0 give tensors that differ in the sign
+     * of zero entries, and a restored state must continue bit for bit. */
+    oc_law law;
+    int same = m->params.rule == q.rule && m->g.n[0] == g.n[0] && m->g.n[1] == g.n[1];
+#define SAME_LAW(name, ...) same = same && memcmp(&m->params.name, &q.name, sizeof(double)) == 0;
+    PATCH_LAW_PARAMETERS(SAME_LAW)
+#undef SAME_LAW
+    fmu_msg why;
+    if (same) law = m->law;
+    else if (cell_law(&q, &g, &law, &why) != FMU_OK)
+        return fmu_fail(msg, "serialized state: %s", why.text);
+    const int n = n_cells(&g);
+    for (int c = 0; c < PATCH_MAX_CELLS; ++c) {
+        oc_state s;
+        get_state(cells + (size_t)c * 8 * N_STATE_F64, &s);
+        if (c >= n) {
+            const double v[] = {s.u[0], s.u[1], s.N, s.a[0], s.a[1], s.s[0], s.s[1], s.energy};
+            for (size_t k = 0; k < sizeof v / sizeof v[0]; ++k)
+                if (v[k] != 0.0)
+                    return fmu_fail(msg, "serialized state: cell %d of a %d x %d patch holds a "
+                                         "state", c + 1, g.n[0], g.n[1]);
+            continue;
+        }
+        const char *why = oc_state_check(&law, &s);
+        if (why) return fmu_fail(msg, "serialized state: cell %d: %s", c + 1, why);
+    }
+    const cell_source src = {FROM_BYTES, NULL, NULL, cells};
+    const int hidden = m->shown ^ 1;
+    patch_sums S;
+    if (step_cells(&law, &g, &src, m->steps[hidden], &S, &why) != FMU_OK)
+        return fmu_fail(msg, "serialized state: %s", why.text);
+    /* accepted: nothing below can fail */
+    m->params = q;
+    m->law = law;
+    m->g = g;
+    for (int c = 0; c < n; ++c) get_state(cells + (size_t)c * 8 * N_STATE_F64, &m->start[c]);
+    m->shown = hidden;
+    show(m, &S);
+    m->result_committed = (int)done;
+    return FMU_OK;
+}

@@ -1,0 +1,166 @@
+/*
+ * The one table of the ContactPatch FMU's variables: a rectangle length x
+ * width of a rigid body on a flat surface, divided into n1 x n2 equal cells,
+ * each cell the law of contact_law.h at its centre with its own slip state.
+ * Columns as in model_variables.h; the law's rows are marked L as there.
+ *
+ * Geometry (patch_model.c says how each number is formed):
+ *   - a cell centre r = (xi length, eta width) in body coordinates, xi, eta
+ *     the midpoints of n1 (n2) equal parts of [-1/2, 1/2];
+ *   - its displacement relative to the surface d = u + (R(theta) - I) r;
+ *   - its normal force N_c = N w (1 + 12 (p1/length) xi + 12 (p2/width) eta),
+ *     w = 1/(n1 n2) its share of the area: the linear pressure with
+ *     resultant N at (p1, p2), integrated over the cell (exact for a linear
+ *     pressure);
+ *   - its stiffness eps w: the patch in uniform translation is exactly as
+ *     stiff as the point.
+ *   - the texture's axes (alpha, beta) are the surface's, shared by every cell.
+ * Outputs: T = sum of the cells' -q, Mz = sum of (R r) x (-q) about the patch
+ * centre, both in the surface frame, on the body.
+ */
+#ifndef PATCH_VARIABLES_H
+#define PATCH_VARIABLES_H
+
+#include <math.h>
+
+#define NO_MIN (-HUGE_VAL)
+#define NO_MAX HUGE_VAL
+
+#define FMU_MODEL_NAME "ContactPatch"
+#define FMU_MODEL_IDENTIFIER "ContactPatch"
+#ifndef FMU_GENERATOR
+#include "fmu_token.h"
+#endif
+#define FMU_STATE_TAG {'O', 'C', 'P', 'T'}
+#define FMU_DESCRIPTION                                                                        \
+    "Rectangular contact patch of a rigid body on a flat textured surface: n1 x n2 cells, each " \
+    "the coupled orthotropic adhesion-friction law (Konyukhov and Schweizerhof 2007) at its "  \
+    "centre with its own slip; force and torque from the body's displacement and rotation"
+#define FMU_SOURCES(S) S(contact_law.c) S(patch_model.c) S(fmu_instance.c)
+#define FMU_HEADERS(S)                                                                          \
+    S(contact_law.h) S(patch_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h)          \
+    S(patch_variables.h) S(fmu_token.h)
+#define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
+
+/* The largest grid: the model's storage and its serialized state are fixed
+ * in size (fmu_model.h), so they hold this many cells whatever n1, n2 are. */
+#define PATCH_MAX_SIDE 32
+
+#define FMU_DOC_HTML                                                                             \
+    "<h2>The patch</h2>\n<ul>\n"                                                                 \
+    "<li>A rigid rectangle length &times; width on a flat surface, n1 &times; n2 equal cells. "  \
+    "Each cell is the point law (the OrthotropicContact FMU's) at its centre r (body "          \
+    "coordinates) with its own slip: displacement d = u + (R(theta) - I) r, normal force the "   \
+    "linear pressure of resultant N at (p1, p2) over the cell, stiffness (eps1, eps2) times "   \
+    "the cell's share of the area.  The texture's axes alpha, beta are the surface's.</li>\n"    \
+    "<li>T1, T2: the sum of the cells' forces on the body; Mz: their moment about the patch "    \
+    "centre, sum of (R r) &times; T<sub>cell</sub>, counterclockwise; all in the surface "      \
+    "frame.</li>\n"                                                                              \
+    "<li>The centre of pressure must lie in the kern, |p1|/length + |p2|/width &le; 1/6 "       \
+    "(no corner in tension): outside it a set is refused, as is any value that would make an " \
+    "output not finite.</li>\n"                                                                  \
+    "<li>Not modelled: rolling, a curved surface, a pressure other than linear, the body's "    \
+    "deformation.</li>\n</ul>\n"                                                                 \
+    "<h2>Step semantics</h2>\n<p>As the point FMU: setting inputs computes every cell's step "    \
+    "from the committed state without committing it; @DOSTEP@ commits all cells at once, or "   \
+    "none.  @DIRDER@ gives the derivatives of T1, T2, Mz, dissipatedEnergy with respect to u1, " \
+    "u2, theta, N, p1, p2: the sum of the cells' consistent tangents through the kinematics."  \
+    "</p>\n"
+
+#define FMU_ENUM_TYPES(T) T(SlidingRule, PATCH_SLIDING_RULE_ITEMS) T(InitialSlip, PATCH_INITIAL_SLIP_ITEMS)
+#define PATCH_SLIDING_RULE_ITEMS(E)                                                              \
+    E(associated, 1, "G = F: classical orthotropic Coulomb friction (paper Case 1)")           \
+    E(coupled, 2, "G = (B F B)^-1: the coupled law of Konyukhov and Schweizerhof")             \
+    E(eq20, 3, "the paper's explicit eq. (20), step-size dependent: for reproduction only")
+#define PATCH_INITIAL_SLIP_ITEMS(E)                                                              \
+    E(atInputs, 1, "every cell's slip is its displacement at the end of initialization: no "    \
+      "force until the body moves")                                                             \
+    E(explicit, 2, "every cell's slip is (s1Start, s2Start): the rest pose is that "           \
+      "translation at theta = 0")
+
+#define PATCH_KNOWNS_NO_RULE                                                                     \
+    "mu1 mu2 eps1 eps2 alpha beta initialSlip s1Start s2Start length width n1 n2 u1 u2 theta N " \
+    "p1 p2"
+#define PATCH_KNOWNS PATCH_KNOWNS_NO_RULE " slidingRule"
+#define PATCH_INPUTS "u1 u2 theta N p1 p2"
+#define FMU_DEPENDENCIES(D)                                                                      \
+    D(T1, PATCH_INPUTS, PATCH_KNOWNS) D(T2, PATCH_INPUTS, PATCH_KNOWNS)                          \
+    D(Mz, PATCH_INPUTS, PATCH_KNOWNS) D(dissipatedEnergy, PATCH_INPUTS, PATCH_KNOWNS)            \
+    D(slipFraction, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)                                          \
+    D(contactState, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)
+
+#define PATCH_VARIABLES(X, L)                                                                    \
+    X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "", "Simulation time") \
+    L(mu1, 1, Float64, parameter, fixed, exact, 0.408, 1e-150, 1e150, "1", "",                   \
+      "Friction coefficient along friction axis 1 (at angle beta)")                              \
+    L(mu2, 2, Float64, parameter, fixed, exact, 0.625, 1e-150, 1e150, "1", "",                   \
+      "Friction coefficient along friction axis 2 (at angle beta + 90 deg)")                     \
+    L(eps1, 3, Float64, parameter, fixed, exact, 12510.0, 1e-300, 1e300, "N/m", "",              \
+      "Tangential stiffness of the whole patch along adhesion axis 1 (at angle alpha), shared " \
+      "among the cells by area")                                                                 \
+    L(eps2, 4, Float64, parameter, fixed, exact, 10000.0, 1e-300, 1e300, "N/m", "",              \
+      "Tangential stiffness of the whole patch along adhesion axis 2 (at angle alpha + 90 "     \
+      "deg), shared among the cells by area")                                                    \
+    L(alpha, 5, Float64, parameter, fixed, exact, 1.5707963267948966, -12.566370614359172,       \
+      12.566370614359172, "rad", "deg", "Angle of adhesion axis 1, counterclockwise from X1 "    \
+      "(fixed to the surface)")                                                                  \
+    L(beta, 6, Float64, parameter, fixed, exact, 0.0, -12.566370614359172, 12.566370614359172,   \
+      "rad", "deg", "Angle of friction axis 1, counterclockwise from X1 (fixed to the surface)") \
+    X(slidingRule, 7, SlidingRule, parameter, fixed, exact, 2, 1, 3, "", "",                     \
+      "Sliding rule: 1 associated (G = F), 2 coupled (G = (B F B)^-1), "                         \
+      "3 literal eq. (20) of the paper (step-size dependent, for reproduction only)")           \
+    X(initialSlip, 8, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                     \
+      "Initial slip: 1 atInputs (every cell unloaded where the inputs put it when "              \
+      "initialization ends), 2 explicit (every cell's slip (s1Start, s2Start))")                 \
+    X(s1Start, 9, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                 \
+      "Initial slip of every cell along X1 when initialSlip = explicit")                         \
+    X(s2Start, 10, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                \
+      "Initial slip of every cell along X2 when initialSlip = explicit")                         \
+    X(length, 11, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                 \
+      "Side of the patch along the body's axis 1 (X1 at theta = 0)")                             \
+    X(width, 12, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                  \
+      "Side of the patch along the body's axis 2 (X2 at theta = 0)")                             \
+    X(n1, 13, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
+      "Number of cells along length (at most PATCH_MAX_SIDE = 32)")                              \
+    X(n2, 14, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
+      "Number of cells along width (at most PATCH_MAX_SIDE = 32)")                               \
+    X(u1, 15, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+      "Displacement of the patch centre relative to the surface along X1")                       \
+    X(u2, 16, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+      "Displacement of the patch centre relative to the surface along X2")                       \
+    X(theta, 17, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                \
+      "Rotation of the body relative to the surface, counterclockwise about the normal")         \
+    X(N, 18, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                         \
+      "Total normal force pressing the body on the surface (N <= 0: open contact)")              \
+    X(p1, 19, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+      "Centre of pressure along the body's axis 1 (0: uniform pressure); "                       \
+      "|p1|/length + |p2|/width <= 1/6")                                                         \
+    X(p2, 20, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+      "Centre of pressure along the body's axis 2 (0: uniform pressure); "                       \
+      "|p1|/length + |p2|/width <= 1/6")                                                         \
+    X(T1, 21, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
+      "Tangential force of the surface on the body along X1 (sum over the cells)")              \
+    X(T2, 22, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
+      "Tangential force of the surface on the body along X2 (sum over the cells)")              \
+    X(Mz, 23, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
+      "Moment of the surface on the body about the normal through the patch centre, "            \
+      "counterclockwise")                                                                        \
+    X(dissipatedEnergy, 24, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J",   \
+      "", "Frictional energy dissipated by all cells over the committed steps")                 \
+    X(slipFraction, 25, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",         \
+      "Share of the patch's area whose cells slip in this step")                                \
+    X(contactState, 26, Int32, output, discrete, calculated, 0, 0, 3, "", "",                    \
+      "State of the step: 0 open (no cell pressed), 1 every pressed cell sticks, 2 some slip, "  \
+      "3 every pressed cell slips")
+
+#define FMU_VARIABLES(X) PATCH_VARIABLES(X, X)
+#define FMU_NO_ROW(...)
+#define PATCH_LAW_PARAMETERS(L) PATCH_VARIABLES(FMU_NO_ROW, L)
+#define FMU_GROUPED_VARIABLES(X, L) PATCH_VARIABLES(X, L)
+#define FMU_GROUP "law"
+
+#define PATCH_VR_ENUM_ENTRY(name, vr, ...) PATCH_VR_##name = vr,
+enum { FMU_VARIABLES(PATCH_VR_ENUM_ENTRY) PATCH_VR_COUNT_PLUS_ONE };
+#undef PATCH_VR_ENUM_ENTRY
+
+#endif

@@ -1,0 +1,296 @@
+"""The ContactPatch FMU through fmpy, both FMI versions, against independent
+truths: the point FMU bit for bit (one cell), the point law's force in
+uniform translation (any grid), the torsional stiffness and the full-slip
+torque and force of closed_forms.patch, finite differences for the
+directional derivatives; and the point FMU's contracts (ranges refused with
+a reason, all-or-nothing steps, a state that restores into a fresh
+instance).
+
+The FMUs: $ORTHOCONTACT_PATCH_FMU / $ORTHOCONTACT_PATCH_FMU3 (e.g. a CMake
+build's fmi2/ContactPatch.fmu), else the installed ones.  The point FMU
+compared with is the one beside the patch FMU when there is one (the same
+build), else the installed one."""
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy import extract, read_model_description
+
+from orthocontact.closed_forms import patch as cp
+from orthocontact.fmu.files import find_fmu
+
+PATCH_ENV = {2: "ORTHOCONTACT_PATCH_FMU", 3: "ORTHOCONTACT_PATCH_FMU3"}
+INTEGERS = ("n1", "n2", "slidingRule", "initialSlip")
+RULES = {"associated": 1, "coupled": 2, "eq20": 3}
+AGED = dict(mu1=0.408, mu2=0.625, eps1=1.251e4, eps2=1e4, alpha=math.radians(90 + 39.2),
+            beta=math.radians(39.2))
+
+
+def patch_fmu(version):
+    return find_fmu(os.environ.get(PATCH_ENV[version]) or None, fmi_version=version,
+                    model="ContactPatch")
+
+
+def point_fmu(version):
+    beside = Path(patch_fmu(version)).with_name("OrthotropicContact.fmu")
+    return beside if beside.is_file() else find_fmu(fmi_version=version)
+
+
+class Slave:
+    """One instance of a contact FMU (the patch or the point) through fmpy:
+    parameters set before initialization, inputs by name, outputs by name."""
+
+    def __init__(self, path, version, name="patch", **params):
+        path = str(path)
+        md = read_model_description(path)
+        self.version = version
+        self.vr = {v.name: v.valueReference for v in md.modelVariables}
+        self.types = {v.name: v.type for v in md.modelVariables}
+        self.messages = []
+        if version == 2:
+            from fmpy.fmi2 import FMU2Slave as S
+        else:
+            from fmpy.fmi3 import FMU3Slave as S
+        self.s = S(guid=md.guid, unzipDirectory=extract(path),
+                   modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+        if version == 2:
+            import ctypes
+
+            from fmpy.fmi2 import (calloc, fmi2CallbackAllocateMemoryTYPE,
+                                   fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
+                                   fmi2CallbackLoggerTYPE, free)
+            from fmpy.logging import addLoggerProxy
+
+            def log(env, instance, status, category, message):
+                self.messages.append(message.decode(errors="replace"))
+            cb = fmi2CallbackFunctions()
+            cb.logger = fmi2CallbackLoggerTYPE(log)
+            cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+            cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+            addLoggerProxy(ctypes.byref(cb))
+            self._keep = (cb, log)
+            self.s.instantiate(callbacks=cb)
+        else:
+            def log(env, status, category, message):
+                self.messages.append(message.decode(errors="replace"))
+            self._keep = log
+            self.s.instantiate(logMessage=log)
+        self.t = 0.0
+        self.set(**params)
+
+    def initialize(self, **inputs):
+        if self.version == 2:
+            self.s.setupExperiment(startTime=0.0)
+            self.s.enterInitializationMode()
+        else:
+            self.s.enterInitializationMode(startTime=0.0)
+        self.set(**inputs)
+        self.s.exitInitializationMode()
+        return self
+
+    def set(self, **values):
+        for name, v in values.items():
+            if name in INTEGERS:
+                if self.version == 2:
+                    self.s.setInteger([self.vr[name]], [int(v)])
+                elif self.types[name] == "Int32":
+                    self.s.setInt32([self.vr[name]], [int(v)])
+                else:
+                    self.s.setInt64([self.vr[name]], [int(v)])
+            else:
+                (self.s.setReal if self.version == 2 else self.s.setFloat64)([self.vr[name]], [float(v)])
+
+    def get(self, *names):
+        out = []
+        for n in names:
+            if n == "contactState":
+                out.append((self.s.getInteger if self.version == 2 else self.s.getInt32)([self.vr[n]])[0])
+            else:
+                out.append((self.s.getReal if self.version == 2 else self.s.getFloat64)([self.vr[n]])[0])
+        return out if len(out) > 1 else out[0]
+
+    def step(self, h=1e-3):
+        self.s.doStep(self.t, h)
+        self.t += h
+
+    def move(self, h=1e-3, **inputs):
+        self.set(**inputs)
+        self.step(h)
+
+    def derivative(self, unknowns, knowns, seed):
+        u = [self.vr[n] for n in unknowns]
+        k = [self.vr[n] for n in knowns]
+        if self.version == 2:
+            return list(self.s.getDirectionalDerivative(u, k, seed))
+        return list(self.s.getDirectionalDerivative(u, k, seed))
+
+    def close(self):
+        try:
+            self.s.terminate()
+        finally:
+            self.s.freeInstance()
+
+
+@pytest.fixture(params=[2, 3], ids=["fmi2", "fmi3"])
+def version(request):
+    return request.param
+
+
+@pytest.fixture
+def make(version):
+    made = []
+
+    def _make(point=False, **params):
+        s = Slave(point_fmu(version) if point else patch_fmu(version), version,
+                  name=f"s{len(made)}", **params)
+        made.append(s)
+        return s
+
+    yield _make
+    for s in made:
+        s.close()
+
+
+OUT = ("T1", "T2", "dissipatedEnergy")
+
+
+def _bits(x):
+    return np.float64(x).tobytes()
+
+
+# -- one cell is the point ---------------------------------------------------------
+
+
+@pytest.mark.parametrize("rule", ["associated", "coupled", "eq20"])
+def test_one_cell_is_the_point_fmu_bit_for_bit(make, rule):
+    """n1 = n2 = 1: the cell sits at the centre, carries all of N and eps:
+    every step's T1, T2, dissipatedEnergy are the point FMU's, bit for bit
+    (the contact state 2, slip, reads 3, every pressed cell slips)."""
+    params = dict(AGED, slidingRule=RULES[rule])
+    patch = make(n1=1, n2=1, length=0.05, width=0.02, **params).initialize(u1=0.001, u2=-0.002, N=18.0)
+    point = make(point=True, **params).initialize(u1=0.001, u2=-0.002, N=18.0)
+    rng = np.random.default_rng(25)
+    u = np.array([0.001, -0.002])
+    for k in range(300):
+        u = u + rng.normal(scale=2e-4, size=2)
+        N = 18.0 if k % 50 < 45 else -1.0
+        theta = rng.normal(scale=0.3)   # turns the body about the cell's centre: no effect
+        patch.move(u1=u[0], u2=u[1], N=N, theta=theta)
+        point.move(u1=u[0], u2=u[1], N=N)
+        for name in OUT:
+            assert _bits(patch.get(name)) == _bits(point.get(name)), (k, name)
+        state = point.get("contactState")
+        assert patch.get("contactState") == (3 if state == 2 else state)
+        assert patch.get("Mz") == 0.0
+
+
+# -- translation ---------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("rule", ["associated", "coupled"])
+@pytest.mark.parametrize("grid", [(2, 3), (7, 4)])
+def test_uniform_translation_is_the_point_law_for_any_grid(make, rule, grid):
+    """Uniform pressure, theta = 0: every cell is the point law with N and eps
+    scaled by its share, so T is the point's (homogeneity, to rounding) and
+    Mz = 0 by symmetry."""
+    params = dict(AGED, slidingRule=RULES[rule])
+    patch = make(n1=grid[0], n2=grid[1], length=0.08, width=0.03, **params).initialize(N=18.0)
+    point = make(point=True, **params).initialize(N=18.0)
+    slid = False
+    for k in range(200):
+        u1, u2 = 2e-5 * k, 1e-5 * k * math.sin(0.05 * k)
+        patch.move(u1=u1, u2=u2, N=18.0)
+        point.move(u1=u1, u2=u2, N=18.0)
+        T = np.array(point.get("T1", "T2"))
+        assert np.array(patch.get("T1", "T2")) == pytest.approx(T, rel=1e-13, abs=1e-13 * 18.0)
+        assert patch.get("dissipatedEnergy") == pytest.approx(point.get("dissipatedEnergy"),
+                                                              rel=1e-12, abs=1e-18)
+        assert abs(patch.get("Mz")) <= 1e-14 * 18.0 * 0.08
+        state = point.get("contactState")
+        assert patch.get("contactState") == (3 if state == 2 else state)
+        assert patch.get("slipFraction") == (1.0 if state == 2 else 0.0)
+        slid |= state == 2
+    assert slid
+
+
+# -- rotation ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("grid", [(1, 1), (2, 2), (5, 3), (16, 8)])
+def test_stick_in_rotation_is_minus_k_sin_theta_with_the_grids_stiffness(make, grid):
+    """Isotropic eps, stuck: Mz = -k sin(theta) exactly with the grid's exact
+    sum k (closed_forms.patch), T = 0; the grid's k tends to the
+    continuum's eps (L^2 + W^2)/12 as 1 - O(1/n^2)."""
+    L, W, eps = 0.08, 0.05, 2e4
+    patch = make(n1=grid[0], n2=grid[1], length=L, width=W, mu1=0.5, mu2=0.5, eps1=eps, eps2=eps,
+                 alpha=0.3, beta=0.0).initialize(N=100.0)
+    k = cp.torsional_stiffness_grid(eps, eps, 0.0, L, W, *grid)
+    for theta in (1e-4, -3e-4, 2e-3):
+        patch.move(theta=theta, N=100.0)
+        assert patch.get("contactState") == (1 if grid != (1, 1) else 1)
+        assert patch.get("Mz") == pytest.approx(cp.stick_rotation_torque(eps, L, W, theta, grid),
+                                                rel=1e-12)
+        assert patch.get("Mz") == pytest.approx(-k * math.sin(theta), rel=1e-12)
+        assert abs(patch.get("T1")) < 1e-12 * eps * L * abs(theta)
+    # the derivative at the stuck state is -k cos(theta) (the tangent, not a difference)
+    d = patch.derivative(["Mz"], ["theta"], [1.0])[0]
+    assert d == pytest.approx(-k * math.cos(2e-3), rel=1e-12)
+    k_cont = cp.torsional_stiffness(eps, eps, 0.0, L, W)
+    assert k == pytest.approx(k_cont * (1 - (L**2 / grid[0]**2 + W**2 / grid[1]**2) / (L**2 + W**2)),
+                              rel=1e-13)
+
+
+def _full_slip(make, grid, rule, mu, eps, L, W, N, p=(0.0, 0.0), beta=0.0, alpha=0.0):
+    """T1, T2, Mz of one step turning the body by 1e-9 rad from rest with a
+    stiffness so high that every cell slides (rigid-plastic: the cell's force
+    is the law's steady force for its chord, which is the tangent up to
+    0.5e-9 rad; the elastic part mu N / (eps |r| 1e-9) is below 1e-8)."""
+    patch = make(n1=grid[0], n2=grid[1], length=L, width=W, mu1=mu[0], mu2=mu[1], eps1=eps[0],
+                 eps2=eps[1], alpha=alpha, beta=beta, slidingRule=RULES[rule]).initialize(
+        N=N, p1=p[0], p2=p[1])
+    patch.move(theta=1e-9, N=N, p1=p[0], p2=p[1])
+    centre = grid[0] % 2 == 1 and grid[1] % 2 == 1   # a centre cell does not move: it sticks
+    assert patch.get("contactState") == (2 if centre else 3)
+    assert patch.get("slipFraction") == pytest.approx(1 - centre / (grid[0] * grid[1]), rel=1e-15)
+    return np.array(patch.get("T1", "T2", "Mz"))
+
+
+def test_full_slip_of_a_square_reaches_the_continuum_at_the_midpoint_rate(make):
+    """Isotropic mu, uniform pressure, a square of side a: |Mz| tends to
+    mu N a (sqrt 2 + ln(1 + sqrt 2))/6, the error falling as 1/n^2."""
+    a, N, mu = 0.1, 50.0, 0.4
+    exact = cp.full_slip_torque_square(mu, N, a)
+    errs = []
+    for n in (4, 8, 16, 32):
+        T1, T2, Mz = _full_slip(make, (n, n), "associated", (mu, mu), (1e20, 1e20), a, a, N)
+        grid = cp.full_slip_rotation_grid(mu, mu, 1e20, 1e20, 0.0, 0.0, "associated", a, a, N, n, n)
+        assert Mz == pytest.approx(grid[2], rel=1e-9)
+        assert abs(T1) < 1e-12 * N and abs(T2) < 1e-12 * N
+        errs.append(-Mz - exact)
+    assert all(e < 0 for e in errs)   # the grid's arms are shorter
+    # second order: the ratio of successive errors climbs to 4 (the cells at
+    # the centre, where |r| has its kink, add a term of higher order)
+    ratios = [coarse / fine for coarse, fine in zip(errs, errs[1:])]
+    assert 3.7 < ratios[0] < ratios[1] < ratios[2] < 4.0
+    assert ratios[2] == pytest.approx(4, rel=0.02)
+
+
+@pytest.mark.parametrize("rule", ["associated", "coupled"])
+def test_full_slip_with_orthotropic_friction_is_the_quadrature(make, rule):
+    """Orthotropic mu and eps, linear pressure: each cell's force is the law's
+    steady sliding force, so the patch gives the midpoint sum of it to
+    rounding and tends to the quadrature over the area as the grid refines."""
+    mu, eps, alpha, beta = (0.4, 0.6), (1e20, 1.5e20), 0.4, 1.0
+    L, W, N, p = 0.2, 0.1, 2.0, (0.01, -0.005)
+    exact = np.array(cp.full_slip_rotation(*mu, *eps, alpha, beta, rule, L, W, N, *p))
+    errs = []
+    for n in (8, 16, 32):
+        got = _full_slip(make, (n, n), rule, mu, eps, L, W, N, p, beta=beta, alpha=alpha)
+        grid = np.array(cp.full_slip_rotation_grid(*mu, *eps, alpha, beta, rule, L, W, N, n, n, *p))
+        assert got == pytest.approx(grid, rel=1e-8, abs=1e-9 * N * L)
+        errs.append(abs(got[2] - exact[2]))
+    assert errs[0] > errs[1] > errs[2]
+    assert errs[1] / errs[2] == pytest.approx(4, rel=0.15)
+    assert errs[2] < 1e-3 * abs(exact[2])
