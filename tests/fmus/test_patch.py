@@ -196,6 +196,20 @@ def test_one_cell_is_the_point_fmu_bit_for_bit(make, rule):
         assert patch.get("Mz") == 0.0
 
 
+@pytest.mark.parametrize("s_start", [(0.0, 0.0), (3e-4, -1e-4)])
+def test_one_cell_with_an_explicit_initial_slip_is_the_point_fmu(make, s_start):
+    """initialSlip = explicit: the cell starts at slip (s1Start, s2Start), as
+    the point does; bit for bit on the first steps."""
+    params = dict(AGED, initialSlip=2, s1Start=s_start[0], s2Start=s_start[1])
+    patch = make(n1=1, n2=1, **params).initialize(u1=1e-3, u2=5e-4, N=18.0)
+    point = make(point=True, **params).initialize(u1=1e-3, u2=5e-4, N=18.0)
+    for k in range(5):
+        patch.move(u1=1e-3 + 1e-4 * k, u2=5e-4, N=18.0)
+        point.move(u1=1e-3 + 1e-4 * k, u2=5e-4, N=18.0)
+        assert [_bits(patch.get(n)) for n in OUT] == [_bits(point.get(n)) for n in OUT], k
+    assert patch.get("dissipatedEnergy") > 0
+
+
 # -- translation ---------------------------------------------------------------------
 
 
