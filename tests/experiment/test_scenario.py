@@ -19,6 +19,8 @@ BAD = [
     ("missing fmu", 'fmu = "nowhere/OrthotropicContact.fmu"\n', None, "fmu"),
     ("bad evidence", 'evidence = "hearsay"\n', "[paper]", "paper.evidence"),
     ("unknown calibration input", 'calibrated_on = ["phi_deg"]\n', "[paper]", "paper.calibrated_on"),
+    ("unknown closed form", 'closed_form = "eq99"\n', "[geometry]", "geometry.closed_form"),
+    ("closed form of another rule", 'closed_form = "eq31"\n', "[geometry]", "geometry.closed_form"),
 ]
 
 
@@ -91,3 +93,32 @@ def test_load_in_process_names_the_file_and_key(tmp_path):
     with pytest.raises(ScenarioError) as e:
         load(f)
     assert str(e.value).startswith(f"{f}: law.mu3: expected ") and "\n" not in str(e.value)
+
+
+@pytest.mark.parametrize("form,edit,says", [
+    ("eq99", None, "one of 'general', 'eq11', 'eq31', 'eq33', 'eq25', 'mat'"),  # the table's names
+    ("eq25", ("beta_offset_deg = 0.0", "beta_offset_deg = 45.0"), "0 or 90"),  # Case 4/5's axes only
+    ("eq33", None, "mu1 = mu2"),                                            # Case 4's law has mu1 != mu2
+    ("mat", None, "= 90"),                                                  # Case 4's axes are not the mat's
+])
+def test_a_closed_form_is_one_the_table_holds_for_the_law_and_axes(tmp_path, form, edit, says):
+    """geometry.closed_form names a form of closed_forms.FORMS that holds
+    for the scenario's law and axes, refused at load (before any run)."""
+    text = (SCEN / "case4.toml").read_text().replace('closed_form = "eq25"', f'closed_form = "{form}"')
+    if edit:
+        text = text.replace(*edit)
+    f = tmp_path / "c.toml"
+    f.write_text(text)
+    with pytest.raises(ScenarioError, match="geometry.closed_form") as e:
+        load(f)
+    assert says in str(e.value) and str(f) in str(e.value)
+
+
+def test_a_closed_form_refused_at_axes_given_in_radians_names_the_slip(tmp_path):
+    text = (SCEN / "mat_aged.toml").read_text()
+    assert "alpha_offset_deg = 90.0" in text
+    (tmp_path / "s.toml").write_text(text.replace("alpha_offset_deg = 90.0", "alpha_offset_deg = 1.5708"))
+    one_error_line(run(["run", "s.toml", "--out", "o"], tmp_path), "s.toml: geometry.closed_form: expected",
+                   "mat needs beta_offset_deg - alpha_offset_deg = 90", "got 'mat'; geometry.alpha_offset_deg "
+                   "= 1.5708: looks like pi/2 in radians")
+    assert not (tmp_path / "o").exists()

@@ -15,6 +15,8 @@ import math
 
 import numpy as np
 
+from .named import named
+
 G_STANDARD = 9.806  # m/s^2, the paper's value
 
 
@@ -87,6 +89,15 @@ def steady_phi_deg(mu1, mu2, eps1, eps2, alpha, beta, rule="coupled") -> float:
     return math.degrees(math.atan(steady_tan_phi(mu1, mu2, eps1, eps2, alpha, beta, rule)))
 
 
+def of_law(form, law, alpha, beta, *rest):
+    """form(mu1, mu2, eps1, eps2, alpha, beta, rule, *rest) of a law (anything
+    with those attributes but the angles: a ContactParams) at the axes alpha,
+    beta [rad]: the one place that spreads a law over the closed forms'
+    arguments (steady_tan_phi, steady_phi_deg, slip_force_tensor and the
+    strip's forms of closed_forms.rig take them in this order)."""
+    return form(law.mu1, law.mu2, law.eps1, law.eps2, alpha, beta, law.rule, *rest)
+
+
 # -- Case-specific forms ---------------------------------------------------------
 
 def eq11_tan_phi(mu1, mu2, a):
@@ -144,6 +155,62 @@ def eq11_extremum(mu1, mu2):
     return math.atan(mu2 / mu1), math.atan((mu2**2 - mu1**2) / (2 * mu1 * mu2))
 
 
+# -- The forms a scenario names (geometry.closed_form; closed_forms.named) ----------
+#
+# Each is f(law, alpha, beta) -> tan(phi) for numbers and arrays of angles
+# alike, with the law and axes it holds for.
+
+def _implicit(law) -> str | None:
+    return None if law.rule != "associated" else "an implicit rule (coupled or eq20), not 'associated'"
+
+
+def _case_shift(beta_minus_alpha_deg, cases) -> np.ndarray:
+    """Whether beta - alpha [deg] is one of `cases` (0, 90) modulo 180 deg."""
+    d = np.mod(beta_minus_alpha_deg, 180.0)
+    return np.any([np.minimum(np.abs(d - c), 180.0 - np.abs(d - c)) < 1e-9 for c in cases], axis=0)
+
+
+@named("general", "eq. (10) or (23) from the tensors themselves: any law, any axes")
+def general_form(law, alpha, beta):
+    return of_law(steady_tan_phi, law, alpha, beta)
+
+
+@named("eq11", "Case 1, orthotropic Coulomb friction: eq. (11) at a = beta",
+       refusal=lambda law, shift: None if law.rule == "associated" else
+       f"the associated rule, not {law.rule!r}")
+def eq11_form(law, alpha, beta):
+    return eq11_tan_phi(law.mu1, law.mu2, beta)
+
+
+@named("eq31", "Case 2, isotropic adhesion (eps1 = eps2): eq. (31) at b = beta",
+       refusal=lambda law, shift: _implicit(law) or (
+           None if math.isclose(law.eps1, law.eps2, rel_tol=1e-9) else "eps1 = eps2"))
+def eq31_form(law, alpha, beta):
+    return eq31_tan_phi(law.mu1, law.mu2, beta)
+
+
+@named("eq33", "Case 3, isotropic friction (mu1 = mu2): eq. (33) at a = alpha",
+       refusal=lambda law, shift: _implicit(law) or (
+           None if math.isclose(law.mu1, law.mu2, rel_tol=1e-9) else "mu1 = mu2"))
+def eq33_form(law, alpha, beta):
+    return eq33_tan_phi(law.eps1, law.eps2, alpha)
+
+
+@named("eq25", "Case 4 (beta = alpha) or 5 (beta = alpha + 90 deg): eq. (25) with the eigenvalues "
+       "of eq. (34) or (36)",
+       refusal=lambda law, shift: _implicit(law) or (
+           None if _case_shift(shift, (0.0, 90.0)) else "beta_offset_deg - alpha_offset_deg = 0 or 90"))
+def eq25_form(law, alpha, beta):
+    """nan where beta - alpha is neither Case 4's nor Case 5's."""
+    shift = np.degrees(np.subtract(beta, alpha))
+    case4, case5 = _case_shift(shift, (0.0,)), _case_shift(shift, (90.0,))
+    c4, c5 = eigen_ratio_case4(law.mu1, law.mu2, law.eps1, law.eps2), \
+        eigen_ratio_case5(law.mu1, law.mu2, law.eps1, law.eps2)
+    l1 = np.where(case4, c4[0], np.where(case5, c5[0], np.nan))
+    l2 = np.where(case4, c4[1], np.where(case5, c5[1], np.nan))
+    return eq25_tan_phi(l1, l2, alpha)
+
+
 # -- The experiment (section 2, 4.6) in the law's terms ------------------------------
 #
 # theta: the mat angle, direction of the ripples counterclockwise from X1.
@@ -167,6 +234,14 @@ def mat_tan_phi(r, theta):
     (counterclockwise convention)."""
     t = np.tan(theta)
     return (r**2 - 1) * t / (r**2 + t**2)
+
+
+@named("mat", "the paper's mat (friction axis 1 along the ripples, adhesion axis 1 across): "
+       "eq. (37)'s r = (eps1/eps2)(mu1/mu2) at the mat angle beta",
+       refusal=lambda law, shift: _implicit(law) or (
+           None if _case_shift(shift, (90.0,)) else "beta_offset_deg - alpha_offset_deg = 90 (mod 180)"))
+def mat_form(law, alpha, beta):
+    return mat_tan_phi(mat_ratio(law.eps1 / law.eps2, law.mu1, law.mu2), beta)
 
 
 def mat_extremum(r) -> tuple[float, float]:

@@ -3,8 +3,8 @@
 A scenario says what to simulate and, for the paper's analyses, which
 published numbers to compare with.  Every key is checked: an unknown key, a
 wrong type or an out-of-range value raises ScenarioError, whose message is
-one line naming the file, the key and what was expected.  See
-scenarios/README.md for the format."""
+one line naming the file, the key and what was expected.  The format:
+docs/reference/file-formats.md, "Scenario files"."""
 from __future__ import annotations
 
 import math
@@ -12,6 +12,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..closed_forms import FORMS
 from ..closed_forms.paper import G_STANDARD, isotropic_eps_ratio
 from ..errors import InputError
 from ..fmu.params import RULES, ContactParams
@@ -28,9 +29,6 @@ else:  # pragma: no cover
 
 
 KINDS = ("sweep", "step_study")
-
-
-CLOSED_FORMS = ("general", "eq11", "eq25", "eq31", "eq33", "mat")
 
 
 class ScenarioError(InputError):
@@ -76,7 +74,7 @@ SCHEMA = {
             "mu2": (POSITIVE, REQUIRED), "eps1": (POSITIVE, None), "eps2": (POSITIVE, REQUIRED),
             "eps_ratio": (_eps_ratio, None)},
     "geometry": {"alpha_offset_deg": (ANGLE_DEG, 0.0), "beta_offset_deg": (ANGLE_DEG, 0.0),
-                 "closed_form": (choice(CLOSED_FORMS), "general")},
+                 "closed_form": (choice(tuple(FORMS)), "general")},
     "sweep": {"start_deg": (ANGLE_DEG, 0.0), "stop_deg": (ANGLE_DEG, 90.0),
               "step_deg": (POSITIVE, 1.0), "refine_extremum": (boolean, True),
               "trajectory_angles_deg": (list_of(ANGLE_DEG), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0])},
@@ -198,12 +196,18 @@ def load(path) -> Scenario:
                 f"{fit_start:g} m, within {ELASTIC_LENGTHS:g} elastic lengths max(mu) N / min(eps) = "
                 f"{elastic:.3g} m of the start, where the block has not settled; set rig.travel_m >= "
                 f"{ELASTIC_LENGTHS * elastic / rig['fit_from']:.3g}"))
+    contact = ContactParams(law["mu1"], law["mu2"], float(eps1), float(law["eps2"]), rule=law["rule"])
+    geometry = AxisGeometry(float(geo["alpha_offset_deg"]), float(geo["beta_offset_deg"]))
+    refusal = FORMS[geo["closed_form"]].refusal(contact, geometry.beta_minus_alpha_deg)
+    if refusal is not None:
+        # a warning about the axes (radians in a degree key?) is the likely cause: say it too
+        said = "".join(f"; {w[len(str(path)) + 2:]}" for w in warnings if w.startswith(f"{path}: geometry."))
+        raise ScenarioError(str(ScenarioError(
+            path, "geometry.closed_form", f"a closed form that holds for this law and these axes "
+            f"({geo['closed_form']} needs {refusal}; \"general\" holds for any)", geo["closed_form"])) + said)
     return Scenario(
         path=path, name=top["name"], title=top["title"] or top["name"], kind=top["kind"],
-        description=top["description"],
-        law=ContactParams(law["mu1"], law["mu2"], float(eps1), float(law["eps2"]), 0.0, 0.0, law["rule"]),
-        geometry=AxisGeometry(float(geo["alpha_offset_deg"]), float(geo["beta_offset_deg"])),
-        closed_form=geo["closed_form"],
+        description=top["description"], law=contact, geometry=geometry, closed_form=geo["closed_form"],
         rig=Rig(mass_kg=rig["mass_kg"], g=rig["g"], f_int_N=rig["f_int_N"],
                 velocity_m_s=rig["velocity_m_s"], travel_m=rig["travel_m"], mu_strip=rig["mu_strip"],
                 c_strip=rig["c_strip"],

@@ -1,6 +1,6 @@
 """A scenario's sweep over the mat angle (with its extremum refined on the rig
 itself and the trajectories recorded) and its step-size study; the closed
-form the scenario names, at its angles."""
+form the scenario names (closed_forms.FORMS), at its angles."""
 from __future__ import annotations
 
 import math
@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import closed_forms as cf
-from ..experiment.scenario import Scenario, ScenarioError
+from ..experiment.scenario import Scenario
 from ..fmu.contact import ContactFMU
 from ..rig.checks import RunChecks, check_runs, warning_line
 from ..rig.harness import run
@@ -20,63 +20,25 @@ from .pool import Heartbeat, default_workers
 # -- closed form for a scenario --------------------------------------------------
 
 
+def scenario_form(sc: Scenario, rule: str | None = None) -> cf.NamedForm:
+    """The closed form the scenario names (closed_forms.FORMS), or the
+    general one for another rule than the law's."""
+    return cf.FORMS["general" if rule not in (None, sc.law.rule) else sc.closed_form]
+
+
 def closed_form_phi_deg(sc: Scenario, angle_deg: float, rule: str | None = None) -> float:
-    """The steady trajectory angle [deg] the paper's closed form predicts for
-    the scenario at the mat angle.  'general' is eq. (10)/(23) from the
-    tensors themselves; the named forms are the paper's case formulas."""
+    """The steady trajectory angle [deg] the closed form predicts for the
+    scenario at the mat angle [deg]."""
     p = sc.params_at(angle_deg, rule)
-    form = sc.closed_form
-    if form == "general" or rule not in (None, sc.law.rule):
-        return cf.steady_phi_deg(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, p.rule)
-    if form == "eq11":
-        return math.degrees(math.atan(cf.eq11_tan_phi(p.mu1, p.mu2, p.beta)))
-    if form == "eq31":
-        return math.degrees(math.atan(cf.eq31_tan_phi(p.mu1, p.mu2, p.beta)))
-    if form == "eq33":
-        return math.degrees(math.atan(cf.eq33_tan_phi(p.eps1, p.eps2, p.alpha)))
-    if form == "eq25":
-        l1, l2 = _eq25_eigenvalues(sc)
-        return math.degrees(math.atan(cf.eq25_tan_phi(l1, l2, p.alpha)))
-    if form == "mat":
-        r = cf.mat_ratio(p.eps1 / p.eps2, p.mu1, p.mu2)
-        return math.degrees(math.atan(cf.mat_tan_phi(r, math.radians(angle_deg))))
-    raise ValueError(form)
+    return scenario_form(sc, rule).phi_deg(p, p.alpha, p.beta)
 
 
 def closed_form_phi_deg_array(sc: Scenario, angles_deg, rule: str | None = None) -> np.ndarray:
     """closed_form_phi_deg over an array of mat angles [deg] at once (the
     fine scans of the report: tens of thousands of points)."""
-    a = np.radians(np.asarray(angles_deg, dtype=float))
-    law, form = sc.law, sc.closed_form
     alpha, beta = sc.geometry.axes(np.asarray(angles_deg, dtype=float))
-    if form == "general" or rule not in (None, law.rule):
-        t = cf.steady_tan_phi(law.mu1, law.mu2, law.eps1, law.eps2, alpha, beta, rule or law.rule)
-    elif form == "eq11":
-        t = cf.eq11_tan_phi(law.mu1, law.mu2, beta)
-    elif form == "eq31":
-        t = cf.eq31_tan_phi(law.mu1, law.mu2, beta)
-    elif form == "eq33":
-        t = cf.eq33_tan_phi(law.eps1, law.eps2, alpha)
-    elif form == "eq25":
-        t = cf.eq25_tan_phi(*_eq25_eigenvalues(sc), alpha)
-    elif form == "mat":
-        t = cf.mat_tan_phi(cf.mat_ratio(law.eps1 / law.eps2, law.mu1, law.mu2), a)
-    else:
-        raise ValueError(form)
-    return np.degrees(np.arctan(t))
-
-
-def _eq25_eigenvalues(sc: Scenario) -> tuple[float, float]:
-    """(lambda1, lambda2) of eq. (25) for the scenario's axis geometry: Case 4
-    (beta = alpha) or Case 5 (beta = alpha + 90 deg)."""
-    law = sc.law
-    shift = sc.geometry.beta_minus_alpha_deg % 180.0
-    if abs(shift) < 1e-9 or abs(shift - 180.0) < 1e-9:
-        return cf.eigen_ratio_case4(law.mu1, law.mu2, law.eps1, law.eps2)
-    if abs(shift - 90.0) < 1e-9:
-        return cf.eigen_ratio_case5(law.mu1, law.mu2, law.eps1, law.eps2)
-    raise ScenarioError(sc.path, "geometry.closed_form",
-                        "eq25 only with beta_offset_deg - alpha_offset_deg = 0 or 90")
+    law = sc.law if rule is None else sc.law.replace(rule=rule)
+    return scenario_form(sc, rule).phi_deg_array(law, alpha, beta)
 
 
 # -- sweeps ------------------------------------------------------------------------
