@@ -21,7 +21,6 @@ from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu, locked_folder
-from ..fmu.params import RULES
 from ..fmu.start_values import write_with_start_values
 from .scenario import Scenario
 
@@ -100,10 +99,7 @@ def rig_values(sc: Scenario) -> dict:
 def contact_values(sc: Scenario, angle_deg: float) -> dict:
     """The OrthotropicContact FMU's parameters at the mat angle [deg]
     (floats; slidingRule an int)."""
-    p = sc.params_at(angle_deg)
-    values = {"mu1": p.mu1, "mu2": p.mu2, "eps1": p.eps1, "eps2": p.eps2, "alpha": p.alpha,
-              "beta": p.beta}
-    return {**{k: float(v) for k, v in values.items()}, "slidingRule": RULES[p.rule]}
+    return sc.params_at(angle_deg).fmu_values()
 
 
 def _split(values: dict):

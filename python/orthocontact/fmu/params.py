@@ -6,7 +6,7 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-from .variables import contact
+from .variables import contact, law_parameters
 
 # The sliding rules' names and the numbers the FMU's slidingRule takes (the
 # table's enumeration SlidingRule).
@@ -73,3 +73,10 @@ class ContactParams:
 
     def replace(self, **kw) -> "ContactParams":
         return dataclasses.replace(self, **kw)
+
+    def fmu_values(self) -> dict:
+        """The contact FMU's parameters by the manifest's names: the law's in
+        the table's order (floats: angles in rad, stiffnesses in N/m) and
+        slidingRule (the rule's number)."""
+        return {**{name: float(getattr(self, name)) for name in law_parameters()},
+                "slidingRule": RULES[self.rule]}

@@ -27,7 +27,7 @@ from ..experiment.rig_setup import RigSetup, load_rig_toml
 from ..experiment.scenario import Scenario, load
 from ..experiment.ssp import parameter_values_file, write_ssp
 from ..fmu.files import MODEL_IDENTIFIER, find_fmu
-from ..fmu.params import RULES, ContactParams
+from ..fmu.params import ContactParams
 from ..fmu.start_values import write_with_start_values
 from .identified import Estimate, IdentifiedFile, NotIdentified
 from .identified_file import read_identified
@@ -94,8 +94,7 @@ def contact_start_values(cal: Calibration, angle_deg: float) -> dict:
         p = cal.rig.params_at(cal.law, angle_deg)
     except ValueError as e:
         raise InputError(f"--angle {angle_deg:g}: {e}") from None
-    return {"mu1": p.mu1, "mu2": p.mu2, "eps1": p.eps1, "eps2": p.eps2, "alpha": p.alpha,
-            "beta": p.beta, "slidingRule": RULES[p.rule]}
+    return p.fmu_values()
 
 
 def predicted_phi_deg(cal: Calibration, angle_deg: float, rig=None) -> float:
@@ -103,8 +102,8 @@ def predicted_phi_deg(cal: Calibration, angle_deg: float, rig=None) -> float:
     in the rig (the data's unless given), strip terms included."""
     rig = rig or cal.rig.harness(c_strip=cal.c_strip)
     p = cal.rig.params_at(cal.law, angle_deg)
-    t = cf.steady_tan_phi_with_strip(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, p.rule,
-                                     rig.mu_strip, rig.c_strip, rig.velocity_m_s, rig.mass_kg * rig.g)
+    t = cf.of_law(cf.steady_tan_phi_with_strip, p, p.alpha, p.beta, rig.mu_strip, rig.c_strip,
+                  rig.velocity_m_s, rig.mass_kg * rig.g)
     return math.degrees(math.atan(t))
 
 

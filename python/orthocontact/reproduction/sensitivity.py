@@ -54,12 +54,11 @@ def phi_closed_deg(sc: Scenario, angles_deg, mu_strip=0.0, c_strip=0.0, velocity
                    eps_ratio=None) -> np.ndarray:
     """Steady phi [deg, counterclockwise] at the scenario's angles with the
     strip terms, optionally with another eps1/eps2."""
-    law = sc.law
-    eps1 = law.eps1 if eps_ratio is None else eps_ratio * law.eps2
+    law = sc.law if eps_ratio is None else sc.law.replace(eps1=eps_ratio * sc.law.eps2)
     alpha, beta = sc.geometry.axes(np.asarray(angles_deg, dtype=float))
     v = sc.rig.velocity_m_s if velocity is None else velocity
-    t = cf.steady_tan_phi_with_strip_array(law.mu1, law.mu2, eps1, law.eps2, alpha, beta, law.rule,
-                                           mu_strip, c_strip, v, sc.rig.normal_force)
+    t = cf.of_law(cf.steady_tan_phi_with_strip_array, law, alpha, beta, mu_strip, c_strip, v,
+                  sc.rig.normal_force)
     return np.degrees(np.arctan(t))
 
 

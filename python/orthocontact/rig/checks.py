@@ -69,12 +69,13 @@ def steady_phi_deg(tasks) -> np.ndarray:
     for i, (p, r) in enumerate(tasks):
         if p.rule == "eq20":
             continue
-        key = (p.mu1, p.mu2, p.eps1, p.eps2, p.rule, r.mu_strip, r.c_strip, r.velocity_m_s, r.normal_force)
+        # runs that differ only in their axes share one call over arrays of them
+        key = (p.replace(alpha=0.0, beta=0.0), r.mu_strip, r.c_strip, r.velocity_m_s, r.normal_force)
         groups.setdefault(key, []).append(i)
-    for (mu1, mu2, eps1, eps2, rule, mu_s, c_s, v, N), idx in groups.items():
+    for (law, *strip), idx in groups.items():
         alpha = np.array([tasks[i][0].alpha for i in idx])
         beta = np.array([tasks[i][0].beta for i in idx])
-        t = cf.steady_tan_phi_with_strip_array(mu1, mu2, eps1, eps2, alpha, beta, rule, mu_s, c_s, v, N)
+        t = cf.of_law(cf.steady_tan_phi_with_strip_array, law, alpha, beta, *strip)
         out[idx] = np.degrees(np.arctan(t))
     return out
 
@@ -85,10 +86,9 @@ def settling_lengths(tasks) -> np.ndarray:
     out = np.full(len(tasks), np.nan)
     for i, (p, r) in enumerate(tasks):
         if r.mode == "dynamic":
-            out[i] = float(cf.settling_length_array(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta,
-                                                    "coupled" if p.rule == "eq20" else p.rule,
-                                                    r.mu_strip, r.c_strip, r.velocity_m_s,
-                                                    r.normal_force, r.mass_kg))
+            law = p.replace(rule="coupled") if p.rule == "eq20" else p
+            out[i] = float(cf.of_law(cf.settling_length_array, law, p.alpha, p.beta, r.mu_strip,
+                                     r.c_strip, r.velocity_m_s, r.normal_force, r.mass_kg))
     return out
 
 
