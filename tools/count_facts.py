@@ -2,8 +2,10 @@
 """Counts where facts of the code are typed by hand ("each fact once"):
 every place that spells out the law's six parameters together, maps
 the sliding rules to their numbers, lists the models, lists a model's
-sources, dispatches on the closed forms' names, or types an FMI function's
-name as a string in the glues.  CONTRIBUTING.md quotes its figures.
+sources, names the closed forms a scenario can name together (a list or a
+dispatch), or types an FMI function's name as a string in the glues.
+CONTRIBUTING.md quotes its figures; tests/contracts/test_facts.py holds the
+quote to the count and the counter to the rules below.
 
     python3 tools/count_facts.py            the table of counts
     python3 tools/count_facts.py --places   and where each place is
@@ -13,9 +15,14 @@ does).  The six parameters are counted in the order mu1, mu2, eps1, eps2,
 alpha, beta, each at most GAP lines after the one before, as names with any
 prefix or suffix of other characters than letters and digits (p.mu1,
 OC_VR_mu1, "mu1", alpha_deg).  A place is counted ("code") unless it is in
-one of the categories set aside: the variable tables (their one home), the
-closed forms (formulas of the physics), tests, the independent references
-(benchmarks/peer/, tools/rig_reference.py) and data (scenario files)."""
+one of the categories set aside: the variable tables (their one home:
+fmu_src/<model>_variables.h), the closed forms (formulas of the physics,
+closed_forms.paper.of_law the one place that spreads a law over their
+arguments), tests, the independent references (benchmarks/peer/,
+tools/rig_reference.py and tools/make_recordings.py, which import nothing of
+the package: the test checks) and data (scenario files).  The closed forms'
+names are counted as quoted strings ("eq11", "mat", ...): two or more, each
+within GAP_FORMS lines of the one before, make a place."""
 from __future__ import annotations
 
 import io
@@ -31,10 +38,10 @@ SIX = ("mu1", "mu2", "eps1", "eps2", "alpha", "beta")
 GAP = 3  # lines between two consecutive names of one place
 CODE = re.compile(r"\.(py|c|h|sh|toml|cmake)$|(^|/)(CMakeLists\.txt|Makefile)$")
 ASIDE = (  # (category, path pattern), first match wins; the rest is "code"
-    ("table", r"^fmu_src/(model|rig)_variables\.h$"),
+    ("table", r"^fmu_src/\w+_variables\.h$"),
     ("closed forms", r"^python/orthocontact/closed_forms/"),
     ("tests", r"^tests/"),
-    ("independent references", r"^benchmarks/peer/|^tools/rig_reference\.py$"),
+    ("independent references", r"^benchmarks/peer/|^tools/(rig_reference|make_recordings)\.py$"),
     ("data", r"^scenarios/"),
     ("this counter", r"^tools/count_facts\.py$"),
 )
@@ -139,9 +146,29 @@ RULES = [r"(?i)associated", r"(?i)coupled", r"(?i)eq20", r"\b[123]\b"]
 RULE_RANGE = [r"rule\s*[<>]=?\s*[13]\b|\b1, 2 or 3\b"]
 MODELS = [r"OrthotropicContact", r"CarriageBlock"]
 SOURCES = ([r"contact_law\.c", r"oc_model\.c"], [r"rig_model\.c", r"rig_core\.c"])
-FORMS = [r"eq11", r"eq31", r"eq33"]
+FORM_NAMES = ("general", "eq11", "eq25", "eq31", "eq33", "mat")
+GAP_FORMS = 4   # lines between two consecutive names of one place
 FMI_LITERAL = re.compile(r'"fmi[23][A-Z][A-Za-z0-9]*')
 GLUES = ("fmu_src/fmi2_glue.c", "fmu_src/fmi3_glue.c")
+
+
+def form_places(lines: list[str]) -> list[tuple[int, int]]:
+    """Places where two or more of the closed forms' names stand as quoted
+    strings, each within GAP_FORMS lines of the one before (a list, a choice or
+    a dispatch)."""
+    pat = re.compile(r"[\"'](" + "|".join(FORM_NAMES) + r")[\"']")
+    hits = [(i, m.group(1)) for i, line in enumerate(lines) for m in pat.finditer(line)]
+    places, k = [], 0
+    while k < len(hits):
+        first, names, last, j = hits[k][0], {hits[k][1]}, hits[k][0], k + 1
+        while j < len(hits) and hits[j][0] - last <= GAP_FORMS:
+            names.add(hits[j][1])
+            last = hits[j][0]
+            j += 1
+        if len(names) >= 2:
+            places.append((first + 1, last + 1))
+        k = j
+    return places
 
 
 def count() -> dict[str, list[tuple[str, int, int]]]:
@@ -158,7 +185,7 @@ def count() -> dict[str, list[tuple[str, int, int]]]:
             found["models"].append((path, a, b))
         for a, b in sorted(set(window_places(lines, SOURCES[0], 4) + window_places(lines, SOURCES[1], 4))):
             found["sources"].append((path, a, b))
-        for a, b in window_places(lines, FORMS, 12):
+        for a, b in form_places(lines):
             found["forms"].append((path, a, b))
         if path in GLUES:
             for i, line in enumerate(lines):
@@ -174,7 +201,7 @@ TITLES = {
     "rules": "places mapping the sliding rules to their numbers",
     "models": "places listing the models (OrthotropicContact with CarriageBlock)",
     "sources": "places listing a model's sources (contact_law.c with oc_model.c, rig_model.c with rig_core.c)",
-    "forms": "places naming the closed forms eq11, eq31, eq33 together (dispatch)",
+    "forms": "places naming the closed forms' names together (a list or a dispatch)",
     "fmi": "FMI function names typed as string literals in the two glues",
 }
 
