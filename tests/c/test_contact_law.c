@@ -750,7 +750,7 @@ static void test_eq20_strong_friction_contrast(void) {
 }
 
 /* Power-of-two units give the same bits, wherever the outputs are
- * normal numbers (the distribution of tests/test_scale_properties.py, and
+ * normal numbers (the distribution of tests/fmus/test_scale_properties.py, and
  * the corner the fuzzer found: mu2 ~ 1e-10, k = 2^-455). */
 static int subnormal(double x) { return x != 0 && fabs(x) < DBL_MIN; }
 static void test_power_of_two_units(void) {
