@@ -17,8 +17,7 @@ def test_readme_report_and_scenarios_link_the_model_notes(tmp_path):
     assert "explanation/model-notes.md" in (ROOT / "docs" / "index.md").read_text()
     assert where in (ROOT / "scenarios" / "README.md").read_text()
     assert where in report.reproduction_report(tmp_path, [], [], 0.0)
-    # the packaged scenarios keep their wording until the next reinstall: the
-    # path they name must lead to the notes
+    # the path a scenario's description names leads to the notes
     named = re.search(r"docs/[\w/-]+\.md", (ROOT / "scenarios" / "mat_new.toml").read_text()).group(0)
     assert (ROOT / named).is_file() and "model-notes.md" in (ROOT / named).read_text() + named
     text = NOTES.read_text()
