@@ -165,9 +165,12 @@ def test_on_a_real_scheduler_with_a_worker_killed_mid_run(identified, tmp_path):
         assert workers[0].wait(timeout=10) == -signal.SIGKILL
         assert f"Dask cluster at {address}" in out
         # The killed worker had unpacked the FMU into its own temporary folder
-        # (a SIGKILL leaves it); the FMU reached it as bytes.
-        assert list((tmp_path / "w0").glob("tmp*/binaries")), os.listdir(tmp_path / "w0")
-        assert not list((tmp_path / "w0").glob("orthocontact-fmu-*"))  # the archive: removed at once
+        # (its process's orthocontact-* folder, which a SIGKILL leaves for the
+        # next command to remove); the FMU reached it as bytes.
+        w0 = tmp_path / "w0"
+        assert list(w0.glob("orthocontact-*/fmu-*/binaries")), [str(p) for p in w0.rglob("*")][:20]
+        # the archive itself (fmu-<digest>-<pid>-*/<name>.fmu): removed at once
+        assert not list(w0.glob("orthocontact-*/fmu-*/*.fmu"))
     finally:
         _stop(procs)
     # The other worker, if it stopped on SIGTERM within _stop's 20 s (on a busy
