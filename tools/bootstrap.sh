@@ -80,7 +80,7 @@ if [ ${#build_reqs[@]} -gt 0 ]; then
   echo "bootstrap: build requirements into .venv (${build_reqs[*]}; downloaded the first time)"
   .venv/bin/python -m pip install -q --disable-pip-version-check "${build_reqs[@]}"
 fi
-echo "bootstrap: building both models' FMUs (FMI 2.0 and 3.0) and installing orthocontact:" \
+echo "bootstrap: building every model's FMUs (FMI 2.0 and 3.0) and installing orthocontact:" \
      "zig cross-compiles the binaries for 5 platforms; the first time zig also builds each" \
      "platform's C runtime (cached in ~/.cache/zig), which takes minutes: the Windows binaries" \
      "come last, after up to 2-3 minutes without a line. Later builds redo only what changed."

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `make fmus`: both models' FMUs (OrthotropicContact and CarriageBlock, FMI 2.0
+# `make fmus`: every model's FMUs (OC_MODELS in CMakeLists.txt; FMI 2.0
 # and 3.0, binaries for five platforms) into dist/, with a C compiler, cmake
 # and a Python that has fmpy's FMI headers and Zig's C compiler: none of the
 # analysis stack (casadi, matplotlib, dask).  Uses .venv when it has both,

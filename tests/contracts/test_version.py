@@ -1,5 +1,5 @@
 """One version: the file VERSION is what the package's metadata,
-orthocontact.__version__, all four FMUs (their model descriptions and
+orthocontact.__version__, every model's FMUs (their model descriptions and
 documentation), the repository's copies of the descriptions, the cross-check
 folder and `orthocontact --version` say; and the GUID / instantiationToken
 changes whenever a model description does."""
@@ -13,10 +13,11 @@ from pathlib import Path
 from xml.etree import ElementTree
 
 from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.variables import models
 
 ROOT = Path(__file__).resolve().parents[2]
 VERSION = (ROOT / "VERSION").read_text().strip()
-MODELS = ("OrthotropicContact", "CarriageBlock")
+MODELS = tuple(models().values())
 
 
 def _attr(xml: str, name: str) -> str:

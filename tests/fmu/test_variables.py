@@ -15,7 +15,7 @@ def _number(text):
 
 
 @pytest.mark.parametrize("fmi_version", [2, 3])
-@pytest.mark.parametrize("role", ["contact", "rig"])
+@pytest.mark.parametrize("role", list(models()))
 def test_manifest_is_the_model_description(role, fmi_version):
     model = models()[role]
     md = read_model_description(str(find_fmu(fmi_version=fmi_version, model=model)))

@@ -74,9 +74,10 @@ def _version_text() -> str:
     model description states; an FMU of another version is named as such (a
     stale install), not passed over."""
     from .. import __version__
-    from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu, model_description
+    from ..fmu.files import find_fmu, model_description
+    from ..fmu.variables import models
     lines = [f"orthocontact {__version__}"]
-    for model in (MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER):
+    for model in models().values():
         for v in (2, 3):
             try:
                 path = find_fmu(fmi_version=v, model=model)
