@@ -1,0 +1,192 @@
+"""Access to the ContactPatch FMU (FMI 2.0 or 3.0 Co-Simulation) through
+fmpy: a rectangle length x width [m] of a rigid body on the textured surface,
+n1 x n2 cells each the law with its own slip (fmu_src/patch_variables.h).
+
+Units: displacement u [m] of the patch centre and rotation theta [rad] of
+the body relative to the surface; normal force N [N]; centre of pressure
+(p1, p2) [m] in body coordinates; outputs T1, T2 [N] and Mz [N m] (the
+surface's force and moment on the body at the patch centre, surface frame),
+dissipatedEnergy [J].
+
+Step semantics as the point FMU (fmu.contact): `set_inputs` computes every
+cell's step from the committed state without committing it, so a master can
+iterate on the pending result; `do_step` commits it."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .contact import INITIAL_SLIP, FMUError
+from .files import find_fmu, model_description, unzipped
+from .params import RULES, ContactParams
+
+PATCH_MODEL = "ContactPatch"
+INPUTS = ("u1", "u2", "theta", "N", "p1", "p2")
+OUTPUTS = ("T1", "T2", "Mz", "dissipatedEnergy", "slipFraction")
+
+
+@dataclass(frozen=True)
+class PatchGeometry:
+    """The patch: length along the body's axis 1, width along axis 2 [m];
+    n1 x n2 cells.  Invalid values raise ValueError (the FMU would refuse
+    them later, with less context)."""
+    length: float
+    width: float
+    n1: int = 8
+    n2: int = 8
+
+    def __post_init__(self):
+        for name in ("length", "width"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                raise ValueError(f"PatchGeometry: {name} [m] must be a finite number > 0, got {v!r}")
+        for name in ("n1", "n2"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or not 1 <= v <= 32:
+                raise ValueError(f"PatchGeometry: {name} must be an integer in 1..32 (the FMU's "
+                                 f"largest grid side), got {v!r}")
+
+
+class PatchFMU:
+    """One instance of the ContactPatch FMU, FMI 2.0 or 3.0."""
+
+    def __init__(self, fmu_path=None, instance_name: str = "patch", fmi_version: int = 2):
+        path = find_fmu(fmu_path, fmi_version, model=PATCH_MODEL)
+        self.path = path
+        md = model_description(path)
+        self.fmi_version = int(md.fmiVersion.split(".")[0])
+        if self.fmi_version != fmi_version:
+            raise ValueError(f"{path} is an FMI {self.fmi_version}.0 FMU, not {fmi_version}.0")
+        self.vr = {v.name: v.valueReference for v in md.modelVariables}
+        self.types = {v.name: v.type for v in md.modelVariables}
+        self.messages: list[str] = []
+        self.time = 0.0
+        self.initialized = False
+        if self.fmi_version == 2:
+            import ctypes
+
+            from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE,
+                                   fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
+                                   fmi2CallbackLoggerTYPE, free)
+            from fmpy.logging import addLoggerProxy
+
+            def log(env, instance, status, category, message):
+                self.messages.append(message.decode(errors="replace"))
+            cb = fmi2CallbackFunctions()
+            cb.logger = fmi2CallbackLoggerTYPE(log)
+            cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+            cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+            addLoggerProxy(ctypes.byref(cb))
+            self._callbacks = (cb, log)
+            self._slave = FMU2Slave(guid=md.guid, unzipDirectory=unzipped(path),
+                                    modelIdentifier=PATCH_MODEL, instanceName=instance_name)
+            self._slave.instantiate(callbacks=cb)
+            self._set_real, self._get_real = self._slave.setReal, self._slave.getReal
+        else:
+            from fmpy.fmi3 import FMU3Slave
+
+            def log(env, status, category, message):
+                self.messages.append(message.decode(errors="replace"))
+            self._callbacks = (log,)
+            self._slave = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(path),
+                                    modelIdentifier=PATCH_MODEL, instanceName=instance_name)
+            self._slave.instantiate(logMessage=log)
+            self._set_real, self._get_real = self._slave.setFloat64, self._slave.getFloat64
+        self._in_vr = [self.vr[n] for n in INPUTS]
+        self._out_vr = [self.vr[n] for n in OUTPUTS]
+
+    def _call(self, what: str, fn, *args):
+        """fmpy raises on an error status; the FMU's last logged line says why."""
+        try:
+            return fn(*args)
+        except Exception as e:
+            last = self.messages[-1] if self.messages else "(no message logged)"
+            raise FMUError(f"{what} failed: {last}") from e
+
+    def _set_integer(self, name: str, value: int):
+        vr = [self.vr[name]]
+        if self.fmi_version == 2:
+            self._call(f"setting {name}", self._slave.setInteger, vr, [int(value)])
+        elif self.types[name] == "Int32":
+            self._call(f"setting {name}", self._slave.setInt32, vr, [int(value)])
+        else:   # an enumeration: Int64 in FMI 3.0
+            self._call(f"setting {name}", self._slave.setInt64, vr, [int(value)])
+
+    def initialize(self, params: ContactParams, geometry: PatchGeometry,
+                   inputs: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
+                   centre_of_pressure: tuple[float, float] = (0.0, 0.0)):
+        """Sets the law's parameters and the patch's, the initial inputs
+        (u1 [m], u2 [m], theta [rad], N [N]) and enters step mode; every cell
+        starts unloaded where the inputs put it (initialSlip = atInputs)."""
+        if len(inputs) != 4:
+            raise ValueError(f"inputs must be (u1 [m], u2 [m], theta [rad], N [N]), got {inputs!r}")
+        values = {**{k: v for k, v in params.fmu_values().items() if k != "slidingRule"},
+                  "length": float(geometry.length), "width": float(geometry.width)}
+        self._call("setting parameters", self._set_real, [self.vr[n] for n in values],
+                   list(values.values()))
+        self._set_integer("slidingRule", RULES[params.rule])
+        self._set_integer("initialSlip", INITIAL_SLIP["atInputs"])
+        self._set_integer("n1", geometry.n1)
+        self._set_integer("n2", geometry.n2)
+        if self.fmi_version == 2:
+            self._call("setupExperiment", self._slave.setupExperiment)
+            self._call("enterInitializationMode", self._slave.enterInitializationMode)
+        else:
+            self._call("enterInitializationMode", self._slave.enterInitializationMode)
+        self.set_inputs(*inputs, *centre_of_pressure)
+        self._call("exitInitializationMode", self._slave.exitInitializationMode)
+        self.initialized = True
+
+    def set_inputs(self, u1: float, u2: float, theta: float, N: float, p1: float = 0.0,
+                   p2: float = 0.0):
+        """Displacement of the patch centre [m], rotation [rad], normal force
+        [N], centre of pressure [m]: the pending step, not committed."""
+        self._call(f"setting inputs (u1={u1}, u2={u2}, theta={theta}, N={N}, p1={p1}, p2={p2})",
+                   self._set_real, self._in_vr, [float(u1), float(u2), float(theta), float(N),
+                                                 float(p1), float(p2)])
+
+    def outputs(self) -> dict:
+        """T1, T2 [N], Mz [N m], dissipatedEnergy [J], slipFraction [-] and
+        contactState (0 open, 1 all stick, 2 partly slipping, 3 all slipping)
+        of the pending step."""
+        out = dict(zip(OUTPUTS, self._call("getting outputs", self._get_real, self._out_vr)))
+        get_int = self._slave.getInteger if self.fmi_version == 2 else self._slave.getInt32
+        out["contactState"] = self._call("getting contactState", get_int, [self.vr["contactState"]])[0]
+        return out
+
+    def load(self) -> tuple[float, float, float]:
+        """(T1, T2, Mz) [N, N, N m] of the pending step."""
+        return tuple(self._call("getting T1, T2, Mz", self._get_real, self._out_vr[:3]))
+
+    def derivative(self, known: str) -> tuple[float, float, float]:
+        """d(T1, T2, Mz)/d(known) of the pending step, known one of INPUTS
+        (the FMU's consistent tangent)."""
+        return tuple(self._call(f"getting d(T, Mz)/d{known}", self._slave.getDirectionalDerivative,
+                                self._out_vr[:3], [self.vr[known]], [1.0]))
+
+    def do_step(self, h: float):
+        """Commits the pending step; h [s] is the communication step size."""
+        self._call(f"doStep(t={self.time}, h={h})", self._slave.doStep, self.time, h)
+        self.time += h
+
+    def close(self):
+        if self._slave is not None:
+            if self.initialized:
+                try:
+                    self._slave.terminate()
+                except Exception:  # already terminated or in error: freeing is what matters
+                    pass
+            self._slave.freeInstance()
+            self._slave = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
