@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 FMI_DIR=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
 cmake -S . -B build/ctest-release -DOC_BUILD_TESTS=ON -DFMI_HEADERS_DIR="$FMI_DIR" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build/ctest-release -j2 --target bench_fmi2 bench_fmi3 bench_peer bench_master >/dev/null
+cmake --build build/ctest-release -j2 --target bench_fmi2 bench_fmi3 bench_peer bench_master bench_patch >/dev/null
 # The binaries `pip install .` ships (zig cc, the cross build) are what users
 # and `orthocontact uq` run: measured beside the host build's.
 SHIPPED=$(mktemp -d)
@@ -28,6 +28,8 @@ build/ctest-release/bench_fmi2
 build/ctest-release/bench_fmi3
 echo "== C: the compiled master's rig step against the contact's own step (target: <= 1.5x), on the shipped binary =="
 BENCH_OURS_FMI2="$SHIPPED/fmi2.so" build/ctest-release/bench_master
+echo "== C: the contact patch's step against n point FMUs' steps and n linked-in law steps (targets: a cell <= 1.2x the law's step, 100 cells <= 0.5x 100 point steps), host build =="
+build/ctest-release/bench_patch
 echo "== Python: harness vs bare fmpy, sweep scaling =="
 .venv/bin/python benchmarks/bench_harness.py
 echo "== Masters: rig runs/s, compiled vs fmpy (target: >= 20x) =="

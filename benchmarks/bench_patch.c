@@ -1,0 +1,382 @@
+/* Benchmark (not a test): the ContactPatch FMU's step, all cells in one FMI
+ * call, against what the same cells cost otherwise, at 1, 16, 100 and 400
+ * cells (square grids), stick and slip:
+ *   - patch:  fmi2SetReal(u1, u2, theta, N) + fmi2DoStep + fmi2GetReal(T1, T2, Mz);
+ *   - points: n OrthotropicContact instances, each given its cell's inputs
+ *             (its displacement d_c and normal force N_c, its stiffness the
+ *             cell's share) through fmi2SetReal(u1, u2, N) + fmi2DoStep +
+ *             fmi2GetReal(T1, T2): what a user wiring one point FMU per
+ *             point pays;
+ *   - law:    oc_law_step called directly (contact_law.c linked in) on each
+ *             cell, each cell's committed state the one before: the point
+ *             law's own step, the floor a cell's cost is held to.
+ * The three compute the same cells: at the end of every run the patch's T
+ * must equal the points' and the law's sums (cell order, as the patch sums)
+ * to 1e-12 relative, and the slip fraction be 0 (stick) or 1 (slip), else
+ * the program says so and exits 1.  Both FMUs are the host build's binaries
+ * (FMI 2.0), loaded with dlopen as an importer loads them.
+ *
+ * Runs are interleaved (for each grid and path: patch, points, law), `rounds`
+ * rounds; each figure is the least disturbed (smallest) of its rounds, thread
+ * CPU time, and each ratio is that of those figures with the range of the
+ * rounds' own ratios beside it.  Targets (issue 25): a cell's cost in the
+ * patch <= 1.2x the law's own step, and a 100-cell patch step <= 0.5x of 100
+ * point steps through the FMI calls.
+ *
+ * Paths (bench_common.h's, plus a turn): stick, the body oscillates inside
+ * every cell's sticking ellipse (u as bench_inputs, theta within 2e-4 rad);
+ * slip, pushed at 0.244 m/s with 0.1 ms steps while turning back and forth
+ * by 1e-4 rad a step, so that every cell slips every step, each in its own
+ * direction.  The patch's default parameters (0.1 m x 0.1 m, the aged mat,
+ * coupled rule), uniform pressure.
+ *
+ *   bench_patch [cell_steps [rounds]]   cell_steps: cells x steps a run
+ * Environment: BENCH_PATCH_FMI2, BENCH_POINT_FMI2 (binaries to run instead
+ * of the host build's).
+ */
+#include <dlfcn.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_common.h"
+#include "contact_law.h"
+#include "fmi2Functions.h"
+#include "patch_variables.h"
+
+/* bench_patch_point.c: the point FMU's table */
+extern const char *const BENCH_POINT_TOKEN;
+extern const char *const BENCH_POINT_LAW_NAMES[];
+extern const unsigned int BENCH_POINT_LAW_VRS[];
+extern const unsigned int BENCH_POINT_VRS[8];
+enum { P_RULE, P_INITIAL, P_U1, P_U2, P_N, P_T1, P_T2, P_STATE };
+
+enum { N_GRIDS = 4, MAX_CELLS = 400, PERIOD = 16 };
+static const int SIDES[N_GRIDS] = {1, 4, 10, 20};
+
+typedef struct {
+    void *lib;
+    fmi2InstantiateTYPE *inst;
+    fmi2FreeInstanceTYPE *free_inst;
+    fmi2SetupExperimentTYPE *setup;
+    fmi2EnterInitializationModeTYPE *enter;
+    fmi2ExitInitializationModeTYPE *exit_init;
+    fmi2SetRealTYPE *set_real;
+    fmi2GetRealTYPE *get_real;
+    fmi2SetIntegerTYPE *set_int;
+    fmi2GetIntegerTYPE *get_int;
+    fmi2DoStepTYPE *do_step;
+} fmi2_api;
+
+static void logger(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
+                   fmi2String m, ...) {
+    (void)e; (void)n; (void)s; (void)c;
+    fprintf(stderr, "FMU: %s\n", m);
+}
+static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
+
+static int load(fmi2_api *a, const char *path) {
+    a->lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!a->lib) return fprintf(stderr, "%s\n", dlerror()), -1;
+#define SYM(field, name, type) \
+    if (!(a->field = (type *)dlsym(a->lib, name))) return fprintf(stderr, "%s: no %s\n", path, name), -1;
+    SYM(inst, "fmi2Instantiate", fmi2InstantiateTYPE)
+    SYM(free_inst, "fmi2FreeInstance", fmi2FreeInstanceTYPE)
+    SYM(setup, "fmi2SetupExperiment", fmi2SetupExperimentTYPE)
+    SYM(enter, "fmi2EnterInitializationMode", fmi2EnterInitializationModeTYPE)
+    SYM(exit_init, "fmi2ExitInitializationMode", fmi2ExitInitializationModeTYPE)
+    SYM(set_real, "fmi2SetReal", fmi2SetRealTYPE)
+    SYM(get_real, "fmi2GetReal", fmi2GetRealTYPE)
+    SYM(set_int, "fmi2SetInteger", fmi2SetIntegerTYPE)
+    SYM(get_int, "fmi2GetInteger", fmi2GetIntegerTYPE)
+    SYM(do_step, "fmi2DoStep", fmi2DoStepTYPE)
+#undef SYM
+    return 0;
+}
+
+/* Step k's turn [rad]: stick, within 2e-4 rad in the period of bench_inputs'
+ * u; slip, a triangle wave of 1e-4 rad steps (a cell's turn moves it at most
+ * 1e-5 m a step, less than the push, so that no cell reverses). */
+static double theta_of(long k, int slip) {
+    if (slip) {
+        const long t = k & 15;
+        return 1e-4 * (double)(t < 8 ? t - 4 : 12 - t);
+    }
+    return 2e-4 * ((double)(k & 7) - 3.5) / 3.5;
+}
+
+/* A grid's cells as the patch forms them (patch_model.c's frame_of and
+ * cell_of, written out again here): for each of the PERIOD turns of the
+ * paths, each cell's displacement relative to u, (R(theta) - I) r; its share
+ * of N; and its stiffness. */
+typedef struct {
+    int side, n;
+    double off[2][PERIOD][MAX_CELLS][2]; /* [slip][k mod PERIOD][cell] */
+    int centre[MAX_CELLS];               /* r = 0: d = u itself, as the patch has it */
+    double nu[MAX_CELLS];
+    oc_params cell; /* the law's parameters with eps times the cell's share */
+    oc_law law;
+} grid;
+
+static void make_grid(grid *G, int side, double length, double width, const oc_params *p) {
+    G->side = side;
+    G->n = side * side;
+    const double w = 1.0 / ((double)side * (double)side);
+    for (int c = 0; c < G->n; ++c) {
+        const int i = c % side, j = c / side;
+        const double xi = (double)(2 * i + 1 - side) / (double)(2 * side);
+        const double eta = (double)(2 * j + 1 - side) / (double)(2 * side);
+        const double r0 = xi * length, r1 = eta * width;
+        G->centre[c] = r0 == 0.0 && r1 == 0.0;
+        G->nu[c] = w * (1.0 + 12.0 * (0.0 / length) * xi + 12.0 * (0.0 / width) * eta);
+        for (int slip = 0; slip < 2; ++slip)
+            for (int k = 0; k < PERIOD; ++k) {
+                const double th = theta_of(k, slip), h = sin(0.5 * th);
+                const double cm1 = -2.0 * h * h, sn = sin(th);
+                G->off[slip][k][c][0] = cm1 * r0 - sn * r1;
+                G->off[slip][k][c][1] = sn * r0 + cm1 * r1;
+            }
+    }
+    G->cell = *p;
+    G->cell.eps1 = p->eps1 * w;
+    G->cell.eps2 = p->eps2 * w;
+    if (oc_law_init(&G->law, &G->cell) != 0) fprintf(stderr, "oc_law_init failed\n"), exit(2);
+}
+
+static inline void cell_inputs(const grid *G, int slip, long k, int c, const double u[3],
+                               double d[2], double *Nc) {
+    const double *o = G->off[slip][k % PERIOD][c];
+    d[0] = G->centre[c] ? u[0] : u[0] + o[0];
+    d[1] = G->centre[c] ? u[1] : u[1] + o[1];
+    *Nc = u[2] * G->nu[c];
+}
+
+/* What a run measured: ns per step of the whole grid, and what it computed
+ * at its last step. */
+typedef struct {
+    double ns, T[2], slip_fraction;
+} run_result;
+
+static const fmi2ValueReference PATCH_IN[4] = {PATCH_VR_u1, PATCH_VR_u2, PATCH_VR_theta,
+                                               PATCH_VR_N};
+static const fmi2ValueReference PATCH_OUT[3] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz};
+
+static run_result run_patch(const fmi2_api *a, const grid *G, int slip, long steps) {
+    fmi2Component c = a->inst("patch", fmi2CoSimulation, FMU_TOKEN, "", &CB, 0, 0);
+    const fmi2ValueReference vn[2] = {PATCH_VR_n1, PATCH_VR_n2};
+    const fmi2Integer nn[2] = {G->side, G->side};
+    a->set_int(c, vn, 2, nn);
+    a->setup(c, fmi2False, 0, 0, fmi2False, 0);
+    a->enter(c);
+    double u[3];
+    bench_inputs(0, slip, u);
+    const double v0[4] = {u[0], u[1], theta_of(0, slip), u[2]};
+    a->set_real(c, PATCH_IN, 4, v0);
+    a->exit_init(c);
+    double t = 0, h = 1e-4, sink = 0, y[3] = {0, 0, 0};
+    const double t0 = now();
+    for (long k = 0; k < steps; ++k) {
+        bench_inputs(k, slip, u);
+        const double v[4] = {u[0], u[1], theta_of(k, slip), u[2]};
+        a->set_real(c, PATCH_IN, 4, v);
+        a->do_step(c, t, h, fmi2True);
+        t += h;
+        a->get_real(c, PATCH_OUT, 3, y);
+        sink += y[2];
+    }
+    run_result r = {1e9 * (now() - t0) / steps, {y[0], y[1]}, 0};
+    const fmi2ValueReference vsf = PATCH_VR_slipFraction;
+    a->get_real(c, &vsf, 1, &r.slip_fraction);
+    a->free_inst(c);
+    if (sink == 12345.6789) printf(" ");
+    return r;
+}
+
+static fmi2Component points[MAX_CELLS];
+
+static run_result run_points(const fmi2_api *a, const grid *G, int slip, long steps) {
+    const fmi2ValueReference in[3] = {BENCH_POINT_VRS[P_U1], BENCH_POINT_VRS[P_U2],
+                                      BENCH_POINT_VRS[P_N]};
+    const fmi2ValueReference out[2] = {BENCH_POINT_VRS[P_T1], BENCH_POINT_VRS[P_T2]};
+    const double law[6] = {G->cell.mu1, G->cell.mu2, G->cell.eps1, G->cell.eps2, G->cell.alpha,
+                           G->cell.beta};
+    const char *order[6] = {"mu1", "mu2", "eps1", "eps2", "alpha", "beta"};
+    double u[3];
+    bench_inputs(0, slip, u);
+    for (int i = 0; i < G->n; ++i) {
+        fmi2Component c = a->inst("point", fmi2CoSimulation, BENCH_POINT_TOKEN, "", &CB, 0, 0);
+        for (int j = 0; BENCH_POINT_LAW_NAMES[j]; ++j)
+            for (int q = 0; q < 6; ++q)
+                if (strcmp(BENCH_POINT_LAW_NAMES[j], order[q]) == 0)
+                    a->set_real(c, &BENCH_POINT_LAW_VRS[j], 1, &law[q]);
+        const fmi2Integer rule = G->cell.rule;
+        a->set_int(c, &BENCH_POINT_VRS[P_RULE], 1, &rule);
+        a->setup(c, fmi2False, 0, 0, fmi2False, 0);
+        a->enter(c);
+        double x[3];
+        cell_inputs(G, slip, 0, i, u, x, &x[2]);
+        a->set_real(c, in, 3, x);
+        a->exit_init(c);
+        points[i] = c;
+    }
+    double t = 0, h = 1e-4, sink = 0, T[2] = {0, 0};
+    const double t0 = now();
+    for (long k = 0; k < steps; ++k) {
+        bench_inputs(k, slip, u);
+        T[0] = T[1] = 0.0;
+        for (int i = 0; i < G->n; ++i) {
+            double x[3], y[2];
+            cell_inputs(G, slip, k, i, u, x, &x[2]);
+            a->set_real(points[i], in, 3, x);
+            a->do_step(points[i], t, h, fmi2True);
+            a->get_real(points[i], out, 2, y);
+            T[0] += y[0];
+            T[1] += y[1];
+        }
+        t += h;
+        sink += T[0];
+    }
+    run_result r = {1e9 * (now() - t0) / steps, {T[0], T[1]}, 0};
+    int slipping = 0;
+    for (int i = 0; i < G->n; ++i) {
+        fmi2Integer s;
+        a->get_int(points[i], &BENCH_POINT_VRS[P_STATE], 1, &s);
+        slipping += s == OC_SLIP;
+        a->free_inst(points[i]);
+    }
+    r.slip_fraction = (double)slipping / G->n;
+    if (sink == 12345.6789) printf(" ");
+    return r;
+}
+
+static oc_step law_steps[2][MAX_CELLS];
+
+static run_result run_law(const grid *G, int slip, long steps) {
+    double u[3];
+    bench_inputs(0, slip, u);
+    for (int i = 0; i < G->n; ++i) {
+        double d[2], Nc;
+        cell_inputs(G, slip, 0, i, u, d, &Nc);
+        law_steps[0][i].next = oc_state_unloaded(d[0], d[1], 0.0);
+    }
+    double sink = 0, T[2] = {0, 0};
+    const double t0 = now();
+    for (long k = 0; k < steps; ++k) {
+        bench_inputs(k, slip, u);
+        const oc_step *from = law_steps[k & 1];
+        oc_step *to = law_steps[(k & 1) ^ 1];
+        T[0] = T[1] = 0.0;
+        for (int i = 0; i < G->n; ++i) {
+            double d[2], Nc;
+            cell_inputs(G, slip, k, i, u, d, &Nc);
+            oc_law_step(&G->law, &from[i].next, d, Nc, &to[i]);
+            T[0] += 0.0 - to[i].q[0];
+            T[1] += 0.0 - to[i].q[1];
+        }
+        sink += T[0];
+    }
+    run_result r = {1e9 * (now() - t0) / steps, {T[0], T[1]}, 0};
+    int slipping = 0;
+    for (int i = 0; i < G->n; ++i) slipping += law_steps[steps & 1][i].contact == OC_SLIP;
+    r.slip_fraction = (double)slipping / G->n;
+    if (sink == 12345.6789) printf(" ");
+    return r;
+}
+
+static double rel(const double a[2], const double b[2]) {
+    const double d = fmax(fabs(a[0] - b[0]), fabs(a[1] - b[1]));
+    const double m = fmax(fmax(fabs(a[0]), fabs(a[1])), fmax(fabs(b[0]), fabs(b[1])));
+    return d == 0 ? 0 : d / m;
+}
+
+int main(int argc, char **argv) {
+    const long cell_steps = argc > 1 ? atol(argv[1]) : 200000;
+    const int rounds = argc > 2 ? atoi(argv[2]) : 7;
+    const char *patch_path = getenv("BENCH_PATCH_FMI2") ? getenv("BENCH_PATCH_FMI2") : PATCH_FMI2;
+    const char *point_path = getenv("BENCH_POINT_FMI2") ? getenv("BENCH_POINT_FMI2") : POINT_FMI2;
+    fmi2_api pa, pt;
+    if (load(&pa, patch_path) || load(&pt, point_path)) return 2;
+
+    /* the patch's defaults: the table's start values */
+#define START_OF(name, vr, type, caus, var, init, start, ...) [vr] = start,
+    static const double START[PATCH_VR_COUNT_PLUS_ONE] = {PATCH_VARIABLES(START_OF, START_OF)};
+#undef START_OF
+    const oc_params p = {START[PATCH_VR_mu1],   START[PATCH_VR_mu2],  START[PATCH_VR_eps1],
+                         START[PATCH_VR_eps2],  START[PATCH_VR_alpha], START[PATCH_VR_beta],
+                         (int)START[PATCH_VR_slidingRule]};
+    const double d[8] = {0, 0, 0, 0, 0, 0, START[PATCH_VR_length], START[PATCH_VR_width]};
+
+    static grid grids[N_GRIDS];
+    for (int g = 0; g < N_GRIDS; ++g) make_grid(&grids[g], SIDES[g], d[6], d[7], &p);
+
+    /* [grid][slip][patch, points, law]: best ns; ratio ranges over rounds */
+    double best[N_GRIDS][2][3], cell_lo[N_GRIDS][2], cell_hi[N_GRIDS][2], pts_lo[N_GRIDS][2],
+        pts_hi[N_GRIDS][2], worst_diff = 0, sf[N_GRIDS][2];
+    int failed = 0;
+    for (int g = 0; g < N_GRIDS; ++g)
+        for (int s = 0; s < 2; ++s) {
+            best[g][s][0] = best[g][s][1] = best[g][s][2] = 1e30;
+            cell_lo[g][s] = pts_lo[g][s] = 1e30;
+            cell_hi[g][s] = pts_hi[g][s] = 0;
+        }
+    for (int round = 0; round < rounds; ++round)
+        for (int g = 0; g < N_GRIDS; ++g)
+            for (int s = 0; s < 2; ++s) {
+                const grid *G = &grids[g];
+                long steps = cell_steps / G->n;
+                if (steps < 64) steps = 64;
+                const run_result a = run_patch(&pa, G, s, steps);
+                const run_result b = run_points(&pt, G, s, steps);
+                const run_result l = run_law(G, s, steps);
+                const double dp = rel(a.T, b.T), dl = rel(a.T, l.T);
+                worst_diff = fmax(worst_diff, fmax(dp, dl));
+                const double want = s ? 1.0 : 0.0;
+                if (!(dp <= 1e-12 && dl <= 1e-12) || a.slip_fraction != want ||
+                    b.slip_fraction != want || l.slip_fraction != want) {
+                    fprintf(stderr,
+                            "%d cells, %s: patch T (%.17g, %.17g) slip %g; points (%.17g, %.17g) "
+                            "slip %g; law (%.17g, %.17g) slip %g\n",
+                            G->n, s ? "slip" : "stick", a.T[0], a.T[1], a.slip_fraction, b.T[0],
+                            b.T[1], b.slip_fraction, l.T[0], l.T[1], l.slip_fraction);
+                    failed = 1;
+                }
+                sf[g][s] = a.slip_fraction;
+                best[g][s][0] = fmin(best[g][s][0], a.ns);
+                best[g][s][1] = fmin(best[g][s][1], b.ns);
+                best[g][s][2] = fmin(best[g][s][2], l.ns);
+                const double rc = a.ns / l.ns, rp = a.ns / b.ns;
+                cell_lo[g][s] = fmin(cell_lo[g][s], rc);
+                cell_hi[g][s] = fmax(cell_hi[g][s], rc);
+                pts_lo[g][s] = fmin(pts_lo[g][s], rp);
+                pts_hi[g][s] = fmax(pts_hi[g][s], rp);
+            }
+
+    printf("# ContactPatch step (FMI 2.0: set u1 u2 theta N, doStep, get T1 T2 Mz) against n point\n"
+           "# FMU steps (set u1 u2 N, doStep, get T1 T2 each) and n linked-in oc_law_step calls;\n"
+           "# %ld cell steps a run, interleaved, least disturbed of %d rounds, thread CPU time\n",
+           cell_steps, rounds);
+    printf("%5s %-5s %10s %9s %9s %17s %11s %17s %5s\n", "cells", "path", "patch_ns", "cell_ns",
+           "law_ns", "cell/law [rounds]", "points_ns", "patch/points", "slip");
+    for (int g = 0; g < N_GRIDS; ++g)
+        for (int s = 0; s < 2; ++s) {
+            const int n = grids[g].n;
+            const double *b = best[g][s];
+            printf("%5d %-5s %10.1f %9.2f %9.2f %5.2f [%4.2f-%4.2f] %11.1f %5.3f [%4.2f-%4.2f] "
+                   "%5.2f\n",
+                   n, s ? "slip" : "stick", b[0], b[0] / n, b[2] / n, b[0] / b[2], cell_lo[g][s],
+                   cell_hi[g][s], b[1], b[0] / b[1], pts_lo[g][s], pts_hi[g][s], sf[g][s]);
+        }
+    for (int s = 0; s < 2; ++s) {
+        const double rc = best[3][s][0] / best[3][s][2], rp = best[2][s][0] / best[2][s][1];
+        printf("%s: a cell's cost at 400 cells / the law's step %.2f, target <= 1.20 %s; "
+               "100-cell patch / 100 point steps %.3f, target <= 0.50 %s\n",
+               s ? "slip " : "stick", rc, rc <= 1.2 ? "met" : "NOT MET", rp,
+               rp <= 0.5 ? "met" : "NOT MET");
+    }
+    printf("patch, points and law agree: max relative difference of T %.1e %s\n", worst_diff,
+           failed ? "-- FAILED (> 1e-12 or a cell in the wrong state)" : "(<= 1e-12)");
+    dlclose(pa.lib);
+    dlclose(pt.lib);
+    return failed;
+}
