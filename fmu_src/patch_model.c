@@ -70,12 +70,17 @@ typedef struct {
     double xi, eta, r[2], Rr[2], d[2], nu;
 } patch_cell;
 
-static patch_cell cell_of(const patch_setup *g, const patch_frame *f, int c) {
-    const int i = c % g->n[0], j = c / g->n[0];
+/* (2i + 1 - n) / (2n): mirror cells get exactly opposite coordinates */
+static inline double cell_coordinate(int i, int n) {
+    return (double)(2 * i + 1 - n) / (double)(2 * n);
+}
+
+/* The cell at relative coordinates xi, eta (cell_coordinate's). */
+static inline patch_cell cell_at(const patch_setup *g, const patch_frame *f, double xi,
+                                 double eta) {
     patch_cell x;
-    /* (2i + 1 - n) / (2n): mirror cells get exactly opposite coordinates */
-    x.xi = (double)(2 * i + 1 - g->n[0]) / (double)(2 * g->n[0]);
-    x.eta = (double)(2 * j + 1 - g->n[1]) / (double)(2 * g->n[1]);
+    x.xi = xi;
+    x.eta = eta;
     x.r[0] = x.xi * g->length;
     x.r[1] = x.eta * g->width;
     /* (R - I) r; none added at the centre, so that a one-cell patch's cell
@@ -96,6 +101,11 @@ static patch_cell cell_of(const patch_setup *g, const patch_frame *f, int c) {
      * times the area, exactly */
     x.nu = f->w * (1.0 + f->k[0] * x.xi + f->k[1] * x.eta);
     return x;
+}
+
+static patch_cell cell_of(const patch_setup *g, const patch_frame *f, int c) {
+    const int i = c % g->n[0], j = c / g->n[0];
+    return cell_at(g, f, cell_coordinate(i, g->n[0]), cell_coordinate(j, g->n[1]));
 }
 
 static int n_cells(const patch_setup *g) { return g->n[0] * g->n[1]; }
@@ -160,31 +170,45 @@ static fmu_status check_kern(const patch_setup *g, fmu_msg *msg) {
 
 /* Steps every cell with `law` from `src` into out[] and sums the outputs;
  * or fails, having written nothing but out[], if a cell's result or a sum
- * would not be finite. */
+ * would not be finite.  Cell by cell, in the order c = i + n1 j, each cell
+ * the law's step on its own kinematics (cell_of's): the cells' coordinates
+ * are formed once a step (n1 + n2 divisions, not two a cell and an integer
+ * division), and a committed state is read where it lies, not copied.
+ * tests/c/test_patch_model.c holds the result to the plain per-cell step,
+ * bit for bit. */
 static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell_source *src,
                              oc_step *out, patch_sums *S, fmu_msg *msg) {
     const patch_frame f = frame_of(g);
-    const int n = n_cells(g);
+    const int n1 = g->n[0], n2 = g->n[1], n = n1 * n2;
+    double xi[PATCH_MAX_SIDE], eta[PATCH_MAX_SIDE];
+    for (int i = 0; i < n1; ++i) xi[i] = cell_coordinate(i, n1);
+    for (int j = 0; j < n2; ++j) eta[j] = cell_coordinate(j, n2);
+    const double N = g->N;
     double T0 = 0.0, T1 = 0.0, Mz = 0.0, energy = 0.0;
     int pressed = 0, slipping = 0;
-    for (int c = 0; c < n; ++c) {
-        const patch_cell x = cell_of(g, &f, c);
-        const oc_state from = source_cell(src, g, &x, c);
-        oc_step *st = &out[c];
-        oc_law_step(law, &from, x.d, g->N * x.nu, st);
-        if (!oc_step_is_finite(st))
-            return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the force "
-                                 "or slip of cell (%d, %d)", g->u[0], g->u[1], g->theta, g->N,
-                            c % g->n[0] + 1, c / g->n[0] + 1);
-        /* 0.0 - q rather than -q: an open cell reads +0.0, as the point FMU */
-        const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
-        T0 += t0;
-        T1 += t1;
-        Mz += x.Rr[0] * t1 - x.Rr[1] * t0;
-        energy += st->next.energy;
-        pressed += st->contact != OC_OPEN;
-        slipping += st->contact == OC_SLIP;
-    }
+    for (int j = 0, c = 0; j < n2; ++j)
+        for (int i = 0; i < n1; ++i, ++c) {
+            const patch_cell x = cell_at(g, &f, xi[i], eta[j]);
+            oc_state local;
+            const oc_state *from = &local;
+            if (src->kind == FROM_STEPS) from = &src->steps[c].next;
+            else if (src->kind == FROM_ARRAY) from = &src->array[c];
+            else local = source_cell(src, g, &x, c);
+            oc_step *st = &out[c];
+            oc_law_step(law, from, x.d, N * x.nu, st);
+            if (!oc_step_is_finite(st))
+                return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the "
+                                     "force or slip of cell (%d, %d)", g->u[0], g->u[1], g->theta,
+                                g->N, i + 1, j + 1);
+            /* 0.0 - q rather than -q: an open cell reads +0.0, as the point FMU */
+            const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
+            T0 += t0;
+            T1 += t1;
+            Mz += x.Rr[0] * t1 - x.Rr[1] * t0;
+            energy += st->next.energy;
+            pressed += st->contact != OC_OPEN;
+            slipping += st->contact == OC_SLIP;
+        }
     if (!isfinite(T0) || !isfinite(T1) || !isfinite(Mz) || !isfinite(energy))
         return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the patch's "
                              "force, moment or energy", g->u[0], g->u[1], g->theta, g->N);
@@ -213,9 +237,13 @@ static fmu_status evaluate(patch_model *m, const oc_law *law, const cell_source 
     const int hidden = m->shown ^ 1;
     patch_sums S;
     if (step_cells(law, &m->g, src, m->steps[hidden], &S, msg) != FMU_OK) return FMU_ERR;
-    if (!(src->kind == FROM_ARRAY && src->array == m->start)) {
+    const int n = n_cells(&m->g);
+    if (src->kind == FROM_STEPS) {
+        /* a step's start: the committed states, where they lie */
+        for (int c = 0; c < n; ++c) m->start[c] = src->steps[c].next;
+    } else if (!(src->kind == FROM_ARRAY && src->array == m->start)) {
         const patch_frame f = frame_of(&m->g);
-        for (int c = 0, n = n_cells(&m->g); c < n; ++c) {
+        for (int c = 0; c < n; ++c) {
             const patch_cell x = cell_of(&m->g, &f, c);
             m->start[c] = source_cell(src, &m->g, &x, c);
         }

@@ -4,6 +4,12 @@
  *     pending step, over random grids, rules, pressures and paths, column
  *     by column wherever no cell changes between stick and slip within the
  *     difference;
+ *   - the step against the plain per-cell step written out here (the
+ *     reference: each cell's kinematics from its index, the law's own
+ *     oc_law_step, the sums in cell order; patch_model.c's step loop forms
+ *     the same numbers more cheaply), every output and every committed
+ *     state bit for bit, over random grids, parameters, rules, initial
+ *     slips, pressures, turns, open cells, pending re-sets and restores;
  *   - random call sequences with hostile values: every call returns a
  *     defined status, a successful read is finite, a refused call changes
  *     nothing (the serialized state is the same byte for byte), and a state
@@ -15,6 +21,7 @@
 
 #include "check.h"
 #include "fmi2Functions.h"
+#include "patch_model.h"
 #include "patch_variables.h"
 #include "random_values.h"
 
@@ -105,6 +112,63 @@ static void derivatives_match_differences(void) {
     printf("derivatives: %d columns checked, %d of 60 states slipping\n", checked, episodes_slipping);
 }
 
+/* ---- the reference: the patch's step the plain way, cell by cell --------- */
+
+typedef struct {
+    double length, width, u[2], theta, N, p[2];
+    int n1, n2;
+} ref_setup;
+
+/* Cell c's displacement d, share nu of N and moment arm R r, as
+ * patch_variables.h defines them, formed cell by cell from the index. */
+static void ref_cell(const ref_setup *g, int c, double d[2], double *nu, double Rr[2]) {
+    const double h = sin(0.5 * g->theta), cm1 = -2.0 * h * h, sn = sin(g->theta);
+    const double w = 1.0 / ((double)g->n1 * (double)g->n2);
+    const int i = c % g->n1, j = c / g->n1;
+    const double xi = (double)(2 * i + 1 - g->n1) / (double)(2 * g->n1);
+    const double eta = (double)(2 * j + 1 - g->n2) / (double)(2 * g->n2);
+    const double r0 = xi * g->length, r1 = eta * g->width;
+    d[0] = g->u[0];
+    d[1] = g->u[1];
+    Rr[0] = r0;
+    Rr[1] = r1;
+    if (r0 != 0.0 || r1 != 0.0) { /* the centre cell sees u itself */
+        const double dr0 = cm1 * r0 - sn * r1, dr1 = sn * r0 + cm1 * r1;
+        d[0] += dr0;
+        d[1] += dr1;
+        Rr[0] += dr0;
+        Rr[1] += dr1;
+    }
+    *nu = w * (1.0 + (12.0 * (g->p[0] / g->length)) * xi + (12.0 * (g->p[1] / g->width)) * eta);
+}
+
+/* The outputs T1, T2, Mz, dissipatedEnergy, slipFraction and contactState
+ * of every cell stepped from from[] into out[]. */
+static void ref_step(const oc_law *law, const ref_setup *g, const oc_state *from, oc_step *out,
+                     double y[5], int *state) {
+    const int n = g->n1 * g->n2;
+    double T0 = 0.0, T1 = 0.0, Mz = 0.0, E = 0.0;
+    int pressed = 0, slipping = 0;
+    for (int c = 0; c < n; ++c) {
+        double d[2], nu, Rr[2];
+        ref_cell(g, c, d, &nu, Rr);
+        oc_law_step(law, &from[c], d, g->N * nu, &out[c]);
+        const double t0 = 0.0 - out[c].q[0], t1 = 0.0 - out[c].q[1];
+        T0 += t0;
+        T1 += t1;
+        Mz += Rr[0] * t1 - Rr[1] * t0;
+        E += out[c].next.energy;
+        pressed += out[c].contact != OC_OPEN;
+        slipping += out[c].contact == OC_SLIP;
+    }
+    y[0] = T0;
+    y[1] = T1;
+    y[2] = Mz;
+    y[3] = E;
+    y[4] = (double)slipping / (double)n;
+    *state = pressed == 0 ? 0 : slipping == 0 ? 1 : slipping == pressed ? 3 : 2;
+}
+
 enum { CAP = 1 << 17 };
 static unsigned char before[CAP], after[CAP];
 
@@ -117,6 +181,143 @@ static size_t serialize(fmi2Component c, unsigned char *buf) {
         n = 0;
     fmi2FreeFMUstate(c, &st);
     return n;
+}
+
+/* 1 if the committed cell states the FMU serialized (the last
+ * PATCH_MAX_CELLS x 8 doubles of its state, little-endian, as
+ * patch_model.c writes them) are those of `ref`, bit for bit. */
+static int states_equal(fmi2Component c, const oc_state *ref, int n) {
+    const size_t size = serialize(c, before);
+    if (size < (size_t)PATCH_MAX_CELLS * 64) return 0;
+    const unsigned char *cells = before + size - (size_t)PATCH_MAX_CELLS * 64;
+    for (int k = 0; k < n; ++k) {
+        const oc_state *s = &ref[k];
+        const double v[8] = {s->u[0], s->u[1], s->N, s->a[0], s->a[1], s->s[0], s->s[1], s->energy};
+        for (int i = 0; i < 8; ++i) {
+            uint64_t b = 0, r;
+            for (int byte = 0; byte < 8; ++byte)
+                b |= (uint64_t)cells[(size_t)k * 64 + 8 * i + byte] << (8 * byte);
+            memcpy(&r, &v[i], 8);
+            if (b != r) return 0;
+        }
+    }
+    return 1;
+}
+
+static oc_state ref_from[PATCH_MAX_CELLS];
+static oc_step ref_out[PATCH_MAX_CELLS];
+
+static void step_matches_the_plain_per_cell_step(void) {
+    static const fmi2ValueReference OUT[5] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz,
+                                              PATCH_VR_dissipatedEnergy, PATCH_VR_slipFraction};
+    const fmi2ValueReference vstate = PATCH_VR_contactState;
+    long compared = 0, restored = 0;
+    int seen[4] = {0, 0, 0, 0};
+    for (int episode = 0; episode < 60; ++episode) {
+        ref_setup g;
+        g.n1 = 1 + (int)pick(episode % 5 == 4 ? PATCH_MAX_SIDE : 12);
+        g.n2 = 1 + (int)pick(episode % 5 == 4 ? PATCH_MAX_SIDE : 12);
+        g.length = 0.02 + 0.2 * uniform();
+        g.width = 0.02 + 0.2 * uniform();
+        oc_params q = {0.2 + uniform(), 0.2 + uniform(), 5e3 + 5e4 * uniform(),
+                       5e3 + 5e4 * uniform(), 6 * uniform() - 3, 6 * uniform() - 3,
+                       1 + (int)pick(3)};
+        const int initial = 1 + (int)pick(2);
+        const double s_start[2] = {1e-4 * (uniform() - 0.5), 1e-4 * (uniform() - 0.5)};
+        fmi2Component c = make();
+        const fmi2ValueReference ivr[4] = {PATCH_VR_n1, PATCH_VR_n2, PATCH_VR_slidingRule,
+                                           PATCH_VR_initialSlip};
+        const fmi2Integer iv[4] = {g.n1, g.n2, q.rule, initial};
+        const fmi2ValueReference pvr[10] = {PATCH_VR_mu1,   PATCH_VR_mu2,    PATCH_VR_eps1,
+                                            PATCH_VR_eps2,  PATCH_VR_alpha,  PATCH_VR_beta,
+                                            PATCH_VR_length, PATCH_VR_width, PATCH_VR_s1Start,
+                                            PATCH_VR_s2Start};
+        const double pv[10] = {q.mu1, q.mu2, q.eps1, q.eps2, q.alpha, q.beta,
+                               g.length, g.width, s_start[0], s_start[1]};
+        CHECK(fmi2SetInteger(c, ivr, 4, iv) == fmi2OK && fmi2SetReal(c, pvr, 10, pv) == fmi2OK,
+              "episode %d: parameters", episode);
+        /* the cells' law: eps shared by area */
+        const double w = 1.0 / ((double)g.n1 * (double)g.n2);
+        oc_params cell = q;
+        cell.eps1 = q.eps1 * w;
+        cell.eps2 = q.eps2 * w;
+        oc_law law;
+        CHECK(oc_law_init(&law, &cell) == 0, "episode %d: the cells' law", episode);
+        fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
+        fmi2EnterInitializationMode(c);
+        double x[6] = {1e-5 * (uniform() - 0.5), 1e-5 * (uniform() - 0.5), 0.01 * (uniform() - 0.5),
+                       20, 0, 0};
+        fmi2SetReal(c, KNOWN, 6, x);
+        CHECK(fmi2ExitInitializationMode(c) == fmi2OK, "episode %d: initialization", episode);
+        g.u[0] = x[0];
+        g.u[1] = x[1];
+        g.theta = x[2];
+        g.N = x[3];
+        g.p[0] = g.p[1] = 0;
+        for (int k = 0; k < g.n1 * g.n2; ++k) {
+            double d[2], nu, Rr[2];
+            ref_cell(&g, k, d, &nu, Rr);
+            ref_from[k] = initial == PATCH_INITIAL_EXPLICIT
+                              ? oc_state_unloaded(s_start[0], s_start[1], 0.0)
+                              : oc_state_unloaded(d[0], d[1], 0.0);
+        }
+        double t = 0;
+        const double push = pick(2) ? 3e-4 : 3e-5; /* mostly slipping, or mostly sticking */
+        for (int k = 0; k < 25; ++k) {
+            x[0] += push * (uniform() - 0.3);
+            x[1] += push * (uniform() - 0.5);
+            x[2] += 0.02 * (uniform() - 0.5);
+            x[3] = pick(8) ? 5 + 30 * uniform() : -uniform(); /* sometimes open */
+            const double e1 = uniform() / 6, e2 = uniform() * (1.0 / 6 - e1);
+            x[4] = (pick(2) ? 1 : -1) * e1 * g.length;
+            x[5] = (pick(2) ? 1 : -1) * e2 * g.width;
+            if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) continue; /* refused: nothing changed */
+            g.u[0] = x[0];
+            g.u[1] = x[1];
+            g.theta = x[2];
+            g.N = x[3];
+            g.p[0] = x[4];
+            g.p[1] = x[5];
+            double want[5], got[5];
+            int want_state, got_state;
+            ref_step(&law, &g, ref_from, ref_out, want, &want_state);
+            CHECK(fmi2GetReal(c, OUT, 5, got) == fmi2OK &&
+                      fmi2GetInteger(c, &vstate, 1, &got_state) == fmi2OK,
+                  "episode %d step %d: outputs", episode, k);
+            CHECK(memcmp(got, want, sizeof got) == 0 && got_state == want_state,
+                  "episode %d step %d (%d x %d cells): T1 %.17g vs %.17g, Mz %.17g vs %.17g, "
+                  "state %d vs %d", episode, k, g.n1, g.n2, got[0], want[0], got[2], want[2],
+                  got_state, want_state);
+            CHECK(states_equal(c, ref_from, g.n1 * g.n2),
+                  "episode %d step %d: the committed cell states differ", episode, k);
+            ++seen[want_state];
+            ++compared;
+            if (pick(4) == 0) continue; /* inputs set again before a step: the same start */
+            CHECK(fmi2DoStep(c, t, 1e-3, fmi2True) == fmi2OK, "episode %d step %d", episode, k);
+            t += 1e-3;
+            for (int i = 0; i < g.n1 * g.n2; ++i) ref_from[i] = ref_out[i].next;
+            if (pick(6) == 0) { /* continue in a fresh instance from the state */
+                const size_t n = serialize(c, before);
+                fmi2Component d = make();
+                fmi2FMUstate st = NULL;
+                CHECK(n && fmi2DeSerializeFMUstate(d, (const fmi2Byte *)before, n, &st) == fmi2OK &&
+                          fmi2SetFMUstate(d, st) == fmi2OK,
+                      "episode %d step %d: restore", episode, k);
+                fmi2FreeFMUstate(d, &st);
+                fmi2FreeInstance(c);
+                c = d;
+                ++restored;
+            }
+        }
+        fmi2FreeInstance(c);
+    }
+    CHECK(compared > 1000 && restored > 50, "compared %ld steps, restored %ld", compared, restored);
+    CHECK(seen[0] > 20 && seen[1] > 20 && seen[2] > 20 && seen[3] > 20,
+          "patch states seen: open %d, stick %d, partly %d, all slipping %d", seen[0], seen[1],
+          seen[2], seen[3]);
+    printf("plain per-cell step: %ld steps bit for bit (open %d, stick %d, partly slipping %d, "
+           "all slipping %d), %ld restores\n", compared, seen[0], seen[1], seen[2], seen[3],
+           restored);
 }
 
 static int defined(fmi2Status s) {
@@ -195,6 +396,7 @@ static void random_sequences(void) {
 int main(void) {
     rng_state = 0x9e3779b97f4a7c15ull;
     derivatives_match_differences();
+    step_matches_the_plain_per_cell_step();
     random_sequences();
     return oc_report();
 }
