@@ -14,8 +14,12 @@ from .output import staged_output, warn
 
 def _fmu_for(sc, args) -> str:
     """The scenario's own FMU if it names one, else the installed FMU of the
-    FMI version asked for with --fmi."""
+    FMI version asked for with --fmi (the ContactPatch FMU for the kinds of
+    a body on a patch)."""
+    from ..experiment.scenario import PATCH_KINDS
     from ..fmu.files import find_fmu
+    if sc.kind in PATCH_KINDS:
+        return sc.fmu or str(find_fmu(fmi_version=args.fmi, model="ContactPatch"))
     return sc.fmu or str(find_fmu(fmi_version=args.fmi))
 
 
@@ -37,6 +41,15 @@ def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True
     from ..output.tables import write_json
     from ..reproduction import scenario_outputs
     from ..runs import sweep
+    if sc.kind in ("twist", "towed_block"):
+        from ..reproduction import planar_outputs
+        write = planar_outputs.twist_outputs if sc.kind == "twist" else planar_outputs.towed_outputs
+        summary = write(sc, out, fmu_path, draw)
+        if summary["checks"]["warning"]:
+            warn(summary["checks"]["warning"])
+        summary["fmi_version"] = fmi_version_of(fmu_path)
+        write_json(out / "summary.json", summary)
+        return summary
     if sc.kind == "sweep":
         res = sweep.run_sweep(sc, workers, progress, fmu_path, master, dask)
         summary = scenario_outputs.sweep_outputs(sc, res, out, draw)
@@ -66,7 +79,7 @@ def cmd_run(args) -> int:
         summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
                                 dask=dask)
     print(json.dumps({k: summary[k] for k in summary if k in ("scenario", "extremum", "max_deviation_deg",
-                                                             "drive_mean_N", "rules")}, indent=1))
+                                                             "drive_mean_N", "rules", "yaw_deg")}, indent=1))
     print(f"wrote {args.out}/summary.json")
     return 0
 
@@ -80,6 +93,10 @@ def cmd_reproduce(args) -> int:
     if not files:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
     scenarios = [load_scenario(f, args.yes) for f in files]  # all validated before anything runs
+    for sc in scenarios:
+        if sc.kind not in ("sweep", "step_study"):
+            raise InputError(f"{sc.path}: kind: expected a sweep or step_study scenario for the paper's "
+                             f"report, got {sc.kind!r} (run it with `orthocontact run`)")
     from ..reproduction import sensitivity
     from ..runs.size import Work, check_work, scenario_work
     sens_sc = next((sc for sc in scenarios if sc.kind == "sweep" and sc.closed_form == "mat"

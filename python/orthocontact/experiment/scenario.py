@@ -28,7 +28,10 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 
-KINDS = ("sweep", "step_study")
+KINDS = ("sweep", "step_study", "twist", "towed_block")
+# The kinds that run a planar body on the ContactPatch FMU (rig.planar), with
+# the patch described by a [patch] table.
+PATCH_KINDS = ("twist", "towed_block")
 
 
 class ScenarioError(InputError):
@@ -80,6 +83,15 @@ SCHEMA = {
               "trajectory_angles_deg": (list_of(ANGLE_DEG), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0])},
     "study": {"angle_deg": (ANGLE_DEG, REQUIRED), "rules": (list_of(choice(tuple(RULES))), REQUIRED),
               "steps_s": (list_of(POSITIVE), REQUIRED)},
+    "patch": {"length_m": (POSITIVE, REQUIRED), "width_m": (POSITIVE, REQUIRED),
+              "n1": (number(1, 32), 8), "n2": (number(1, 32), 8)},
+    "twist": {"angle_deg": (number(0, 360, lo_open=True), REQUIRED), "rate_deg_s": (POSITIVE, 10.0),
+              "step_s": (number(0, 0.1, lo_open=True), 1e-3),
+              "rules": (list_of(choice(("associated", "coupled"))), ["associated", "coupled"])},
+    "tow": {"pin_m": (POSITIVE, REQUIRED), "duration_s": (POSITIVE, 20.0),
+            "step_s": (number(0, 0.1, lo_open=True), 5e-3),
+            "angles_deg": (list_of(ANGLE_DEG), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]),
+            "rules": (list_of(choice(("associated", "coupled"))), ["associated", "coupled"])},
     "rig": {**rig_spec(mode="quasistatic", mass_kg=1.875, g=G_STANDARD, f_int_N=5.0, velocity_m_s=0.244,
                        travel_m=0.5, mu_strip=0.0, c_strip=0.0, step_s=2e-4),
             "fit_from": (number(0, 0.95), 0.5)},
@@ -92,7 +104,8 @@ SCHEMA = {
 }
 
 
-SECTION_FOR_KIND = {"sweep": {"sweep"}, "step_study": {"study"}}
+SECTION_FOR_KIND = {"sweep": {"sweep"}, "step_study": {"study"}, "twist": {"patch", "twist"},
+                    "towed_block": {"patch", "tow"}}
 
 
 @dataclass
@@ -108,6 +121,9 @@ class Scenario:
     rig: Rig
     sweep: dict = field(default_factory=dict)
     study: dict = field(default_factory=dict)
+    patch: dict = field(default_factory=dict)     # kinds in PATCH_KINDS: the contact rectangle
+    twist: dict = field(default_factory=dict)
+    tow: dict = field(default_factory=dict)
     paper: dict = field(default_factory=dict)
     fmu: str | None = None
     warnings: list = field(default_factory=list)   # one line each: unusual values
@@ -148,7 +164,7 @@ def load(path) -> Scenario:
         return values
     top = section("", {k: v for k, v in raw.items() if k not in tables})
     needed = SECTION_FOR_KIND[top["kind"]]
-    for t in ("sweep", "study"):
+    for t in ("sweep", "study", "patch", "twist", "tow"):
         if t in tables and t not in needed:
             raise ScenarioError(path, t, f"no [{t}] table in a scenario of kind {top['kind']!r}")
     for t in needed:
@@ -162,6 +178,12 @@ def load(path) -> Scenario:
     paper = {k: v for k, v in section("paper", raw.get("paper", {})).items() if v is not None}
     sweep = section("sweep", raw["sweep"]) if "sweep" in needed else {}
     study = section("study", raw["study"]) if "study" in needed else {}
+    patch = section("patch", raw["patch"]) if "patch" in needed else {}
+    for n in ("n1", "n2"):
+        if patch and (isinstance(patch[n], float) or isinstance(patch[n], bool)):
+            raise ScenarioError(path, f"patch.{n}", "an integer in 1..32 (cells along the side)", patch[n])
+    twist = section("twist", raw["twist"]) if "twist" in needed else {}
+    tow = section("tow", raw["tow"]) if "tow" in needed else {}
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:
         raise ScenarioError(path, "sweep.stop_deg", f"a value >= sweep.start_deg = {sweep['start_deg']}",
                             sweep["stop_deg"])
@@ -190,7 +212,7 @@ def load(path) -> Scenario:
         # rig's transient dies out over a few elastic lengths mu N / eps.
         elastic = max(law["mu1"], law["mu2"]) * rig["mass_kg"] * rig["g"] / min(eps1, law["eps2"])
         fit_start = rig["fit_from"] * rig["travel_m"]
-        if rig["mode"] == "quasistatic" and fit_start < ELASTIC_LENGTHS * elastic:
+        if top["kind"] not in PATCH_KINDS and rig["mode"] == "quasistatic" and fit_start < ELASTIC_LENGTHS * elastic:
             raise ScenarioError(path, "rig.travel_m", (
                 f"a travel for this law: the default {rig['travel_m']:g} m starts the fit at "
                 f"{fit_start:g} m, within {ELASTIC_LENGTHS:g} elastic lengths max(mu) N / min(eps) = "
@@ -212,4 +234,4 @@ def load(path) -> Scenario:
                 velocity_m_s=rig["velocity_m_s"], travel_m=rig["travel_m"], mu_strip=rig["mu_strip"],
                 c_strip=rig["c_strip"],
                 mode=rig["mode"], step_s=rig["step_s"], fit_from=rig["fit_from"]),
-        sweep=sweep, study=study, paper=paper, fmu=fmu, warnings=warnings)
+        sweep=sweep, study=study, patch=patch, twist=twist, tow=tow, paper=paper, fmu=fmu, warnings=warnings)

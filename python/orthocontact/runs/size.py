@@ -114,6 +114,12 @@ def scenario_work(sc) -> Work:
     of the rig's steps; a step study's rules at each of its steps."""
     from .sweep import refinement_runs_at_most
     rig = sc.rig
+    if sc.kind == "twist":
+        tw = sc.twist
+        return Work().plus("twists", len(tw["rules"]), tw["angle_deg"] / (tw["rate_deg_s"] * tw["step_s"]))
+    if sc.kind == "towed_block":
+        tw = sc.tow
+        return Work().plus("tows", len(tw["rules"]) * len(tw["angles_deg"]), tw["duration_s"] / tw["step_s"])
     if sc.kind != "sweep":
         work = Work()
         for h in sc.study["steps_s"]:
@@ -148,6 +154,11 @@ def check_scenario_size(sc, yes: bool) -> None:
     if sc.kind == "sweep":
         check_work(str(sc.path), scenario_work(sc), "sweep.step_deg or sweep.trajectory_angles_deg",
                    "rig.step_s or rig.travel_m", yes)
+    elif sc.kind == "twist":
+        check_work(str(sc.path), scenario_work(sc), "twist.rules", "twist.step_s or twist.angle_deg", yes)
+    elif sc.kind == "towed_block":
+        check_work(str(sc.path), scenario_work(sc), "tow.angles_deg or tow.rules",
+                   "tow.step_s or tow.duration_s", yes)
     else:
         check_work(str(sc.path), scenario_work(sc), "study.rules or study.steps_s",
                    "study.steps_s or rig.travel_m", yes)
