@@ -180,22 +180,49 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
                              oc_step *out, patch_sums *S, fmu_msg *msg) {
     const patch_frame f = frame_of(g);
     const int n1 = g->n[0], n2 = g->n[1], n = n1 * n2;
-    double xi[PATCH_MAX_SIDE], eta[PATCH_MAX_SIDE];
-    for (int i = 0; i < n1; ++i) xi[i] = cell_coordinate(i, n1);
-    for (int j = 0; j < n2; ++j) eta[j] = cell_coordinate(j, n2);
-    const double N = g->N;
+    /* cell_at's products, each of one coordinate only, formed once a row
+     * (i) or column (j): a cell is then its sums, in cell_at's order. */
+    double r0[PATCH_MAX_SIDE], cr0[PATCH_MAX_SIDE], sr0[PATCH_MAX_SIDE], p0[PATCH_MAX_SIDE];
+    double r1[PATCH_MAX_SIDE], cr1[PATCH_MAX_SIDE], sr1[PATCH_MAX_SIDE], p1[PATCH_MAX_SIDE];
+    for (int i = 0; i < n1; ++i) {
+        const double xi = cell_coordinate(i, n1);
+        r0[i] = xi * g->length;
+        cr0[i] = f.cm1 * r0[i];
+        sr0[i] = f.sn * r0[i];
+        p0[i] = 1.0 + f.k[0] * xi;
+    }
+    for (int j = 0; j < n2; ++j) {
+        const double eta = cell_coordinate(j, n2);
+        r1[j] = eta * g->width;
+        cr1[j] = f.cm1 * r1[j];
+        sr1[j] = f.sn * r1[j];
+        p1[j] = f.k[1] * eta;
+    }
+    const double N = g->N, u0 = g->u[0], u1 = g->u[1];
     double T0 = 0.0, T1 = 0.0, Mz = 0.0, energy = 0.0;
     int pressed = 0, slipping = 0;
     for (int j = 0, c = 0; j < n2; ++j)
         for (int i = 0; i < n1; ++i, ++c) {
-            const patch_cell x = cell_at(g, &f, xi[i], eta[j]);
+            patch_cell x;
+            x.d[0] = u0;
+            x.d[1] = u1;
+            x.Rr[0] = r0[i];
+            x.Rr[1] = r1[j];
+            if (r0[i] != 0.0 || r1[j] != 0.0) { /* the centre cell sees u itself */
+                const double dr0 = cr0[i] - sr1[j], dr1 = sr0[i] + cr1[j];
+                x.d[0] += dr0;
+                x.d[1] += dr1;
+                x.Rr[0] += dr0;
+                x.Rr[1] += dr1;
+            }
+            const double nu = f.w * (p0[i] + p1[j]);
             oc_state local;
             const oc_state *from = &local;
             if (src->kind == FROM_STEPS) from = &src->steps[c].next;
             else if (src->kind == FROM_ARRAY) from = &src->array[c];
             else local = source_cell(src, g, &x, c);
             oc_step *st = &out[c];
-            oc_law_step(law, from, x.d, N * x.nu, st);
+            oc_law_step(law, from, x.d, N * nu, st);
             if (!oc_step_is_finite(st))
                 return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the "
                                      "force or slip of cell (%d, %d)", g->u[0], g->u[1], g->theta,
