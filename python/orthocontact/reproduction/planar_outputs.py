@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..closed_forms.paper import steady_phi_deg
+from ..closed_forms.paper import of_law, steady_phi_deg
 from ..experiment.scenario import Scenario
 from ..fmu.patch import PatchGeometry
 from ..output.figures import curve_style, draw_here, finish, pyplot, swept_label
@@ -108,7 +108,7 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
                                      tw["step_s"], fmu_path=fmu_path, fmi_version=_version(fmu_path))
             yaw = math.degrees(res.theta[-1])
             closed = math.degrees(planar.steady_yaw(p))
-            phi = steady_phi_deg(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, rule)
+            phi = of_law(steady_phi_deg, p, p.alpha, p.beta)
             worst = max(worst, abs(yaw - closed))
             rows.append((rule, a, yaw, closed, yaw - closed, phi))
             records[(rule, a)] = res
@@ -171,8 +171,7 @@ def _figure_yaw_angle(sc: Scenario, rows: list, path: Path) -> None:
     for i, rule in enumerate(rules):
         pts = [r for r in rows if r[0] == rule]
         closed = [math.degrees(planar.steady_yaw(sc.params_at(a, rule))) for a in fine]
-        phi = [steady_phi_deg(*(lambda p: (p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta))(
-            sc.params_at(a, rule)), rule) for a in fine]
+        phi = [of_law(steady_phi_deg, p, p.alpha, p.beta) for p in (sc.params_at(a, rule) for a in fine)]
         ax.plot(fine, closed, "-", color=f"C{i}", lw=1, label=f"{rule}: yaw, closed form")
         ax.plot([r[1] for r in pts], [r[2] for r in pts], "o", ms=4, color=f"C{i}",
                 label=f"{rule}: yaw, patch FMU")

@@ -59,7 +59,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..closed_forms.paper import steady_tan_phi
+from ..closed_forms.paper import of_law, steady_tan_phi
 from ..closed_forms.patch import full_slip_rotation_grid, steady_force_direction, torsional_stiffness_grid
 from ..fmu.params import ContactParams
 from ..fmu.patch import PatchFMU, PatchGeometry
@@ -151,8 +151,8 @@ def twist_plateau(params: ContactParams, body: PlanarBody, theta) -> np.ndarray:
     same in either frame."""
     p, g = params, body.patch
     th = np.atleast_1d(np.asarray(theta, dtype=float))
-    return np.array([full_slip_rotation_grid(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha - t, p.beta - t,
-                                             p.rule, g.length, g.width, body.normal_N, g.n1, g.n2)[2]
+    return np.array([of_law(full_slip_rotation_grid, p, p.alpha - t, p.beta - t, g.length, g.width,
+                            body.normal_N, g.n1, g.n2)[2]
                      for t in th]).reshape(np.shape(theta))
 
 
@@ -162,7 +162,7 @@ def steady_yaw(params: ContactParams, direction_rad: float = 0.0) -> float:
     motion, psi + atan2(m x q, m . q) (module docstring)."""
     p = params
     m = np.array([math.cos(direction_rad), math.sin(direction_rad)])
-    q = steady_force_direction(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, p.rule, m)
+    q = of_law(steady_force_direction, p, p.alpha, p.beta, m)
     return direction_rad + math.atan2(m[0] * q[1] - m[1] * q[0], m @ q)
 
 
@@ -173,8 +173,7 @@ def steady_yaw_residual(params: ContactParams, theta: float, direction_rad: floa
     and that must be the motion's direction: theta + phi - direction_rad,
     zero at the steady yaw (|angles| < 90 deg)."""
     p = params
-    phi = math.atan(steady_tan_phi(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha - theta, p.beta - theta,
-                                   p.rule))
+    phi = math.atan(of_law(steady_tan_phi, p, p.alpha - theta, p.beta - theta))
     return theta + phi - direction_rad
 
 
