@@ -19,7 +19,7 @@
  * Runs are interleaved (for each grid and path: patch, points, law), `rounds`
  * rounds; each figure is the least disturbed (smallest) of its rounds, thread
  * CPU time, and each ratio is that of those figures with the range of the
- * rounds' own ratios beside it.  Targets (issue 25): a cell's cost in the
+ * rounds' own ratios beside it.  Targets: a cell's cost in the
  * patch <= 1.2x the law's own step, and a 100-cell patch step <= 0.5x of 100
  * point steps through the FMI calls.
  *
