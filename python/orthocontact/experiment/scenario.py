@@ -204,6 +204,16 @@ def load(path) -> Scenario:
         fmu_path = (path.parent / fmu) if not Path(fmu).is_absolute() else Path(fmu)
         if not fmu_path.is_file():
             raise ScenarioError(path, "fmu", "the path of an existing .fmu file", fmu)
+        if top["kind"] in PATCH_KINDS:
+            # a point FMU here would fail later, far from the key that named it
+            from ..fmu.files import model_description
+            try:
+                model = model_description(fmu_path).coSimulation.modelIdentifier
+            except Exception as e:
+                model = f"not a readable FMU ({e})"
+            if model != "ContactPatch":
+                raise ScenarioError(path, "fmu", f"a ContactPatch FMU for a scenario of kind "
+                                    f"{top['kind']!r}", f"{fmu}: {model}")
         fmu = str(fmu_path)
 
     rig_given = raw.get("rig", {})
