@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from orthocontact.closed_forms.paper import G_STANDARD
+from orthocontact.closed_forms.paper import G_STANDARD, steady_tan_phi
 from orthocontact.closed_forms.patch import torsional_stiffness_grid
 from orthocontact.fmu.params import ContactParams
 from orthocontact.fmu.patch import PatchGeometry
@@ -107,6 +107,19 @@ def test_towed_block_settles_at_the_yaw_of_the_steady_sliding_force(a_deg, rule)
     pull = -np.array([r.T1[-1], r.T2[-1]])
     assert math.atan2(pull[1], pull[0]) == pytest.approx(yaw, abs=1e-9)
     assert abs(r.Mz[-1]) < 1e-9 * N * 0.1       # uniform sliding: no moment about the centre
+
+
+@pytest.mark.parametrize("rule", ["associated", "coupled"])
+def test_the_papers_phi_comes_back_as_the_towed_blocks_yaw(rule):
+    """The paper's phi at mat angle a0 (force along X1, slip at phi) is the
+    towed block's steady state turned by -phi: towed at mat angle a0 - phi
+    the block settles at yaw -phi.  Checked through the FMU against
+    closed_forms.paper alone, at the paper's extremal angle 39.2 deg."""
+    a0 = 39.2
+    p0 = mat(a0, rule)
+    phi = math.degrees(math.atan(steady_tan_phi(p0.mu1, p0.mu2, p0.eps1, p0.eps2, p0.alpha, p0.beta, rule)))
+    r = towed(mat(a0 - phi, rule))
+    assert r.theta[-1] == pytest.approx(math.radians(-phi), abs=1e-9)
 
 
 def test_towed_block_steady_yaw_depends_neither_on_grid_nor_on_step():

@@ -42,7 +42,13 @@ motion's side: with the force along X1 the slip runs at phi
 (closed_forms.paper.steady_tan_phi); turned by theta_ss, the force of the
 towed block is along its axis, so theta_ss = psi - phi(alpha - theta_ss,
 beta - theta_ss) with phi evaluated in the frame of the force, an implicit
-equation whose root is the explicit form above.  It is independent of the
+equation whose root is the explicit form above.  On the paper's mat (alpha
+= a + 90 deg, beta = a, motion along X1) that reads theta_ss(a) =
+-phi(a - theta_ss(a)): the yaw is not -phi at the same mat angle, but it
+takes the same values, -phi(a0) at a = a0 - phi(a0), so its extremum is
+minus the paper's extremal phi, at the paper's extremal angle minus that
+phi (coupled, aged mat: 11.526 deg at a = 50.76 deg against phi = -11.526
+deg at 39.24 deg).  It is independent of the
 grid (every cell carries the same force in uniform translation) and of the
 time step (backward Euler's fixed point is the steady state, and the
 return mapping's steady force q parallel to H m holds for any increment).
