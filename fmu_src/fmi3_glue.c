@@ -29,8 +29,9 @@ static void log_fmi3(fmu_instance *I, int status, const char *category, const ch
 static fmi3Status status3(int s) { return (fmi3Status)s; }
 static void *calloc3(size_t n, size_t size) { return calloc(n, size); }
 
-/* Scalar variables only: one value per value reference.  The test inline,
- * the message out of line (at -O2 the whole was a call on every get and set). */
+/* One value per value reference (a model's arrays are outputs: gets of a
+ * model with arrays take get_values).  The test inline, the message out of
+ * line (at -O2 the whole was a call on every get and set). */
 static int arrays_refused(fmu_instance *I, const char *fn, size_t nvr, const void *vr,
                           const void *values, size_t nValues);
 static inline int arrays_ok(fmu_instance *I, const char *fn, size_t nvr, const void *vr,
@@ -46,8 +47,9 @@ static int arrays_refused(fmu_instance *I, const char *fn, size_t nvr, const voi
         return 0;
     }
     if (nValues != nvr) {
-        FMU_ERROR(I, "%s: nValues = %zu but nValueReferences = %zu (every variable is a scalar)",
-                  fn, nValues, nvr);
+        FMU_ERROR(I, "%s: nValues = %zu but nValueReferences = %zu (%s)", fn, nValues, nvr,
+                  FMU_MODEL_INFO.arrays ? "only outputs are arrays: every settable variable is a "
+                                          "scalar" : "every variable is a scalar");
         return 0;
     }
     return 1;
@@ -148,7 +150,7 @@ void fmi3FreeInstance(fmi3Instance c) {
 fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_ALIVE | FMU_CONFIG)) return fmi3Error;
     return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories)
                ? fmi3Error : fmi3OK;
 }
@@ -190,21 +192,48 @@ fmi3Status fmi3Terminate(fmi3Instance c) {
 
 fmi3Status fmi3Reset(fmi3Instance c) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_ALIVE | FMU_CONFIG)) return fmi3Error;
     fmu_reset(I);
     return fmi3OK;
 }
 
 /* ---- Getting and setting values ----------------------------------------- */
 
-#define SETTABLE (FMU_INSTANTIATED | FMU_INIT | FMU_STEP)
+#define SETTABLE (FMU_INSTANTIATED | FMU_INIT | FMU_STEP | FMU_CONFIG)
+
+/* A get of a model with arrays: nValues counts the arrays' elements. */
+static int get_values(fmu_instance *I, const char *fn, const fmi3ValueReference vr[], size_t nvr,
+                      void *values, size_t nValues, int type, size_t width) {
+    if (nvr > 0 && (!vr || !values)) {
+        FMU_ERROR(I, "%s: NULL array with nValueReferences = %zu", fn, nvr);
+        return FMU_S_ERROR;
+    }
+    fmu_msg msg;
+    return fmu_result(I, fmu_model_get_values(I->model, vr, nvr, values, nValues, type, width,
+                                              &msg), &msg, fn);
+}
+
+/* In configuration mode only the structural parameters may be set. */
+static int config_ok(fmu_instance *I, const char *fn, const fmi3ValueReference vr[], size_t nvr) {
+    if (I->phase != FMU_CONFIG) return 1;
+    for (size_t i = 0; i < nvr; ++i)
+        if (!fmu_model_is_structural(vr[i])) {
+            const char *name = fmu_model_variable_name(vr[i]);
+            FMU_ERROR(I, "%s: %s (vr %u) is not a structural parameter: in configuration mode "
+                         "only structural parameters may be set", fn, name ? name : "unknown",
+                      vr[i]);
+            return 0;
+        }
+    return 1;
+}
 
 fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                           fmi3Float64 values[], size_t nValues) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_READABLE) ||
-        !arrays_ok(I, __func__, nvr, vr, values, nValues))
-        return fmi3Error;
+    if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi3Error;
+    if (FMU_MODEL_INFO.arrays)
+        return status3(get_values(I, __func__, vr, nvr, values, nValues, FMU_T_Float64, 8));
+    if (!arrays_ok(I, __func__, nvr, vr, values, nValues)) return fmi3Error;
     fmu_msg msg;
     return status3(fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, values, &msg), &msg,
                               __func__));
@@ -214,7 +243,7 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
                           const fmi3Float64 values[], size_t nValues) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, SETTABLE) ||
-        !arrays_ok(I, __func__, nvr, vr, values, nValues))
+        !arrays_ok(I, __func__, nvr, vr, values, nValues) || !config_ok(I, __func__, vr, nvr))
         return fmi3Error;
     fmu_msg msg;
     return status3(fmu_result(
@@ -227,9 +256,11 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
     fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
                              CTYPE values[], size_t nValues) {                                   \
         fmu_instance *I = INST(c);                                                               \
-        if (!fmu_allowed(I, __func__, FMU_READABLE) ||                                   \
-            !arrays_ok(I, __func__, nvr, vr, values, nValues))                            \
-            return fmi3Error;                                                                    \
+        if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi3Error;                          \
+        if (FMU_MODEL_INFO.arrays)                                                               \
+            return status3(                                                                      \
+                get_values(I, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE)));         \
+        if (!arrays_ok(I, __func__, nvr, vr, values, nValues)) return fmi3Error;                 \
         fmu_msg msg;                                                                             \
         return status3(fmu_result(                                                               \
             I, fmu_model_get_int(I->model, vr, nvr, values, sizeof(CTYPE), KIND, &msg), &msg,   \
@@ -238,8 +269,9 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
     fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
                              const CTYPE values[], size_t nValues) {                             \
         fmu_instance *I = INST(c);                                                               \
-        if (!fmu_allowed(I, __func__, SETTABLE) ||                                       \
-            !arrays_ok(I, __func__, nvr, vr, values, nValues))                            \
+        if (!fmu_allowed(I, __func__, SETTABLE) ||                                               \
+            !arrays_ok(I, __func__, nvr, vr, values, nValues) ||                                 \
+            !config_ok(I, __func__, vr, nvr))                                                    \
             return fmi3Error;                                                                    \
         fmu_msg msg;                                                                             \
         return status3(fmu_result(I,                                                             \
@@ -331,11 +363,23 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference depend
                           "description's ModelStructure only");
 }
 
+/* Configuration mode, from the instantiated phase only: the structural
+ * parameters are fixed, so there is no reconfiguration mode. */
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) {
-    return unsupported(c, __func__, "this FMU has no structural parameters");
+    fmu_instance *I = INST(c);
+    if (!FMU_MODEL_INFO.arrays || !FMU_MODEL_INFO.arrays->n_structural)
+        return unsupported(c, __func__, "this FMU has no structural parameters");
+    if (!fmu_allowed(I, __func__, FMU_INSTANTIATED)) return fmi3Error;
+    I->phase = FMU_CONFIG;
+    return fmi3OK;
 }
 fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) {
-    return unsupported(c, __func__, "this FMU has no structural parameters");
+    fmu_instance *I = INST(c);
+    if (!FMU_MODEL_INFO.arrays || !FMU_MODEL_INFO.arrays->n_structural)
+        return unsupported(c, __func__, "this FMU has no structural parameters");
+    if (!fmu_allowed(I, __func__, FMU_CONFIG)) return fmi3Error;
+    I->phase = FMU_INSTANTIATED;
+    return fmi3OK;
 }
 
 #define NO_CLOCKS "this FMU has no clocks"

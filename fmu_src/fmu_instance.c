@@ -185,6 +185,55 @@ fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t
     return FMU_OK;
 }
 
+int fmu_model_is_structural(unsigned int vr) {
+    const fmu_arrays *a = INFO.arrays;
+    for (unsigned int k = 0; a && k < a->n_structural; ++k)
+        if (a->structural[k] == vr) return 1;
+    return 0;
+}
+
+/* The number of values vr holds (1 for a scalar) and its type (0: unknown). */
+static size_t values_of(const fmu_model *m, unsigned int vr, int *type) {
+    const fmu_arrays *a = INFO.arrays;
+    size_t n;
+    if (a && vr >= INFO.n_vars && (n = a->size(m, vr, type)) > 0) return n;
+    const fmu_var *x = var_of(vr);
+    *type = x ? x->type : 0;
+    return 1;
+}
+
+fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
+                                size_t n_values, int type, size_t width, fmu_msg *msg) {
+    const char *asked = type == FMU_T_Float64 ? "Float64" : type == FMU_ENUM ? "Enumeration (Int64)"
+                                                                             : "Int32";
+    size_t total = 0;
+    for (size_t i = 0; i < n; ++i) {
+        int t;
+        total += values_of(m, vr[i], &t);
+        if (!(t & type)) /* the type codes are the kind bits */
+            return not_of_type(vr[i], asked, msg);
+    }
+    if (total != n_values)
+        return fmu_fail(msg, "nValues = %zu but the %zu variables hold %zu values", n_values, n,
+                        total);
+    size_t at = 0;
+    for (size_t i = 0; i < n; ++i) {
+        int t;
+        const size_t k = values_of(m, vr[i], &t);
+        if (vr[i] >= INFO.n_vars) {
+            /* an Int32 array is asked for through the Int32 functions only (width 4) */
+            INFO.arrays->get(m, vr[i], type == FMU_T_Float64 ? (void *)((double *)v + at)
+                                                             : (void *)((int32_t *)v + at));
+        } else if (type == FMU_T_Float64) {
+            ((double *)v)[at] = *CSLOT_D(m, var_of(vr[i]));
+        } else {
+            fmu_int_put(v, width, at, *CSLOT_I(m, var_of(vr[i])));
+        }
+        at += k;
+    }
+    return FMU_OK;
+}
+
 fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[],
                                 size_t n_unknown, const unsigned int known[], size_t n_known,
                                 const double seed[], double out[], int adjoint, fmu_msg *msg) {
@@ -271,6 +320,7 @@ static const char *phase_name(int phase) {
     case FMU_INSTANTIATED: return "instantiated";
     case FMU_INIT: return "initialization mode";
     case FMU_STEP: return "step mode";
+    case FMU_CONFIG: return "configuration mode";
     default: return "terminated";
     }
 }

@@ -18,6 +18,10 @@ extern "C" {
 
 /* Life-cycle phases, as bits so that a call names the phases it allows. */
 enum { FMU_INSTANTIATED = 1, FMU_INIT = 2, FMU_STEP = 4, FMU_TERMINATED = 8 };
+/* FMI 3.0's configuration mode, entered from and left to the instantiated
+ * phase: only structural parameters may be set (not in FMU_ALIVE: no state is
+ * taken or restored there). */
+enum { FMU_CONFIG = 16 };
 #define FMU_ALIVE (FMU_INSTANTIATED | FMU_INIT | FMU_STEP | FMU_TERMINATED)
 #define FMU_READABLE (FMU_INIT | FMU_STEP | FMU_TERMINATED)
 
@@ -68,7 +72,7 @@ static inline int fmu_allowed(fmu_instance *I, const char *fn, int phases) {
 /* FMU_ALLOW_* for the current phase. */
 static inline int fmu_settable(const fmu_instance *I) {
     int allow = 0;
-    if (I->phase & (FMU_INSTANTIATED | FMU_INIT)) allow |= FMU_ALLOW_PARAMETERS;
+    if (I->phase & (FMU_INSTANTIATED | FMU_INIT | FMU_CONFIG)) allow |= FMU_ALLOW_PARAMETERS;
     if (I->phase & (FMU_INSTANTIATED | FMU_INIT | FMU_STEP)) allow |= FMU_ALLOW_INPUTS;
     return allow;
 }

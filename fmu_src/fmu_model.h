@@ -120,7 +120,23 @@ typedef struct {
     fmu_status (*derivative)(const fmu_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
                              double out[], int adjoint, fmu_msg *msg);
+    /* FMI 3.0 arrays and structural parameters; NULL: scalars only. */
+    const struct fmu_arrays *arrays;
 } fmu_model_info;
+
+/* A model's FMI 3.0 array variables (outputs only; FMI 2.0 has none): their
+ * value references follow the table's (>= n_vars), their sizes are products
+ * of structural parameters, which the importer may set in configuration mode
+ * as well as where the table lets it set them. */
+typedef struct fmu_arrays {
+    /* The number of values array vr holds now (>= 1) and its type
+     * (FMU_T_Float64 or FMU_T_Int32); 0 if vr is not an array. */
+    size_t (*size)(const fmu_model *m, unsigned int vr, int *type);
+    /* Writes them in row-major order, as doubles or int32_t by its type. */
+    void (*get)(const fmu_model *m, unsigned int vr, void *out);
+    const unsigned int *structural; /* the structural parameters' value references */
+    unsigned int n_structural;
+} fmu_arrays;
 extern const fmu_model_info FMU_MODEL_INFO;
 
 /* ---- what each model implements ----------------------------------------- */
@@ -174,6 +190,13 @@ fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, co
                              size_t width, int kinds, int allow, fmu_msg *msg);
 fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
                              size_t width, int kinds, fmu_msg *msg);
+/* FMI 3.0 gets, arrays included: the values of vr[] in order, each array's
+ * in row-major order, nValues their total; `type` FMU_T_Float64 (v double[])
+ * or the integer kinds with width as fmu_model_get_int. */
+fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
+                                size_t n_values, int type, size_t width, fmu_msg *msg);
+/* Whether vr is one of the model's structural parameters. */
+int fmu_model_is_structural(unsigned int vr);
 fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[],
                                 size_t n_unknown, const unsigned int known[], size_t n_known,
                                 const double seed[], double out[], int adjoint, fmu_msg *msg);

@@ -241,6 +241,30 @@ static const row *row_named(const char *name) {
     return NULL;
 }
 
+/* FMI 3.0 only (the table's FMU_ARRAYS(A), FMU_STRUCTURAL_PARAMETERS):
+ * array outputs whose dimensions are the structural parameters, in order,
+ * each element depending on what the scalar output `like` depends on. */
+typedef struct {
+    const char *name, *type, *unit, *like, *desc;
+    unsigned int vr;
+} array_row;
+#ifdef FMU_ARRAYS
+#define ARRAY_ROW(name, vr, type, unit, like, desc) {#name, #type, unit, #like, desc, vr},
+static const array_row ARRAYS[] = {FMU_ARRAYS(ARRAY_ROW)};
+#undef ARRAY_ROW
+enum { NARRAYS = sizeof ARRAYS / sizeof ARRAYS[0] };
+#else
+static const array_row ARRAYS[1];
+enum { NARRAYS = 0 };
+#endif
+#ifndef FMU_STRUCTURAL_PARAMETERS
+#define FMU_STRUCTURAL_PARAMETERS ""
+#endif
+
+static int is_structural(const row *r) {
+    return kind_in(FMU_STRUCTURAL_PARAMETERS, r->name) != NULL;
+}
+
 /* A known of the mode: at a communication point the inputs (the time moves
  * with doStep as the hidden state does: the importer sets neither); in
  * initialization mode also the start time and every variable with
@@ -261,6 +285,23 @@ static int kind_allowed(const char *kind, const row *unknown, int init) {
 
 static int check_dependencies(void) {
     int bad = 0;
+    for (int a = 0; a < NARRAYS; ++a)
+        if (!deps_of(ARRAYS[a].like)) {
+            fprintf(stderr, "gen_model_description: array %s is like %s, not an output with "
+                            "dependencies\n", ARRAYS[a].name, ARRAYS[a].like);
+            bad = 1;
+        }
+    {
+        char name[64], kind[16];
+        for (int k = 0; list_item(FMU_STRUCTURAL_PARAMETERS, k, name, kind); ++k) {
+            const row *r = row_named(name);
+            if (!r || !is(r->type, "Int32") || !is(r->causality, "parameter") || r->min < 1) {
+                fprintf(stderr, "gen_model_description: structural parameter %s is not an Int32 "
+                                "parameter with min >= 1\n", name);
+                bad = 1;
+            }
+        }
+    }
     for (int i = 0; i < NROWS; ++i)
         if (is(ROWS[i].causality, "output") && !deps_of(ROWS[i].name)) {
             fprintf(stderr, "gen_model_description: output %s has no FMU_DEPENDENCIES row\n",
@@ -398,7 +439,8 @@ static void fmi3(FILE *f, const char *token) {
         const char *el = is_enum(r) ? "Enumeration" : r->type;
         fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\"", el, r->name, r->vr);
         if (is_enum(r)) fprintf(f, " declaredType=\"%s\"", r->type);
-        fprintf(f, " causality=\"%s\" variability=\"%s\"", r->causality, r->variability);
+        fprintf(f, " causality=\"%s\" variability=\"%s\"",
+                is_structural(r) ? "structuralParameter" : r->causality, r->variability);
         if (*r->initial) fprintf(f, " initial=\"%s\"", r->initial);
         fputs(" description=\"", f);
         esc(f, r->desc);
@@ -406,19 +448,35 @@ static void fmi3(FILE *f, const char *token) {
         value_attrs(f, r);
         fputs("/>\n", f);
     }
+    for (int a = 0; a < NARRAYS; ++a) {
+        const array_row *x = &ARRAYS[a];
+        fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\" causality=\"output\" "
+                   "variability=\"%s\" initial=\"calculated\" description=\"",
+                x->type, x->name, x->vr, is(x->type, "Float64") ? "continuous" : "discrete");
+        esc(f, x->desc);
+        fputc('"', f);
+        if (*x->unit && !is(x->unit, "1")) fprintf(f, " unit=\"%s\"", x->unit);
+        fputs(">\n", f);
+        char name[64], kind[16];
+        for (int k = 0; list_item(FMU_STRUCTURAL_PARAMETERS, k, name, kind); ++k)
+            fprintf(f, "      <Dimension valueReference=\"%u\"/>\n", row_named(name)->vr);
+        fprintf(f, "    </%s>\n", x->type);
+    }
     fputs("  </ModelVariables>\n\n  <ModelStructure>\n", f);
-    for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "output")) {
-            fprintf(f, "    <Output valueReference=\"%u\"", ROWS[i].vr);
-            dependencies(f, ROWS[i].name, 0, 0);
+    for (int init = 0; init < 2; ++init) {
+        const char *el = init ? "InitialUnknown" : "Output";
+        for (int i = 0; i < NROWS; ++i)
+            if (is(ROWS[i].causality, "output")) {
+                fprintf(f, "    <%s valueReference=\"%u\"", el, ROWS[i].vr);
+                dependencies(f, ROWS[i].name, init, 0);
+                fputs("/>\n", f);
+            }
+        for (int a = 0; a < NARRAYS; ++a) {
+            fprintf(f, "    <%s valueReference=\"%u\"", el, ARRAYS[a].vr);
+            dependencies(f, ARRAYS[a].like, init, 0);
             fputs("/>\n", f);
         }
-    for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "output")) {
-            fprintf(f, "    <InitialUnknown valueReference=\"%u\"", ROWS[i].vr);
-            dependencies(f, ROWS[i].name, 1, 0);
-            fputs("/>\n", f);
-        }
+    }
     fputs("  </ModelStructure>\n\n</fmiModelDescription>\n", f);
 }
 
@@ -503,13 +561,28 @@ static void html(FILE *f, int v) {
         if (isfinite(r->max)) value_cell(hi, sizeof hi, r, r->max);
         fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>%s</td><td>%s</td><td>%s</td>"
                    "<td>%s%s%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>",
-                r->name, r->vr, r->causality, r->variability, type_name(r, v, type, sizeof type),
+                r->name, r->vr, v == 3 && is_structural(r) ? "structuralParameter" : r->causality,
+                r->variability, type_name(r, v, type, sizeof type),
                 is(r->unit, "1") ? "" : r->unit, *r->display ? " (display " : "", r->display,
                 *r->display ? ")" : "", s, lo, hi);
         esc(f, r->desc);
         fputs("</td></tr>\n", f);
     }
+    for (int a = 0; v == 3 && a < NARRAYS; ++a) {
+        fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>output</td><td>%s</td>"
+                   "<td>%s[%s]</td><td>%s</td><td></td><td></td><td></td><td>",
+                ARRAYS[a].name, ARRAYS[a].vr, is(ARRAYS[a].type, "Float64") ? "continuous" : "discrete",
+                ARRAYS[a].type, FMU_STRUCTURAL_PARAMETERS, is(ARRAYS[a].unit, "1") ? "" : ARRAYS[a].unit);
+        esc(f, ARRAYS[a].desc);
+        fputs("</td></tr>\n", f);
+    }
     fputs("</table>\n", f);
+    if (v == 3 && *FMU_STRUCTURAL_PARAMETERS)
+        fputs("<p>Structural parameters (causality structuralParameter), settable in configuration "
+              "mode as well as before initialization: <code>" FMU_STRUCTURAL_PARAMETERS "</code>. "
+              "The arrays above are their shape, row-major (the last index fastest); "
+              "fmi3GetFloat64 and fmi3GetInt32 take nValues, the number of values of all the "
+              "variables asked for.</p>\n", f);
     for (int e = 0; e < NENUMS; ++e) {
         const char *var = "";
         for (int i = 0; i < NROWS; ++i)
@@ -596,7 +669,38 @@ static void manifest(FILE *f) {
         json_str(f, r->desc);
         fputs(i + 1 < NROWS ? "},\n" : "}\n", f);
     }
-    fputs("  ],\n  \"enumerations\": {", f);
+    fputs("  ],\n", f);
+    if (NARRAYS > 0 || *FMU_STRUCTURAL_PARAMETERS) {
+        /* FMI 3.0 only: n1, n2 are structural parameters there, and the arrays */
+        fputs("  \"fmi3\": {\"structuralParameters\": [", f);
+        char name[64], kind[16];
+        for (int k = 0; list_item(FMU_STRUCTURAL_PARAMETERS, k, name, kind); ++k) {
+            if (k) fputs(", ", f);
+            json_str(f, name);
+        }
+        fputs("], \"arrays\": [\n", f);
+        for (int a = 0; a < NARRAYS; ++a) {
+            const array_row *x = &ARRAYS[a];
+            fputs("    {\"name\": ", f);
+            json_str(f, x->name);
+            fprintf(f, ", \"valueReference\": %u, \"type\": ", x->vr);
+            json_str(f, x->type);
+            fputs(", \"unit\": ", f);
+            json_str(f, is(x->unit, "1") ? "" : x->unit);
+            fputs(", \"dimensions\": [", f);
+            for (int k = 0; list_item(FMU_STRUCTURAL_PARAMETERS, k, name, kind); ++k) {
+                if (k) fputs(", ", f);
+                json_str(f, name);
+            }
+            fputs("], \"dependenciesOf\": ", f);
+            json_str(f, x->like);
+            fputs(", \"description\": ", f);
+            json_str(f, x->desc);
+            fputs(a + 1 < NARRAYS ? "},\n" : "}\n", f);
+        }
+        fputs("  ]},\n", f);
+    }
+    fputs("  \"enumerations\": {", f);
     for (int e = 0; e < NENUMS; ++e) {
         fputs(e ? ",\n    " : "\n    ", f);
         json_str(f, ENUMS[e].name);

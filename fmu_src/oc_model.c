@@ -39,7 +39,7 @@ static fmu_status exit_init(oc_model *m, fmu_msg *msg);
 
 const fmu_model_info FMU_MODEL_INFO = {
     FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS, OC_VR_COUNT_PLUS_ONE, sizeof(oc_model),
-    NULL /* the outputs live in their slots */, exit_init, derivative};
+    NULL /* the outputs live in their slots */, exit_init, derivative, NULL /* no arrays */};
 
 static const oc_state *committed(const oc_model *m) {
     return m->result_committed ? &m->steps[m->shown].next : &m->start;

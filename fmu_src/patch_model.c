@@ -43,9 +43,39 @@ static fmu_status derivative(const patch_model *m, const unsigned int unknown[],
                              double out[], int adjoint, fmu_msg *msg);
 static fmu_status exit_init(patch_model *m, fmu_msg *msg);
 
+/* ---- FMI 3.0: the cells as arrays (patch_variables.h's FMU_ARRAYS) --------- */
+
+static size_t array_size(const patch_model *m, unsigned int vr, int *type) {
+    switch (vr) {
+    case PATCH_VR_cellT1:
+    case PATCH_VR_cellT2: *type = FMU_T_Float64; break;
+    case PATCH_VR_cellState: *type = FMU_T_Int32; break;
+    default: return 0;
+    }
+    return (size_t)m->g.n[0] * (size_t)m->g.n[1];
+}
+
+/* Element [i][j] (row-major, shape (n1, n2)) is cell c = i + n1 j of the
+ * shown step, its force as the sums take it (0.0 - q). */
+static void array_get(const patch_model *m, unsigned int vr, void *out) {
+    const int n1 = m->g.n[0], n2 = m->g.n[1];
+    const oc_step *steps = m->steps[m->shown];
+    for (int i = 0; i < n1; ++i)
+        for (int j = 0; j < n2; ++j) {
+            const oc_step *st = &steps[i + n1 * j];
+            const size_t k = (size_t)i * (size_t)n2 + (size_t)j;
+            if (vr == PATCH_VR_cellState) ((int32_t *)out)[k] = (int32_t)st->contact;
+            else ((double *)out)[k] = 0.0 - st->q[vr == PATCH_VR_cellT1 ? 0 : 1];
+        }
+}
+
+static const unsigned int STRUCTURAL[] = {PATCH_VR_n1, PATCH_VR_n2};
+static const fmu_arrays ARRAYS = {array_size, array_get, STRUCTURAL, 2};
+
 const fmu_model_info FMU_MODEL_INFO = {
     FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS, PATCH_VR_COUNT_PLUS_ONE,
-    sizeof(patch_model), NULL /* the outputs live in their slots */, exit_init, derivative};
+    sizeof(patch_model), NULL /* the outputs live in their slots */, exit_init, derivative,
+    &ARRAYS};
 
 /* ---- the cells' kinematics and loads --------------------------------------- */
 

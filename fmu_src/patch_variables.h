@@ -153,6 +153,20 @@
       "State of the step: 0 open (no cell pressed), 1 every pressed cell sticks, 2 some slip, "  \
       "3 every pressed cell slips")
 
+/* FMI 3.0 only: the cells' forces and states as arrays of shape (n1, n2),
+ * element [i][j] the cell i along length, j along width (row-major, j
+ * fastest), and n1, n2 their structural parameters (FMI 2.0 has neither:
+ * there n1, n2 are parameters).  Columns: name, value reference, type, unit,
+ * the scalar output whose dependencies each element has, description. */
+#define FMU_STRUCTURAL_PARAMETERS "n1 n2"
+#define FMU_ARRAYS(A)                                                                            \
+    A(cellT1, 27, Float64, "N", T1,                                                              \
+      "Tangential force of the surface on the body at each cell along X1 (they sum to T1)")      \
+    A(cellT2, 28, Float64, "N", T2,                                                              \
+      "Tangential force of the surface on the body at each cell along X2 (they sum to T2)")      \
+    A(cellState, 29, Int32, "", contactState,                                                    \
+      "State of each cell in this step: 0 open, 1 stick, 2 slip")
+
 #define FMU_VARIABLES(X) PATCH_VARIABLES(X, X)
 #define FMU_NO_ROW(...)
 #define PATCH_LAW_PARAMETERS(L) PATCH_VARIABLES(FMU_NO_ROW, L)
@@ -161,6 +175,7 @@
 
 #define PATCH_VR_ENUM_ENTRY(name, vr, ...) PATCH_VR_##name = vr,
 enum { FMU_VARIABLES(PATCH_VR_ENUM_ENTRY) PATCH_VR_COUNT_PLUS_ONE };
+enum { FMU_ARRAYS(PATCH_VR_ENUM_ENTRY) PATCH_VR_ARRAYS_END };
 #undef PATCH_VR_ENUM_ENTRY
 
 #endif

@@ -99,12 +99,19 @@ def check_sources(src: ModelSources) -> None:
     for md in (src.fmi2, src.fmi3):
         where = f"{m.model_identifier}: the installed FMI {md.fmiVersion} model description and " \
                 f"variables/{m.model_identifier}.json"
+        version = 3 if md is src.fmi3 else 2
+        arrays = m.arrays if version == 3 else ()   # FMI 3.0's arrays follow the table's variables
         names = [v.name for v in md.modelVariables]
-        if names != [v.name for v in m.variables]:
+        if names != [v.name for v in m.variables] + [a.name for a in arrays]:
             raise ValueError(f"{where} list different variables ({', '.join(names)}){stale}")
+        for a, theirs in zip(arrays, md.modelVariables[len(m.variables):]):
+            dims = [d.variable.name if d.variable else d.start for d in theirs.dimensions]
+            if (a.value_reference, a.type, a.unit, list(a.dimensions)) != \
+                    (theirs.valueReference, theirs.type, theirs.unit or "", dims):
+                raise ValueError(f"{where} disagree on the array {a.name}{stale}")
         for ours, theirs in zip(m.variables, md.modelVariables):
             fields = [("valueReference", ours.value_reference, theirs.valueReference, int.__eq__),
-                      ("causality", ours.causality, theirs.causality, str.__eq__),
+                      ("causality", m.causality(ours, version), theirs.causality, str.__eq__),
                       ("variability", ours.variability, theirs.variability, str.__eq__),
                       ("unit", ours.unit, theirs.unit or "", str.__eq__),
                       ("start", ours.start, theirs.start, _same_number),
@@ -115,13 +122,19 @@ def check_sources(src: ModelSources) -> None:
             for field, a, b, same in fields:
                 if not same(a, b):
                     raise ValueError(f"{where} disagree on {ours.name}'s {field} ({a!r} and {b!r}){stale}")
-        outputs = [v.name for v in m.variables if v.causality == "output"]
+        outputs = [v.name for v in m.variables if v.causality == "output"] + [a.name for a in arrays]
         if [u.variable.name for u in md.outputs] != outputs:
             raise ValueError(f"{m.model_identifier}: the FMI {md.fmiVersion} model structure lists the "
                              f"outputs {[u.variable.name for u in md.outputs]}, the table {outputs}")
-    if dependencies(src.fmi2) != dependencies(src.fmi3):
+    deps3 = dependencies(src.fmi3)
+    scalars3 = {o: d for o, d in deps3.items() if o not in {a.name for a in m.arrays}}
+    if dependencies(src.fmi2) != scalars3:
         raise ValueError(f"{m.model_identifier}: the outputs' dependencies differ between FMI 2.0 "
-                         f"{dependencies(src.fmi2)} and FMI 3.0 {dependencies(src.fmi3)}")
+                         f"{dependencies(src.fmi2)} and FMI 3.0 {scalars3}")
+    for a in m.arrays:
+        if deps3[a.name] != deps3[a.dependencies_of]:
+            raise ValueError(f"{m.model_identifier}: the FMI 3.0 array {a.name} does not depend on "
+                             f"what {a.dependencies_of} depends on")
 
 
 def dependencies(md) -> dict[str, tuple[tuple[str, str], ...] | None]:
@@ -165,6 +178,11 @@ def model_section(src: ModelSources) -> list[str]:
     items = {t.name: t.items for t in md.typeDefinitions if t.items}
     out = [f"## {m.model_identifier}", "", md_text(md.description or ""), "",
            f"Table: `{src.table}`. Value references are the same in FMI 2.0 and 3.0."]
+    if m.structural:
+        out.append(f"In FMI 3.0 {', '.join(f'`{n}`' for n in m.structural)} are structural parameters "
+                   "(settable also in configuration mode; parameters in FMI 2.0) and the arrays "
+                   + ", ".join(f"`{a.name}`" for a in m.arrays) + " are outputs of that shape "
+                   "(row-major, read with nValues their size); FMI 2.0 has no arrays.")
     law = m.group("law")
     if law:
         out.append("The law's parameters, in the table's order: " + ", ".join(f"`{n}`" for n in law) + ".")
@@ -182,9 +200,14 @@ def model_section(src: ModelSources) -> list[str]:
                 f" ({display(md, v.unit, du, v.min)[2:-1]} to {display(md, v.unit, du, v.max)[2:-1]})"
                 if du and v.min is not None and v.max is not None else "")
         unit = (v.unit + (f" (shown in {du})" if du else "")) or NONE
-        rows.append((f"`{v.name}`", str(v.value_reference), v.causality, v.variability,
+        rows.append((f"`{v.name}`", str(v.value_reference), d3.causality, v.variability,
                      f"{kind} / {md2[v.name].type}", md_text(unit), md_text(start), md_text(rng),
                      md_text(d3.description or "")))
+    for a in m.arrays:
+        d3 = md3[a.name]
+        rows.append((f"`{a.name}`", str(a.value_reference), d3.causality, d3.variability,
+                     f"{a.type}[{', '.join(a.dimensions)}] / {NONE}", md_text(a.unit or NONE),
+                     "calculated", NONE, md_text(d3.description or "")))
     out += ["", "### Variables", "",
             *table(("name", "value reference", "causality", "variability", "type (FMI 3.0 / 2.0)",
                     "unit", "start", "range", "description"), rows)]

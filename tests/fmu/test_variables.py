@@ -21,10 +21,15 @@ def test_manifest_is_the_model_description(role, fmi_version):
     md = read_model_description(str(find_fmu(fmi_version=fmi_version, model=model)))
     assert md.coSimulation.modelIdentifier == model
     m = manifest(model)
-    assert [v.name for v in m.variables] == [v.name for v in md.modelVariables]
+    arrays = m.arrays if fmi_version == 3 else ()   # FMI 2.0 has no arrays
+    assert [v.name for v in m.variables] + [a.name for a in arrays] == [v.name for v in md.modelVariables]
+    for a, theirs in zip(arrays, md.modelVariables[len(m.variables):]):
+        assert (a.value_reference, a.type, a.unit) == (theirs.valueReference, theirs.type, theirs.unit or "")
+        assert [d.variable.name for d in theirs.dimensions] == list(a.dimensions) != []
+        assert set(a.dimensions) <= set(m.structural)
     for ours, theirs in zip(m.variables, md.modelVariables):
         assert ours.value_reference == theirs.valueReference, ours.name
-        assert ours.causality == theirs.causality, ours.name
+        assert m.causality(ours, fmi_version) == theirs.causality, ours.name
         assert ours.variability == theirs.variability, ours.name
         assert ours.unit == (theirs.unit or ""), ours.name
         if ours.start is not None or theirs.start is not None:

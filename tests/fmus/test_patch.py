@@ -499,3 +499,146 @@ def test_held_inputs_step_again_and_energy_never_decreases(make):
     T = patch.get("T1", "T2", "Mz")
     patch.step()
     assert patch.get("T1", "T2", "Mz") == pytest.approx(T, rel=1e-9, abs=1e-12)
+
+
+# -- FMI 3.0: the cells as arrays, n1 and n2 structural parameters -------------------
+
+
+def _cells(patch, n1, n2):
+    """cellT1, cellT2 and cellState as (n1, n2) arrays, read with nValues."""
+    vr = patch.vr
+    t1 = np.array(patch.s.getFloat64([vr["cellT1"]], nValues=n1 * n2)).reshape(n1, n2)
+    t2 = np.array(patch.s.getFloat64([vr["cellT2"]], nValues=n1 * n2)).reshape(n1, n2)
+    st = np.array(patch.s.getInt32([vr["cellState"]], nValues=n1 * n2)).reshape(n1, n2)
+    return t1, t2, st
+
+
+@pytest.mark.parametrize("rule", ["associated", "coupled"])
+def test_fmi3_cells_sum_to_the_patch_and_carry_its_states(rule):
+    """On a path through stick, partial and full slip: the cells' forces,
+    summed cell by cell in the model's order, are T1, T2 bit for bit; their
+    moments about the centre (cell centres from the geometry, written here)
+    are Mz; the share of slipping cells is slipFraction and the states give
+    contactState (0 open, 1 all stick, 2 some slip, 3 all slip)."""
+    n1, n2, L, W = 5, 3, 0.05, 0.02
+    patch = Slave(patch_fmu(3), 3, name="cells", n1=n1, n2=n2, length=L, width=W,
+                  slidingRule=RULES[rule], **AGED)
+    try:
+        patch.initialize(**_path(0))
+        seen = set()
+        for k in range(1, 200):
+            inputs = _path(k)
+            inputs["theta"] = 0.02 * math.sin(0.05 * k)   # enough turning to slip the corners
+            inputs["N"] = -1.0 if 90 <= k < 95 else inputs["N"]
+            patch.move(**inputs)
+            t1, t2, st = _cells(patch, n1, n2)
+            T1, T2, Mz, frac = patch.get("T1", "T2", "Mz", "slipFraction")
+            s1 = s2 = 0.0
+            for j in range(n2):           # cell c = i + n1 j: i fastest, as the model sums
+                for i in range(n1):
+                    s1 += t1[i, j]
+                    s2 += t2[i, j]
+            assert (_bits(s1), _bits(s2)) == (_bits(T1), _bits(T2)), k
+            xi = (2 * np.arange(n1) + 1 - n1) / (2 * n1)
+            eta = (2 * np.arange(n2) + 1 - n2) / (2 * n2)
+            r1, r2 = np.meshgrid(xi * L, eta * W, indexing="ij")
+            c, s = math.cos(inputs["theta"]), math.sin(inputs["theta"])
+            R1, R2 = c * r1 - s * r2, s * r1 + c * r2
+            moment = float(np.sum(R1 * t2 - R2 * t1))
+            assert moment == pytest.approx(Mz, rel=1e-12, abs=1e-15 * (abs(T1) + abs(T2)) * L), k
+            assert set(np.unique(st)) <= {0, 1, 2}
+            assert frac == np.count_nonzero(st == 2) / (n1 * n2), k
+            pressed, slipping = np.count_nonzero(st != 0), np.count_nonzero(st == 2)
+            expect = 0 if pressed == 0 else 1 if slipping == 0 else 3 if slipping == pressed else 2
+            assert patch.get("contactState") == expect, k
+            if expect == 0:
+                assert not t1.any() and not t2.any()
+            seen.add(expect)
+        assert {0, 1, 2} <= seen, seen   # the path visits open, stick and partial slip
+        # a state restored into a fresh instance (at the table's 8 x 8) shows the same cells
+        blob = bytes(patch.s.serializeFMUState(patch.s.getFMUState()))
+        fresh = Slave(patch_fmu(3), 3, name="cells-restored")
+        try:
+            fresh.s.setFMUState(fresh.s.deserializeFMUState(blob))
+            for ours, theirs in zip(_cells(fresh, n1, n2), _cells(patch, n1, n2)):
+                assert ours.tobytes() == theirs.tobytes()
+        finally:
+            fresh.close()
+    finally:
+        patch.close()
+
+
+def test_fmi3_uniform_translation_loads_every_cell_alike():
+    """Uniform pressure, pure translation: every cell is the point law at
+    1/(n1 n2) of N and eps, the same force in each (to rounding in N w)."""
+    n1, n2 = 4, 6
+    patch = Slave(patch_fmu(3), 3, name="alike", n1=n1, n2=n2, **AGED)
+    try:
+        patch.initialize(N=12.0)
+        patch.move(u1=2e-4, u2=-1e-4, N=12.0)
+        t1, t2, st = _cells(patch, n1, n2)
+        T1, T2 = patch.get("T1", "T2")
+        assert np.allclose(t1, T1 / (n1 * n2), rtol=1e-13, atol=0.0)
+        assert np.allclose(t2, T2 / (n1 * n2), rtol=1e-13, atol=0.0)
+        assert (st == st[0, 0]).all() and st[0, 0] in (1, 2)
+    finally:
+        patch.close()
+
+
+def test_fmi3_structural_parameters_resize_the_arrays_in_configuration_mode():
+    """n1, n2 set in configuration mode size the arrays; there nothing else
+    may be set; a get whose nValues is not the arrays' size is refused with
+    the count, and configuration mode is refused after initialization."""
+    from fmpy.fmi3 import FMU3Slave
+
+    md = read_model_description(str(patch_fmu(3)))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    messages = []
+
+    def log(env, status, category, message):
+        messages.append(message.decode(errors="replace"))
+    s = FMU3Slave(guid=md.guid, unzipDirectory=extract(str(patch_fmu(3))),
+                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="config")
+    s.instantiate(logMessage=log)
+    try:
+        s.enterConfigurationMode()
+        s.setInt32([vr["n1"], vr["n2"]], [3, 7])
+        with pytest.raises(Exception):
+            s.setFloat64([vr["mu1"]], [0.5])
+        assert any("mu1 (vr 1) is not a structural parameter" in m for m in messages), messages
+        s.exitConfigurationMode()
+        s.enterInitializationMode(startTime=0.0)
+        s.setFloat64([vr["N"]], [10.0])
+        s.exitInitializationMode()
+        s.setFloat64([vr["u1"], vr["theta"]], [1e-4, 0.01])
+        s.doStep(0.0, 1e-3)
+        both = s.getFloat64([vr["T1"], vr["cellT1"], vr["T2"]], nValues=23)
+        t1 = both[1:22]
+        assert both[0] == sum(np.array(t1).reshape(3, 7).T.ravel().tolist(), 0.0)
+        assert len(s.getInt32([vr["cellState"], vr["contactState"]], nValues=22)) == 22
+        with pytest.raises(Exception):
+            s.getFloat64([vr["cellT1"]], nValues=20)
+        assert any("nValues = 20 but the 1 variables hold 21 values" in m for m in messages), messages
+        with pytest.raises(Exception):
+            s.enterConfigurationMode()
+        assert any("must not be called in the current state (step mode)" in m
+                   for m in messages), messages
+    finally:
+        s.terminate()
+        s.freeInstance()
+
+
+def test_only_fmi3_declares_the_arrays_and_structural_parameters():
+    """FMI 3.0: n1, n2 structural parameters, the arrays' dimensions n1, n2 by
+    value reference, the arrays outputs in the model structure; FMI 2.0: n1,
+    n2 parameters and no array (FMI 2.0 has none)."""
+    md3 = read_model_description(str(patch_fmu(3)), validate=True)
+    by3 = {v.name: v for v in md3.modelVariables}
+    assert by3["n1"].causality == by3["n2"].causality == "structuralParameter"
+    for name in ("cellT1", "cellT2", "cellState"):
+        assert [d.variable.name for d in by3[name].dimensions] == ["n1", "n2"]
+        assert by3[name].causality == "output"
+        assert name in {u.variable.name for u in md3.outputs}
+    md2 = read_model_description(str(patch_fmu(2)), validate=True)
+    by2 = {v.name: v for v in md2.modelVariables}
+    assert by2["n1"].causality == "parameter" and not any(n.startswith("cell") for n in by2)

@@ -33,11 +33,32 @@ class Variable:
 
 
 @dataclass(frozen=True)
+class ArrayVariable:
+    """An FMI 3.0 array output (FMI 2.0 has none), after the table's variables:
+    its shape is the current values of `dimensions` (structural parameters),
+    its elements depend on what the output `dependencies_of` depends on."""
+    name: str
+    value_reference: int
+    type: str                 # Float64 or Int32
+    unit: str
+    dimensions: tuple[str, ...]
+    dependencies_of: str
+    description: str
+
+
+@dataclass(frozen=True)
 class Manifest:
-    """A model's variables (in the table's order) and enumerations."""
+    """A model's variables (in the table's order) and enumerations; in FMI
+    3.0 also its structural parameters (parameters in FMI 2.0) and arrays."""
     model_identifier: str
     variables: tuple[Variable, ...]
     enumerations: dict[str, dict[str, int]]
+    structural: tuple[str, ...] = ()
+    arrays: tuple[ArrayVariable, ...] = ()
+
+    def causality(self, v: Variable, fmi_version: int) -> str:
+        """v's causality in that FMI version's model description."""
+        return "structuralParameter" if fmi_version == 3 and v.name in self.structural else v.causality
 
     def group(self, name: str) -> tuple[str, ...]:
         """The names of the variables of a group, in the table's order."""
@@ -74,7 +95,12 @@ def manifest(model: str) -> Manifest:
     rows = tuple(Variable(v["name"], v["valueReference"], v["type"], v["declaredType"], v["causality"],
                           v["variability"], v["unit"], v["start"], v["min"], v["max"], v["group"])
                  for v in d["variables"])
-    return Manifest(d["modelIdentifier"], rows, d["enumerations"])
+    fmi3 = d.get("fmi3", {})
+    arrays = tuple(ArrayVariable(a["name"], a["valueReference"], a["type"], a["unit"],
+                                 tuple(a["dimensions"]), a["dependenciesOf"], a["description"])
+                   for a in fmi3.get("arrays", ()))
+    return Manifest(d["modelIdentifier"], rows, d["enumerations"],
+                    tuple(fmi3.get("structuralParameters", ())), arrays)
 
 
 def contact() -> Manifest:
