@@ -199,15 +199,20 @@ static run_result run_points(const fmi2_api *a, const grid *G, int slip, long st
     const fmi2ValueReference in[3] = {BENCH_POINT_VRS[P_U1], BENCH_POINT_VRS[P_U2],
                                       BENCH_POINT_VRS[P_N]};
     const fmi2ValueReference out[2] = {BENCH_POINT_VRS[P_T1], BENCH_POINT_VRS[P_T2]};
-    const double law[6] = {G->cell.mu1, G->cell.mu2, G->cell.eps1, G->cell.eps2, G->cell.alpha,
-                           G->cell.beta};
-    const char *order[6] = {"mu1", "mu2", "eps1", "eps2", "alpha", "beta"};
+    /* the cell's law by the patch table's names, set by the point table's */
+#define CELL_VALUE(name, ...) G->cell.name,
+#define CELL_NAME(name, ...) #name,
+    const double law[] = {PATCH_LAW_PARAMETERS(CELL_VALUE)};
+    const char *order[] = {PATCH_LAW_PARAMETERS(CELL_NAME)};
+#undef CELL_VALUE
+#undef CELL_NAME
+    enum { N_LAW = sizeof law / sizeof law[0] };
     double u[3];
     bench_inputs(0, slip, u);
     for (int i = 0; i < G->n; ++i) {
         fmi2Component c = a->inst("point", fmi2CoSimulation, BENCH_POINT_TOKEN, "", &CB, 0, 0);
         for (int j = 0; BENCH_POINT_LAW_NAMES[j]; ++j)
-            for (int q = 0; q < 6; ++q)
+            for (int q = 0; q < N_LAW; ++q)
                 if (strcmp(BENCH_POINT_LAW_NAMES[j], order[q]) == 0)
                     a->set_real(c, &BENCH_POINT_LAW_VRS[j], 1, &law[q]);
         const fmi2Integer rule = G->cell.rule;
@@ -302,9 +307,9 @@ int main(int argc, char **argv) {
 #define START_OF(name, vr, type, caus, var, init, start, ...) [vr] = start,
     static const double START[PATCH_VR_COUNT_PLUS_ONE] = {PATCH_VARIABLES(START_OF, START_OF)};
 #undef START_OF
-    const oc_params p = {START[PATCH_VR_mu1],   START[PATCH_VR_mu2],  START[PATCH_VR_eps1],
-                         START[PATCH_VR_eps2],  START[PATCH_VR_alpha], START[PATCH_VR_beta],
-                         (int)START[PATCH_VR_slidingRule]};
+#define START_FIELD(name, vr, ...) .name = START[vr],
+    const oc_params p = {PATCH_LAW_PARAMETERS(START_FIELD).rule = (int)START[PATCH_VR_slidingRule]};
+#undef START_FIELD
     const double d[8] = {0, 0, 0, 0, 0, 0, START[PATCH_VR_length], START[PATCH_VR_width]};
 
     static grid grids[N_GRIDS];
