@@ -8,8 +8,9 @@ from __future__ import annotations
 import ctypes
 from functools import partial
 
-from .files import MODEL_IDENTIFIER, find_fmu, model_description, unzipped
+from .files import find_fmu, model_description
 from .params import RULES, ContactParams
+from .slave import free, instantiate
 from .variables import contact, law_parameters
 
 
@@ -63,25 +64,11 @@ class ContactFMU:
             self._open_fmi3(path, instance_name, logging_on)
 
     # -- the two standards' calls, bound once ----------------------------------
-    def _log(self, status, category, message):
-        self.messages.append((status, category.decode(), message.decode(errors="replace")))
+    def _log(self, status: int, category: str, message: str):
+        self.messages.append((status, category, message))
 
     def _open_fmi2(self, path, name, logging_on):
-        from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
-        from fmpy.logging import addLoggerProxy
-
-        def log(env, instance, status, category, message):
-            self._log(status, category, message)
-        cb = fmi2CallbackFunctions()
-        cb.logger = fmi2CallbackLoggerTYPE(log)
-        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        addLoggerProxy(ctypes.byref(cb))  # formats the printf-style message in C
-        self._callbacks = (cb, log)
-        s = FMU2Slave(guid=self.model_description.guid, unzipDirectory=unzipped(path),
-                      modelIdentifier=MODEL_IDENTIFIER, instanceName=name)
-        s.instantiate(callbacks=cb, loggingOn=logging_on)
+        s, self._callbacks = instantiate(path, self.model_description, name, self._log, logging_on)
         self._slave, c, f = s, s.component, s._functions  # raw ctypes: no exceptions, no allocation
         self._c = c
         self._set_in = partial(f["fmi2SetReal"], c, self._in_vr, 3, self._in_val)
@@ -96,14 +83,7 @@ class ContactFMU:
         self._get_state_fn = partial(f["fmi2GetFMUstate"], c)
 
     def _open_fmi3(self, path, name, logging_on):
-        from fmpy.fmi3 import FMU3Slave
-
-        def log(env, status, category, message):
-            self._log(status, category, message)
-        self._callbacks = (log,)
-        s = FMU3Slave(guid=self.model_description.guid, unzipDirectory=unzipped(path),
-                      modelIdentifier=MODEL_IDENTIFIER, instanceName=name)
-        s.instantiate(loggingOn=logging_on, logMessage=log)
+        s, self._callbacks = instantiate(path, self.model_description, name, self._log, logging_on)
         self._slave, c, f = s, s.component, s._functions
         self._c = c
         self._set_in = partial(f["fmi3SetFloat64"], c, self._in_vr, 3, self._in_val, 3)
@@ -268,12 +248,7 @@ class ContactFMU:
 
     def close(self):
         if self._slave is not None:
-            if self.initialized:
-                try:
-                    self._slave.terminate()
-                except Exception:  # already terminated or in error: freeing is what matters
-                    pass
-            self._slave.freeInstance()
+            free(self._slave, self.initialized)
             self._slave = None
 
     def __enter__(self):

@@ -17,8 +17,9 @@ import math
 from dataclasses import dataclass
 
 from .contact import INITIAL_SLIP, FMUError
-from .files import find_fmu, model_description, unzipped
+from .files import find_fmu, model_description
 from .params import RULES, ContactParams
+from .slave import free, instantiate
 
 PATCH_MODEL = "ContactPatch"
 INPUTS = ("u1", "u2", "theta", "N", "p1", "p2")
@@ -62,35 +63,11 @@ class PatchFMU:
         self.messages: list[str] = []
         self.time = 0.0
         self.initialized = False
+        self._slave, self._callbacks = instantiate(path, md, instance_name,
+                                                   lambda status, category, text: self.messages.append(text))
         if self.fmi_version == 2:
-            import ctypes
-
-            from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE,
-                                   fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
-                                   fmi2CallbackLoggerTYPE, free)
-            from fmpy.logging import addLoggerProxy
-
-            def log(env, instance, status, category, message):
-                self.messages.append(message.decode(errors="replace"))
-            cb = fmi2CallbackFunctions()
-            cb.logger = fmi2CallbackLoggerTYPE(log)
-            cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-            cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-            addLoggerProxy(ctypes.byref(cb))
-            self._callbacks = (cb, log)
-            self._slave = FMU2Slave(guid=md.guid, unzipDirectory=unzipped(path),
-                                    modelIdentifier=PATCH_MODEL, instanceName=instance_name)
-            self._slave.instantiate(callbacks=cb)
             self._set_real, self._get_real = self._slave.setReal, self._slave.getReal
         else:
-            from fmpy.fmi3 import FMU3Slave
-
-            def log(env, status, category, message):
-                self.messages.append(message.decode(errors="replace"))
-            self._callbacks = (log,)
-            self._slave = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(path),
-                                    modelIdentifier=PATCH_MODEL, instanceName=instance_name)
-            self._slave.instantiate(logMessage=log)
             self._set_real, self._get_real = self._slave.setFloat64, self._slave.getFloat64
         self._in_vr = [self.vr[n] for n in INPUTS]
         self._out_vr = [self.vr[n] for n in OUTPUTS]
@@ -171,12 +148,7 @@ class PatchFMU:
 
     def close(self):
         if self._slave is not None:
-            if self.initialized:
-                try:
-                    self._slave.terminate()
-                except Exception:  # already terminated or in error: freeing is what matters
-                    pass
-            self._slave.freeInstance()
+            free(self._slave, self.initialized)
             self._slave = None
 
     def __enter__(self):

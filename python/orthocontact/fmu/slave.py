@@ -1,0 +1,55 @@
+"""An FMU instance through fmpy, FMI 2.0 or 3.0, its log messages kept: the
+one place that instantiates and frees one (ContactFMU and PatchFMU open
+theirs here)."""
+from __future__ import annotations
+
+import ctypes
+from typing import Callable
+
+from .files import unzipped
+
+# on_message(status, category, message): an FMI log call, its texts decoded
+OnMessage = Callable[[int, str, str], None]
+
+
+def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on: bool = False):
+    """(fmpy's FMU2Slave or FMU3Slave, instantiated; the callbacks, which the
+    caller keeps alive as long as the instance) of the Co-Simulation FMU at
+    `path` whose model description fmpy read as `md`."""
+    model = md.coSimulation.modelIdentifier
+    if md.fmiVersion.startswith("2"):
+        from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE,
+                               fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE,
+                               free)
+        from fmpy.logging import addLoggerProxy
+
+        def log(env, instance, status, category, message):
+            on_message(status, category.decode(errors="replace"), message.decode(errors="replace"))
+        cb = fmi2CallbackFunctions()
+        cb.logger = fmi2CallbackLoggerTYPE(log)
+        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+        addLoggerProxy(ctypes.byref(cb))  # formats the printf-style message in C
+        s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier=model,
+                      instanceName=instance_name)
+        s.instantiate(callbacks=cb, loggingOn=logging_on)
+        return s, (cb, log)
+    from fmpy.fmi3 import FMU3Slave
+
+    def log3(env, status, category, message):
+        on_message(status, category.decode(errors="replace"), message.decode(errors="replace"))
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier=model,
+                  instanceName=instance_name)
+    s.instantiate(loggingOn=logging_on, logMessage=log3)
+    return s, (log3,)
+
+
+def free(slave, initialized: bool) -> None:
+    """Terminates (if it was initialized) and frees the instance; a failed
+    terminate (already terminated, or in error) does not keep it from being freed."""
+    if initialized:
+        try:
+            slave.terminate()
+        except Exception:  # fmpy raises a plain Exception on an error status
+            pass
+    slave.freeInstance()

@@ -1,0 +1,41 @@
+"""One way to instantiate an FMU through fmpy, FMI 2.0 and 3.0, every model:
+the instance works, its log reaches the caller decoded, and free() frees it
+whether or not it was initialized (or its terminate fails)."""
+import pytest
+
+from orthocontact.fmu.files import find_fmu, model_description
+from orthocontact.fmu.slave import free, instantiate
+from orthocontact.fmu.variables import models
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("model", list(models().values()))
+def test_an_instance_of_every_model_logs_what_it_refuses(model, version):
+    path = find_fmu(fmi_version=version, model=model)
+    md = model_description(path)
+    said = []
+    s, keep = instantiate(path, md, "probe", lambda status, category, text: said.append((status, text)),
+                          logging_on=True)
+    assert keep   # the callbacks the caller must keep alive
+    time_vr = next(v.valueReference for v in md.modelVariables if v.name == "time")
+    set_real = s.setReal if version == 2 else s.setFloat64
+    with pytest.raises(Exception):   # fmpy raises on the error status
+        set_real([time_vr], [1.0])   # the independent variable cannot be set
+    assert said and all(isinstance(t, str) for _, t in said), said
+    assert any("time" in t or str(time_vr) in t for _, t in said), said
+    free(s, initialized=False)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_free_after_initialization_terminates_first(version):
+    path = find_fmu(fmi_version=version)
+    md = model_description(path)
+    s, keep = instantiate(path, md, "probe", lambda *a: None)
+    if version == 2:
+        s.setupExperiment()
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    free(s, initialized=True)
+    s2, keep2 = instantiate(path, md, "probe", lambda *a: None)
+    s2.terminate = lambda: (_ for _ in ()).throw(Exception("terminate failed"))
+    free(s2, initialized=True)   # a failed terminate still frees
