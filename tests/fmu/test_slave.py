@@ -4,7 +4,7 @@ whether or not it was initialized (or its terminate fails)."""
 import pytest
 
 from orthocontact.fmu.files import find_fmu, model_description
-from orthocontact.fmu.slave import free, instantiate
+from orthocontact.fmu.slave import FreedOnClose, free, instantiate
 from orthocontact.fmu.variables import models
 
 
@@ -39,3 +39,23 @@ def test_free_after_initialization_terminates_first(version):
     s2, keep2 = instantiate(path, md, "probe", lambda *a: None)
     s2.terminate = lambda: (_ for _ in ()).throw(Exception("terminate failed"))
     free(s2, initialized=True)   # a failed terminate still frees
+
+
+def test_an_owner_frees_its_instance_once_on_close_and_on_leaving_with():
+    freed = []
+
+    class Slave:
+        def terminate(self):
+            freed.append("terminate")
+
+        def freeInstance(self):
+            freed.append("free")
+
+    class Owner(FreedOnClose):
+        def __init__(self):
+            self._slave, self.initialized = Slave(), True
+
+    with Owner() as o:
+        pass
+    o.close()
+    assert freed == ["terminate", "free"] and o._slave is None

@@ -10,7 +10,7 @@ from functools import partial
 
 from .files import find_fmu, model_description
 from .params import RULES, ContactParams
-from .slave import free, instantiate
+from .slave import FreedOnClose, instantiate
 from .variables import contact, law_parameters
 
 
@@ -21,7 +21,7 @@ class FMUError(RuntimeError):
 INITIAL_SLIP = dict(contact().enumerations["InitialSlip"])   # the FMU's parameter initialSlip
 
 
-class ContactFMU:
+class ContactFMU(FreedOnClose):
     """One instance of the contact element, FMI 2.0 or 3.0 (read from the
     FMU's model description); both run the same calls on the hot path.
 
@@ -245,20 +245,3 @@ class ContactFMU:
         if self.fmi_version == 2:
             return self._slave.deSerializeFMUstate(data)
         return self._slave.deserializeFMUState(data)
-
-    def close(self):
-        if self._slave is not None:
-            free(self._slave, self.initialized)
-            self._slave = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from .contact import INITIAL_SLIP, FMUError
 from .files import find_fmu, model_description
 from .params import RULES, ContactParams
-from .slave import free, instantiate
+from .slave import FreedOnClose, instantiate
 
 PATCH_MODEL = "ContactPatch"
 INPUTS = ("u1", "u2", "theta", "N", "p1", "p2")
@@ -48,7 +48,7 @@ class PatchGeometry:
                                  f"largest grid side), got {v!r}")
 
 
-class PatchFMU:
+class PatchFMU(FreedOnClose):
     """One instance of the ContactPatch FMU, FMI 2.0 or 3.0."""
 
     def __init__(self, fmu_path=None, instance_name: str = "patch", fmi_version: int = 2):
@@ -145,20 +145,3 @@ class PatchFMU:
         """Commits the pending step; h [s] is the communication step size."""
         self._call(f"doStep(t={self.time}, h={h})", self._slave.doStep, self.time, h)
         self.time += h
-
-    def close(self):
-        if self._slave is not None:
-            free(self._slave, self.initialized)
-            self._slave = None
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass

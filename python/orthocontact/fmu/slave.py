@@ -53,3 +53,28 @@ def free(slave, initialized: bool) -> None:
         except Exception:  # fmpy raises a plain Exception on an error status
             pass
     slave.freeInstance()
+
+
+class FreedOnClose:
+    """What an FMU instance's owner does on close(), on leaving a `with`
+    block and when collected: frees the fmpy instance in `_slave` (terminated
+    first if `initialized`), once."""
+    _slave = None
+    initialized = False
+
+    def close(self):
+        if self._slave is not None:
+            free(self._slave, self.initialized)
+            self._slave = None
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:   # at interpreter exit fmpy may be half torn down
+            pass
