@@ -5,13 +5,14 @@ import fcntl
 import os
 import signal
 import subprocess
+import sys
 import tempfile
 import time
 
 import pytest
 from cli_run import CMD, SCENARIOS as SCEN
 
-from orthocontact.fmu.files import (LOCK, TEMP_PREFIX, find_fmu, fmi_version_of, locked_folder,
+from orthocontact.fmu.files import (LOCK, TEMP_PREFIX, find_fmu, fmi_version_of, locked_folder, maker_tag,
                                     remove_abandoned)
 
 
@@ -79,14 +80,23 @@ def test_only_abandoned_folders_are_removed(tmp_path, monkeypatch):
         made[name] = folder
     (tmp_path / f"{TEMP_PREFIX}not-ours").mkdir()  # no lock file: not a command's folder
     (tmp_path / "other").mkdir()
+    # killed before its lock took its name: its name says its maker, now gone
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    killed = tmp_path / f"{TEMP_PREFIX}{dead.pid}.12345-abc"
+    killed.mkdir()
+    (killed / (LOCK + ".new")).write_text("")
+    # being made by a live process (this one): left
+    making = tmp_path / f"{TEMP_PREFIX}{maker_tag(os.getpid())}-def"
+    making.mkdir()
     fd = os.open(made["in-use"] / LOCK, os.O_RDWR)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX)  # as a live command holds it
-        assert remove_abandoned() == [made["abandoned"]]
+        assert sorted(remove_abandoned()) == sorted([made["abandoned"], killed])
     finally:
         os.close(fd)
-    assert sorted(os.listdir(tmp_path)) == [f"{TEMP_PREFIX}being-made", f"{TEMP_PREFIX}in-use",
-                                           f"{TEMP_PREFIX}not-ours", "other"]
+    assert sorted(os.listdir(tmp_path)) == sorted([f"{TEMP_PREFIX}being-made", f"{TEMP_PREFIX}in-use",
+                                                  f"{TEMP_PREFIX}not-ours", making.name, "other"])
 
 
 def test_a_locked_folder_is_held_while_its_maker_lives(tmp_path):

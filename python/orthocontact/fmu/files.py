@@ -79,7 +79,11 @@ def find_fmu(path: str | os.PathLike | None = None, fmi_version: int = 2,
 # folders stay; their lock is then free, and the next command that makes a
 # folder of the same kind in the same place removes them.  The lock file is
 # locked before it takes its name (.lock), so a folder whose .lock is free is
-# never one being made.
+# never one being made.  A folder killed before its lock took its name has
+# none; its name says whose it was (<prefix><pid>.<start>-...: the maker's
+# pid and the kernel's start time of that process), so it is removed once
+# that process is gone, and a folder of that prefix with no such name is
+# not one of ours and stays.
 
 try:
     import fcntl as _fcntl
@@ -110,7 +114,7 @@ def locked_folder(parent, prefix: str) -> LockedFolder:
     (remove_abandoned)."""
     import tempfile
     remove_abandoned(parent, prefix)
-    folder = Path(tempfile.mkdtemp(prefix=prefix, dir=parent))
+    folder = Path(tempfile.mkdtemp(prefix=f"{prefix}{maker_tag(os.getpid())}-", dir=parent))
     making, fd = folder / (LOCK + ".new"), None
     try:
         fd = os.open(making, os.O_CREAT | os.O_EXCL | os.O_RDWR | getattr(os, "O_CLOEXEC", 0), 0o600)
@@ -123,25 +127,58 @@ def locked_folder(parent, prefix: str) -> LockedFolder:
     return LockedFolder(folder, fd)
 
 
+def maker_tag(pid: int) -> str | None:
+    """`<pid>.<start>`: the process and the kernel's clock ticks at its
+    start (/proc/<pid>/stat's 22nd field), which no later process of that
+    pid shares; None if the process does not exist (or, off Linux, `<pid>.0`)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            stat = fh.read()
+    except FileNotFoundError:
+        return None
+    except OSError:
+        return f"{pid}.0"
+    # the name (field 2) is in parentheses and may hold spaces: count after it
+    return f"{pid}.{int(stat[stat.rindex(b')') + 2:].split()[19])}"
+
+
+def _maker_gone(name: str, prefix: str) -> bool:
+    """Whether the folder `name` (of `prefix`) was made by a process that no
+    longer lives; False for a name that does not say its maker."""
+    tag = name[len(prefix):].split("-", 1)[0]
+    pid, _, start = tag.partition(".")
+    if not (pid.isdigit() and start.isdigit()) or start == "0":
+        return False
+    return maker_tag(int(pid)) != tag
+
+
 def remove_abandoned(parent=None, prefix: str | None = None) -> list[Path]:
     """Removes the folders `prefix`* in `parent` (default: this command's
     kind, TEMP_PREFIX in the system's temp folder) whose lock is free: their
-    command was killed, no process of theirs lives.  A folder without a lock
-    file is not judged (not one of ours, or one being made), nor any where
-    the system has no flock (Windows).  Returns those removed."""
+    command was killed, no process of theirs lives; and those without a lock
+    file whose name says their maker is gone (killed before the lock took its
+    name).  Any other folder without a lock file is not judged (not one of
+    ours, or one being made), nor any where the system has no flock
+    (Windows).  Returns those removed."""
     import shutil
     import tempfile
     gone = []
     if _fcntl is None:
         return gone
     parent = Path(tempfile.gettempdir() if parent is None else parent)
-    for folder in parent.glob((TEMP_PREFIX if prefix is None else prefix) + "*"):
+    prefix = TEMP_PREFIX if prefix is None else prefix
+    for folder in parent.glob(prefix + "*"):
         try:
             if folder.is_symlink() or not folder.is_dir() or folder.stat().st_uid != os.getuid():
                 continue
             fd = os.open(folder / LOCK, os.O_RDWR | os.O_CLOEXEC | os.O_NOFOLLOW)
+        except FileNotFoundError:
+            if _maker_gone(folder.name, prefix):   # killed before its lock took its name
+                shutil.rmtree(folder, ignore_errors=True)
+                gone.append(folder)
+            continue  # otherwise not one of ours, or being made right now
         except OSError:
-            continue  # not one of ours, or being made or removed right now
+            continue  # not one of ours, or being removed right now
         try:
             _fcntl.flock(fd, _fcntl.LOCK_EX | _fcntl.LOCK_NB)
         except OSError:
