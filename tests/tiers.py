@@ -1,6 +1,6 @@
 """The test tiers.  `make check` (tools/run_tests.sh --fast) runs every test not
 marked `slow`: the law, both FMUs, the rig (harness, compiled master,
-CarriageBlock) and the CLI's core, under 2 minutes with the release C tests.
+CarriageBlock), the contact patch and the CLI's core, with the release C tests.
 `make test` runs everything, and is what CI runs.
 
 SLOW lists the slow tests by file (its path under tests/) and function name
@@ -46,11 +46,16 @@ SLOW = {
     "uq/test_propagate.py": "*",               # uncertainty propagation, Dask clusters
     "uq/test_estimates.py": "*",
     "uq/test_source.py": "*",                  # an identify and a uq run
-    "runs/test_cluster.py": {"test_sweeps_on_dask_give_the_local_results",
+    "runs/test_cluster.py": {"test_a_dask_run_leaves_nothing_in_the_temp_folder",
+                             "test_sweeps_on_dask_give_the_local_results",
                              "test_a_local_cluster_listens_on_the_loopback_interface_only",
                              "test_no_dask_process_outlives_the_command"},   # Dask clusters
-    "runs/test_pool.py": {"test_no_worker_outlives_the_main_process_at_the_most_workers"},  # 4 per core
-    "cli/test_interrupts.py": {"test_a_dask_run_signalled_after_writing_everything_reports_success"},
+    "runs/test_pool.py": {"test_no_worker_outlives_the_main_process_at_the_most_workers",  # 4 per core
+                          # runs long enough for their progress lines
+                          "test_the_sweeps_refinement_and_recordings_say_they_are_running",
+                          "test_a_long_run_says_how_far_it_is_within_2_s_and_stops_on_ctrl_c"},
+    "cli/test_interrupts.py": {"test_a_dask_run_signalled_after_writing_everything_reports_success",
+                               "test_ctrl_c_on_uq_is_one_line_and_leaves_nothing"},   # uq runs to interrupt
     "fmu/test_files.py": {"test_ctrl_c_on_reproduce_leaves_no_unpacked_fmu",
                           "test_a_killed_commands_folder_goes_with_the_next_command"},
     "runs/test_size.py": {"test_uqs_estimate_is_the_runs_it_makes",    # identifies the example first
@@ -79,6 +84,25 @@ SLOW = {
         "test_twist_run_checks_itself_against_both_closed_forms",
         "test_towed_block_run_gives_the_closed_form_yaw_at_every_mat_angle",
         "test_an_unsettled_towed_block_is_said_not_passed",
+    },
+    "contracts/test_docs_numbers.py": {   # uq on the example, as the guide has it
+        "test_the_uq_guides_example_prints_what_the_guide_says",
+    },
+    "identification/test_recordings.py": {   # identify and uq on recordings
+        "test_bundled_recordings_identify_and_uq_by_the_guides_commands",
+        "test_intervals_cover_on_synthetic_recordings",
+    },
+    "identification/test_identified_file.py": {   # identify on the recordings, validated
+        "test_raw_recordings_validated_and_with_the_fmu_hold_to_the_schema_too",
+    },
+    "identification/test_measurements.py": {   # an identify run
+        "test_excel_csv_utf8_with_a_byte_order_mark_is_read",
+    },
+    "identification/test_reduction.py": {   # 300 ramp runs
+        "test_ramp_stiffness_is_unbiased_under_the_force_sensors_noise",
+    },
+    "cli/test_main.py": {   # an identify and a uq run
+        "test_uq_at_a_step_that_never_settles_prints_no_warning_text",
     },
 }
 
