@@ -21,6 +21,8 @@
 
 #include <math.h>
 
+#include "law_variables.h"
+
 #define NO_MIN (-HUGE_VAL)
 #define NO_MAX HUGE_VAL
 
@@ -42,8 +44,9 @@
 /* Sources and headers of the binary besides the version's glue (fmi2_glue.c /
  * fmi3_glue.c); CMake's fmu_add reads both lists from here. */
 #define FMU_SOURCES(S) S(contact_law.c) S(oc_model.c) S(fmu_instance.c)
-#define FMU_HEADERS(S) \
-    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(model_variables.h) S(fmu_token.h)
+#define FMU_HEADERS(S)                                                                         \
+    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h)             \
+    S(model_variables.h) S(law_variables.h) S(fmu_token.h)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 
 /* The law in short, for documentation/index.html. */
@@ -120,12 +123,9 @@
     "experiment, with no input file, prints zeros: N starts at 0, an open contact (T = 0, s "  \
     "follows u); give N and a path of u1, u2 as inputs.</p>\n"
 
-/* Enumeration types: T(type name, items), items E(name, value, description). */
+/* Enumeration types: T(type name, items), items E(name, value, description);
+ * the sliding rules' are law_variables.h's, shared with the patch. */
 #define FMU_ENUM_TYPES(T) T(SlidingRule, OC_SLIDING_RULE_ITEMS) T(InitialSlip, OC_INITIAL_SLIP_ITEMS)
-#define OC_SLIDING_RULE_ITEMS(E)                                                               \
-    E(associated, 1, "G = F: classical orthotropic Coulomb friction (paper Case 1)")           \
-    E(coupled, 2, "G = (B F B)^-1: the coupled law of Konyukhov and Schweizerhof")             \
-    E(eq20, 3, "the paper's explicit eq. (20), step-size dependent: for reproduction only")
 #define OC_INITIAL_SLIP_ITEMS(E)                                                               \
     E(atInputs, 1, "s = u at the end of initialization: no force until the body moves")        \
     E(explicit, 2, "s = (s1Start, s2Start): the body is loaded by B (u - s) at once")

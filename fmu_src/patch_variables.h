@@ -23,6 +23,8 @@
 
 #include <math.h>
 
+#include "law_variables.h"
+
 #define NO_MIN (-HUGE_VAL)
 #define NO_MAX HUGE_VAL
 
@@ -39,7 +41,7 @@
 #define FMU_SOURCES(S) S(contact_law.c) S(patch_model.c) S(fmu_instance.c)
 #define FMU_HEADERS(S)                                                                          \
     S(contact_law.h) S(patch_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h)          \
-    S(patch_variables.h) S(fmu_token.h)
+    S(patch_variables.h) S(law_variables.h) S(fmu_token.h)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 
 /* The largest grid: the model's storage and its serialized state are fixed
@@ -67,11 +69,7 @@
     "u2, theta, N, p1, p2: the sum of the cells' consistent tangents through the kinematics."  \
     "</p>\n"
 
-#define FMU_ENUM_TYPES(T) T(SlidingRule, PATCH_SLIDING_RULE_ITEMS) T(InitialSlip, PATCH_INITIAL_SLIP_ITEMS)
-#define PATCH_SLIDING_RULE_ITEMS(E)                                                              \
-    E(associated, 1, "G = F: classical orthotropic Coulomb friction (paper Case 1)")           \
-    E(coupled, 2, "G = (B F B)^-1: the coupled law of Konyukhov and Schweizerhof")             \
-    E(eq20, 3, "the paper's explicit eq. (20), step-size dependent: for reproduction only")
+#define FMU_ENUM_TYPES(T) T(SlidingRule, OC_SLIDING_RULE_ITEMS) T(InitialSlip, PATCH_INITIAL_SLIP_ITEMS)
 #define PATCH_INITIAL_SLIP_ITEMS(E)                                                              \
     E(atInputs, 1, "every cell's slip is its displacement at the end of initialization: no "    \
       "force until the body moves")                                                             \
