@@ -243,6 +243,44 @@ fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[]
     return INFO.derivative(m, unknown, n_unknown, known, n_known, seed, out, adjoint, msg);
 }
 
+static const char *name_or_unknown(unsigned int vr) {
+    const fmu_var *x = var_of(vr);
+    return x ? x->name : "unknown";
+}
+
+fmu_status fmu_jacobian_derivative(const fmu_jacobian *jac, const fmu_model *m,
+                                   const unsigned int unknown[], size_t n_unknown,
+                                   const unsigned int known[], size_t n_known,
+                                   const double seed[], double out[], int adjoint, fmu_msg *msg) {
+    for (size_t j = 0; j < n_known; ++j)
+        if (jac->col(known[j]) < 0)
+            return fmu_fail(msg, "known vr %u (%s) is not an input %s", known[j],
+                            name_or_unknown(known[j]), jac->inputs);
+    for (size_t i = 0; i < n_unknown; ++i)
+        if (jac->row(unknown[i]) < 0)
+            return fmu_fail(msg, "unknown vr %u (%s) is not an output %s", unknown[i],
+                            name_or_unknown(unknown[i]), jac->outputs);
+    const size_t n_seed = adjoint ? n_unknown : n_known;
+    for (size_t k = 0; k < n_seed; ++k)
+        if (!isfinite(seed[k])) return fmu_fail(msg, "seed %zu is not finite", k);
+    double J[FMU_JACOBIAN_MAX];
+    jac->partials(m, J);
+    const size_t n_out = adjoint ? n_known : n_unknown, cols = (size_t)jac->cols;
+    /* every index was checked above */
+#define JAC(row_vr, col_vr) J[(size_t)jac->row(row_vr) * cols + (size_t)jac->col(col_vr)]
+    for (size_t k = 0; k < n_out; ++k) {
+        double acc = 0.0;
+        if (adjoint)
+            for (size_t i = 0; i < n_unknown; ++i) acc += JAC(unknown[i], known[k]) * seed[i];
+        else
+            for (size_t j = 0; j < n_known; ++j) acc += JAC(unknown[k], known[j]) * seed[j];
+        if (!isfinite(acc)) return fmu_fail(msg, "the derivative overflows");
+        out[k] = acc;
+    }
+#undef JAC
+    return FMU_OK;
+}
+
 fmu_status fmu_model_init_from(fmu_model *m, const double start[], fmu_msg *msg) {
     memset(m, 0, INFO.size);
     for (unsigned int vr = 0; vr < INFO.n_vars; ++vr) {

@@ -148,6 +148,26 @@ int fmu_state_serialize(fmu_instance *I, const char *fn, const void *state, unsi
 int fmu_state_deserialize(fmu_instance *I, const char *fn, const unsigned char *bytes, size_t size,
                           void **state);
 
+/* A model's derivative hook (fmu_model_info.derivative) over a dense matrix
+ * of partial derivatives J (`rows` x `cols`, row-major): row(vr) is an
+ * output's row, col(vr) an input's column, -1 for any other variable;
+ * `outputs` and `inputs` list them for the messages ("T1, T2").  Checks
+ * every value reference and seed, then has partials(m, J) fill J and
+ * forms out = J seed (adjoint: J^T seed) over the rows of `unknown` and the
+ * columns of `known`, refusing a result that overflows. */
+typedef struct {
+    int rows, cols;
+    int (*row)(unsigned int vr);
+    int (*col)(unsigned int vr);
+    const char *outputs, *inputs;
+    void (*partials)(const fmu_model *m, double *J);
+} fmu_jacobian;
+enum { FMU_JACOBIAN_MAX = 64 }; /* rows x cols at most */
+fmu_status fmu_jacobian_derivative(const fmu_jacobian *jac, const fmu_model *m,
+                                   const unsigned int unknown[], size_t n_unknown,
+                                   const unsigned int known[], size_t n_known,
+                                   const double seed[], double out[], int adjoint, fmu_msg *msg);
+
 #ifdef __cplusplus
 }
 #endif

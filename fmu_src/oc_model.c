@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fmu_bytes.h"
+#include "fmu_instance.h"
 #include "model_variables.h"
 
 /* Where each variable of the table lives: the glue reads and writes them
@@ -158,49 +159,27 @@ static int jac_col(unsigned int vr) {
     }
 }
 
-static const char *name_or_unknown(unsigned int vr) {
-    const char *n = fmu_model_variable_name(vr);
-    return n ? n : "unknown";
+static void partials(const oc_model *m, double *J) {
+    oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->steps[m->shown],
+                    (double(*)[OC_JAC_COLS])J);
 }
+
+/* J fits the glue's buffer (a negative size fails to compile) */
+typedef char jacobian_fits[OC_JAC_ROWS * OC_JAC_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
+static const fmu_jacobian JACOBIAN = {OC_JAC_ROWS, OC_JAC_COLS, jac_row, jac_col,
+                                      "T1, T2, s1, s2, dissipatedEnergy", "u1, u2, N", partials};
 
 static fmu_status derivative(const oc_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
                              double out[], int adjoint, fmu_msg *msg) {
-    for (size_t j = 0; j < n_known; ++j)
-        if (jac_col(known[j]) < 0)
-            return fmu_fail(msg, "known vr %u (%s) is not an input u1, u2, N", known[j],
-                            name_or_unknown(known[j]));
-    for (size_t i = 0; i < n_unknown; ++i)
-        if (jac_row(unknown[i]) < 0)
-            return fmu_fail(msg, "unknown vr %u (%s) is not a Float64 output T1, T2, s1, s2, "
-                                 "dissipatedEnergy", unknown[i], name_or_unknown(unknown[i]));
-    const size_t n_seed = adjoint ? n_unknown : n_known;
-    for (size_t k = 0; k < n_seed; ++k)
-        if (!isfinite(seed[k])) return fmu_fail(msg, "seed %zu is not finite", k);
-    double J[OC_JAC_ROWS][OC_JAC_COLS];
-    oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->steps[m->shown], J);
-    const size_t n_out = adjoint ? n_known : n_unknown;
-    /* Every index was checked above; as unsigned the compiler, which sees
-     * -1 among jac_row's values once the FMU is one unit, sees no index
-     * below the array either. */
-#define JAC(row_vr, col_vr) J[(unsigned)jac_row(row_vr) % OC_JAC_ROWS][(unsigned)jac_col(col_vr) % OC_JAC_COLS]
-    for (size_t k = 0; k < n_out; ++k) {
-        double acc = 0.0;
-        if (adjoint)
-            for (size_t i = 0; i < n_unknown; ++i) acc += JAC(unknown[i], known[k]) * seed[i];
-        else
-            for (size_t j = 0; j < n_known; ++j) acc += JAC(unknown[k], known[j]) * seed[j];
-        if (!isfinite(acc)) return fmu_fail(msg, "the derivative overflows");
-        out[k] = acc;
-    }
-#undef JAC
-    return FMU_OK;
+    return fmu_jacobian_derivative(&JACOBIAN, m, unknown, n_unknown, known, n_known, seed, out,
+                                   adjoint, msg);
 }
 
 /* ---- serialized state: field by field, little-endian --------------------- */
 
 #define LAW_COUNT(...) +1
-enum { N_PARAM_F64 = 0 OC_LAW_PARAMETERS(LAW_COUNT), N_STATE_F64 = 8 };
+enum { N_PARAM_F64 = 0 OC_LAW_PARAMETERS(LAW_COUNT), N_STATE_F64 = OC_STATE_VALUES };
 /* parameters, rule, inputs, committed state, initial slip (kind, s1, s2),
  * commit flag */
 static size_t state_bytes(void) {
@@ -209,8 +188,8 @@ static size_t state_bytes(void) {
 size_t fmu_model_state_size(void) { return state_bytes(); }
 
 static unsigned char *put_state(unsigned char *p, const oc_state *s) {
-    const double f[N_STATE_F64] = {s->u[0], s->u[1], s->N, s->a[0], s->a[1], s->s[0], s->s[1],
-                                   s->energy};
+    double f[N_STATE_F64];
+    oc_state_values(s, f);
     for (int i = 0; i < N_STATE_F64; ++i) p = fmu_put_f64(p, f[i]);
     return p;
 }
@@ -218,7 +197,7 @@ static unsigned char *put_state(unsigned char *p, const oc_state *s) {
 static const unsigned char *get_state(const unsigned char *p, oc_state *s) {
     double f[N_STATE_F64];
     for (int i = 0; i < N_STATE_F64; ++i) p = fmu_get_f64(p, &f[i]);
-    *s = (oc_state){{f[0], f[1]}, f[2], {f[3], f[4]}, {f[5], f[6]}, f[7]};
+    *s = oc_state_of_values(f);
     return p;
 }
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "fmu_bytes.h"
+#include "fmu_instance.h"
 
 /* Where each variable of the table lives.  The law's parameters (the
  * table's L rows) live in params under their own names. */
@@ -149,18 +150,18 @@ typedef struct {
     const unsigned char *bytes; /* FROM_BYTES: serialized, N_STATE_F64 doubles a cell */
 } cell_source;
 
-enum { N_STATE_F64 = 8 };
+enum { N_STATE_F64 = OC_STATE_VALUES };
 
 static const unsigned char *get_state(const unsigned char *p, oc_state *s) {
     double f[N_STATE_F64];
     for (int i = 0; i < N_STATE_F64; ++i) p = fmu_get_f64(p, &f[i]);
-    *s = (oc_state){{f[0], f[1]}, f[2], {f[3], f[4]}, {f[5], f[6]}, f[7]};
+    *s = oc_state_of_values(f);
     return p;
 }
 
 static unsigned char *put_state(unsigned char *p, const oc_state *s) {
-    const double f[N_STATE_F64] = {s->u[0], s->u[1], s->N, s->a[0], s->a[1], s->s[0], s->s[1],
-                                   s->energy};
+    double f[N_STATE_F64];
+    oc_state_values(s, f);
     for (int i = 0; i < N_STATE_F64; ++i) p = fmu_put_f64(p, f[i]);
     return p;
 }
@@ -433,41 +434,21 @@ static void patch_jacobian(const patch_model *m, double P[P_ROWS][P_COLS]) {
     }
 }
 
-static const char *name_or_unknown(unsigned int vr) {
-    const char *n = fmu_model_variable_name(vr);
-    return n ? n : "unknown";
+static void partials(const patch_model *m, double *J) {
+    patch_jacobian(m, (double(*)[P_COLS])J);
 }
+
+/* J fits the glue's buffer (a negative size fails to compile) */
+typedef char jacobian_fits[P_ROWS * P_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
+static const fmu_jacobian JACOBIAN = {P_ROWS, P_COLS, jac_row, jac_col,
+                                      "T1, T2, Mz, dissipatedEnergy", "u1, u2, theta, N, p1, p2",
+                                      partials};
 
 static fmu_status derivative(const patch_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
                              double out[], int adjoint, fmu_msg *msg) {
-    for (size_t j = 0; j < n_known; ++j)
-        if (jac_col(known[j]) < 0)
-            return fmu_fail(msg, "known vr %u (%s) is not an input u1, u2, theta, N, p1, p2",
-                            known[j], name_or_unknown(known[j]));
-    for (size_t i = 0; i < n_unknown; ++i)
-        if (jac_row(unknown[i]) < 0)
-            return fmu_fail(msg, "unknown vr %u (%s) is not an output T1, T2, Mz, dissipatedEnergy",
-                            unknown[i], name_or_unknown(unknown[i]));
-    const size_t n_seed = adjoint ? n_unknown : n_known;
-    for (size_t k = 0; k < n_seed; ++k)
-        if (!isfinite(seed[k])) return fmu_fail(msg, "seed %zu is not finite", k);
-    double P[P_ROWS][P_COLS];
-    patch_jacobian(m, P);
-    const size_t n_out = adjoint ? n_known : n_unknown;
-    /* every index was checked above */
-#define JAC(row_vr, col_vr) P[(unsigned)jac_row(row_vr) % P_ROWS][(unsigned)jac_col(col_vr) % P_COLS]
-    for (size_t k = 0; k < n_out; ++k) {
-        double acc = 0.0;
-        if (adjoint)
-            for (size_t i = 0; i < n_unknown; ++i) acc += JAC(unknown[i], known[k]) * seed[i];
-        else
-            for (size_t j = 0; j < n_known; ++j) acc += JAC(unknown[k], known[j]) * seed[j];
-        if (!isfinite(acc)) return fmu_fail(msg, "the derivative overflows");
-        out[k] = acc;
-    }
-#undef JAC
-    return FMU_OK;
+    return fmu_jacobian_derivative(&JACOBIAN, m, unknown, n_unknown, known, n_known, seed, out,
+                                   adjoint, msg);
 }
 
 /* ---- serialized state: field by field, little-endian --------------------- */
@@ -577,8 +558,9 @@ fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg 
         oc_state s;
         get_state(cells + (size_t)c * 8 * N_STATE_F64, &s);
         if (c >= n) {
-            const double v[] = {s.u[0], s.u[1], s.N, s.a[0], s.a[1], s.s[0], s.s[1], s.energy};
-            for (size_t k = 0; k < sizeof v / sizeof v[0]; ++k)
+            double v[N_STATE_F64];
+            oc_state_values(&s, v);
+            for (int k = 0; k < N_STATE_F64; ++k)
                 if (v[k] != 0.0)
                     return fmu_fail(msg, "serialized state: cell %d of a %d x %d patch holds a "
                                          "state", c + 1, g.n[0], g.n[1]);
