@@ -32,3 +32,44 @@ def test_fmu_values_are_the_contact_fmus_parameters_by_the_model_descriptions_na
     assert values["alpha"] == pytest.approx(math.pi / 2) and values["beta"] == 0.0
     rule = next(v for v in md.iter("ScalarVariable") if v.get("name") == "slidingRule")
     assert rule.find("Integer") is not None and f"{values['slidingRule']} associated (" in rule.get("description")
+
+
+def test_contact_params_refuse_what_the_fmu_refuses_at_its_own_ranges():
+    """ContactParams' checks come from the variable table: read the FMU's
+    own model description (fmpy, not the package's manifest) and, for every
+    law parameter, a value just past its min or max is refused by
+    ContactParams with the parameter's name, and the value at the limit is
+    taken; an angle's refusal names degrees, a stiffness' error its unit."""
+    from fmpy import read_model_description
+
+    from orthocontact.fmu.files import find_fmu
+    md = read_model_description(str(find_fmu(fmi_version=2)))
+    law = {v.name: v for v in md.modelVariables if v.name in ContactParams.law_parameters()}
+    assert list(law) == list(ContactParams.law_parameters())
+    base = dict(mu1=0.408, mu2=0.625, eps1=1.251e4, eps2=1e4)
+    for name, v in law.items():
+        lo, hi = float(v.min), float(v.max)
+        assert getattr(ContactParams(**{**base, name: lo}), name) == lo
+        for outside in (lo * (1 - 1e-9) if lo > 0 else lo - abs(lo) * 1e-9 - 1e-300, hi * (1 + 1e-9)):
+            with pytest.raises(ValueError, match=rf"ContactParams: {name}\b"):
+                ContactParams(**{**base, name: outside})
+        if v.unit == "rad":
+            with pytest.raises(ValueError, match="degrees"):
+                ContactParams(**{**base, name: 90.0})
+    with pytest.raises(ValueError, match=r"eps1 must be a finite number > 0, got -1"):
+        ContactParams(**{**base, "eps1": -1.0})
+    with pytest.raises(ValueError, match=r"alpha \[rad\] must be a finite number, got nan"):
+        ContactParams(**{**base, "alpha": float("nan")})
+
+
+def test_from_degrees_takes_the_angles_in_degrees_by_position_or_name():
+    by_position = ContactParams.from_degrees(0.1, 0.5, 1e4, 1e3, 26.565, 116.565, "associated")
+    by_name = ContactParams.from_degrees(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e3, alpha_deg=26.565,
+                                         beta_deg=116.565, rule="associated")
+    assert by_position == by_name
+    assert by_name.alpha == math.radians(26.565) and by_name.beta_deg == pytest.approx(116.565)
+    assert ContactParams.from_degrees(0.1, 0.5, 1e4, 1e3).alpha == 0.0
+    with pytest.raises(TypeError, match="alpha_deg"):
+        ContactParams.from_degrees(0.1, 0.5, 1e4, 1e3, alpha=0.5)
+    import pickle
+    assert pickle.loads(pickle.dumps(by_name)) == by_name      # crosses to worker processes

@@ -1,82 +1,157 @@
 """The law's parameters as the FMU takes them (ContactParams: angles in rad,
-stiffness in N/m) and the sliding rules' numbers."""
+stiffness in N/m) and the sliding rules' numbers.
+
+ContactParams is built from the contact's variable table (the manifest's
+"law" rows, fmu.variables): its fields, their order, units, ranges, checks
+and its docstring, so that a parameter added to the table is a field here
+with nothing typed.  Fields up to the first angle are required; an angle
+defaults to 0 (its axis along X1), a later parameter to the table's start."""
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import math
-from dataclasses import dataclass
 
-from .variables import contact, law_parameters
+from .variables import Variable, contact
 
 # The sliding rules' names and the numbers the FMU's slidingRule takes (the
 # table's enumeration SlidingRule).
 RULES: dict[str, int] = dict(contact().enumerations["SlidingRule"])
 
+ANGLE_UNIT = "rad"
+DEFAULT_RULE = "coupled"
 
-ANGLE_LIMIT_RAD = 4 * math.pi   # the FMU's range of alpha and beta [rad]
+
+def _law_rows() -> tuple[Variable, ...]:
+    return tuple(v for v in contact().variables if v.group == "law")
 
 
-@dataclass(frozen=True)
-class ContactParams:
-    """Parameters of the law.
+def _is_angle(v: Variable) -> bool:
+    return v.unit == ANGLE_UNIT
 
-    mu1, mu2   friction coefficients along the friction axes [-]
-    eps1, eps2 tangential stiffnesses along the adhesion axes [N/m]
-    alpha      angle of adhesion axis 1 from X1, counterclockwise [rad]
-    beta       angle of friction axis 1 from X1, counterclockwise [rad]
-    rule       "associated", "coupled" or "eq20"
 
-    The angles are in radians, as the FMU takes them; ContactParams.from_degrees
-    takes degrees, as scenario files do.  Invalid values raise ValueError.
-    """
-    mu1: float
-    mu2: float
-    eps1: float
-    eps2: float
-    alpha: float = 0.0
-    beta: float = 0.0
-    rule: str = "coupled"
+def _angle_text(x: float) -> str:
+    """An angle limit as the FMU's range states it: a multiple of pi where it is one."""
+    turns = x / math.pi
+    return f"{round(turns):d} pi" if turns == round(turns) or abs(turns - round(turns)) < 1e-12 else repr(x)
 
-    def __post_init__(self):
-        if self.rule not in RULES:
-            raise ValueError(f"ContactParams: rule must be one of {', '.join(map(repr, RULES))}, "
-                             f"got {self.rule!r}")
-        for name in ("mu1", "mu2", "eps1", "eps2"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-                raise ValueError(f"ContactParams: {name} must be a finite number > 0, got {v!r}")
-        for name in ("alpha", "beta"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise ValueError(f"ContactParams: {name} [rad] must be a finite number, got {v!r}")
-            if abs(v) > ANGLE_LIMIT_RAD:
-                raise ValueError(f"ContactParams: {name} = {v!r} rad is outside [-4 pi, 4 pi] rad, the FMU's "
-                                 f"range; degrees? ({name} is in rad: ContactParams.from_degrees takes deg)")
 
-    @classmethod
-    def from_degrees(cls, mu1: float, mu2: float, eps1: float, eps2: float,
-                     alpha_deg: float = 0.0, beta_deg: float = 0.0,
-                     rule: str = "coupled") -> "ContactParams":
-        """The same parameters with the axis angles in degrees (as scenario
-        files give them): alpha_deg, beta_deg counterclockwise from X1."""
-        return cls(mu1, mu2, eps1, eps2, math.radians(alpha_deg), math.radians(beta_deg), rule)
+def _unit_text(v: Variable) -> str:
+    return f" [{v.unit}]" if v.unit else ""
 
-    @property
-    def alpha_deg(self) -> float:
-        """alpha in degrees."""
-        return math.degrees(self.alpha)
 
-    @property
-    def beta_deg(self) -> float:
-        """beta in degrees."""
-        return math.degrees(self.beta)
+def _check(v: Variable, value) -> None:
+    """One law parameter against the table's type and range; ValueError names
+    the unit and, for an angle, the degrees a user may have typed."""
+    lo, hi = v.min, v.max
+    positive = lo is not None and lo > 0 and not _is_angle(v)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+            or (positive and value <= 0):
+        need = "a finite number > 0" if positive else "a finite number"
+        unit = "" if positive else _unit_text(v)
+        raise ValueError(f"ContactParams: {v.name}{unit} must be {need}, got {value!r}")
+    if (lo is None or value >= lo) and (hi is None or value <= hi):
+        return
+    if _is_angle(v):
+        raise ValueError(f"ContactParams: {v.name} = {value!r} rad is outside [{_angle_text(lo)}, "
+                         f"{_angle_text(hi)}] rad, the FMU's range; degrees? ({v.name} is in rad: "
+                         "ContactParams.from_degrees takes deg)")
+    raise ValueError(f"ContactParams: {v.name} = {value!r}{_unit_text(v)} is outside [{lo!r}, {hi!r}], "
+                     "the FMU's range")
 
-    def replace(self, **kw) -> "ContactParams":
-        return dataclasses.replace(self, **kw)
 
-    def fmu_values(self) -> dict:
-        """The contact FMU's parameters by the manifest's names: the law's in
-        the table's order (floats: angles in rad, stiffnesses in N/m) and
-        slidingRule (the rule's number)."""
-        return {**{name: float(getattr(self, name)) for name in law_parameters()},
-                "slidingRule": RULES[self.rule]}
+def _post_init(self) -> None:
+    if self.rule not in RULES:
+        raise ValueError(f"ContactParams: rule must be one of {', '.join(map(repr, RULES))}, "
+                         f"got {self.rule!r}")
+    for v in _law_rows():
+        _check(v, getattr(self, v.name))
+
+
+def _from_degrees(cls, *args, **kwargs) -> "ContactParams":
+    """The same parameters with the axis angles in degrees (as scenario files
+    give them), counterclockwise from X1: positionally in the table's order,
+    or by keyword with the angles named `<name>_deg`."""
+    values = dict(zip(cls.law_parameters() + ("rule",), args))
+    if len(args) > len(values):
+        raise TypeError(f"ContactParams.from_degrees takes at most {len(values)} arguments, got {len(args)}")
+    angles = {v.name for v in _law_rows() if _is_angle(v)}
+    for key, value in kwargs.items():
+        name = key[:-len("_deg")] if key.endswith("_deg") and key[:-len("_deg")] in angles else key
+        if name in angles and not key.endswith("_deg"):
+            raise TypeError(f"ContactParams.from_degrees takes {name}_deg (degrees), not {name}")
+        if name in values:
+            raise TypeError(f"ContactParams.from_degrees got {key} twice")
+        values[name] = value
+    for name in angles & set(values):
+        value = values[name]
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            values[name] = math.radians(value)
+    return cls(**values)
+
+
+def _from_degrees_signature() -> inspect.Signature:
+    params = [inspect.Parameter("cls", inspect.Parameter.POSITIONAL_OR_KEYWORD)]
+    for f in dataclasses.fields(ContactParams):
+        name = f"{f.name}_deg" if f.name in _ANGLES else f.name
+        default = inspect.Parameter.empty if f.default is dataclasses.MISSING else (
+            math.degrees(f.default) if f.name in _ANGLES else f.default)
+        params.append(inspect.Parameter(name, inspect.Parameter.POSITIONAL_OR_KEYWORD, default=default,
+                                        annotation="float" if f.name != "rule" else "str"))
+    return inspect.Signature(params, return_annotation="ContactParams")
+
+
+def _replace(self, **kw) -> "ContactParams":
+    """A copy with the given fields changed (checked again)."""
+    return dataclasses.replace(self, **kw)
+
+
+def _fmu_values(self) -> dict:
+    """The contact FMU's parameters by the manifest's names: the law's in the
+    table's order (floats: angles in rad, stiffnesses in N/m) and slidingRule
+    (the rule's number)."""
+    return {**{name: float(getattr(self, name)) for name in self.law_parameters()},
+            "slidingRule": RULES[self.rule]}
+
+
+def _law_parameters(cls) -> tuple[str, ...]:
+    """The law's parameters in the table's order (the fields but `rule`)."""
+    return tuple(v.name for v in _law_rows())
+
+
+def _degrees_property(name: str) -> property:
+    return property(lambda self: math.degrees(getattr(self, name)), doc=f"{name} in degrees.")
+
+
+def _fields() -> list[tuple]:
+    fields, defaulted = [], False
+    for v in _law_rows():
+        defaulted = defaulted or _is_angle(v)
+        if not defaulted:
+            fields.append((v.name, float))
+        else:
+            fields.append((v.name, float, dataclasses.field(default=0.0 if _is_angle(v) else float(v.start))))
+    fields.append(("rule", str, dataclasses.field(default=DEFAULT_RULE)))
+    return fields
+
+
+def _doc() -> str:
+    rows = "\n".join(f"    {v.name:<6} {v.description}{_unit_text(v)}" for v in _law_rows())
+    return (f"Parameters of the law (the contact's variable table):\n\n{rows}\n"
+            f"    rule   sliding rule: {', '.join(map(repr, RULES))}\n\n"
+            "The angles are in radians, as the FMU takes them; ContactParams.from_degrees\n"
+            "takes degrees (`<name>_deg`), as scenario files do.  Invalid values raise ValueError.")
+
+
+ContactParams = dataclasses.make_dataclass(
+    "ContactParams", _fields(), frozen=True,
+    namespace={"__post_init__": _post_init, "from_degrees": classmethod(_from_degrees),
+               "law_parameters": classmethod(_law_parameters), "replace": _replace,
+               "fmu_values": _fmu_values, "__doc__": _doc(), "__module__": __name__})
+_ANGLES = frozenset(v.name for v in _law_rows() if _is_angle(v))
+for _name in _ANGLES:
+    setattr(ContactParams, f"{_name}_deg", _degrees_property(_name))
+ContactParams.from_degrees.__func__.__signature__ = _from_degrees_signature()
+
+# The FMU's range of the axis angles [rad] (the table's, the same for every angle).
+ANGLE_LIMIT_RAD = max(abs(v.max) for v in _law_rows() if _is_angle(v))

@@ -30,6 +30,7 @@ class Variable:
     min: float | int | None    # None: unbounded
     max: float | int | None
     group: str                # "law" for the law's parameters, else ""
+    description: str = ""     # the table's description (the model description's)
 
 
 @dataclass(frozen=True)
@@ -93,7 +94,8 @@ def manifest(model: str) -> Manifest:
     """The manifest of `model` (a model identifier of models())."""
     d = _read(f"variables/{model}.json")
     rows = tuple(Variable(v["name"], v["valueReference"], v["type"], v["declaredType"], v["causality"],
-                          v["variability"], v["unit"], v["start"], v["min"], v["max"], v["group"])
+                          v["variability"], v["unit"], v["start"], v["min"], v["max"], v["group"],
+                          v.get("description", ""))
                  for v in d["variables"])
     fmi3 = d.get("fmi3", {})
     arrays = tuple(ArrayVariable(a["name"], a["valueReference"], a["type"], a["unit"],
