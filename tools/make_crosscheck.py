@@ -1,17 +1,18 @@
-"""Writes the FMI cross-check artefacts of both FMUs under cross-check/, laid
-out as the FMI cross-check rules ask:
+"""Writes the FMI cross-check artefacts of the contact FMUs under
+cross-check/, laid out as the FMI cross-check rules ask:
 
-  cross-check/fmus/<2.0|3.0>/cs/<platform>/orthocontact/<version>/OrthotropicContact/
-      OrthotropicContact_in.csv   inputs u1, u2, N over time
-      OrthotropicContact_ref.csv  reference outputs at every communication point
-      OrthotropicContact_ref.opt  StartTime, StopTime, StepSize, RelTol
-      README.md                   what the path exercises
-      OrthotropicContact.fmu      a copy of the FMU (not committed: `make crosscheck`)
+  cross-check/fmus/<2.0|3.0>/cs/<platform>/orthocontact/<version>/<Model>/
+      <Model>_in.csv   the inputs over time
+      <Model>_ref.csv  reference outputs at every communication point
+      <Model>_ref.opt  StartTime, StopTime, StepSize, RelTol
+      README.md        what the path exercises
+      <Model>.fmu      a copy of the FMU (not committed: `make crosscheck`)
 
-The path starts unloaded, sticks, slides, holds, opens (N = 0), re-contacts
-and slides the other way, with the FMU's default parameters.  The reference
-is fmpy's simulation of the FMU on that input (the test suite simulates it
-again and checks the stick, open and slide phases against closed forms).
+for OrthotropicContact (the point) and ContactPatch (the patch).  Each path
+sticks, slides, holds, opens and re-contacts, with the FMU's default
+parameters.  The reference is fmpy's simulation of the FMU on that input
+(tests/fmus/test_dropin.py simulates it again and checks its phases against
+closed forms).
 
 Usage: python tools/make_crosscheck.py [--check]   (--check: compare only, exit 1 on a difference)
 """
@@ -20,6 +21,7 @@ from __future__ import annotations
 import csv
 import shutil
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -28,65 +30,29 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
 from orthocontact import __version__  # noqa: E402
-from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.files import find_fmu  # noqa: E402
 
-MODEL = "OrthotropicContact"
-START, STOP, STEP, RELTOL = 0.0, 1.0, 1e-3, 1e-6
-OUTPUTS = ("T1", "T2", "s1", "s2", "contactState", "dissipatedEnergy")
+START, STEP, RELTOL = 0.0, 1e-3, 1e-6
 PLATFORM = {2: "linux64", 3: "x86_64-linux"}
 N_LOAD = 18.39  # N: the rig's block, 1.875 kg * 9.806 m/s^2
 
-# Knots of the piecewise-linear input path: time [s], u1 [m], u2 [m], N [N].
-# The elastic range is mu N / eps ~ 0.6-1.2 mm with the default parameters.
-KNOTS = [
-    (0.00, 0.0, 0.0, N_LOAD),     # unloaded
-    (0.15, 0.3e-3, 0.1e-3, N_LOAD),   # stick: T = -B u
-    (0.45, 6.0e-3, 2.5e-3, N_LOAD),   # slide
-    (0.55, 6.0e-3, 2.5e-3, N_LOAD),   # hold: sticks with the last force
-    (0.56, 6.0e-3, 2.5e-3, 0.0),      # open: T = 0, the slip follows the body
-    (0.65, 7.0e-3, 2.0e-3, 0.0),
-    (0.66, 7.0e-3, 2.0e-3, N_LOAD),   # re-contact, unloaded
-    (1.00, 2.0e-3, 6.0e-3, N_LOAD),   # slide the other way
-]
+
+@dataclass(frozen=True)
+class Path_:
+    """One model's cross-check path: piecewise-linear inputs through knots
+    (time first), the outputs recorded, and the README's text."""
+    model: str
+    inputs: tuple[str, ...]
+    knots: tuple[tuple[float, ...], ...]
+    outputs: tuple[str, ...]
+    readme: str
+
+    @property
+    def stop(self) -> float:
+        return self.knots[-1][0]
 
 
-def input_table() -> np.ndarray:
-    t = np.round(np.arange(START, STOP + STEP / 2, STEP), 12)
-    k = np.array(KNOTS)
-    cols = [np.interp(t, k[:, 0], k[:, j]) for j in (1, 2, 3)]
-    return np.column_stack([t] + cols)
-
-
-def folder(version: int) -> Path:
-    return (ROOT / "cross-check" / "fmus" / f"{version}.0" / "cs" / PLATFORM[version] / "orthocontact"
-            / __version__ / MODEL)
-
-
-def simulate(fmu: Path, inputs: np.ndarray) -> np.ndarray:
-    """fmpy's co-simulation of the FMU on the input table, as an importer would."""
-    from fmpy import simulate_fmu
-    signals = np.array([tuple(r) for r in inputs],
-                       dtype=[("time", float), ("u1", float), ("u2", float), ("N", float)])
-    return simulate_fmu(str(fmu), start_time=START, stop_time=STOP, step_size=STEP,
-                        output_interval=STEP, input=signals, output=list(OUTPUTS),
-                        fmi_type="CoSimulation")
-
-
-
-def write_csv(path: Path, names, rows) -> None:
-    with open(path, "w", newline="") as fh:
-        fh.write(",".join(f'"{n}"' for n in names) + "\n")
-        for r in rows:
-            fh.write(",".join(repr(float(v)) for v in r) + "\n")
-
-
-def read_csv(path: Path) -> tuple[list, np.ndarray]:
-    with open(path) as fh:
-        rows = list(csv.reader(fh))
-    return rows[0], np.array(rows[1:], dtype=float)
-
-
-README = """# {model} ({fmi} Co-Simulation) — cross-check files
+POINT_README = """# {model} ({fmi} Co-Simulation) — cross-check files
 
 Generated by `make crosscheck` (tools/make_crosscheck.py) from orthocontact {version}.
 
@@ -113,35 +79,131 @@ The FMU is rate-independent: the outputs do not depend on StepSize beyond
 which input values it samples.
 """
 
+PATCH_README = """# {model} ({fmi} Co-Simulation) — cross-check files
+
+Generated by `make crosscheck` (tools/make_crosscheck.py) from orthocontact {version}.
+
+* `{model}_in.csv`: the inputs u1, u2 [m] (displacement of the patch centre),
+  theta [rad] (the body's turn, counterclockwise), N [N] (total normal force)
+  and p1, p2 [m] (centre of pressure in body coordinates), piecewise linear,
+  sampled at every communication point.
+* `{model}_ref.csv`: the outputs T1, T2 [N], Mz [N m], dissipatedEnergy [J],
+  slipFraction and contactState at every communication point, with the FMU's
+  default parameters (a 0.1 m x 0.1 m patch of 8 x 8 cells; mu = 0.408 /
+  0.625, eps = 12510 / 10000 N/m for the whole patch, alpha = 90 deg, beta =
+  0, coupled rule).
+* `{model}_ref.opt`: StartTime, StopTime, StepSize, RelTol.
+
+The master sets the inputs of time t, then calls doStep(t, StepSize); the
+outputs recorded at t + StepSize are those of that step.  The path:
+
+| time [s] | phase |
+|---|---|
+| 0 – 0.25 | stick in translation and back: T = -B u, Mz = 0 |
+| 0.25 – 0.45 | stick in a small turn (4 mrad): Mz from every cell's -B (R - I) r |
+| 0.45 – 0.75 | turn on to 0.3 rad: the cells slide from the edge inwards, then all |
+| 0.75 – 0.80 | held inputs: sticks with the last force and moment |
+| 0.80 – 0.85 | the centre of pressure moves to p1 = 10 mm (inside the kern): the unloaded half slides |
+| 0.85 – 0.90 | N = 0: open, T = 0, Mz = 0; the pressure uniform again |
+| 0.90 – 1.20 | re-contact, then slide in translation: T on the friction ellipse, Mz = 0 |
+
+The FMU is rate-independent: the outputs do not depend on StepSize beyond
+which input values it samples.
+"""
+
+PATHS = (
+    Path_("OrthotropicContact", ("u1", "u2", "N"),
+          # time [s], u1 [m], u2 [m], N [N]; the elastic range is mu N / eps ~ 0.6-1.2 mm
+          ((0.00, 0.0, 0.0, N_LOAD),          # unloaded
+           (0.15, 0.3e-3, 0.1e-3, N_LOAD),    # stick: T = -B u
+           (0.45, 6.0e-3, 2.5e-3, N_LOAD),    # slide
+           (0.55, 6.0e-3, 2.5e-3, N_LOAD),    # hold: sticks with the last force
+           (0.56, 6.0e-3, 2.5e-3, 0.0),       # open: T = 0, the slip follows the body
+           (0.65, 7.0e-3, 2.0e-3, 0.0),
+           (0.66, 7.0e-3, 2.0e-3, N_LOAD),    # re-contact, unloaded
+           (1.00, 2.0e-3, 6.0e-3, N_LOAD)),   # slide the other way
+          ("T1", "T2", "s1", "s2", "contactState", "dissipatedEnergy"), POINT_README),
+    Path_("ContactPatch", ("u1", "u2", "theta", "N", "p1", "p2"),
+          # time [s], u1 [m], u2 [m], theta [rad], N [N], p1 [m], p2 [m]; an
+          # outer cell slides past ~11 mrad, the innermost past ~85 mrad
+          ((0.00, 0.0, 0.0, 0.0, N_LOAD, 0.0, 0.0),
+           (0.15, 0.3e-3, 0.1e-3, 0.0, N_LOAD, 0.0, 0.0),     # stick in translation
+           (0.25, 0.0, 0.0, 0.0, N_LOAD, 0.0, 0.0),           # and back
+           (0.45, 0.0, 0.0, 0.004, N_LOAD, 0.0, 0.0),         # stick in a small turn
+           (0.75, 0.0, 0.0, 0.3, N_LOAD, 0.0, 0.0),           # slide from the edge inwards
+           (0.80, 0.0, 0.0, 0.3, N_LOAD, 0.0, 0.0),           # hold
+           (0.85, 0.0, 0.0, 0.3, N_LOAD, 0.01, 0.0),          # centre of pressure moves
+           (0.86, 0.0, 0.0, 0.3, 0.0, 0.01, 0.0),             # open
+           (0.89, 0.0, 0.0, 0.3, 0.0, 0.0, 0.0),              # uniform pressure again
+           (0.90, 0.0, 0.0, 0.3, N_LOAD, 0.0, 0.0),           # re-contact
+           (1.20, 6.0e-3, -2.5e-3, 0.3, N_LOAD, 0.0, 0.0)),   # slide in translation
+          ("T1", "T2", "Mz", "dissipatedEnergy", "slipFraction", "contactState"), PATCH_README),
+)
+
+
+def input_table(path: Path_) -> np.ndarray:
+    t = np.round(np.arange(START, path.stop + STEP / 2, STEP), 12)
+    k = np.array(path.knots)
+    cols = [np.interp(t, k[:, 0], k[:, j]) for j in range(1, k.shape[1])]
+    return np.column_stack([t] + cols)
+
+
+def folder(path: Path_, version: int) -> Path:
+    return (ROOT / "cross-check" / "fmus" / f"{version}.0" / "cs" / PLATFORM[version] / "orthocontact"
+            / __version__ / path.model)
+
+
+def simulate(path: Path_, fmu: Path, inputs: np.ndarray) -> np.ndarray:
+    """fmpy's co-simulation of the FMU on the input table, as an importer would."""
+    from fmpy import simulate_fmu
+    signals = np.array([tuple(r) for r in inputs], dtype=[("time", float)] + [(n, float) for n in path.inputs])
+    return simulate_fmu(str(fmu), start_time=START, stop_time=path.stop, step_size=STEP,
+                        output_interval=STEP, input=signals, output=list(path.outputs),
+                        fmi_type="CoSimulation")
+
+
+def write_csv(path: Path, names, rows) -> None:
+    with open(path, "w", newline="") as fh:
+        fh.write(",".join(f'"{n}"' for n in names) + "\n")
+        for r in rows:
+            fh.write(",".join(repr(float(v)) for v in r) + "\n")
+
+
+def read_csv(path: Path) -> tuple[list, np.ndarray]:
+    with open(path) as fh:
+        rows = list(csv.reader(fh))
+    return rows[0], np.array(rows[1:], dtype=float)
+
 
 def main(check: bool = False) -> int:
-    inputs = input_table()
-    refs = {}
     status = 0
-    for version in (2, 3):
-        fmu = find_fmu(fmi_version=version)
-        out = simulate(fmu, inputs)
-        rows = np.column_stack([out["time"]] + [out[n] for n in OUTPUTS])
-        refs[version] = rows
-        d = folder(version)
-        if check:
-            _, ref = read_csv(d / f"{MODEL}_ref.csv")
-            same = ref.shape == rows.shape and np.array_equal(ref, rows)
-            print(f"FMI {version}.0: {'matches' if same else 'DIFFERS from'} {d / (MODEL + '_ref.csv')}")
-            status |= 0 if same else 1
-            continue
-        d.mkdir(parents=True, exist_ok=True)
-        write_csv(d / f"{MODEL}_in.csv", ["time", "u1", "u2", "N"], inputs)
-        write_csv(d / f"{MODEL}_ref.csv", ["time", *OUTPUTS], rows)
-        (d / f"{MODEL}_ref.opt").write_text(
-            f"StartTime, {START}\nStopTime, {STOP}\nStepSize, {STEP}\nRelTol, {RELTOL}\n")
-        (d / "README.md").write_text(README.format(model=MODEL, fmi=f"FMI {version}.0",
-                                                   version=__version__))
-        shutil.copy(fmu, d / f"{MODEL}.fmu")
-        print(f"wrote {d}")
-    if not np.array_equal(refs[2], refs[3]):
-        print("the FMI 2.0 and 3.0 FMUs disagree on the cross-check path", file=sys.stderr)
-        status = 1
+    for path in PATHS:
+        inputs = input_table(path)
+        refs = {}
+        for version in (2, 3):
+            fmu = find_fmu(fmi_version=version, model=path.model)
+            out = simulate(path, fmu, inputs)
+            rows = np.column_stack([out["time"]] + [out[n] for n in path.outputs])
+            refs[version] = rows
+            d = folder(path, version)
+            ref_csv = d / f"{path.model}_ref.csv"
+            if check:
+                same = ref_csv.exists() and np.array_equal(read_csv(ref_csv)[1], rows)
+                print(f"{path.model} FMI {version}.0: {'matches' if same else 'DIFFERS from'} {ref_csv}")
+                status |= 0 if same else 1
+                continue
+            d.mkdir(parents=True, exist_ok=True)
+            write_csv(d / f"{path.model}_in.csv", ["time", *path.inputs], inputs)
+            write_csv(ref_csv, ["time", *path.outputs], rows)
+            (d / f"{path.model}_ref.opt").write_text(
+                f"StartTime, {START}\nStopTime, {path.stop}\nStepSize, {STEP}\nRelTol, {RELTOL}\n")
+            (d / "README.md").write_text(path.readme.format(model=path.model, fmi=f"FMI {version}.0",
+                                                            version=__version__))
+            shutil.copy(fmu, d / f"{path.model}.fmu")
+            print(f"wrote {d}")
+        if not np.array_equal(refs[2], refs[3]):
+            print(f"the FMI 2.0 and 3.0 {path.model} FMUs disagree on the cross-check path", file=sys.stderr)
+            status = 1
     return status
 
 

@@ -1,7 +1,7 @@
 """The FMU as an importer meets it: both FMI versions give the same outputs,
 a state restores into a fresh instance anywhere, corrupted states are
-refused, the cross-check files hold, and a second importer (libcosim) runs it."""
-import csv
+refused, and a second importer (libcosim) runs it (the cross-check files:
+test_crosscheck.py)."""
 import math
 import pickle
 import struct
@@ -139,72 +139,6 @@ def test_corrupted_states_are_refused_and_change_nothing(version):
         assert refused >= len(bad) - 40  # every truncated, random and random-field state
         f.set_state(f.deserialize(good))
         assert f.outputs() == before
-
-
-# -- cross-check files ----------------------------------------------------------
-
-def _read(path):
-    with open(path) as fh:
-        rows = list(csv.reader(fh))
-    return rows[0], np.array(rows[1:], dtype=float)
-
-
-def _crosscheck_dir(version):
-    platform = {2: "linux64", 3: "x86_64-linux"}[version]
-    found = sorted((ROOT / "cross-check" / "fmus" / f"{version}.0" / "cs" / platform /
-                    "orthocontact").glob("*/OrthotropicContact"))
-    assert found, "cross-check files missing (make crosscheck)"
-    return found[-1]
-
-
-@pytest.mark.parametrize("version", [2, 3])
-def test_crosscheck_files_reproduce_and_obey_the_law(version):
-    from fmpy import simulate_fmu
-    d = _crosscheck_dir(version)
-    opt = dict(line.split(", ") for line in (d / "OrthotropicContact_ref.opt").read_text().splitlines())
-    assert set(opt) == {"StartTime", "StopTime", "StepSize", "RelTol"}
-    names, inp = _read(d / "OrthotropicContact_in.csv")
-    assert names == ["time", "u1", "u2", "N"]
-    rnames, ref = _read(d / "OrthotropicContact_ref.csv")
-    assert rnames[0] == "time"
-    signals = np.array([tuple(r) for r in inp], dtype=[(n, float) for n in names])
-    out = simulate_fmu(str(find_fmu(fmi_version=version)), start_time=float(opt["StartTime"]),
-                       stop_time=float(opt["StopTime"]), step_size=float(opt["StepSize"]),
-                       output_interval=float(opt["StepSize"]), input=signals, output=rnames[1:])
-    here = np.column_stack([out[n] for n in rnames])
-    assert here.shape == ref.shape
-    np.testing.assert_allclose(here, ref, rtol=float(opt["RelTol"]), atol=1e-12)
-
-    # Independent truth over the path (default parameters of the FMU).
-    col = {n: ref[:, i] for i, n in enumerate(rnames)}
-    u_prev = inp[:-1]          # outputs at t_k come from the inputs of t_{k-1}
-    y = ref[1:]
-    B = cf.adhesion_tensor(12510.0, 1e4, math.pi / 2)
-    F = cf.friction_tensor(0.408, 0.625, 0.0)
-    state = y[:, rnames.index("contactState")]
-    T = y[:, [rnames.index("T1"), rnames.index("T2")]]
-    s = y[:, [rnames.index("s1"), rnames.index("s2")]]
-    stick0 = (inp[1:, 0] <= 0.15) & (state == 1)
-    assert stick0.sum() > 100
-    np.testing.assert_allclose(T[stick0], -(u_prev[stick0, 1:3] @ B.T), rtol=1e-12, atol=1e-12)
-    open_ = u_prev[:, 3] <= 0
-    assert open_.sum() > 50 and np.all(state[open_] == 0)
-    assert np.all(T[open_] == 0)
-    # the importer interpolates the input table at its own time points: rounding
-    np.testing.assert_allclose(s[open_], u_prev[open_, 1:3], rtol=1e-12)
-    slip = state == 2
-    assert slip.sum() > 200
-    yield_ = np.sqrt(np.einsum("ij,jk,ik->i", T[slip], F, T[slip]))
-    np.testing.assert_allclose(yield_, u_prev[slip, 3], rtol=1e-12)
-    E = col["dissipatedEnergy"]
-    assert np.all(np.diff(E) >= 0) and E[-1] > 0
-    held = (inp[1:, 0] > 0.46) & (inp[1:, 0] <= 0.55)
-    assert np.all(np.diff(T[held], axis=0) == 0) and np.all(np.diff(E[1:][held]) == 0)
-
-
-def test_crosscheck_references_of_both_versions_agree():
-    assert np.array_equal(_read(_crosscheck_dir(2) / "OrthotropicContact_ref.csv")[1],
-                          _read(_crosscheck_dir(3) / "OrthotropicContact_ref.csv")[1])
 
 
 # -- a second importer: libcosim (Open Simulation Platform) ---------------------------

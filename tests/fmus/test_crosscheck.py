@@ -1,0 +1,166 @@
+"""The FMI cross-check files of both contact FMUs (tools/make_crosscheck.py)
+hold: fmpy reproduces each reference from its input file and options, the
+FMI 2.0 and 3.0 references agree, and each path's phases obey independent
+truths (the law's tensors over the FMU's default parameters, the cells'
+sums written out here)."""
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from orthocontact import closed_forms as cf
+from orthocontact.closed_forms import patch as cp
+from orthocontact.fmu.files import find_fmu
+
+ROOT = Path(__file__).resolve().parents[2]
+MODELS = ("OrthotropicContact", "ContactPatch")
+# The FMUs' default parameters, as their model descriptions give them.
+B = cf.adhesion_tensor(12510.0, 1e4, math.pi / 2)
+F = cf.friction_tensor(0.408, 0.625, 0.0)
+
+
+def _read(path):
+    with open(path) as fh:
+        rows = list(csv.reader(fh))
+    return rows[0], np.array(rows[1:], dtype=float)
+
+
+def _crosscheck_dir(version, model):
+    platform = {2: "linux64", 3: "x86_64-linux"}[version]
+    found = sorted((ROOT / "cross-check" / "fmus" / f"{version}.0" / "cs" / platform /
+                    "orthocontact").glob(f"*/{model}"))
+    assert found, f"cross-check files of {model} missing (make crosscheck)"
+    return found[-1]
+
+
+def _reproduced(version, model):
+    """(input names, inputs, output names, reference) after fmpy reproduced the
+    reference from the files within their RelTol."""
+    from fmpy import simulate_fmu
+    d = _crosscheck_dir(version, model)
+    opt = dict(line.split(", ") for line in (d / f"{model}_ref.opt").read_text().splitlines())
+    assert set(opt) == {"StartTime", "StopTime", "StepSize", "RelTol"}
+    names, inp = _read(d / f"{model}_in.csv")
+    rnames, ref = _read(d / f"{model}_ref.csv")
+    assert names[0] == "time" and rnames[0] == "time"
+    signals = np.array([tuple(r) for r in inp], dtype=[(n, float) for n in names])
+    out = simulate_fmu(str(find_fmu(fmi_version=version, model=model)),
+                       start_time=float(opt["StartTime"]), stop_time=float(opt["StopTime"]),
+                       step_size=float(opt["StepSize"]), output_interval=float(opt["StepSize"]),
+                       input=signals, output=rnames[1:])
+    here = np.column_stack([out[n] for n in rnames])
+    assert here.shape == ref.shape
+    np.testing.assert_allclose(here, ref, rtol=float(opt["RelTol"]), atol=1e-12)
+    return names, inp, rnames, ref
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_point_crosscheck_files_reproduce_and_obey_the_law(version):
+    names, inp, rnames, ref = _reproduced(version, "OrthotropicContact")
+    assert names == ["time", "u1", "u2", "N"]
+    col = {n: ref[:, i] for i, n in enumerate(rnames)}
+    u_prev = inp[:-1]          # outputs at t_k come from the inputs of t_{k-1}
+    y = ref[1:]
+    state = y[:, rnames.index("contactState")]
+    T = y[:, [rnames.index("T1"), rnames.index("T2")]]
+    s = y[:, [rnames.index("s1"), rnames.index("s2")]]
+    stick0 = (inp[1:, 0] <= 0.15) & (state == 1)
+    assert stick0.sum() > 100
+    np.testing.assert_allclose(T[stick0], -(u_prev[stick0, 1:3] @ B.T), rtol=1e-12, atol=1e-12)
+    open_ = u_prev[:, 3] <= 0
+    assert open_.sum() > 50 and np.all(state[open_] == 0)
+    assert np.all(T[open_] == 0)
+    # the importer interpolates the input table at its own time points: rounding
+    np.testing.assert_allclose(s[open_], u_prev[open_, 1:3], rtol=1e-12)
+    slip = state == 2
+    assert slip.sum() > 200
+    yield_ = np.sqrt(np.einsum("ij,jk,ik->i", T[slip], F, T[slip]))
+    np.testing.assert_allclose(yield_, u_prev[slip, 3], rtol=1e-12)
+    E = col["dissipatedEnergy"]
+    assert np.all(np.diff(E) >= 0) and E[-1] > 0
+    held = (inp[1:, 0] > 0.46) & (inp[1:, 0] <= 0.55)
+    assert np.all(np.diff(T[held], axis=0) == 0) and np.all(np.diff(E[1:][held]) == 0)
+
+
+def _rotation(theta):
+    c, s = math.cos(theta), math.sin(theta)
+    return np.array([[c, -s], [s, c]])
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_patch_crosscheck_files_reproduce_and_obey_the_law(version):
+    """The patch's path against the cells written out here (0.1 m x 0.1 m,
+    8 x 8 cells, each holding B/64 and its share of N at its centre)."""
+    names, inp, rnames, ref = _reproduced(version, "ContactPatch")
+    assert names == ["time", "u1", "u2", "theta", "N", "p1", "p2"]
+    x, y = cp.cell_centres(0.1, 0.1, 8, 8)
+    t_in, out = inp[:-1], ref[1:]          # outputs at t_k come from the inputs of t_{k-1}
+    at = {n: out[:, i] for i, n in enumerate(rnames)}
+    u, theta, N, p1 = t_in[:, 1:3], t_in[:, 3], t_in[:, 4], t_in[:, 5]
+    T, Mz, state = np.column_stack([at["T1"], at["T2"]]), at["Mz"], at["contactState"]
+    scale = np.abs(T).max()
+
+    # stick in translation and back: the point's T = -B u, no moment
+    moved = t_in[:, 0] < 0.25
+    assert np.all(state[moved] == 1) and moved.sum() > 200
+    np.testing.assert_allclose(T[moved], -(u[moved] @ B.T), rtol=1e-12, atol=1e-12 * scale)
+    assert np.all(np.abs(Mz[moved]) <= 1e-12 * scale * 0.1)
+
+    # stick in a small turn: every cell pulled back by B/64 (R - I) r
+    turned = (t_in[:, 0] > 0.25) & (t_in[:, 0] < 0.45)
+    assert np.all(state[turned] == 1)
+    r = np.stack([x, y])
+    for k in np.flatnonzero(turned)[::20]:
+        Rr = _rotation(theta[k]) @ r
+        t = -(B / 64) @ (Rr - r)
+        assert Mz[k] == pytest.approx(np.sum(Rr[0] * t[1] - Rr[1] * t[0]), rel=1e-12)
+        np.testing.assert_allclose(T[k], t.sum(axis=1), atol=1e-12 * abs(Mz[k]) / 0.05)
+
+    # turned on: every cell slides, and the moment approaches the grid's
+    # steady full-slip moment at that angle (the law's steady force at each
+    # cell, the texture turned by -theta in the body's frame) within the
+    # elastic lag, the elastic length over the cells' mean radius
+    end = np.flatnonzero(t_in[:, 0] < 0.75)[-1]
+    assert state[end] == 3 and at["slipFraction"][end] == 1.0
+    th = theta[end]
+    steady = cp.full_slip_rotation_grid(0.408, 0.625, 12510.0, 1e4, math.pi / 2 - th, -th, "coupled",
+                                        0.1, 0.1, N[end], 8, 8)[2]
+    lag = 0.625 * N[end] / 1e4 / np.mean(np.hypot(x, y))
+    assert abs(Mz[end] - steady) <= lag * abs(steady) and np.sign(Mz[end]) == np.sign(steady)
+
+    # held: sticks with the last force and moment, dissipates nothing
+    held = (t_in[:, 0] > 0.751) & (t_in[:, 0] <= 0.80)
+    assert np.all(state[held] == 1)
+    for q in (T[held, 0], T[held, 1], Mz[held], at["dissipatedEnergy"][held]):
+        assert np.all(q == q[0])
+
+    # the centre of pressure moves towards +x with the turn held: the cells
+    # at x < 0 lose load on the yield surface and slide, those at x > 0 stick
+    shifted = (t_in[:, 0] > 0.801) & (t_in[:, 0] < 0.85)
+    assert np.all(state[shifted] == 2) and np.all(at["slipFraction"][shifted] == 0.5)
+    assert np.all(p1[shifted] > 0)
+
+    # open: nothing
+    open_ = N <= 0
+    assert open_.sum() > 20 and np.all(state[open_] == 0)
+    assert np.all(T[open_] == 0) and np.all(Mz[open_] == 0) and np.all(at["slipFraction"][open_] == 0)
+
+    # re-contact unloaded and slide in translation, uniform pressure: every
+    # cell goes the same way with the same share, so the force lies on the
+    # friction ellipse of N and the moment vanishes
+    slid = np.flatnonzero((state == 3) & (t_in[:, 0] > 0.9))
+    assert len(slid) > 100
+    yield_ = np.sqrt(np.einsum("ij,jk,ik->i", T[slid], F, T[slid]))
+    np.testing.assert_allclose(yield_, N[slid], rtol=1e-12)
+    assert np.all(np.abs(Mz[slid]) <= 1e-12 * scale * 0.1)
+
+    E = at["dissipatedEnergy"]
+    assert np.all(np.diff(E) >= 0) and E[-1] > E[end] > 0
+
+
+@pytest.mark.parametrize("model", MODELS)
+def test_crosscheck_references_of_both_versions_agree(model):
+    assert np.array_equal(_read(_crosscheck_dir(2, model) / f"{model}_ref.csv")[1],
+                          _read(_crosscheck_dir(3, model) / f"{model}_ref.csv")[1])
