@@ -91,7 +91,8 @@ def test_identify_prints_every_estimate_with_its_unit_and_positive_intervals(tmp
     import json
 
     from cli_run import run_cli
-    from orthocontact.identification.report import UNITS, unit_of
+    from orthocontact.identification.identified import UNITS
+    from orthocontact.identification.report import unit_of
     out = tmp_path / "id"
     p = run_cli(["identify", ROOT / "scenarios" / "example_recordings", "--out", out, "--no-validate"],
                 cwd=ROOT)

@@ -29,7 +29,7 @@ from ..experiment.ssp import parameter_values_file, write_ssp
 from ..fmu.files import MODEL_IDENTIFIER, find_fmu
 from ..fmu.params import ContactParams
 from ..fmu.start_values import write_with_start_values
-from .identified import Estimate, IdentifiedFile, NotIdentified
+from .identified import UNITS, Estimate, IdentifiedFile, NotIdentified
 from .identified_file import read_identified
 
 ESTIMATED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
@@ -125,15 +125,15 @@ def rig_scenario(cal: Calibration, scenario=None) -> Scenario:
 
 def _documentation(cal: Calibration, values: dict, angle_deg: float, version: str, date: str,
                    phi_deg: float) -> str:
-    units = {"mu1": "", "mu2": "", "eps_ratio": "", "eps1": "N/m", "eps2": "N/m"}
     rows = []
     for n in ("mu1", "mu2", "eps1", "eps2"):
         ci = cal.intervals.get(n)
         interval = f"{ci[0]:.6g} .. {ci[1]:.6g}" if ci else "not identified"
-        rows.append(f"<tr><td>{n}</td><td>{values[n]!r}</td><td>{units[n]}</td><td>{interval}</td></tr>")
+        rows.append(f"<tr><td>{n}</td><td>{values[n]!r}</td><td>{UNITS[n]}</td><td>{interval}</td></tr>")
     if "eps_ratio" in cal.intervals:
         ci = cal.intervals["eps_ratio"]
-        rows.append(f"<tr><td>eps1/eps2</td><td>{values['eps1'] / values['eps2']!r}</td><td></td>"
+        rows.append(f"<tr><td>eps1/eps2</td><td>{values['eps1'] / values['eps2']!r}</td>"
+                    f"<td>{UNITS['eps_ratio']}</td>"
                     f"<td>{ci[0]:.6g} .. {ci[1]:.6g}</td></tr>")
     eps2 = ("eps2 was identified (from the stick branch of the pull)." if cal.eps2_identified else
             f"eps2 was <b>not</b> identified: the nominal eps2 = {cal.rig.eps2_nominal_N_m!r} N/m of the "

@@ -21,6 +21,12 @@ SHA256_OF = ("the listing `sha256sum` prints for data.files, in that (sorted) or
              "cd FOLDER && sha256sum FILE... | sha256sum")
 
 
+# The unit of each estimate ("-": dimensionless), with every value the
+# terminal summary, identified.md and the exported FMU's documentation give.
+UNITS = {"mu1": "-", "mu2": "-", "eps_ratio": "-", "l1_l2_ratio": "-", "eps1": "N/m", "eps2": "N/m",
+         "c_strip": "N s/m", "f_int": "N"}
+
+
 def reported_names(estimates) -> list:
     """The parameters a summary lists, of those in `estimates` (names): the
     five, l1/l2 when angles alone were fitted, the strip's viscosity and

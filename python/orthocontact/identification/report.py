@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import closed_forms as cf
 from ..experiment.rig_setup import RigSetup
-from .identified import Estimate, ReductionSummary, reported_names
+from .identified import UNITS, Estimate, ReductionSummary, reported_names
 
 
 # The one name of the angle the mat (the law's axes) is turned by: every figure, message and help text.
@@ -150,12 +150,6 @@ def fit_figure(res, path: Path):
     fig.suptitle(f"orthocontact identify: {d.folder.name} ({model.describe()})", fontsize=10)
     fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
-
-
-# The unit of each reported estimate: the terminal summary and identified.md
-# print it with every value ("-": dimensionless).
-UNITS = {"mu1": "-", "mu2": "-", "eps_ratio": "-", "l1_l2_ratio": "-", "eps1": "N/m", "eps2": "N/m",
-         "c_strip": "N s/m", "f_int": "N"}
 
 
 def unit_of(name: str) -> str:
