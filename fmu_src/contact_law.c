@@ -7,7 +7,7 @@
  *   2. The parameters and the tensors they fix (B, F, the yield coordinates)
  *   3. Slip by the implicit rules: the plastic multiplier on the yield surface
  *   4. Slip by the paper's explicit eq. (20)
- *   5. One step: trial, stick test, return map, commit
+ *   5. One step: trial, stick test, return map, commit; many steps at once
  *   6. The consistent tangent
  *   7. A committed state's admissibility
  *
@@ -320,9 +320,20 @@ static inline void force_of(const oc_law *L, const double a[2], double q[2]) {
  * that an evaluation costs one square root and one division; its products
  * (up to W^7) stay finite while W < 1e40, which the caller guarantees
  * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest. */
-static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr,
-                                             double N, const double sh[2], double p[2],
-                                             double *inv_norm) {
+/* The solve as a start and single evaluations, so that a batch of cells
+ * (oc_law_step_batch) can interleave its cells' iterations, each lane the
+ * same arithmetic as a cell's own solve. */
+typedef struct {
+    double a[2];         /* the trial's direction a_raw / n_tr */
+    double rho, inv_rho; /* N / n_tr and its inverse */
+    double x;            /* the iterate y */
+    int it;              /* evaluations made */
+} dgamma_solve;
+
+/* The start of the solve: no square root, so that it runs beside the
+ * caller's. */
+static OC_ALWAYS_INLINE void dgamma_start(const double a_raw[2], double sq, double n_tr, double N,
+                                          const double sh[2], dgamma_solve *S) {
     /* The divisions depend only on the trial, not on its square root:
      * they run beside it.  Moments are taken over a_i^2 / |a|^2. */
     const double A0 = a_raw[0] * a_raw[0], A1 = a_raw[1] * a_raw[1];
@@ -330,7 +341,10 @@ static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, do
     const double R1 = A0 * s0 + A1 * s1;
     const double inv_sq = 1.0 / sq, inv_R1 = 1.0 / R1, inv_N = 1.0 / N;
     const double inv_ntr = n_tr * inv_sq, rho = N * inv_ntr, inv_rho = n_tr * inv_N;
-    const double a[2] = {a_raw[0] * inv_ntr, a_raw[1] * inv_ntr};
+    S->a[0] = a_raw[0] * inv_ntr;
+    S->a[1] = a_raw[1] * inv_ntr;
+    S->rho = rho;
+    S->inv_rho = inv_rho;
     /* The start: the root's series in the Newton step h from y = 0, to
      * third order (error O(h^4)), from the moments M_j = sum_i a_i^2 s_i^j:
      * k(0) = rho - 1, k' = rho M1, k''/(2 k') = A2 = 3 (M1^2 - M2) / (2 M1),
@@ -344,47 +358,67 @@ static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, do
     double x = h * (1.0 - A2 * h + (2 * A2 * A2 - A3) * h * h);
     /* Far from the root the series need not converge: Newton's step then. */
     if (!(x > 0) || !(x < 4 * h)) x = h;
-    for (int it = 0;; ++it) {
-        const double w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;
-        const double g0 = a[0] * w1x, g1 = a[1] * w0x;
-        const double G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = sqrt(m2);
-        const double res = m - rho * W;
-        /* u_i = W s_i / w_i: in these, k' = rho C / m^3 with C = sum g_i^2 u_i
-         * and k'' / k' = -3 (m^2 D2 - C^2) / (W m^2 C), D2 = sum g_i^2 u_i^2. */
-        const double u0 = sh[0] * w1x, u1 = sh[1] * w0x;
-        double dx = 0.0;
-        if (fabs(res) > 2 * DBL_EPSILON * rho * W && it < 100) {
-            const double C = G0 * u0 + G1 * u1;
-            int last;
-            if (res > 0) { /* left of the root: Halley, in one division */
-                /* dx = -(k / k') / (1 - k k'' / (2 k'^2)): k < 0 and k'' <= 0
-                 * make the bracket < 1, a step longer than Newton's.  Where
-                 * the bracket falls below 1/2 (far from the root) the step is
-                 * held at twice Newton's: overshooting the root is harmless
-                 * (Newton from the right lands left of it). */
-                const double D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
-                dx = res * m2 * W * C / max2(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2);
-                last = fabs(dx) <= 5e-6 * x;
-            } else {
-                dx = res * m2 * inv_rho / C;
-                last = fabs(dx) <= 1e-8 * x;
-            }
-            if (!last) {
-                x = max2(x + dx, 0.0);
-                continue;
-            }
+    S->x = x;
+    S->it = 0;
+}
+
+/* One evaluation: 0 if the iterate moved; 1 when done, with the root y in
+ * *root and the p (and 1 / |p|) there. */
+static OC_ALWAYS_INLINE int dgamma_step(dgamma_solve *S, const double sh[2], double p[2],
+                                        double *inv_norm, double *root) {
+    const double x = S->x, rho = S->rho, inv_rho = S->inv_rho;
+    const double w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;
+    const double g0 = S->a[0] * w1x, g1 = S->a[1] * w0x;
+    const double G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = sqrt(m2);
+    const double res = m - rho * W;
+    /* u_i = W s_i / w_i: in these, k' = rho C / m^3 with C = sum g_i^2 u_i
+     * and k'' / k' = -3 (m^2 D2 - C^2) / (W m^2 C), D2 = sum g_i^2 u_i^2. */
+    const double u0 = sh[0] * w1x, u1 = sh[1] * w0x;
+    double dx = 0.0;
+    if (fabs(res) > 2 * DBL_EPSILON * rho * W && S->it < 100) {
+        const double C = G0 * u0 + G1 * u1;
+        int last;
+        if (res > 0) { /* left of the root: Halley, in one division */
+            /* dx = -(k / k') / (1 - k k'' / (2 k'^2)): k < 0 and k'' <= 0
+             * make the bracket < 1, a step longer than Newton's.  Where
+             * the bracket falls below 1/2 (far from the root) the step is
+             * held at twice Newton's: overshooting the root is harmless
+             * (Newton from the right lands left of it). */
+            const double D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
+            dx = res * m2 * W * C / max2(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2);
+            last = fabs(dx) <= 5e-6 * x;
+        } else {
+            dx = res * m2 * inv_rho / C;
+            last = fabs(dx) <= 1e-8 * x;
         }
-        /* p_i(x + dx) = p_i / (1 + t_i) with t_i = s_i dx / w_i = u_i dx / W. */
-        const double invW = 1.0 / W;
-        const double t0 = u0 * dx * invW, t1 = u1 * dx * invW;
-        p[0] = g0 * invW * (1.0 - t0 + t0 * t0);
-        p[1] = g1 * invW * (1.0 - t1 + t1 * t1);
-        /* |p| = rho to rounding now, so 1 / |p| is one Newton step of the
-         * inverse square root from 1 / rho: no square root, no division. */
-        const double pp = p[0] * p[0] + p[1] * p[1];
-        *inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho);
-        return x + dx;
+        if (!last) {
+            S->x = max2(x + dx, 0.0);
+            ++S->it;
+            return 0;
+        }
     }
+    /* p_i(x + dx) = p_i / (1 + t_i) with t_i = s_i dx / w_i = u_i dx / W. */
+    const double invW = 1.0 / W;
+    const double t0 = u0 * dx * invW, t1 = u1 * dx * invW;
+    p[0] = g0 * invW * (1.0 - t0 + t0 * t0);
+    p[1] = g1 * invW * (1.0 - t1 + t1 * t1);
+    /* |p| = rho to rounding now, so 1 / |p| is one Newton step of the
+     * inverse square root from 1 / rho: no square root, no division. */
+    const double pp = p[0] * p[0] + p[1] * p[1];
+    *inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho);
+    *root = x + dx;
+    return 1;
+}
+
+static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr,
+                                             double N, const double sh[2], double p[2],
+                                             double *inv_norm) {
+    dgamma_solve S;
+    dgamma_start(a_raw, sq, n_tr, N, sh, &S);
+    double y;
+    while (!dgamma_step(&S, sh, p, inv_norm, &y)) {
+    }
+    return y;
 }
 
 /* The same root for a trial far outside the yield surface or a large
@@ -645,6 +679,119 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
         return_map_implicit(L, a, sq, n_tr, N, p, &scale, yp, out);
     on_yield_surface(p, scale, N, ap);
     step_slip(L, start, u, a, ap, yp, out);
+}
+
+/* ==== 5b. Many steps with one law: the slipping cells' solves interleaved ==== */
+
+/* The implicit rules' slip from the trial a (|a|^2 = sq, |a| = n_tr, both in
+ * the ranges oc_law_step_batch checks), given the solve's root y, p and
+ * 1 / |p|: return_map_implicit's first branch after its solve,
+ * on_yield_surface and step_slip, in their order. */
+static OC_ALWAYS_INLINE void slip_implicit_after_solve(const oc_law *L, const oc_state *start,
+                                                       const double u[2], const double a[2],
+                                                       double N, double y, const double p[2],
+                                                       double inv_np, oc_step *out) {
+    out->contact = OC_SLIP;
+    double w[2], yp[2], ap[2];
+    w[0] = 1.0 + y * L->sig_hat[0];
+    w[1] = 1.0 + y * L->sig_hat[1];
+    const double scale = N * inv_np;
+    yp[0] = y * (p[0] * scale);
+    yp[1] = y * (p[1] * scale);
+    out->dgamma = y * L->inv_sigma_ref;
+    const double wfac = 1.0;
+    const double wmax = max2(w[0], w[1]);
+    out->w[0] = w[0] / wmax;
+    out->w[1] = w[1] / wmax;
+    out->inv_wmax = wfac / wmax;
+    on_yield_surface(p, scale, N, ap);
+    step_slip(L, start, u, a, ap, yp, out);
+}
+
+void oc_law_step_batch(const oc_law *L, const oc_state *const start[], const double u[][2],
+                       const double N[], oc_step out[], int n) {
+    /* 1: each cell's trial and stick test, as oc_law_step's; an open or
+     * sticking cell is done.  A cell that slips by an implicit rule where
+     * oc_law_step takes its fast solve, the trial's square normal, waits
+     * for 2; any other is oc_law_step's own. */
+    int slip[OC_BATCH_MAX];
+    double trial_a[OC_BATCH_MAX][2], trial_sq[OC_BATCH_MAX], trial_n[OC_BATCH_MAX];
+    int n_slip = 0;
+    const int fast = L->p.rule != OC_RULE_EQ20 && L->kappa <= 1e20;
+    for (int k = 0; k < n; ++k) {
+        oc_step *o = &out[k];
+        const double uk[2] = {u[k][0], u[k][1]}, Nk = N[k];
+        o->next.u[0] = uk[0];
+        o->next.u[1] = uk[1];
+        o->next.N = Nk;
+        if (!(Nk > 0)) {
+            step_open(start[k], uk, o);
+            continue;
+        }
+        double a[2];
+        trial(L, start[k], uk, a);
+        const double lim = Nk * (1.0 + 8 * DBL_EPSILON);
+        const double sq = a[0] * a[0] + a[1] * a[1];
+        const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
+        const int normal = sq >= 0x1p-900 && sq <= 0x1p1000;
+        if (sq <= lim2c && normal) {
+            step_stick(L, start[k], a, o);
+            continue;
+        }
+        if (!normal) {
+            oc_law_step(L, start[k], uk, Nk, o);
+            continue;
+        }
+        const double n_tr = sqrt(sq); /* norm2's, sq being normal */
+        if (n_tr <= lim) {
+            step_stick(L, start[k], a, o);
+            continue;
+        }
+        if (!fast || !(n_tr <= 1e10 * Nk)) {
+            oc_law_step(L, start[k], uk, Nk, o);
+            continue;
+        }
+        slip[n_slip] = k;
+        trial_a[n_slip][0] = a[0];
+        trial_a[n_slip][1] = a[1];
+        trial_sq[n_slip] = sq;
+        trial_n[n_slip] = n_tr;
+        ++n_slip;
+    }
+    /* 2: the slipping cells OC_LANES at a time, their solves' evaluations
+     * in turn: independent chains of square roots and divisions, which the
+     * processor then overlaps.  Each lane is the cell's own arithmetic. */
+    for (int first = 0; first < n_slip; first += OC_LANES) {
+        const int lanes = n_slip - first < OC_LANES ? n_slip - first : OC_LANES;
+        if (lanes == 1) { /* nothing to interleave: the cell's own step, in registers */
+            const int k = slip[first];
+            oc_law_step(L, start[k], u[k], N[k], &out[k]);
+            break;
+        }
+        dgamma_solve S[OC_LANES];
+        double sc[OC_LANES], p[OC_LANES][2], inv_np[OC_LANES], y[OC_LANES];
+        int done[OC_LANES];
+        for (int l = 0; l < lanes; ++l) {
+            const int s = first + l, k = slip[s];
+            sc[l] = pow2_root_inverse(trial_sq[s]); /* trial_scale's, sq being normal */
+            const double as[2] = {trial_a[s][0] * sc[l], trial_a[s][1] * sc[l]};
+            dgamma_start(as, as[0] * as[0] + as[1] * as[1], trial_n[s] * sc[l], N[k] * sc[l],
+                         L->sig_hat, &S[l]);
+            done[l] = 0;
+        }
+        for (int left = lanes; left > 0;)
+            for (int l = 0; l < lanes; ++l)
+                if (!done[l] && dgamma_step(&S[l], L->sig_hat, p[l], &inv_np[l], &y[l])) {
+                    done[l] = 1;
+                    --left;
+                }
+        for (int l = 0; l < lanes; ++l) {
+            const int s = first + l, k = slip[s];
+            const double uk[2] = {u[k][0], u[k][1]};
+            slip_implicit_after_solve(L, start[k], uk, trial_a[s], N[k], y[l], p[l], inv_np[l],
+                                      &out[k]);
+        }
+    }
 }
 
 /* ==== 6. The consistent tangent ==== */

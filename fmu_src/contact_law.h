@@ -113,6 +113,16 @@ int oc_law_init(oc_law *law, const oc_params *p);
 void oc_law_step(const oc_law *law, const oc_state *start, const double u[2],
                  double N, oc_step *out);
 
+/* n <= OC_BATCH_MAX steps with one law: out[k] is, bit for bit, what
+ * oc_law_step(law, start[k], u[k], N[k], &out[k]) gives.  The cells that
+ * slip by an implicit rule are stepped OC_LANES at a time, their solves'
+ * evaluations interleaved (the cells share the law's tensors and slip
+ * eigenbasis); the others as oc_law_step steps them.  No out[k] may overlap
+ * a start or an input. */
+enum { OC_BATCH_MAX = 64, OC_LANES = 4 };
+void oc_law_step_batch(const oc_law *law, const oc_state *const start[], const double u[][2],
+                       const double N[], oc_step out[], int n);
+
 /* Jacobian of the outputs y = (T1, T2, s1, s2, energy) with respect to
  * x = (u1, u2, N) for the step `st` computed from `start` with (u, N). */
 enum { OC_JAC_ROWS = 5, OC_JAC_COLS = 3 };

@@ -146,7 +146,8 @@ typedef enum { FROM_INITIAL, FROM_ARRAY, FROM_STEPS, FROM_BYTES } source_kind;
 typedef struct {
     source_kind kind;
     const oc_state *array;      /* FROM_ARRAY: cell c's state is array[c] */
-    const oc_step *steps;       /* FROM_STEPS: steps[c].next */
+    const oc_step *steps;       /* FROM_STEPS: steps[c].next, */
+    int buffer;                 /*   steps = the model's steps[buffer] */
     const unsigned char *bytes; /* FROM_BYTES: serialized, N_STATE_F64 doubles a cell */
 } cell_source;
 
@@ -201,10 +202,12 @@ static fmu_status check_kern(const patch_setup *g, fmu_msg *msg) {
 
 /* Steps every cell with `law` from `src` into out[] and sums the outputs;
  * or fails, having written nothing but out[], if a cell's result or a sum
- * would not be finite.  Cell by cell, in the order c = i + n1 j, each cell
- * the law's step on its own kinematics (cell_of's): the cells' coordinates
- * are formed once a step (n1 + n2 divisions, not two a cell and an integer
- * division), and a committed state is read where it lies, not copied.
+ * would not be finite.  Each cell is the law's step on its own kinematics
+ * (cell_of's), summed in the order c = i + n1 j: the cells' coordinates are
+ * formed once a step (n1 + n2 divisions, not two a cell and an integer
+ * division), a committed state is read where it lies, not copied, and the
+ * law steps OC_BATCH_MAX cells in one call (oc_law_step_batch: the slipping
+ * ones' solves interleaved, each the cell's own step bit for bit).
  * tests/c/test_patch_model.c holds the result to the plain per-cell step,
  * bit for bit. */
 static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell_source *src,
@@ -232,8 +235,16 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
     const double N = g->N, u0 = g->u[0], u1 = g->u[1];
     double T0 = 0.0, T1 = 0.0, Mz = 0.0, energy = 0.0;
     int pressed = 0, slipping = 0;
-    for (int j = 0, c = 0; j < n2; ++j)
-        for (int i = 0; i < n1; ++i, ++c) {
+    /* OC_BATCH_MAX cells at a time: their kinematics, one batch of the
+     * law's steps, then their sums in the order c = i + n1 j. */
+    const oc_state *from[OC_BATCH_MAX];
+    oc_state local[OC_BATCH_MAX];
+    double d[OC_BATCH_MAX][2], Nc[OC_BATCH_MAX], Rr[OC_BATCH_MAX][2];
+    for (int first = 0, i = 0, j = 0; first < n; first += OC_BATCH_MAX) {
+        const int count = n - first < OC_BATCH_MAX ? n - first : OC_BATCH_MAX;
+        const int i0 = i, j0 = j;
+        for (int k = 0; k < count; ++k) {
+            const int c = first + k;
             patch_cell x;
             x.d[0] = u0;
             x.d[1] = u1;
@@ -246,27 +257,38 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
                 x.Rr[0] += dr0;
                 x.Rr[1] += dr1;
             }
-            const double nu = f.w * (p0[i] + p1[j]);
-            oc_state local;
-            const oc_state *from = &local;
-            if (src->kind == FROM_STEPS) from = &src->steps[c].next;
-            else if (src->kind == FROM_ARRAY) from = &src->array[c];
-            else local = source_cell(src, g, &x, c);
-            oc_step *st = &out[c];
-            oc_law_step(law, from, x.d, N * nu, st);
+            d[k][0] = x.d[0];
+            d[k][1] = x.d[1];
+            Rr[k][0] = x.Rr[0];
+            Rr[k][1] = x.Rr[1];
+            Nc[k] = N * (f.w * (p0[i] + p1[j]));
+            if (src->kind == FROM_STEPS) from[k] = &src->steps[c].next;
+            else if (src->kind == FROM_ARRAY) from[k] = &src->array[c];
+            else {
+                local[k] = source_cell(src, g, &x, c);
+                from[k] = &local[k];
+            }
+            if (++i == n1) i = 0, ++j;
+        }
+        if (count == 1) oc_law_step(law, from[0], d[0], Nc[0], &out[first]);
+        else oc_law_step_batch(law, from, (const double(*)[2])d, Nc, &out[first], count);
+        for (int k = 0, ci = i0, cj = j0; k < count; ++k) {
+            const oc_step *st = &out[first + k];
             if (!oc_step_is_finite(st))
                 return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the "
                                      "force or slip of cell (%d, %d)", g->u[0], g->u[1], g->theta,
-                                g->N, i + 1, j + 1);
+                                g->N, ci + 1, cj + 1);
             /* 0.0 - q rather than -q: an open cell reads +0.0, as the point FMU */
             const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
             T0 += t0;
             T1 += t1;
-            Mz += x.Rr[0] * t1 - x.Rr[1] * t0;
+            Mz += Rr[k][0] * t1 - Rr[k][1] * t0;
             energy += st->next.energy;
             pressed += st->contact != OC_OPEN;
             slipping += st->contact == OC_SLIP;
+            if (++ci == n1) ci = 0, ++cj;
         }
+    }
     if (!isfinite(T0) || !isfinite(T1) || !isfinite(Mz) || !isfinite(energy))
         return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the patch's "
                              "force, moment or energy", g->u[0], g->u[1], g->theta, g->N);
@@ -288,26 +310,41 @@ static void show(patch_model *m, const patch_sums *S) {
     m->contact = S->contact;
 }
 
+/* The steps buffer a new step is computed into: neither the shown step's
+ * nor its start's. */
+static int free_buffer(const patch_model *m) {
+    int b = 0;
+    while (b == m->shown || b == m->from - 1) ++b;
+    return b;
+}
+
+/* Cell c's start of the shown step. */
+static const oc_state *start_of(const patch_model *m, int c) {
+    return m->from > 0 ? &m->steps[m->from - 1][c].next : &m->start[c];
+}
+
 /* Computes the pending step of every cell for the inputs in m from `src`
  * with `law` (which commits nothing); or fails and changes nothing (but the
- * hidden steps, which nothing reads). */
+ * free buffer, which nothing reads).  The committed states a step starts
+ * from stay where they lie: the shown step's start is then that buffer, not
+ * a copy of it. */
 static fmu_status evaluate(patch_model *m, const oc_law *law, const cell_source *src, fmu_msg *msg) {
-    const int hidden = m->shown ^ 1;
+    const int into = free_buffer(m);
     patch_sums S;
-    if (step_cells(law, &m->g, src, m->steps[hidden], &S, msg) != FMU_OK) return FMU_ERR;
-    const int n = n_cells(&m->g);
+    if (step_cells(law, &m->g, src, m->steps[into], &S, msg) != FMU_OK) return FMU_ERR;
     if (src->kind == FROM_STEPS) {
-        /* a step's start: the committed states, where they lie */
-        for (int c = 0; c < n; ++c) m->start[c] = src->steps[c].next;
+        m->from = src->buffer + 1;
     } else if (!(src->kind == FROM_ARRAY && src->array == m->start)) {
+        const int n = n_cells(&m->g);
         const patch_frame f = frame_of(&m->g);
         for (int c = 0; c < n; ++c) {
             const patch_cell x = cell_of(&m->g, &f, c);
             m->start[c] = source_cell(src, &m->g, &x, c);
         }
+        m->from = 0;
     }
     if (law != &m->law) m->law = *law;
-    m->shown = hidden;
+    m->shown = into;
     show(m, &S);
     m->result_committed = 0;
     return FMU_OK;
@@ -315,10 +352,11 @@ static fmu_status evaluate(patch_model *m, const oc_law *law, const cell_source 
 
 /* The committed states: the start before a commit, the shown step's after. */
 static cell_source committed(const patch_model *m) {
-    cell_source s = {FROM_ARRAY, m->start, NULL, NULL};
-    if (m->result_committed) {
+    cell_source s = {FROM_ARRAY, m->start, NULL, -1, NULL};
+    if (m->result_committed || m->from > 0) {
         s.kind = FROM_STEPS;
-        s.steps = m->steps[m->shown];
+        s.buffer = m->result_committed ? m->shown : m->from - 1;
+        s.steps = m->steps[s.buffer];
     }
     return s;
 }
@@ -347,7 +385,7 @@ fmu_status fmu_model_update(patch_model *m, int changed, int allow, fmu_msg *msg
     }
     /* Before the end of initialization the cells start where the inputs or
      * the explicit slip put them; afterwards from what was committed. */
-    const cell_source init = {FROM_INITIAL, NULL, NULL, NULL};
+    const cell_source init = {FROM_INITIAL, NULL, NULL, -1, NULL};
     const cell_source src = (allow & FMU_ALLOW_PARAMETERS) ? init : committed(m);
     return evaluate(m, use, &src, msg);
 }
@@ -356,7 +394,7 @@ fmu_status fmu_model_update(patch_model *m, int changed, int allow, fmu_msg *msg
  * left; deriving it once more here makes the end of initialization the
  * moment that counts, whatever was restored before it. */
 static fmu_status exit_init(patch_model *m, fmu_msg *msg) {
-    const cell_source init = {FROM_INITIAL, NULL, NULL, NULL};
+    const cell_source init = {FROM_INITIAL, NULL, NULL, -1, NULL};
     return evaluate(m, &m->law, &init, msg);
 }
 
@@ -412,7 +450,7 @@ static void patch_jacobian(const patch_model *m, double P[P_ROWS][P_COLS]) {
         const patch_cell x = cell_of(g, &f, c);
         const oc_step *st = &m->steps[m->shown][c];
         double J[OC_JAC_ROWS][OC_JAC_COLS];
-        oc_law_jacobian(&m->law, &m->start[c], x.d, g->N * x.nu, st, J);
+        oc_law_jacobian(&m->law, start_of(m, c), x.d, g->N * x.nu, st, J);
         /* d(d)/dx and dN_c/dx over x = (u1, u2, theta, N, p1, p2) */
         const double dd[2][P_COLS] = {{1, 0, -x.Rr[1], 0, 0, 0}, {0, 1, x.Rr[0], 0, 0, 0}};
         const double dN[P_COLS] = {0, 0, 0, x.nu, g->N * f.w * 12.0 * x.xi / g->length,
@@ -481,13 +519,13 @@ void fmu_model_state_write(const patch_model *m, unsigned char *p) {
     for (int k = 0; k < 6; ++k) p = fmu_put_f64(p, in[k]);
     p = fmu_put_u32(p, (uint32_t)m->result_committed);
     const int n = n_cells(g);
-    for (int c = 0; c < n; ++c) p = put_state(p, &m->start[c]);
+    for (int c = 0; c < n; ++c) p = put_state(p, start_of(m, c));
     memset(p, 0, (size_t)(PATCH_MAX_CELLS - n) * 8 * N_STATE_F64);
 }
 
 /* Reads and checks everything before it changes m: the header into locals,
  * then each cell's state where it lies in the buffer; the shown result is
- * not stored but recomputed (into the hidden steps, which nothing reads)
+ * not stored but recomputed (into the free buffer, which nothing reads)
  * from the committed states and the inputs, of which it is a function. */
 fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg *msg) {
     oc_params q;
@@ -569,17 +607,18 @@ fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg 
         const char *why = oc_state_check(&law, &s);
         if (why) return fmu_fail(msg, "serialized state: cell %d: %s", c + 1, why);
     }
-    const cell_source src = {FROM_BYTES, NULL, NULL, cells};
-    const int hidden = m->shown ^ 1;
+    const cell_source src = {FROM_BYTES, NULL, NULL, -1, cells};
+    const int into = free_buffer(m);
     patch_sums S;
-    if (step_cells(&law, &g, &src, m->steps[hidden], &S, &why) != FMU_OK)
+    if (step_cells(&law, &g, &src, m->steps[into], &S, &why) != FMU_OK)
         return fmu_fail(msg, "serialized state: %s", why.text);
     /* accepted: nothing below can fail */
     m->params = q;
     m->law = law;
     m->g = g;
     for (int c = 0; c < n; ++c) get_state(cells + (size_t)c * 8 * N_STATE_F64, &m->start[c]);
-    m->shown = hidden;
+    m->from = 0;
+    m->shown = into;
     show(m, &S);
     m->result_committed = (int)done;
     return FMU_OK;

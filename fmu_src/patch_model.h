@@ -50,10 +50,17 @@ struct fmu_model {
     double T[2], Mz, energy, slip_fraction;
     int contact;
     int shown;            /* the shown step of every cell is steps[shown][c] */
-    int result_committed; /* 0: pending, committed states = start; 1: = steps[shown][c].next */
+    /* The states the shown step was computed from (its start): the steps
+     * steps[from - 1][c].next a doStep committed, where they lie, or start[c]
+     * (from = 0, as a zeroed model has it: initial or restored states,
+     * which no step holds). */
+    int from;
+    int result_committed; /* 0: pending, committed states = the start; 1: = steps[shown][c].next */
     double time;
-    oc_state start[PATCH_MAX_CELLS];       /* the states the shown step was computed from */
-    oc_step steps[2][PATCH_MAX_CELLS];     /* shown and hidden: a refused step changes nothing */
+    oc_state start[PATCH_MAX_CELLS];
+    /* The shown step, its start's, and one free: a new step is computed
+     * into the buffer that is neither, so that a refused one changes nothing. */
+    oc_step steps[3][PATCH_MAX_CELLS];
 };
 typedef struct fmu_model patch_model;
 

@@ -813,6 +813,86 @@ static void test_power_of_two_units(void) {
     CHECK(compared > 20000, "only %d steps compared", compared);
 }
 
+/* 1 if two steps are the same, bit for bit, in every field a step writes. */
+static int same_step(const oc_step *x, const oc_step *y) {
+    const double a[] = {x->q[0], x->q[1], x->next.u[0], x->next.u[1], x->next.N, x->next.a[0],
+                        x->next.a[1], x->next.s[0], x->next.s[1], x->next.energy, x->dgamma,
+                        x->w[0], x->w[1], x->inv_wmax};
+    const double b[] = {y->q[0], y->q[1], y->next.u[0], y->next.u[1], y->next.N, y->next.a[0],
+                        y->next.a[1], y->next.s[0], y->next.s[1], y->next.energy, y->dgamma,
+                        y->w[0], y->w[1], y->inv_wmax};
+    return x->contact == y->contact && memcmp(a, b, sizeof a) == 0;
+}
+
+/* oc_law_step_batch is oc_law_step, cell by cell, bit for bit: batches of
+ * every size up to OC_BATCH_MAX (whole groups of OC_LANES lanes and not),
+ * open, sticking and slipping cells mixed in one batch, all three rules,
+ * contrasts up to 1e10 (the far solve), tiny and subnormal normal forces,
+ * trials whose square leaves the normal range, each cell from the state its
+ * previous step committed. */
+static void test_batch_is_the_cell_by_cell_step(void) {
+    rng_state = 0x5eedu;
+    static oc_state from[OC_BATCH_MAX];
+    static oc_step want[OC_BATCH_MAX], got[OC_BATCH_MAX];
+    const oc_state *start[OC_BATCH_MAX];
+    double u[OC_BATCH_MAX][2], N[OC_BATCH_MAX];
+    long compared = 0, kinds[3] = {0, 0, 0}, laned = 0;
+    for (int episode = 0; episode < 400; ++episode) {
+        const int rule = 1 + (int)pick(3);
+        const double contrast = pick(4) == 0 ? pow(10, 20 * uniform() - 10) : 0.5 + uniform();
+        const double mu1 = 0.2 + uniform(), e1 = pow(10, 2 + 4 * uniform());
+        const oc_params p = params(rule, mu1, mu1 * (pick(2) ? contrast : 1.0), e1,
+                                   e1 * (pick(2) ? contrast : 1.0), PI * (2 * uniform() - 1),
+                                   PI * (2 * uniform() - 1));
+        oc_law L;
+        if (oc_law_init(&L, &p) != 0) continue;
+        const int n = 1 + (int)pick(OC_BATCH_MAX);
+        const double scale = pick(6) == 0 ? pow(2, (double)pick(2000) - 1000) : 1.0;
+        const double reach = (pick(2) ? 3.0 : 0.3) * fmax(p.mu1, p.mu2) / fmin(p.eps1, p.eps2);
+        for (int k = 0; k < n; ++k) {
+            from[k] = oc_state_unloaded(0.0, 0.0, 0.0);
+            start[k] = &from[k];
+        }
+        for (int step = 0; step < 6; ++step) {
+            for (int k = 0; k < n; ++k) {
+                switch (pick(12)) {
+                case 0: N[k] = pick(2) ? 0.0 : -1.0; break;          /* open */
+                case 1: N[k] = 0x1p-1040 * (1 + uniform()); break;   /* subnormal */
+                case 2: N[k] = 0x1p-1010 * (1 + uniform()); break;   /* tiny */
+                default: N[k] = scale * (1 + 19 * uniform());
+                }
+                const double nk = N[k] > 0 ? N[k] : 1.0;
+                const double len = pick(10) == 0 ? 1e6 : reach * (pick(3) ? 1.0 : 0.05);
+                u[k][0] = from[k].u[0] + nk * len * (2 * uniform() - 1);
+                u[k][1] = from[k].u[1] + nk * len * (2 * uniform() - 1);
+            }
+            memset(want, 0, sizeof want);
+            memset(got, 0, sizeof got);
+            for (int k = 0; k < n; ++k) oc_law_step(&L, start[k], u[k], N[k], &want[k]);
+            oc_law_step_batch(&L, start, (const double(*)[2])u, N, got, n);
+            int slipping = 0;
+            for (int k = 0; k < n; ++k) {
+                CHECK(same_step(&got[k], &want[k]),
+                      "episode %d step %d cell %d of %d (rule %d): q (%.17g, %.17g) vs "
+                      "(%.17g, %.17g), contact %d vs %d", episode, step, k, n, rule,
+                      got[k].q[0], got[k].q[1], want[k].q[0], want[k].q[1], got[k].contact,
+                      want[k].contact);
+                ++kinds[want[k].contact];
+                slipping += want[k].contact == OC_SLIP;
+                ++compared;
+            }
+            laned += slipping >= 2 && rule != OC_RULE_EQ20;
+            for (int k = 0; k < n; ++k)
+                if (oc_step_is_finite(&want[k])) from[k] = want[k].next;
+        }
+    }
+    CHECK(kinds[OC_OPEN] > 1000 && kinds[OC_STICK] > 1000 && kinds[OC_SLIP] > 1000 && laned > 500,
+          "open %ld, stick %ld, slip %ld cells; %ld batches with slipping lanes", kinds[OC_OPEN],
+          kinds[OC_STICK], kinds[OC_SLIP], laned);
+    printf("batch: %ld cells bit for bit (open %ld, stick %ld, slip %ld), %ld batches in lanes\n",
+           compared, kinds[OC_OPEN], kinds[OC_STICK], kinds[OC_SLIP], laned);
+}
+
 int main(void) {
     test_params_check();
     test_tensors();
@@ -835,5 +915,6 @@ int main(void) {
     test_tiny_normal_force();
     test_eq20_strong_friction_contrast();
     test_power_of_two_units();
+    test_batch_is_the_cell_by_cell_step();
     return oc_report();
 }

@@ -211,7 +211,7 @@ static void step_matches_the_plain_per_cell_step(void) {
     static const fmi2ValueReference OUT[5] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz,
                                               PATCH_VR_dissipatedEnergy, PATCH_VR_slipFraction};
     const fmi2ValueReference vstate = PATCH_VR_contactState;
-    long compared = 0, restored = 0;
+    long compared = 0, restored = 0, refused = 0;
     int seen[4] = {0, 0, 0, 0};
     for (int episode = 0; episode < 60; ++episode) {
         ref_setup g;
@@ -271,6 +271,17 @@ static void step_matches_the_plain_per_cell_step(void) {
             const double e1 = uniform() / 6, e2 = uniform() * (1.0 / 6 - e1);
             x[4] = (pick(2) ? 1 : -1) * e1 * g.length;
             x[5] = (pick(2) ? 1 : -1) * e2 * g.width;
+            if (pick(6) == 0) { /* a step that overflows: refused, it changes nothing */
+                fmi2FMUstate saved = NULL;
+                CHECK(fmi2GetFMUstate(c, &saved) == fmi2OK, "episode %d: get state", episode);
+                double bad[6];
+                memcpy(bad, x, sizeof bad);
+                bad[pick(2)] = (pick(2) ? 1 : -1) * 1e308;
+                bad[3] = 1e300;
+                if (fmi2SetReal(c, KNOWN, 6, bad) != fmi2OK) ++refused;
+                else CHECK(fmi2SetFMUstate(c, saved) == fmi2OK, "episode %d: restore", episode);
+                fmi2FreeFMUstate(c, &saved);
+            }
             if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) continue; /* refused: nothing changed */
             g.u[0] = x[0];
             g.u[1] = x[1];
@@ -311,13 +322,14 @@ static void step_matches_the_plain_per_cell_step(void) {
         }
         fmi2FreeInstance(c);
     }
-    CHECK(compared > 1000 && restored > 50, "compared %ld steps, restored %ld", compared, restored);
+    CHECK(compared > 1000 && restored > 50 && refused > 50,
+          "compared %ld steps, restored %ld, refused %ld", compared, restored, refused);
     CHECK(seen[0] > 20 && seen[1] > 20 && seen[2] > 20 && seen[3] > 20,
           "patch states seen: open %d, stick %d, partly %d, all slipping %d", seen[0], seen[1],
           seen[2], seen[3]);
     printf("plain per-cell step: %ld steps bit for bit (open %d, stick %d, partly slipping %d, "
-           "all slipping %d), %ld restores\n", compared, seen[0], seen[1], seen[2], seen[3],
-           restored);
+           "all slipping %d), %ld restores, %ld overflowing steps refused\n", compared, seen[0],
+           seen[1], seen[2], seen[3], restored, refused);
 }
 
 static int defined(fmi2Status s) {
