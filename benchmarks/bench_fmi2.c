@@ -47,20 +47,25 @@ static double run(int rule, int slip, long steps) {
     return 1e9 * dt / steps;
 }
 
+/* The sliding rules by their numbers, from the table's enumeration. */
+#define RULE_NAME(name, value, description) [value] = #name,
+#define RULE_COUNT(name, value, description) +1
+static const char *const RULE_NAMES[] = {OC_SLIDING_RULE_ITEMS(RULE_NAME)};
+enum { N_RULES = 0 OC_SLIDING_RULE_ITEMS(RULE_COUNT) };
+
 int main(int argc, char **argv) {
     const long steps = argc > 1 ? atol(argv[1]) : 500000;
-    const char *names[4] = {"", "associated", "coupled", "eq20"};
     printf("# FMI 2.0, ns per step: fmi2SetReal(u1,u2,N) + fmi2DoStep + fmi2GetReal(T1,T2), %ld steps\n",
            steps);
     printf("%-11s %10s %10s %8s\n", "rule", "stick_ns", "slip_ns", "ratio");
-    for (int rule = 1; rule <= 3; ++rule) {
+    for (int rule = 1; rule <= N_RULES; ++rule) {
         double stick = 1e30, slipv = 1e30;
         for (int rep = 0; rep < 7; ++rep) { /* stick and slip interleaved; the least disturbed of 7 */
             const double a = run(rule, 0, steps), b = run(rule, 1, steps);
             if (a < stick) stick = a;
             if (b < slipv) slipv = b;
         }
-        printf("%-11s %10.1f %10.1f %8.2f\n", names[rule], stick, slipv, slipv / stick);
+        printf("%-11s %10.1f %10.1f %8.2f\n", RULE_NAMES[rule], stick, slipv, slipv / stick);
     }
     return 0;
 }

@@ -80,8 +80,6 @@ def estimates_of(f: IdentifiedFile) -> Estimates:
         raise InputError(f"{path}: covariance.matrix: expected a symmetric positive semidefinite "
                          "matrix")
     a = f.assumptions
-    if a.rule not in IMPLICIT_RULES + ("eq20",):
-        raise InputError(f"{path}: assumptions.rule: expected associated, coupled or eq20, got {a.rule!r}")
     pts = f.points
     points = np.array(pts.angles, dtype=float).reshape(-1, 2) if pts.angles else None
     noise = f.noise_estimate.get("angles_deg")
