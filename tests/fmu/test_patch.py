@@ -57,3 +57,35 @@ def test_an_fmu_of_the_other_version_is_refused():
     from orthocontact.fmu.files import find_fmu
     with pytest.raises(ValueError, match="is an FMI 3.0 FMU, not 2.0"):
         PatchFMU(find_fmu(fmi_version=3, model="ContactPatch"), fmi_version=2)
+
+
+def test_cell_states_in_a_first_twist_are_the_isotropic_stick_criterion_cell_by_cell():
+    """Pure rotation, isotropic law, uniform pressure: the cell at r moves by
+    (R(theta) - I) r, of length 2 r sin(theta / 2), against its share of the
+    stiffness and of the load alike, so on the first loading it sticks while
+    eps 2 r sin(theta / 2) <= mu N; the centre cell (r = 0) never slides.
+    Element [i][j] is the i-th cell along length, the j-th along width."""
+    law = ContactParams.from_degrees(0.5, 0.5, 1e4, 1e4, 0.0, 90.0, "coupled")
+    g, N = PatchGeometry(0.08, 0.03, 5, 3), 10.0
+    r = [[math.hypot((i + 0.5) * g.length / g.n1 - g.length / 2, (j + 0.5) * g.width / g.n2 - g.width / 2)
+          for j in range(g.n2)] for i in range(g.n1)]
+    seen = set()
+    with PatchFMU(fmi_version=3) as patch:
+        patch.initialize(law, g, (0.0, 0.0, 0.0, N))
+        for k in range(1, 101):
+            theta = 1e-3 * k
+            patch.set_inputs(0.0, 0.0, theta, N)
+            states = patch.cell_states()
+            expected = [[2 if 1e4 * 2 * r[i][j] * math.sin(theta / 2) > 0.5 * N else 1
+                         for j in range(g.n2)] for i in range(g.n1)]
+            assert states == expected, theta
+            seen |= {s for row in states for s in row}
+            patch.do_step(1e-3)
+    assert seen == {1, 2} and states[2][1] == 1    # both states met; the centre sticks
+
+
+def test_cell_states_are_fmi_3_only():
+    with PatchFMU(fmi_version=2) as patch:
+        patch.initialize(AGED, PatchGeometry(0.1, 0.05, 4, 4), (0.0, 0.0, 0.0, 18.0))
+        with pytest.raises(ValueError, match="FMI 2.0 has no arrays"):
+            patch.cell_states()

@@ -72,6 +72,24 @@ def test_twist_reaches_the_full_slip_plateau_as_the_elastic_lag_fades(rule):
     assert errs[1] < errs[0] / 3
 
 
+def test_twist_records_each_cells_state_in_fmi_3_as_the_scalars_count_them():
+    """cells=True: every step's (n1, n2) states; with equal cells, the share
+    slipping is slipFraction and contactState says none, some or all; the
+    same torque as without them.  FMI 2.0 has no arrays: refused."""
+    p, body = mat(39.2, "coupled", eps2=1e5), block()
+    r = planar.twist(p, body, rate_rad_s=1.0, angle_rad=0.06, step_s=1e-3, fmi_version=3, cells=True)
+    assert r.cell_state.shape == (60, 8, 4)
+    slipping = (r.cell_state == 2).mean(axis=(1, 2))
+    np.testing.assert_array_equal(slipping, r.slip_fraction)
+    np.testing.assert_array_equal(np.where(slipping == 0, 1, np.where(slipping == 1, 3, 2)), r.contact_state)
+    assert set(r.contact_state) == {1, 2, 3}
+    plain = planar.twist(p, body, rate_rad_s=1.0, angle_rad=0.06, step_s=1e-3, fmi_version=3)
+    np.testing.assert_array_equal(plain.Mz, r.Mz)
+    assert plain.cell_state is None
+    with pytest.raises(ValueError, match="FMI 2.0 has no arrays"):
+        planar.twist(p, body, rate_rad_s=1.0, angle_rad=0.06, step_s=1e-3, fmi_version=2, cells=True)
+
+
 def test_twist_refuses_a_rate_that_is_not_positive():
     with pytest.raises(ValueError, match="rate_rad_s must be a finite number > 0"):
         planar.twist(mat(0.0, "coupled"), block(), rate_rad_s=0.0, angle_rad=0.1, step_s=1e-3)

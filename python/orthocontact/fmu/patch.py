@@ -63,6 +63,7 @@ class PatchFMU(FreedOnClose):
         self.messages: list[str] = []
         self.time = 0.0
         self.initialized = False
+        self.shape = None   # (n1, n2), set by initialize
         self._slave, self._callbacks = instantiate(path, md, instance_name,
                                                    lambda status, category, text: self.messages.append(text))
         if self.fmi_version == 2:
@@ -105,6 +106,7 @@ class PatchFMU(FreedOnClose):
         self._set_integer("initialSlip", INITIAL_SLIP["atInputs"])
         self._set_integer("n1", geometry.n1)
         self._set_integer("n2", geometry.n2)
+        self.shape = (geometry.n1, geometry.n2)
         if self.fmi_version == 2:
             self._call("setupExperiment", self._slave.setupExperiment)
             self._call("enterInitializationMode", self._slave.enterInitializationMode)
@@ -130,6 +132,19 @@ class PatchFMU(FreedOnClose):
         get_int = self._slave.getInteger if self.fmi_version == 2 else self._slave.getInt32
         out["contactState"] = self._call("getting contactState", get_int, [self.vr["contactState"]])[0]
         return out
+
+    def cell_states(self) -> list[list[int]]:
+        """Each cell's state in the pending step (0 open, 1 stick, 2 slip),
+        [i][j] the i-th cell along length, the j-th along width: the FMI 3.0
+        array cellState.  FMI 2.0 has no arrays: ValueError there."""
+        if self.fmi_version != 3:
+            raise ValueError(f"{self.path}: the cells' states are an FMI 3.0 array (cellState); "
+                             "FMI 2.0 has no arrays")
+        if self.shape is None:
+            raise ValueError("cell_states: the patch is not initialized yet (initialize sets n1, n2)")
+        n1, n2 = self.shape
+        flat = self._call("getting cellState", self._slave.getInt32, [self.vr["cellState"]], n1 * n2)
+        return [flat[i * n2:(i + 1) * n2] for i in range(n1)]
 
     def load(self) -> tuple[float, float, float]:
         """(T1, T2, Mz) [N, N, N m] of the pending step."""

@@ -96,11 +96,14 @@ class PlanarBody:
 @dataclass(frozen=True)
 class TwistResult:
     """The twist test's record, one entry per step: theta [rad], Mz [N m]
-    (the surface's moment on the body), slip_fraction [-], contact_state."""
+    (the surface's moment on the body), slip_fraction [-], contact_state;
+    cell_state (steps, n1, n2): each cell's state (0 open, 1 stick, 2 slip)
+    when asked for (FMI 3.0), else None."""
     theta: np.ndarray
     Mz: np.ndarray
     slip_fraction: np.ndarray
     contact_state: np.ndarray
+    cell_state: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -126,22 +129,26 @@ def _positive(name: str, v) -> float:
 
 
 def twist(params: ContactParams, body: PlanarBody, rate_rad_s: float, angle_rad: float,
-          step_s: float, fmi_version: int = 2, fmu_path=None) -> TwistResult:
+          step_s: float, fmi_version: int = 2, fmu_path=None, cells: bool = False) -> TwistResult:
     """Turns the pressed body about its fixed centre at rate_rad_s [rad/s]
-    up to angle_rad [rad], a communication step step_s [s] at a time."""
+    up to angle_rad [rad], a communication step step_s [s] at a time; with
+    cells, records every cell's state at every step (FMI 3.0 only)."""
     rate = _positive("rate_rad_s", rate_rad_s)
     h = _positive("step_s", step_s)
     n = int(math.ceil(_positive("angle_rad", angle_rad) / (rate * h)))
     rec = np.empty((4, n))
+    states = np.empty((n, body.patch.n1, body.patch.n2), dtype=int) if cells else None
     with PatchFMU(fmu_path, "twist", fmi_version) as fmu:
         fmu.initialize(params, body.patch, (0.0, 0.0, 0.0, body.normal_N))
         for i in range(n):
             theta = rate * h * (i + 1)
             fmu.set_inputs(0.0, 0.0, theta, body.normal_N)
             out = fmu.outputs()
+            if cells:
+                states[i] = fmu.cell_states()
             fmu.do_step(h)
             rec[:, i] = theta, out["Mz"], out["slipFraction"], out["contactState"]
-    return TwistResult(rec[0], rec[1], rec[2], rec[3].astype(int))
+    return TwistResult(rec[0], rec[1], rec[2], rec[3].astype(int), states)
 
 
 def twist_stiffness(params: ContactParams, patch: PatchGeometry) -> float:
