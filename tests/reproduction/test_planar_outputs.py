@@ -1,7 +1,8 @@
 """The scenario kinds twist and towed_block (orthocontact.reproduction.
 planar_outputs) through `orthocontact run`: their files, their self-checks
 against the closed forms (an unsettled run is said, not passed), their
-figures, and a bad scenario refused in one line."""
+figures, the twist's cells in stick and slip against the stick criterion cell
+by cell, and a bad scenario refused in one line."""
 import csv
 import json
 import math
@@ -122,9 +123,83 @@ def test_a_patch_scenario_naming_the_point_fmu_is_one_line(tmp_path):
                    "OrthotropicContact")
 
 
-def test_the_paper_report_refuses_a_patch_scenario_in_its_folder(tmp_path):
-    (tmp_path / "s").mkdir()
-    (tmp_path / "s/t.toml").write_text(TOWED.format(duration=1.0))
-    p = run_cli(["reproduce", "--scenarios", tmp_path / "s", "--out", tmp_path / "out"], cwd=tmp_path)
-    one_error_line(p, "kind: expected a sweep or step_study scenario for the paper's report",
-                   "'towed_block'")
+# An isotropic law with uniform pressure: the cells' stick criterion in closed form.
+ISOTROPIC_TWIST = """name = "iso"
+kind = "twist"
+
+[law]
+rule = "coupled"
+mu1 = 0.5
+mu2 = 0.5
+eps1 = 1.0e5
+eps2 = 1.0e5
+
+[geometry]
+alpha_offset_deg = 0.0
+beta_offset_deg = 90.0
+
+[rig]
+mass_kg = 1.0
+
+[patch]
+length_m = 0.05
+width_m = 0.025
+n1 = 8
+n2 = 4
+
+[twist]
+angle_deg = 4.0
+step_s = 1.0e-3
+"""
+
+
+@pytest.mark.parametrize("fmi", ["2", "3"])
+def test_the_cells_figures_states_are_the_stick_criterion_cell_by_cell(tmp_path, fmi):
+    """Pure rotation, isotropic law, uniform pressure, first loading: a cell
+    at r has moved by (R(theta) - I) r, of length 2 r sin(theta / 2), and
+    carries its share of both the stiffness and the load, so it slips exactly
+    when eps 2 r sin(theta / 2) > mu N: the slip spreads from the outside in.
+    twist_cells.csv (the FMU's cellState; through FMI 2.0 from the same twist
+    on the FMI 3.0 FMU) holds to it at every instant, every cell."""
+    (tmp_path / "t.toml").write_text(ISOTROPIC_TWIST)
+    p = run_cli(["run", tmp_path / "t.toml", "--out", tmp_path / "out", "--fmi", fmi], cwd=tmp_path)
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    s = json.loads((tmp_path / "out/summary.json").read_text())
+    assert s["checks"]["ok"] and s["cells"]["from"].startswith(
+        "this run" if fmi == "3" else "the same twist on the installed FMI 3.0")
+    rows = list(csv.DictReader(open(tmp_path / "out/twist_cells.csv")))
+    mu_N_over_eps = 0.5 * 1.0 * 9.806 / 1.0e5
+    instants = {}
+    for r in rows:
+        i, j, theta = int(r["i"]), int(r["j"]), math.radians(float(r["theta_deg"]))
+        assert theta == pytest.approx(math.radians(10.0) * 1e-3 * (int(r["step"]) + 1), rel=1e-12)
+        radius = math.hypot((i + 0.5) * 0.05 / 8 - 0.025, (j + 0.5) * 0.025 / 4 - 0.0125)
+        assert float(r["x1_m"]) == pytest.approx((i + 0.5) * 0.05 / 8 - 0.025, abs=1e-15)
+        moved = 2 * radius * math.sin(theta / 2)
+        assert abs(moved / mu_N_over_eps - 1) > 1e-9      # no cell on the threshold itself
+        assert int(r["cell_state"]) == (2 if moved > mu_N_over_eps else 1), r
+        instants.setdefault((r["rule"], r["instant"]), []).append(int(r["cell_state"]))
+    for rule in ("associated", "coupled"):
+        shares = [instants[(rule, name)].count(2) / 32 for name in planar_outputs.INSTANTS]
+        assert shares[0] == 0 and 0.5 <= shares[1] < 1 and shares[2] < 1 and shares[3] == 1, shares
+    assert (tmp_path / "out/twist_cells.png").stat().st_size > 10_000
+
+
+def test_an_fmu_whose_twist_the_fmi_3_fmu_does_not_repeat_gets_no_cells_figure(tmp_path):
+    """In FMI 2.0 the cells come from the FMI 3.0 FMU only if its twist is
+    this run's bit for bit: a record that differs by one bit in one step is
+    not it."""
+    import dataclasses
+
+    import numpy as np
+    (tmp_path / "t.toml").write_text(ISOTROPIC_TWIST)
+    sc = load(tmp_path / "t.toml")
+    body, law = planar_outputs.body_of(sc), sc.params_at(0.0, "coupled")
+    res = planar.twist(law, body, math.radians(10.0), math.radians(4.0), 1e-3, fmi_version=2)
+    states, said = planar_outputs.cell_states_of(law, body, sc.twist, res)
+    assert states.shape == (400, 8, 4) and "equal to this run at every step" in said
+    Mz = res.Mz.copy()
+    Mz[200] = np.nextafter(Mz[200], 0.0)
+    states, said = planar_outputs.cell_states_of(law, body, sc.twist, dataclasses.replace(res, Mz=Mz))
+    assert states is None and "does not give this FMU's torque bit for bit" in said
+

@@ -5,8 +5,16 @@ value against the mat angle, with the closed form and the paper's phi
 beside it).  Each run checks itself against its closed form, as the rig's
 sweeps do: summary.json's "checks" says ok or gives the warning line.
 
-Files (in the folder given): twist.csv, twist.png; towed_block.csv,
-yaw_vs_time.csv, yaw_vs_angle.png, yaw_vs_time.png; summary.json."""
+Files (in the folder given): twist.csv, twist.png, twist_cells.csv,
+twist_cells.png (every cell's state at a few instants of the twist);
+towed_block.csv, yaw_vs_time.csv, yaw_vs_angle.png, yaw_vs_time.png;
+summary.json.
+
+The cells' states are an FMI 3.0 array (cellState).  A twist run on an FMI
+2.0 FMU takes them from the same twist on the installed FMI 3.0 ContactPatch
+FMU, and only if that run's torque, slip fraction and state equal its own at
+every step (the two builds compute the same bits); else there is no cells
+figure and summary.json's "cells" says why."""
 from __future__ import annotations
 
 import math
@@ -50,11 +58,16 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     g = body.patch
     r_mean = (g.length + g.width) / 4.0
     r_min = math.hypot(g.length / (2 * g.n1), g.width / (2 * g.n2))
-    rows, runs, checks = [], {}, []
+    rows, runs, checks, cells, said = [], {}, [], {}, []
     for rule in tw["rules"]:
         p = sc.params_at(0.0, rule)
         res = planar.twist(p, body, math.radians(tw["rate_deg_s"]), math.radians(tw["angle_deg"]),
-                           tw["step_s"], fmu_path=fmu_path, fmi_version=_version(fmu_path))
+                           tw["step_s"], fmu_path=fmu_path, fmi_version=_version(fmu_path),
+                           cells=_version(fmu_path) == 3)
+        states, where = cell_states_of(p, body, tw, res)
+        said.append(where)
+        if states is not None:
+            cells[rule] = (res, states)
         k = planar.twist_stiffness(p, g)
         slope = float(-res.Mz[0] / res.theta[0])
         onset = _elastic_length(p, body) / r_min
@@ -70,7 +83,8 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
             "slope_tolerance": 3 * float(res.theta[0]), "stuck_at_first_step": stuck_first,
             "plateau_from_deg": math.degrees(PLATEAU_FROM * onset),
             "plateau_max_relative_error": float(rel.max()) if rel.size else None,
-            "plateau_tolerance": tol}
+            "plateau_tolerance": tol, "theta_end_deg": math.degrees(res.theta[-1]),
+            "Mz_end_N_m": float(res.Mz[-1]), "Mz_full_slip_end_N_m": float(plateau[-1])}
         check["ok"] = bool(stuck_first and check["slope_relative_error"] <= check["slope_tolerance"]
                            and rel.size and rel.max() <= tol)
         checks.append(check)
@@ -81,17 +95,81 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     write_csv(out / "twist.csv", ["rule", "theta_deg", "Mz_N_m", "Mz_full_slip_N_m", "slip_fraction",
                                   "contact_state"], rows)
     (draw or draw_here)(_figure_twist, sc, runs, out / "twist.png")
+    if len(cells) == len(tw["rules"]):
+        cell_rows = _cell_rows(body.patch, cells)
+        write_csv(out / "twist_cells.csv", ["rule", "instant", "step", "theta_deg", "i", "j", "x1_m",
+                                            "x2_m", "cell_state"], cell_rows)
+        (draw or draw_here)(_figure_cells, sc, body.patch, cell_rows, out / "twist_cells.png")
+        cells_summary = {"from": said[0], "files": ["twist_cells.csv", "twist_cells.png"]}
+    else:
+        cells_summary = {"from": None, "why": next(w for r, w in zip(tw["rules"], said) if r not in cells)}
     bad = [c["rule"] for c in checks if not c["ok"]]
     warning = None if not bad else (
         f"{sc.name}: the twist's torque is off its closed forms under the {', '.join(bad)} rule(s) "
         "(summary.json's checks): turn further (twist.angle_deg) or finer (twist.step_s)")
     summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "normal_N": body.normal_N,
-               "patch": sc.patch, "rules": {c["rule"]: c for c in checks},
+               "patch": sc.patch, "rules": {c["rule"]: c for c in checks}, "cells": cells_summary,
                "checks": {"ok": warning is None, "warning": warning},
                "angle_convention": "theta counterclockwise about the normal; Mz the surface's moment "
                                    "on the body"}
     write_json(out / "summary.json", summary)
     return summary
+
+
+def cell_states_of(params, body, tw, res) -> tuple:
+    """(the twist's cell states (steps, n1, n2), where they come from), or
+    (None, why not): res's own (FMI 3.0), else those of the same twist on the
+    installed FMI 3.0 ContactPatch FMU if its record equals res's."""
+    if res.cell_state is not None:
+        return res.cell_state, "this run (FMI 3.0: cellState)"
+    from ..fmu.files import find_fmu
+    try:
+        twin = find_fmu(fmi_version=3, model="ContactPatch")
+    except FileNotFoundError as e:
+        return None, f"FMI 2.0 has no arrays, and no FMI 3.0 ContactPatch FMU is installed ({e})"
+    again = planar.twist(params, body, math.radians(tw["rate_deg_s"]), math.radians(tw["angle_deg"]),
+                         tw["step_s"], fmu_path=twin, fmi_version=3, cells=True)
+    if not all(np.array_equal(getattr(res, k), getattr(again, k))
+               for k in ("theta", "Mz", "slip_fraction", "contact_state")):
+        return None, (f"FMI 2.0 has no arrays, and the installed FMI 3.0 FMU ({twin}) does not give "
+                      "this FMU's torque bit for bit: its cells would not be this run's")
+    return again.cell_state, ("the same twist on the installed FMI 3.0 ContactPatch FMU, equal to this "
+                              "run at every step in torque, slip fraction and state (FMI 2.0 has no arrays)")
+
+
+# The instants the cells are shown at: the last step with every cell stuck,
+# the first with half the area slipping, the last before every cell slips,
+# the first with every cell slipping (those the twist reaches).
+INSTANTS = ("every cell sticks", "half the area slips", "the last cells stick", "every cell slips")
+
+
+def cell_instants(res) -> list[tuple[str, int]]:
+    """(name, step index) of the INSTANTS the twist record res reaches, in
+    order, each step once."""
+    stuck = np.flatnonzero(res.contact_state == 1)
+    half = np.flatnonzero(res.slip_fraction >= 0.5)
+    full = np.flatnonzero(res.contact_state == 3)
+    picks = [stuck[-1] if stuck.size else None, half[0] if half.size else None,
+             full[0] - 1 if full.size and full[0] > 0 else None, full[0] if full.size else None]
+    out = []
+    for name, k in zip(INSTANTS, picks):
+        if k is not None and all(int(k) != j for _, j in out):
+            out.append((name, int(k)))
+    return sorted(out, key=lambda x: x[1])
+
+
+def _cell_rows(g: PatchGeometry, cells: dict) -> list[tuple]:
+    """twist_cells.csv: each cell at each instant, its centre (x1, x2) [m] in
+    body coordinates."""
+    rows = []
+    for rule, (res, states) in cells.items():
+        for name, k in cell_instants(res):
+            for i in range(g.n1):
+                for j in range(g.n2):
+                    rows.append((rule, name, k, math.degrees(res.theta[k]), i, j,
+                                 (i + 0.5) * g.length / g.n1 - g.length / 2,
+                                 (j + 0.5) * g.width / g.n2 - g.width / 2, int(states[k, i, j])))
+    return rows
 
 
 def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
@@ -109,13 +187,15 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
             yaw = math.degrees(res.theta[-1])
             closed = math.degrees(planar.steady_yaw(p))
             phi = of_law(steady_phi_deg, p, p.alpha, p.beta)
+            # the paper's phi on the mat turned by the yaw (rig.planar): -phi(a - yaw) on its mat
+            shifted = of_law(steady_phi_deg, p, p.alpha - res.theta[-1], p.beta - res.theta[-1])
             worst = max(worst, abs(yaw - closed))
-            rows.append((rule, a, yaw, closed, yaw - closed, phi))
+            rows.append((rule, a, yaw, closed, yaw - closed, phi, -shifted))
             records[(rule, a)] = res
             time_rows += [(rule, a, float(t), math.degrees(th)) for t, th in
                           zip(res.t[::10], res.theta[::10])]
     write_csv(out / "towed_block.csv", ["rule", "angle_deg", "yaw_deg", "yaw_closed_deg", "deviation_deg",
-                                        "phi_deg"], rows)
+                                        "phi_deg", "minus_phi_turned_by_yaw_deg"], rows)
     write_csv(out / "yaw_vs_time.csv", ["rule", "angle_deg", "t_s", "yaw_deg"], time_rows)
     draw = draw or draw_here
     draw(_figure_yaw_angle, sc, rows, out / "yaw_vs_angle.png")
@@ -126,10 +206,14 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "normal_N": body.normal_N,
                "patch": sc.patch, "max_deviation_deg": worst,
                "yaw_deg": {rule: {f"{a:g}": y for r, a, y, *_ in rows if r == rule} for rule in tw["rules"]},
+               "tows": [dict(zip(("rule", "angle_deg", "yaw_deg", "yaw_closed_deg", "deviation_deg", "phi_deg",
+                                  "minus_phi_turned_by_yaw_deg"), r)) for r in rows],
                "checks": {"ok": warning is None, "tolerance_deg": YAW_TOL_DEG, "warning": warning},
                "angle_convention": "yaw of the block's axis (centre to pin) from the motion (X1), "
                                    "counterclockwise; phi the paper's trajectory angle at the same mat "
-                                   "angle (force along X1)"}
+                                   "angle (force along X1); minus_phi_turned_by_yaw: -phi with the "
+                                   "texture turned back by the yaw (-phi(a - yaw) on the paper's mat), "
+                                   "the yaw itself once settled"}
     write_json(out / "summary.json", summary)
     return summary
 
@@ -190,3 +274,45 @@ def _figure_yaw_time(sc: Scenario, records: dict, path: Path) -> None:
     ax.set_xlabel("time [s]")
     ax.set_ylabel("yaw θ [deg]")
     finish(fig, ax, path, f"{sc.title}: yaw against time", swept_label(sc), outside=True)
+
+
+def _figure_cells(sc: Scenario, g: PatchGeometry, rows: list, path: Path) -> None:
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Rectangle
+    plt = pyplot()
+    # one row of panels per rule, rules whose cells are the same at the
+    # same instants sharing one
+    shown: dict = {}
+    for rule in dict.fromkeys(r[0] for r in rows):
+        mine = tuple(r[1:] for r in rows if r[0] == rule)
+        shown.setdefault(mine, []).append(rule)
+    panels = [(", ".join(rules), *key) for mine, rules in shown.items()
+              for key in dict.fromkeys(r[:3] for r in mine)]
+    rows = [(", ".join(rules), *r) for mine, rules in shown.items() for r in mine]
+    rules = list(dict.fromkeys(p[0] for p in panels))
+    ncol = max(sum(p[0] == rule for p in panels) for rule in rules)
+    colours = ("0.8", "C0", "C3")   # open, stick, slip
+    cmap, norm = ListedColormap(colours), BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3)
+    fig = plt.figure(figsize=(2.4 * ncol + 2.8, 1.6 * len(rules) + 1.2))
+    grid = fig.add_gridspec(len(rules) + 1, ncol, height_ratios=[0.02] + [1] * len(rules),
+                            hspace=0.75, wspace=0.3)
+    x = np.linspace(-g.length / 2, g.length / 2, g.n1 + 1) * 1e3
+    y = np.linspace(-g.width / 2, g.width / 2, g.n2 + 1) * 1e3
+    for r, rule in enumerate(rules):
+        for c, (_, name, k, theta) in enumerate(p for p in panels if p[0] == rule):
+            ax = fig.add_subplot(grid[r + 1, c])
+            state = np.array([q[8] for q in rows if q[:3] == (rule, name, k)]).reshape(g.n1, g.n2)
+            ax.pcolormesh(x, y, state.T, cmap=cmap, norm=norm, edgecolors="white", linewidth=0.5)
+            ax.set_aspect("equal")
+            ax.set_title(f"{name}\nθ = {theta:.3g}°", fontsize=9, y=1.0)
+            ax.tick_params(labelsize=7)
+            ax.set_xlabel("x1 [mm]", fontsize=8)
+            if c == 0:
+                ax.set_ylabel(f"{rule}\nx2 [mm]", fontsize=8)
+    # the figure's title and legend on a strip above the panels
+    strip = fig.add_subplot(grid[0, :])
+    strip.axis("off")
+    for colour, what in zip(colours, ("open", "stick", "slip")):
+        strip.add_patch(Rectangle((0, 0), 0, 0, facecolor=colour, label=what))
+    finish(fig, strip, path, f"{sc.title}: the cells during the twist (body frame, θ counterclockwise)",
+           f"α = {sc.geometry.alpha_offset_deg:g}°, β = {sc.geometry.beta_offset_deg:g}°", outside=True)
