@@ -81,6 +81,10 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
     assert (out / "sensitivity" / "sensitivity_strip.png").stat().st_size > 0
     for name in ("case1", "case5", "mat_aged", "step_study"):
         assert (out / name / "summary.json").exists()
+    # the contact patch: a section of its own, not rows of the paper (tests/reproduction/test_patch_report.py)
+    assert report.index("## The contact patch") < report.index("## Scenarios")
+    assert all(rep["contact_patch"][n]["checks"]["ok"] for n in ("twist", "towed_block"))
+    assert (out / "twist" / "twist_cells.png").stat().st_size > 0
     assert {r["scenario"] for r in rows} >= {"case1", "case2", "case3", "case4", "case5", "mat_aged",
                                             "mat_new", "calibration"}
 

@@ -122,3 +122,18 @@ def test_a_closed_form_refused_at_axes_given_in_radians_names_the_slip(tmp_path)
                    "mat needs beta_offset_deg - alpha_offset_deg = 90", "got 'mat'; geometry.alpha_offset_deg "
                    "= 1.5708: looks like pi/2 in radians")
     assert not (tmp_path / "o").exists()
+
+
+def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
+    """scenarios/*.toml, which `reproduce` runs: each named after its file,
+    no value outside its plausible range, its work within the limits; every
+    kind has one (the patch's twist and towed block beside the paper's)."""
+    from orthocontact.experiment.scenario import KINDS
+    from orthocontact.runs.size import check_scenario_size
+    kinds = set()
+    for f in sorted(SCEN.glob("*.toml")):
+        sc = load(f)
+        assert sc.name == f.stem and sc.warnings == [], (f.name, sc.warnings)
+        check_scenario_size(sc, yes=False)
+        kinds.add(sc.kind)
+    assert kinds == set(KINDS)

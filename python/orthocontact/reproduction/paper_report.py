@@ -1,14 +1,16 @@
 """report.md and report.json: every number the paper prints beside the value
 obtained here, with the kind of evidence each comparison is (closed-form,
-round-trip, prediction), the calibration chain and the sensitivity section."""
+round-trip, prediction), the calibration chain, the sensitivity section and
+the contact patch's section (patch_report: not the paper's, not counted)."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
 
-from ..experiment.scenario import Scenario
+from ..experiment.scenario import PATCH_KINDS, Scenario
 from ..output.tables import write_json
+from .patch_report import patch_json, patch_section
 
 # -- the paper reproduction report ---------------------------------------------------
 
@@ -244,7 +246,7 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
                                               for r in rows],
                                      "counts": counts(rows), "kinds": KIND_MEANING,
                                      "calibration_chain": chain, "rules_at_experiment": rules,
-                                     "sensitivity": sensitivity})
+                                     "sensitivity": sensitivity, "contact_patch": patch_json(runs)})
     lines = ["# orthocontact: reproduction of Konyukhov & Schweizerhof (2007)", "",
              f"Every scenario of the paper run through the OrthotropicContact FMU in the rig "
              f"harness ({seconds:.0f} s). Each row says what kind of evidence it is:", ""]
@@ -294,8 +296,11 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
               "scenarios use the paper's 1.251.", ""]
     if sensitivity:
         lines += _sensitivity_section(sensitivity)
+    lines += patch_section(runs)
     lines += ["## Scenarios", ""]
     for sc, s in runs:
+        if sc.kind in PATCH_KINDS:   # in their own section
+            continue
         lines.append(f"### {sc.title}")
         lines.append("")
         if sc.description:
