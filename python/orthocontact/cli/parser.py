@@ -169,9 +169,11 @@ def build_parser() -> argparse.ArgumentParser:
     common(r, "output folder: created if missing, files replaced; written only when the run "
               "completes")
     r.set_defaults(func=cmd_run)
-    p = sub.add_parser("reproduce", help="run every paper scenario and write report.md",
-                       description="Run every scenario of the paper and write report.md beside "
-                                   "one folder per scenario into DIR.")
+    p = sub.add_parser("reproduce", help="run every bundled scenario (the paper's and the contact "
+                                         "patch's) and write report.md",
+                       description="Run every scenario of the folder (default: the paper's and the "
+                                   "contact patch's, packaged) and write report.md beside one folder "
+                                   "per scenario into DIR.")
     common(p, "output folder for report.md, summary.json and one folder per scenario; written "
               "only when everything completes")
     p.add_argument("--scenarios", default=None, metavar="FOLDER",
