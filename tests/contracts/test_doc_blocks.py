@@ -50,7 +50,10 @@ FENCE = re.compile(r"^(\s*)```(\S*)\s*$")
 # Folders a command writes into the sandbox, never the repository's own.
 NOT_LINKED = {"out", "results", ".git"}
 # Figures the pages show, and the script that writes each.
-FIGURES = {"docs/coverage.png": "benchmarks/bench_coverage.py"}
+FIGURES = {"docs/coverage.png": "benchmarks/bench_coverage.py",
+           "docs/figures/patch_twist.png": "tools/make_patch_figures.py",
+           "docs/figures/patch_twist_cells.png": "tools/make_patch_figures.py",
+           "docs/figures/patch_yaw_vs_angle.png": "tools/make_patch_figures.py"}
 
 
 @dataclass
