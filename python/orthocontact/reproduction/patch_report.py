@@ -39,10 +39,16 @@ def _check_line(s: dict) -> str:
     return "Check: ok." if s["checks"]["ok"] else f"Check: **warning**: {s['checks']['warning']}"
 
 
+def _patch_size(s: dict) -> str:
+    """"L × W mm" of a run's patch."""
+    p = s["patch"]
+    return f"{p['length_m'] * 1e3:g} × {p['width_m'] * 1e3:g} mm"
+
+
 def _twist(sc: Scenario, s: dict) -> list[str]:
     p = s["patch"]
     lines = [f"### {sc.title}", "",
-             f"Turned about the centre of a {p['length_m'] * 1e3:g} × {p['width_m'] * 1e3:g} mm patch of "
+             f"Turned about the centre of a {_patch_size(s)} patch of "
              f"{p['n1']} × {p['n2']} cells pressed with {s['normal_N']:.4g} N. While every cell sticks "
              "the torque follows the grid's torsional stiffness k (the slope −Mz/θ of the first step); "
              "once every cell slides it follows the full-slip plateau of the grid's closed form, reached "
@@ -73,9 +79,8 @@ def _twist(sc: Scenario, s: dict) -> list[str]:
 
 
 def _towed(sc: Scenario, s: dict) -> list[str]:
-    p = s["patch"]
     lines = [f"### {sc.title}", "",
-             f"A {p['length_m'] * 1e3:g} × {p['width_m'] * 1e3:g} mm patch pressed with "
+             f"A {_patch_size(s)} patch pressed with "
              f"{s['normal_N']:.4g} N, towed along X1 through a pin ahead of its centre. Its steady yaw "
              "(counterclockwise from the motion) against its closed form, the direction of the law's "
              "steady sliding force, and against the paper's φ: the yaw is −φ with the mat turned back "
