@@ -25,16 +25,12 @@
 
 /* ==== 1. Arithmetic: 2x2 products, norms without overflow, power-of-two scales ==== */
 
-/* Inlined even where the compiler would make a call: the slip solve and the
- * parts of a step (sections 3 to 5) are pieces of the step's one body, and
- * as calls they would spill the registers the step keeps live.  gcc inlines
- * them on its own; clang, which builds the shipped binaries, leaves the slip
- * solve a call (docs/benchmarks.md). */
-#if defined(__GNUC__) || defined(__clang__)
-#define OC_ALWAYS_INLINE __attribute__((always_inline)) inline
-#else
-#define OC_ALWAYS_INLINE inline
-#endif
+/* OC_ALWAYS_INLINE (contact_law.h): inlined even where the compiler would
+ * make a call: the slip solve and the parts of a step (sections 3 to 5) are
+ * pieces of the step's one body, and as calls they would spill the
+ * registers the step keeps live.  gcc inlines them on its own; clang, which
+ * builds the shipped binaries, leaves the slip solve a call
+ * (docs/benchmarks.md). */
 
 /* Q(t) diag(d1, d2) Q(t)^T */
 static void rotated_diag(double t, double d1, double d2, double R[2][2]) {
@@ -292,14 +288,7 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     return 0;
 }
 
-/* q = Minv a in its factored form (see oc_law.R): a rotation, then
- * G = Q(beta) diag(mu), whose entries never mix mu1 with mu2. */
-static inline void force_of(const oc_law *L, const double a[2], double q[2]) {
-    const double r0 = L->R[0][0] * a[0] + L->R[0][1] * a[1];
-    const double r1 = L->R[1][0] * a[0] + L->R[1][1] * a[1];
-    q[0] = L->G[0][0] * r0 + L->G[0][1] * r1;
-    q[1] = L->G[1][0] * r0 + L->G[1][1] * r1;
-}
+/* q = Minv a: oc_force_of (contact_law.h). */
 
 /* ==== 3. Slip by the implicit rules: the plastic multiplier on the yield surface ==== */
 
@@ -554,38 +543,8 @@ static OC_ALWAYS_INLINE double dissipation_eq20(const oc_law *L, const double a[
 
 /* ==== 5. One step: trial, stick test, return map, commit ==== */
 
-/* Open (N <= 0): no force, and the slip follows the body so that a new
- * contact starts unloaded.  Released elastic energy is not dissipation. */
-static OC_ALWAYS_INLINE void step_open(const oc_state *start, const double u[2], oc_step *out) {
-    out->contact = OC_OPEN;
-    out->q[0] = out->q[1] = 0.0;
-    out->next.a[0] = out->next.a[1] = 0.0;
-    out->next.s[0] = u[0];
-    out->next.s[1] = u[1];
-    out->next.energy = start->energy;
-}
-
-/* The trial in yield coordinates: the committed force plus the elastic
- * response to the change of the inputs, a_tr = a_n + P (u - u_n). */
-static OC_ALWAYS_INLINE void trial(const oc_law *L, const oc_state *start, const double u[2],
-                                   double a[2]) {
-    const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
-    matvec(L->P, du, a);
-    a[0] += start->a[0];
-    a[1] += start->a[1];
-}
-
-/* Stick: the trial is the force; the slip and the energy stay. */
-static OC_ALWAYS_INLINE void step_stick(const oc_law *L, const oc_state *start, const double a[2],
-                                        oc_step *out) {
-    out->contact = OC_STICK;
-    force_of(L, a, out->q);
-    out->next.a[0] = a[0];
-    out->next.a[1] = a[1];
-    out->next.s[0] = start->s[0];
-    out->next.s[1] = start->s[1];
-    out->next.energy = start->energy;
-}
+/* Open, the trial and stick: oc_step_open, oc_trial, oc_step_stick
+ * (contact_law.h), inline there for oc_law_step_quick. */
 
 /* The slipped force in yield coordinates, p scale, inside the stick test:
  * near the subnormal range it is rounded to a multiple of 2^-1074, which can
@@ -618,7 +577,7 @@ static OC_ALWAYS_INLINE void step_slip(const oc_law *L, const oc_state *start, c
     out->next.a[1] = ap[1];
     /* The force exactly as a stick step from this committed state forms it,
      * so that held inputs reproduce it bit for bit. */
-    force_of(L, ap, out->q);
+    oc_force_of(L, ap, out->q);
     out->next.s[0] = u[0] - ge[0];
     out->next.s[1] = u[1] - ge[1];
     out->next.energy = start->energy + (L->p.rule != OC_RULE_EQ20
@@ -641,12 +600,12 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
     out->next.N = N;
     /* The steps of docs/explanation/law.md, "One step".  1: open. */
     if (!(N > 0)) {
-        step_open(start, u, out);
+        oc_step_open(start, u, out);
         return;
     }
     /* 2: the elastic trial, and the stick test. */
     double a[2];
-    trial(L, start, u, a);
+    oc_trial(L, start, u, a);
 
     /* The stick test |a_tr| <= N, i.e. Phi(q_tr, N) <= 0.  A committed force
      * lies on or inside the yield surface to a few rounding errors of N;
@@ -665,7 +624,7 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
     const int surely_inside = sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000;
     const double n_tr = surely_inside ? 0.0 : norm2(a[0], a[1]);
     if (surely_inside || n_tr <= lim) {
-        step_stick(L, start, a, out);
+        oc_step_stick(L, start, a, out);
         return;
     }
 
@@ -683,115 +642,257 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
 
 /* ==== 5b. Many steps with one law: the slipping cells' solves interleaved ==== */
 
-/* The implicit rules' slip from the trial a (|a|^2 = sq, |a| = n_tr, both in
- * the ranges oc_law_step_batch checks), given the solve's root y, p and
- * 1 / |p|: return_map_implicit's first branch after its solve,
- * on_yield_surface and step_slip, in their order. */
-static OC_ALWAYS_INLINE void slip_implicit_after_solve(const oc_law *L, const oc_state *start,
-                                                       const double u[2], const double a[2],
-                                                       double N, double y, const double p[2],
-                                                       double inv_np, oc_step *out) {
+/* The implicit rules' slip from the trial a, given the solve's root y, p,
+ * 1 / |p| and w_i / max w, 1 / max w (w_i = 1 + y sig_hat_i):
+ * return_map_implicit's first branch after its solve, on_yield_surface and
+ * step_slip, in their order. */
+static OC_ALWAYS_INLINE void slip_implicit_finish(const oc_law *L, const oc_state *start,
+                                                  const double u[2], const double a[2], double N,
+                                                  double y, const double p[2], double inv_np,
+                                                  double w0, double w1, double inv_wmax,
+                                                  oc_step *out) {
     out->contact = OC_SLIP;
-    double w[2], yp[2], ap[2];
-    w[0] = 1.0 + y * L->sig_hat[0];
-    w[1] = 1.0 + y * L->sig_hat[1];
+    double yp[2], ap[2];
     const double scale = N * inv_np;
     yp[0] = y * (p[0] * scale);
     yp[1] = y * (p[1] * scale);
     out->dgamma = y * L->inv_sigma_ref;
-    const double wfac = 1.0;
-    const double wmax = max2(w[0], w[1]);
-    out->w[0] = w[0] / wmax;
-    out->w[1] = w[1] / wmax;
-    out->inv_wmax = wfac / wmax;
+    out->w[0] = w0;
+    out->w[1] = w1;
+    out->inv_wmax = inv_wmax;
     on_yield_surface(p, scale, N, ap);
     step_slip(L, start, u, a, ap, yp, out);
 }
 
-void oc_law_step_batch(const oc_law *L, const oc_state *const start[], const double u[][2],
-                       const double N[], oc_step out[], int n) {
-    /* 1: each cell's trial and stick test, as oc_law_step's; an open or
-     * sticking cell is done.  A cell that slips by an implicit rule where
-     * oc_law_step takes its fast solve, the trial's square normal, waits
-     * for 2; any other is oc_law_step's own. */
-    int slip[OC_BATCH_MAX];
-    double trial_a[OC_BATCH_MAX][2], trial_sq[OC_BATCH_MAX], trial_n[OC_BATCH_MAX];
+/* A slipping cell of oc_law_step_rest: its trial's norm and scale. */
+typedef struct {
+    const oc_rest *r;
+    double n_tr, sc;
+} slip_cell;
+
+/* The cell's step once its solve gave y, p and 1 / |p|. */
+static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *c, double y,
+                                              const double p[2], double inv_np, double w0,
+                                              double w1, double inv_wmax) {
+    oc_step *o = c->r->out;
+    const double uk[2] = {o->next.u[0], o->next.u[1]};
+    slip_implicit_finish(L, c->r->start, uk, c->r->a, o->next.N, y, p, inv_np, w0, w1, inv_wmax,
+                         o);
+}
+
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(OC_SCALAR_LANES)
+/* Two cells in the two lanes of a vector (GCC/Clang vector extensions: SSE2
+ * on x86-64, NEON on aarch64): each operation acts on each lane as the
+ * scalar operation in dgamma_start, dgamma_step and return_map_implicit,
+ * in their order, so that each lane is its cell's own arithmetic bit for
+ * bit; where those branch, both sides are formed and each lane takes its
+ * own.  One vector division serves two cells: the divisions are what the
+ * slip's time goes to. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2m __attribute__((vector_size(16))); /* a lane all ones or zero */
+static OC_ALWAYS_INLINE v2d v2_sel(v2m m, v2d a, v2d b) {
+    return (v2d)(((v2m)a & m) | ((v2m)b & ~m));
+}
+/* Each select's mask is one comparison: gcc makes a select of a combined
+ * mask (without SSE4.1's blend) lane by lane in integer registers. */
+static OC_ALWAYS_INLINE v2d v2_max2(v2d a, v2d b) { /* max2's: a > b || b != b ? a : b */
+    return v2_sel((v2m)(b != b), a, v2_sel((v2m)(a > b), a, b));
+}
+static OC_ALWAYS_INLINE v2d v2_abs(v2d a) {
+    const v2m mag = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+    return (v2d)((v2m)a & mag);
+}
+static OC_ALWAYS_INLINE v2d v2_sqrt(v2d a) {
+    const v2d r = {sqrt(a[0]), sqrt(a[1])};
+    return r;
+}
+
+/* dgamma_solve, two cells. */
+typedef struct {
+    v2d a0, a1, rho, inv_rho, x, it;
+    int done[2];
+    double p0[2], p1[2], inv_norm[2], root[2]; /* a lane's, once done */
+} dgamma_solve2;
+
+/* dgamma_start, lane by lane. */
+static OC_ALWAYS_INLINE void dgamma_start2(v2d ar0, v2d ar1, v2d sq, v2d n_tr, v2d N,
+                                           const double sh[2], dgamma_solve2 *S) {
+    const v2d A0 = ar0 * ar0, A1 = ar1 * ar1;
+    const double s0 = sh[0], s1 = sh[1];
+    const v2d R1 = A0 * s0 + A1 * s1;
+    const v2d inv_sq = 1.0 / sq, inv_R1 = 1.0 / R1, inv_N = 1.0 / N;
+    const v2d inv_ntr = n_tr * inv_sq, rho = N * inv_ntr, inv_rho = n_tr * inv_N;
+    S->a0 = ar0 * inv_ntr;
+    S->a1 = ar1 * inv_ntr;
+    S->rho = rho;
+    S->inv_rho = inv_rho;
+    const v2d M1 = R1 * inv_sq, M2 = (A0 * s0 * s0 + A1 * s1 * s1) * inv_sq;
+    const v2d M3 = (A0 * s0 * s0 * s0 + A1 * s1 * s1 * s1) * inv_sq;
+    const v2d inv_M1 = sq * inv_R1;
+    const v2d h = (1.0 - rho) * inv_rho * inv_M1;
+    const v2d A2 = 1.5 * (M1 * M1 - M2) * inv_M1;
+    const v2d A3 = (15.0 * M1 * M1 * M1 - 27.0 * M1 * M2 + 12.0 * M3) * inv_M1 * (1.0 / 6.0);
+    const v2d x = h * (1.0 - A2 * h + (2.0 * A2 * A2 - A3) * h * h);
+    /* x > 0 && x < 4 h ? x : h */
+    S->x = v2_sel((v2m)(x < 4.0 * h), v2_sel((v2m)(x > 0.0), x, h), h);
+    S->it = (v2d){0.0, 0.0};
+    S->done[0] = S->done[1] = 0;
+}
+
+/* dgamma_step on both lanes: 1 when both are done.  A lane done goes on
+ * being evaluated (harmlessly: nothing traps) until the other is; its
+ * results are those of the evaluation that ended it. */
+static OC_ALWAYS_INLINE int dgamma_step2(dgamma_solve2 *S, const double sh[2]) {
+    const v2d zero = {0.0, 0.0};
+    const v2d x = S->x, rho = S->rho, inv_rho = S->inv_rho;
+    const v2d w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;
+    const v2d g0 = S->a0 * w1x, g1 = S->a1 * w0x;
+    const v2d G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = v2_sqrt(m2);
+    const v2d res = m - rho * W;
+    const v2d u0 = sh[0] * w1x, u1 = sh[1] * w0x;
+    const v2m far = (v2m)(v2_abs(res) > 2 * DBL_EPSILON * rho * W), more = (v2m)(S->it < 100.0);
+    const v2m left = (v2m)(res > 0.0); /* left of the root: Halley, else Newton */
+    const v2d C = G0 * u0 + G1 * u1;
+    const v2d D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
+    const v2d num = v2_sel(left, res * m2 * W * C, res * m2 * inv_rho);
+    const v2d den = v2_sel(left, v2_max2(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2), C);
+    const v2d quot = num / den, invW = 1.0 / W;
+    const v2d dx = v2_sel(more, v2_sel(far, quot, zero), zero); /* 0 where the step ends unmoved */
+    const v2m small = (v2m)(v2_abs(dx) <= v2_sel(left, 5e-6 * x, 1e-8 * x));
+    const v2d t0 = u0 * dx * invW, t1 = u1 * dx * invW;
+    const v2d p0 = g0 * invW * (1.0 - t0 + t0 * t0);
+    const v2d p1 = g1 * invW * (1.0 - t1 + t1 * t1);
+    const v2d pp = p0 * p0 + p1 * p1;
+    const v2d inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho), root = x + dx;
+    for (int l = 0; l < 2; ++l)
+        if (!S->done[l] && (!(far[l] && more[l]) || small[l])) {
+            S->done[l] = 1;
+            S->p0[l] = p0[l];
+            S->p1[l] = p1[l];
+            S->inv_norm[l] = inv_norm[l];
+            S->root[l] = root[l];
+        }
+    S->x = v2_max2(x + dx, zero);
+    S->it = S->it + 1.0;
+    return S->done[0] && S->done[1];
+}
+
+/* Solves and finishes n <= OC_LANES slipping cells, two a vector, the
+ * vectors' evaluations in turn (independent chains of square roots and
+ * divisions, which the processor overlaps).  An odd cell out fills both
+ * lanes of its vector. */
+static void slip_lanes(const oc_law *L, const slip_cell c[], int n) {
+    enum { PAIRS = (OC_LANES + 1) / 2 };
+    const int pairs = (n + 1) / 2;
+    dgamma_solve2 S[PAIRS];
+    for (int v = 0; v < pairs; ++v) {
+        const slip_cell *c0 = &c[2 * v], *c1 = 2 * v + 1 < n ? &c[2 * v + 1] : c0;
+        const v2d sc = {c0->sc, c1->sc};
+        const v2d ar0 = (v2d){c0->r->a[0], c1->r->a[0]} * sc;
+        const v2d ar1 = (v2d){c0->r->a[1], c1->r->a[1]} * sc;
+        const v2d n_tr = (v2d){c0->n_tr, c1->n_tr} * sc;
+        const v2d N = (v2d){c0->r->out->next.N, c1->r->out->next.N} * sc;
+        dgamma_start2(ar0, ar1, ar0 * ar0 + ar1 * ar1, n_tr, N, L->sig_hat, &S[v]);
+    }
+    for (int left = pairs; left > 0;)
+        for (int v = 0; v < pairs; ++v)
+            if (!(S[v].done[0] && S[v].done[1]) && dgamma_step2(&S[v], L->sig_hat)) --left;
+    for (int v = 0; v < pairs; ++v) {
+        const v2d y = {S[v].root[0], S[v].root[1]};
+        const v2d w0 = 1.0 + y * L->sig_hat[0], w1 = 1.0 + y * L->sig_hat[1];
+        const v2d wmax = v2_max2(w0, w1);
+        const v2d r0 = w0 / wmax, r1 = w1 / wmax, inv_wmax = 1.0 / wmax; /* wfac = 1 */
+        for (int l = 0; l < 2 && 2 * v + l < n; ++l) {
+            const double p[2] = {S[v].p0[l], S[v].p1[l]};
+            slip_cell_finish(L, &c[2 * v + l], y[l], p, S[v].inv_norm[l], r0[l], r1[l],
+                             inv_wmax[l]);
+        }
+    }
+}
+#else
+/* Without vector extensions: the lanes as scalars, the same functions as
+ * oc_law_step's own solve (dgamma_start, dgamma_step), evaluations in turn. */
+static void slip_lanes(const oc_law *L, const slip_cell c[], int n) {
+    dgamma_solve S[OC_LANES];
+    double p[OC_LANES][2], inv_np[OC_LANES], y[OC_LANES];
+    int done[OC_LANES];
+    for (int l = 0; l < n; ++l) {
+        const double as[2] = {c[l].r->a[0] * c[l].sc, c[l].r->a[1] * c[l].sc};
+        dgamma_start(as, as[0] * as[0] + as[1] * as[1], c[l].n_tr * c[l].sc,
+                     c[l].r->out->next.N * c[l].sc, L->sig_hat, &S[l]);
+        done[l] = 0;
+    }
+    for (int left = n; left > 0;)
+        for (int l = 0; l < n; ++l)
+            if (!done[l] && dgamma_step(&S[l], L->sig_hat, p[l], &inv_np[l], &y[l])) {
+                done[l] = 1;
+                --left;
+            }
+    for (int l = 0; l < n; ++l) {
+        const double w0 = 1.0 + y[l] * L->sig_hat[0], w1 = 1.0 + y[l] * L->sig_hat[1];
+        const double wfac = 1.0, wmax = max2(w0, w1);
+        slip_cell_finish(L, &c[l], y[l], p[l], inv_np[l], w0 / wmax, w1 / wmax, wfac / wmax);
+    }
+}
+#endif
+
+void oc_law_step_rest(const oc_law *L, const oc_rest rest[], int n) {
+    /* 1: what oc_law_step does after its first stick test: a trial whose
+     * square is normal sticks by its square root; a cell that slips by an
+     * implicit rule where oc_law_step takes its fast solve waits for 2; any
+     * other is oc_law_step's own. */
+    slip_cell slip[OC_BATCH_MAX];
     int n_slip = 0;
     const int fast = L->p.rule != OC_RULE_EQ20 && L->kappa <= 1e20;
     for (int k = 0; k < n; ++k) {
-        oc_step *o = &out[k];
-        const double uk[2] = {u[k][0], u[k][1]}, Nk = N[k];
-        o->next.u[0] = uk[0];
-        o->next.u[1] = uk[1];
-        o->next.N = Nk;
-        if (!(Nk > 0)) {
-            step_open(start[k], uk, o);
-            continue;
-        }
-        double a[2];
-        trial(L, start[k], uk, a);
+        oc_step *o = rest[k].out;
+        const oc_state *start = rest[k].start;
+        const double *a = rest[k].a, Nk = o->next.N;
         const double lim = Nk * (1.0 + 8 * DBL_EPSILON);
         const double sq = a[0] * a[0] + a[1] * a[1];
-        const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
         const int normal = sq >= 0x1p-900 && sq <= 0x1p1000;
-        if (sq <= lim2c && normal) {
-            step_stick(L, start[k], a, o);
+        const double n_tr = normal ? sqrt(sq) : 0.0; /* norm2's, sq being normal */
+        if (normal && n_tr <= lim) {
+            oc_step_stick(L, start, a, o);
             continue;
         }
-        if (!normal) {
-            oc_law_step(L, start[k], uk, Nk, o);
+        if (!normal || !fast || !(n_tr <= 1e10 * Nk)) {
+            const double uk[2] = {o->next.u[0], o->next.u[1]};
+            oc_law_step(L, start, uk, Nk, o);
             continue;
         }
-        const double n_tr = sqrt(sq); /* norm2's, sq being normal */
-        if (n_tr <= lim) {
-            step_stick(L, start[k], a, o);
-            continue;
-        }
-        if (!fast || !(n_tr <= 1e10 * Nk)) {
-            oc_law_step(L, start[k], uk, Nk, o);
-            continue;
-        }
-        slip[n_slip] = k;
-        trial_a[n_slip][0] = a[0];
-        trial_a[n_slip][1] = a[1];
-        trial_sq[n_slip] = sq;
-        trial_n[n_slip] = n_tr;
-        ++n_slip;
+        slip_cell *c = &slip[n_slip++];
+        c->r = &rest[k];
+        c->n_tr = n_tr;
+        c->sc = pow2_root_inverse(sq); /* trial_scale's, sq being normal */
     }
-    /* 2: the slipping cells OC_LANES at a time, their solves' evaluations
-     * in turn: independent chains of square roots and divisions, which the
-     * processor then overlaps.  Each lane is the cell's own arithmetic. */
+    /* 2: the slipping cells OC_LANES at a time. */
     for (int first = 0; first < n_slip; first += OC_LANES) {
         const int lanes = n_slip - first < OC_LANES ? n_slip - first : OC_LANES;
         if (lanes == 1) { /* nothing to interleave: the cell's own step, in registers */
-            const int k = slip[first];
-            oc_law_step(L, start[k], u[k], N[k], &out[k]);
+            const oc_rest *r = slip[first].r;
+            const double uk[2] = {r->out->next.u[0], r->out->next.u[1]};
+            oc_law_step(L, r->start, uk, r->out->next.N, r->out);
             break;
         }
-        dgamma_solve S[OC_LANES];
-        double sc[OC_LANES], p[OC_LANES][2], inv_np[OC_LANES], y[OC_LANES];
-        int done[OC_LANES];
-        for (int l = 0; l < lanes; ++l) {
-            const int s = first + l, k = slip[s];
-            sc[l] = pow2_root_inverse(trial_sq[s]); /* trial_scale's, sq being normal */
-            const double as[2] = {trial_a[s][0] * sc[l], trial_a[s][1] * sc[l]};
-            dgamma_start(as, as[0] * as[0] + as[1] * as[1], trial_n[s] * sc[l], N[k] * sc[l],
-                         L->sig_hat, &S[l]);
-            done[l] = 0;
-        }
-        for (int left = lanes; left > 0;)
-            for (int l = 0; l < lanes; ++l)
-                if (!done[l] && dgamma_step(&S[l], L->sig_hat, p[l], &inv_np[l], &y[l])) {
-                    done[l] = 1;
-                    --left;
-                }
-        for (int l = 0; l < lanes; ++l) {
-            const int s = first + l, k = slip[s];
-            const double uk[2] = {u[k][0], u[k][1]};
-            slip_implicit_after_solve(L, start[k], uk, trial_a[s], N[k], y[l], p[l], inv_np[l],
-                                      &out[k]);
+        slip_lanes(L, &slip[first], lanes);
+    }
+}
+
+void oc_law_step_batch(const oc_law *L, const oc_state *const start[], const double u[][2],
+                       const double N[], oc_step out[], int n) {
+    oc_rest rest[OC_BATCH_MAX];
+    int n_rest = 0;
+    for (int k = 0; k < n; ++k) {
+        const double uk[2] = {u[k][0], u[k][1]};
+        oc_rest *r = &rest[n_rest];
+        if (!oc_law_step_quick(L, start[k], uk, N[k], &out[k], r->a)) {
+            r->start = start[k];
+            r->out = &out[k];
+            ++n_rest;
         }
     }
+    oc_law_step_rest(L, rest, n_rest);
 }
 
 /* ==== 6. The consistent tangent ==== */
@@ -805,7 +906,7 @@ void oc_law_step_batch(const oc_law *L, const oc_state *const start[], const dou
 static int tangent_eq20(const oc_law *L, const oc_state *start, const double u[2], double N,
                         const oc_step *st, double dq_du[2][2], double dq_dN[2]) {
     double a[2], t[2], z[2];
-    trial(L, start, u, a);
+    oc_trial(L, start, u, a);
     double sc;
     pow2_of(oc_norm2(a[0], a[1]), &sc);
     a[0] *= sc;

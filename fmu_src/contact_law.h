@@ -14,6 +14,7 @@
 #ifndef OC_CONTACT_LAW_H
 #define OC_CONTACT_LAW_H
 
+#include <float.h>
 #include <math.h>
 
 #ifdef __cplusplus
@@ -113,13 +114,108 @@ int oc_law_init(oc_law *law, const oc_params *p);
 void oc_law_step(const oc_law *law, const oc_state *start, const double u[2],
                  double N, oc_step *out);
 
-/* n <= OC_BATCH_MAX steps with one law: out[k] is, bit for bit, what
- * oc_law_step(law, start[k], u[k], N[k], &out[k]) gives.  The cells that
+/* Inlined even where the compiler would make a call (the law's pieces of a
+ * step, contact_law.c's and those below). */
+#if defined(__GNUC__) || defined(__clang__)
+#define OC_ALWAYS_INLINE __attribute__((always_inline)) inline
+#else
+#define OC_ALWAYS_INLINE inline
+#endif
+
+/* ---- oc_law_step's open and stick steps, inline: contact_law.c steps by
+ * these, and a caller stepping many cells (the patch) runs them in its own
+ * loop, cell by cell, leaving the rest to oc_law_step_rest. ---- */
+
+/* q = Minv a in its factored form (see oc_law.R): a rotation, then
+ * G = Q(beta) diag(mu), whose entries never mix mu1 with mu2. */
+static OC_ALWAYS_INLINE void oc_force_of(const oc_law *L, const double a[2], double q[2]) {
+    const double r0 = L->R[0][0] * a[0] + L->R[0][1] * a[1];
+    const double r1 = L->R[1][0] * a[0] + L->R[1][1] * a[1];
+    q[0] = L->G[0][0] * r0 + L->G[0][1] * r1;
+    q[1] = L->G[1][0] * r0 + L->G[1][1] * r1;
+}
+
+/* Open (N <= 0): no force, and the slip follows the body so that a new
+ * contact starts unloaded.  Released elastic energy is not dissipation. */
+static OC_ALWAYS_INLINE void oc_step_open(const oc_state *start, const double u[2], oc_step *out) {
+    out->contact = OC_OPEN;
+    out->q[0] = out->q[1] = 0.0;
+    out->next.a[0] = out->next.a[1] = 0.0;
+    out->next.s[0] = u[0];
+    out->next.s[1] = u[1];
+    out->next.energy = start->energy;
+}
+
+/* The trial in yield coordinates: the committed force plus the elastic
+ * response to the change of the inputs, a_tr = a_n + P (u - u_n). */
+static OC_ALWAYS_INLINE void oc_trial(const oc_law *L, const oc_state *start, const double u[2],
+                                      double a[2]) {
+    const double du[2] = {u[0] - start->u[0], u[1] - start->u[1]};
+    const double y0 = L->P[0][0] * du[0] + L->P[0][1] * du[1];
+    const double y1 = L->P[1][0] * du[0] + L->P[1][1] * du[1];
+    a[0] = y0 + start->a[0];
+    a[1] = y1 + start->a[1];
+}
+
+/* Stick: the trial is the force; the slip and the energy stay. */
+static OC_ALWAYS_INLINE void oc_step_stick(const oc_law *L, const oc_state *start,
+                                           const double a[2], oc_step *out) {
+    out->contact = OC_STICK;
+    oc_force_of(L, a, out->q);
+    out->next.a[0] = a[0];
+    out->next.a[1] = a[1];
+    out->next.s[0] = start->s[0];
+    out->next.s[1] = start->s[1];
+    out->next.energy = start->energy;
+}
+
+/* The first part of oc_law_step: the inputs into out->next, then an open
+ * step, or a trial whose square puts it surely inside the yield surface (the
+ * first stick test of oc_law_step, contact_law.c): out is then
+ * oc_law_step(law, start, u, N) bit for bit, and 1 is returned.  Otherwise
+ * 0, with the trial in a: oc_law_step_rest finishes the step. */
+static OC_ALWAYS_INLINE int oc_law_step_quick(const oc_law *L, const oc_state *start,
+                                              const double u[2], double N, oc_step *out,
+                                              double a[2]) {
+    out->next.u[0] = u[0];
+    out->next.u[1] = u[1];
+    out->next.N = N;
+    if (!(N > 0)) {
+        oc_step_open(start, u, out);
+        return 1;
+    }
+    oc_trial(L, start, u, a);
+    const double lim = N * (1.0 + 8 * DBL_EPSILON);
+    const double sq = a[0] * a[0] + a[1] * a[1];
+    const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
+    if (sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000) {
+        oc_step_stick(L, start, a, out);
+        return 1;
+    }
+    return 0;
+}
+
+/* A step that oc_law_step_quick left: its start, its result (whose next.u
+ * and next.N hold the inputs, as quick wrote them) and the trial. */
+typedef struct {
+    const oc_state *start;
+    oc_step *out;
+    double a[2];
+} oc_rest;
+
+/* Finishes n <= OC_BATCH_MAX steps that oc_law_step_quick left: each
+ * rest[k].out is then, bit for bit, what oc_law_step gives.  The cells that
  * slip by an implicit rule are stepped OC_LANES at a time, their solves'
- * evaluations interleaved (the cells share the law's tensors and slip
- * eigenbasis); the others as oc_law_step steps them.  No out[k] may overlap
- * a start or an input. */
-enum { OC_BATCH_MAX = 64, OC_LANES = 4 };
+ * evaluations interleaved and their divisions paired (the cells share the
+ * law's tensors and slip eigenbasis); the others as oc_law_step steps them.
+ * No out may overlap a start. */
+enum { OC_BATCH_MAX = 64, OC_LANES = 8 };
+void oc_law_step_rest(const oc_law *law, const oc_rest rest[], int n);
+
+/* n <= OC_BATCH_MAX steps with one law: out[k] is, bit for bit, what
+ * oc_law_step(law, start[k], u[k], N[k], &out[k]) gives (oc_law_step_quick
+ * on each, then oc_law_step_rest on those it left).  No out[k] may overlap a
+ * start or an input. */
 void oc_law_step_batch(const oc_law *law, const oc_state *const start[], const double u[][2],
                        const double N[], oc_step out[], int n);
 

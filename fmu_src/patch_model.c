@@ -200,14 +200,70 @@ static fmu_status check_kern(const patch_setup *g, fmu_msg *msg) {
                     g->p[0], g->p[1], g->length, g->width, e);
 }
 
+/* Cell (i, j)'s message: its force or slip would not be finite. */
+static fmu_status cell_overflow(const patch_setup *g, int c, fmu_msg *msg) {
+    return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the force or "
+                         "slip of cell (%d, %d)", g->u[0], g->u[1], g->theta, g->N,
+                    c % g->n[0] + 1, c / g->n[0] + 1);
+}
+
+/* The running sums of the outputs, in the order c = i + n1 j. */
+typedef struct {
+    double T0, T1, Mz, energy;
+    double nonfinite; /* 0 while every cell's next.a and next.s are finite, else NaN */
+    int pressed, slipping;
+} running_sums;
+
+/* 0.0 - q rather than -q: an open cell reads +0.0, as the point FMU.  A
+ * cell's q and energy enter the sums, which stay non-finite once one is;
+ * its next.a and next.s enter `nonfinite` as x * 0.0 (0 for a finite x,
+ * NaN otherwise). */
+static OC_ALWAYS_INLINE void add_cell(running_sums *R, const oc_step *st, double Rr0, double Rr1) {
+    const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
+    R->T0 += t0;
+    R->T1 += t1;
+    R->Mz += Rr0 * t1 - Rr1 * t0;
+    R->energy += st->next.energy;
+    R->nonfinite += (st->next.a[0] * 0.0 + st->next.a[1] * 0.0) +
+                    (st->next.s[0] * 0.0 + st->next.s[1] * 0.0);
+    R->pressed += st->contact != OC_OPEN;
+    R->slipping += st->contact == OC_SLIP;
+}
+
+/* add_cell for an open or stick step of oc_law_step_quick, whose next.a is
+ * 0 or the trial, finite (its square passed as normal). */
+static OC_ALWAYS_INLINE void add_quick(running_sums *R, const oc_step *st, double Rr0,
+                                       double Rr1) {
+    const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
+    R->T0 += t0;
+    R->T1 += t1;
+    R->Mz += Rr0 * t1 - Rr1 * t0;
+    R->energy += st->next.energy;
+    R->nonfinite += st->next.s[0] * 0.0 + st->next.s[1] * 0.0;
+    R->pressed += st->contact != OC_OPEN;
+}
+
+/* What oc_law_step_quick writes of a step (all of an open or stick step). */
+static OC_ALWAYS_INLINE void put_quick(oc_step *to, const oc_step *from) {
+    to->q[0] = from->q[0];
+    to->q[1] = from->q[1];
+    to->next = from->next;
+    to->contact = from->contact;
+}
+
 /* Steps every cell with `law` from `src` into out[] and sums the outputs;
  * or fails, having written nothing but out[], if a cell's result or a sum
- * would not be finite.  Each cell is the law's step on its own kinematics
+ * would not be finite (naming the first such cell, as a check cell by cell
+ * in that order would).  Each cell is the law's step on its own kinematics
  * (cell_of's), summed in the order c = i + n1 j: the cells' coordinates are
  * formed once a step (n1 + n2 divisions, not two a cell and an integer
- * division), a committed state is read where it lies, not copied, and the
- * law steps OC_BATCH_MAX cells in one call (oc_law_step_batch: the slipping
- * ones' solves interleaved, each the cell's own step bit for bit).
+ * division), a committed state is read where it lies, not copied, and each
+ * cell's kinematics go straight into the law's open and stick steps
+ * (oc_law_step_quick) and its result into the sums; the cells those leave
+ * are finished OC_BATCH_MAX at a time by oc_law_step_rest (the slipping
+ * ones' solves interleaved, each the cell's own step bit for bit), and
+ * summed after.  Whether every number is finite is read off the sums once
+ * a step; only a step that fails looks for its first non-finite cell.
  * tests/c/test_patch_model.c holds the result to the plain per-cell step,
  * bit for bit. */
 static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell_source *src,
@@ -232,72 +288,101 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
         sr1[j] = f.sn * r1[j];
         p1[j] = f.k[1] * eta;
     }
-    const double N = g->N, u0 = g->u[0], u1 = g->u[1];
-    double T0 = 0.0, T1 = 0.0, Mz = 0.0, energy = 0.0;
-    int pressed = 0, slipping = 0;
-    /* OC_BATCH_MAX cells at a time: their kinematics, one batch of the
-     * law's steps, then their sums in the order c = i + n1 j. */
-    const oc_state *from[OC_BATCH_MAX];
-    oc_state local[OC_BATCH_MAX];
-    double d[OC_BATCH_MAX][2], Nc[OC_BATCH_MAX], Rr[OC_BATCH_MAX][2];
-    for (int first = 0, i = 0, j = 0; first < n; first += OC_BATCH_MAX) {
-        const int count = n - first < OC_BATCH_MAX ? n - first : OC_BATCH_MAX;
-        const int i0 = i, j0 = j;
-        for (int k = 0; k < count; ++k) {
-            const int c = first + k;
-            patch_cell x;
-            x.d[0] = u0;
-            x.d[1] = u1;
-            x.Rr[0] = r0[i];
-            x.Rr[1] = r1[j];
-            if (r0[i] != 0.0 || r1[j] != 0.0) { /* the centre cell sees u itself */
-                const double dr0 = cr0[i] - sr1[j], dr1 = sr0[i] + cr1[j];
-                x.d[0] += dr0;
-                x.d[1] += dr1;
-                x.Rr[0] += dr0;
-                x.Rr[1] += dr1;
+    const double N = g->N, u0 = g->u[0], u1 = g->u[1], w = f.w;
+    running_sums R = {0.0, 0.0, 0.0, 0.0, 0.0, 0, 0};
+    /* Where cell c's committed state lies: base + c stride bytes, or (from
+     * bytes or the initial slip) a copy in local[]. */
+    const unsigned char *base = NULL;
+    size_t stride = 0;
+    if (src->kind == FROM_STEPS) {
+        base = (const unsigned char *)&src->steps[0].next;
+        stride = sizeof(oc_step);
+    } else if (src->kind == FROM_ARRAY) {
+        base = (const unsigned char *)src->array;
+        stride = sizeof(oc_state);
+    }
+    if (n == 1) { /* nothing to batch: the law's own step on the centre cell, d = u */
+        const double d[2] = {u0, u1}, Nc = N * (w * (p0[0] + p1[0]));
+        oc_state one;
+        patch_cell x;
+        x.d[0] = u0;
+        x.d[1] = u1;
+        one = base ? *(const oc_state *)(const void *)base : source_cell(src, g, &x, 0);
+        oc_law_step(law, &one, d, Nc, &out[0]);
+        add_cell(&R, &out[0], r0[0], r1[0]);
+    } else {
+        oc_state local[OC_BATCH_MAX];
+        oc_rest rest[OC_BATCH_MAX];
+        /* The law's tensors in a copy of its own that no store to out[] can
+         * reach: the compiler keeps them in registers across the cells. */
+        const oc_law lq = *law;
+        double Rr[OC_BATCH_MAX][2]; /* the moment arms of the cells summed after the rest */
+        for (int first = 0, i = 0, j = 0; first < n; first += OC_BATCH_MAX) {
+            const int count = n - first < OC_BATCH_MAX ? n - first : OC_BATCH_MAX;
+            int n_rest = 0, wait = count; /* the cells from `wait` on are summed after the rest */
+            for (int k = 0; k < count; ++k) {
+                const int c = first + k;
+                double d[2] = {u0, u1}, rr[2] = {r0[i], r1[j]};
+                if (rr[0] != 0.0 || rr[1] != 0.0) { /* the centre cell sees u itself */
+                    const double dr0 = cr0[i] - sr1[j], dr1 = sr0[i] + cr1[j];
+                    d[0] += dr0;
+                    d[1] += dr1;
+                    rr[0] += dr0;
+                    rr[1] += dr1;
+                }
+                /* the linear pressure integrated over the cell is its value at
+                 * the centre times the area, exactly */
+                const double Nc = N * (w * (p0[i] + p1[j]));
+                const oc_state *start;
+                if (base) {
+                    start = (const oc_state *)(const void *)(base + (size_t)c * stride);
+                } else {
+                    patch_cell x;
+                    x.d[0] = d[0];
+                    x.d[1] = d[1];
+                    local[k] = source_cell(src, g, &x, c);
+                    start = &local[k];
+                }
+                if (++i == n1) i = 0, ++j;
+                /* the step in a local first, which the compiler keeps in registers
+                 * for the sums: read back from out[c], just stored field by field,
+                 * loads would wait on the stores */
+                oc_step st;
+                oc_rest *r = &rest[n_rest];
+                if (oc_law_step_quick(&lq, start, d, Nc, &st, r->a)) {
+                    put_quick(&out[c], &st);
+                    if (k < wait) add_quick(&R, &st, rr[0], rr[1]);
+                    else Rr[k][0] = rr[0], Rr[k][1] = rr[1];
+                    continue;
+                }
+                out[c].next.u[0] = st.next.u[0];
+                out[c].next.u[1] = st.next.u[1];
+                out[c].next.N = st.next.N;
+                r->start = start;
+                r->out = &out[c];
+                ++n_rest;
+                if (k < wait) wait = k;
+                Rr[k][0] = rr[0];
+                Rr[k][1] = rr[1];
             }
-            d[k][0] = x.d[0];
-            d[k][1] = x.d[1];
-            Rr[k][0] = x.Rr[0];
-            Rr[k][1] = x.Rr[1];
-            Nc[k] = N * (f.w * (p0[i] + p1[j]));
-            if (src->kind == FROM_STEPS) from[k] = &src->steps[c].next;
-            else if (src->kind == FROM_ARRAY) from[k] = &src->array[c];
-            else {
-                local[k] = source_cell(src, g, &x, c);
-                from[k] = &local[k];
-            }
-            if (++i == n1) i = 0, ++j;
-        }
-        if (count == 1) oc_law_step(law, from[0], d[0], Nc[0], &out[first]);
-        else oc_law_step_batch(law, from, (const double(*)[2])d, Nc, &out[first], count);
-        for (int k = 0, ci = i0, cj = j0; k < count; ++k) {
-            const oc_step *st = &out[first + k];
-            if (!oc_step_is_finite(st))
-                return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the "
-                                     "force or slip of cell (%d, %d)", g->u[0], g->u[1], g->theta,
-                                g->N, ci + 1, cj + 1);
-            /* 0.0 - q rather than -q: an open cell reads +0.0, as the point FMU */
-            const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
-            T0 += t0;
-            T1 += t1;
-            Mz += Rr[k][0] * t1 - Rr[k][1] * t0;
-            energy += st->next.energy;
-            pressed += st->contact != OC_OPEN;
-            slipping += st->contact == OC_SLIP;
-            if (++ci == n1) ci = 0, ++cj;
+            if (n_rest == 0) continue;
+            oc_law_step_rest(law, rest, n_rest);
+            for (int k = wait; k < count; ++k) add_cell(&R, &out[first + k], Rr[k][0], Rr[k][1]);
         }
     }
-    if (!isfinite(T0) || !isfinite(T1) || !isfinite(Mz) || !isfinite(energy))
+    if (!(R.nonfinite == 0.0) || !isfinite(R.T0) || !isfinite(R.T1) || !isfinite(R.Mz) ||
+        !isfinite(R.energy)) {
+        for (int c = 0; c < n; ++c)
+            if (!oc_step_is_finite(&out[c])) return cell_overflow(g, c, msg);
         return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the patch's "
                              "force, moment or energy", g->u[0], g->u[1], g->theta, g->N);
-    S->T[0] = T0;
-    S->T[1] = T1;
-    S->Mz = Mz;
-    S->energy = energy;
-    S->slip_fraction = (double)slipping / (double)n;
-    S->contact = pressed == 0 ? 0 : slipping == 0 ? 1 : slipping == pressed ? 3 : 2;
+    }
+    S->T[0] = R.T0;
+    S->T[1] = R.T1;
+    S->Mz = R.Mz;
+    S->energy = R.energy;
+    S->slip_fraction = (double)R.slipping / (double)n;
+    S->contact = R.pressed == 0 ? 0 : R.slipping == 0 ? 1 : R.slipping == R.pressed ? 3 : 2;
     return FMU_OK;
 }
 

@@ -15,7 +15,9 @@
  *     nothing (the serialized state is the same byte for byte), and a state
  *     the FMU wrote restores into a fresh instance reading the same outputs. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -25,9 +27,15 @@
 #include "patch_variables.h"
 #include "random_values.h"
 
+/* The last message the FMU logged, kept to check what a refusal says. */
+static char last_message[512];
 static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                   fmi2String m, ...) {
-    (void)e; (void)n; (void)s; (void)c; (void)m;
+    (void)e; (void)n; (void)s; (void)c;
+    va_list ap;
+    va_start(ap, m);
+    vsnprintf(last_message, sizeof last_message, m, ap);
+    va_end(ap);
 }
 static const fmi2CallbackFunctions CB = {quiet, calloc, free, NULL, NULL};
 
@@ -205,7 +213,7 @@ static int states_equal(fmi2Component c, const oc_state *ref, int n) {
 }
 
 static oc_state ref_from[PATCH_MAX_CELLS];
-static oc_step ref_out[PATCH_MAX_CELLS];
+static oc_step ref_out[PATCH_MAX_CELLS], ref_bad[PATCH_MAX_CELLS];
 
 static void step_matches_the_plain_per_cell_step(void) {
     static const fmi2ValueReference OUT[5] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz,
@@ -278,8 +286,32 @@ static void step_matches_the_plain_per_cell_step(void) {
                 memcpy(bad, x, sizeof bad);
                 bad[pick(2)] = (pick(2) ? 1 : -1) * 1e308;
                 bad[3] = 1e300;
-                if (fmi2SetReal(c, KNOWN, 6, bad) != fmi2OK) ++refused;
-                else CHECK(fmi2SetFMUstate(c, saved) == fmi2OK, "episode %d: restore", episode);
+                last_message[0] = 0;
+                if (fmi2SetReal(c, KNOWN, 6, bad) != fmi2OK) {
+                    ++refused;
+                    /* it names the first cell (in the order c = i + n1 j) whose
+                     * result is not finite, else the sums */
+                    ref_setup gb = g;
+                    gb.u[0] = bad[0];
+                    gb.u[1] = bad[1];
+                    gb.theta = bad[2];
+                    gb.N = bad[3];
+                    gb.p[0] = bad[4];
+                    gb.p[1] = bad[5];
+                    double yb[5];
+                    int sb;
+                    ref_step(&law, &gb, ref_from, ref_bad, yb, &sb);
+                    char want[64] = "overflow the patch's force, moment or energy";
+                    for (int cell = 0; cell < g.n1 * g.n2; ++cell)
+                        if (!oc_step_is_finite(&ref_bad[cell])) {
+                            snprintf(want, sizeof want, "force or slip of cell (%d, %d)",
+                                     cell % g.n1 + 1, cell / g.n1 + 1);
+                            break;
+                        }
+                    CHECK(strstr(last_message, want) != NULL,
+                          "episode %d: refused with \"%s\", not naming \"%s\"", episode,
+                          last_message, want);
+                } else CHECK(fmi2SetFMUstate(c, saved) == fmi2OK, "episode %d: restore", episode);
                 fmi2FreeFMUstate(c, &saved);
             }
             if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) continue; /* refused: nothing changed */
