@@ -1,4 +1,4 @@
-"""The model structure both models declare (ModelStructure: every output's and
+"""The model structure every model declares (ModelStructure: every output's and
 initial unknown's dependencies and dependenciesKind, FMI 2.0 and 3.0) against
 what their binaries do, found independently of the table: each known of a
 mode is perturbed through fmpy at several base points, and the outputs that
@@ -21,6 +21,7 @@ from fmu_values import schema_errors
 
 from orthocontact import closed_forms as cf
 from orthocontact.fmu import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
+from orthocontact.fmu.variables import models
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -48,6 +49,8 @@ class Instance:
                 (self.s.setReal if self.version == 2 else self.s.setFloat64)([v.valueReference], [x])
             elif self.version == 2:
                 self.s.setInteger([v.valueReference], [int(x)])
+            elif v.type == "Int32":
+                self.s.setInt32([v.valueReference], [int(x)])
             else:
                 self.s.setInt64([v.valueReference], [int(x)])
 
@@ -60,7 +63,11 @@ class Instance:
                 get = self.s.getReal if self.version == 2 else self.s.getFloat64
             else:
                 get = self.s.getInteger if self.version == 2 else self.s.getInt32
-            out[v.name] = get([v.valueReference])[0]
+            if v.dimensions:     # an FMI 3.0 array: all its values, its shape the structural parameters'
+                n = math.prod(int(self.s.getInt32([d.variable.valueReference])[0]) for d in v.dimensions)
+                out[v.name] = tuple(get([v.valueReference], nValues=n))
+            else:
+                out[v.name] = get([v.valueReference])[0]
         return out
 
     def enter_initialization(self, start_time):
@@ -92,7 +99,7 @@ def observe(version, model, point, mode):
     try:
         kinds = {n: v.causality for n, v in f.var.items()}
         init = point["init"]
-        f.set({n: x for n, x in init.items() if kinds[n] == "parameter"})
+        f.set({n: x for n, x in init.items() if kinds[n] in ("parameter", "structuralParameter")})
         f.enter_initialization(point["time"])
         f.set({n: x for n, x in init.items() if kinds[n] == "input"})
         if mode == "init":
@@ -190,15 +197,75 @@ def rig_points(mode):
             for t in (0.25, 1.0)]
 
 
-POINTS = {MODEL_IDENTIFIER: contact_points, RIG_MODEL_IDENTIFIER: rig_points}
+# The patch: 4 x 4 cells, the centre of pressure off the centre, turned and
+# displaced so that each branch (every cell stuck at the edge of sliding,
+# every cell sliding) shows at a base point.  Which cell slides first, and so
+# which knowns move it by more than the 1 % margin, depends on the direction
+# of the push and the share of the turn: three of them.
+PATCH = dict(LAW, slidingRule=2, length=0.1, width=0.08, n1=4, n2=4)
+P0 = dict(p1=5e-3, p2=-4e-3)        # inside the kern: 0.05 + 0.05 < 1/6
+PUSHES = ((-40.0, 5e-3), (60.0, 2e-2), (150.0, 1e-2))   # direction [deg], turn [rad] per unit
 
 
-@pytest.mark.parametrize("model", [MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER])
+def patch_inputs(scale, push, slip=(0.0, 0.0)):
+    """u, theta along one direction of the patch's inputs: `scale` times the
+    point's elastic range along push[0] [deg] and push[1] * scale [rad]."""
+    u = elastic_at(scale, math.radians(push[0])) + np.array(slip)
+    return {"u1": float(u[0]), "u2": float(u[1]), "theta": push[1] * scale, "N": N0, **P0}
+
+
+def patch_stick_edge(mode, base):
+    """The largest scale of base(scale) at which every cell still sticks
+    (contactState 1), by bisection through the FMU, less 1 %: a cell then
+    sits within 1 % of sliding, so that every known that moves its trial or
+    its limit by 10 % changes the state."""
+    lo, hi = 0.0, 1.0
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        state = observe(3, "ContactPatch", base(mid), mode)["contactState"]
+        lo, hi = (mid, hi) if state == 1 else (lo, mid)
+    return 0.99 * lo
+
+
+def patch_points(mode):
+    explicit = dict(initialSlip=2, s1Start=S0[0], s2Start=S0[1])
+    points = []
+    for push in PUSHES:
+        if mode == "init":
+            def base(scale, push=push):
+                return {"time": 0.0, "init": {**PATCH, **explicit, **patch_inputs(scale, push, S0)}}
+        else:
+            def base(scale, push=push):
+                return {"time": 0.0, "init": {**PATCH, **patch_inputs(0.0, push)},
+                        "step": patch_inputs(scale, push)}
+        points += [base(patch_stick_edge(mode, base)), base(3.0)]
+    if mode == "init":
+        points.append({"time": 0.0, "init": {**PATCH, "initialSlip": 1, "s1Start": 0.0, "s2Start": 0.0,
+                                             **patch_inputs(0.5, PUSHES[0])}})
+    return points
+
+
+POINTS = {MODEL_IDENTIFIER: contact_points, RIG_MODEL_IDENTIFIER: rig_points, "ContactPatch": patch_points}
+
+
+@pytest.mark.parametrize("model", [m for m in models().values() if m != "ContactPatch"])
 @pytest.mark.parametrize("version", [2, 3])
 @pytest.mark.parametrize("mode", ["init", "step"])
 def test_declared_dependencies_are_what_the_binary_does(model, version, mode):
     """Each output's declared knowns are exactly those whose perturbation
     changes it; a declared constant factor is the same at every base point."""
+    check_declared_dependencies(model, version, mode)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("mode", ["init", "step"])
+def test_the_patchs_declared_dependencies_are_what_the_binary_does(version, mode):
+    """As for the other models, over the patch's 19 knowns at 7 base points
+    (several seconds: every integer n1, n2 from 1 to 32 is tried)."""
+    check_declared_dependencies("ContactPatch", version, mode)
+
+
+def check_declared_dependencies(model, version, mode):
     found = measured_dependencies(version, model, POINTS[model](mode), mode)
     said = declared(version, model)[mode]
     assert set(said) == set(found)
@@ -210,7 +277,7 @@ def test_declared_dependencies_are_what_the_binary_does(model, version, mode):
                 assert max(factors) - min(factors) <= 1e-9 * max(map(abs, factors)), (output, known)
 
 
-@pytest.mark.parametrize("model", [MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER])
+@pytest.mark.parametrize("model", list(models().values()))
 @pytest.mark.parametrize("version", [2, 3])
 def test_the_structure_validates_and_the_rigs_positions_need_no_contact_force(model, version):
     """The schema and fmpy's own checks; no initial unknown or output left
