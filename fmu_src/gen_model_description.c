@@ -260,6 +260,9 @@ enum { NARRAYS = 0 };
 #ifndef FMU_STRUCTURAL_PARAMETERS
 #define FMU_STRUCTURAL_PARAMETERS ""
 #endif
+/* Whether the table names any: a variable, not the literal, in a condition
+ * (clang warns of a constant operand of && and ||). */
+static const int HAS_STRUCTURAL = sizeof(FMU_STRUCTURAL_PARAMETERS) > 1;
 
 static int is_structural(const row *r) {
     return kind_in(FMU_STRUCTURAL_PARAMETERS, r->name) != NULL;
@@ -577,7 +580,7 @@ static void html(FILE *f, int v) {
         fputs("</td></tr>\n", f);
     }
     fputs("</table>\n", f);
-    if (v == 3 && *FMU_STRUCTURAL_PARAMETERS)
+    if (v == 3 && HAS_STRUCTURAL)
         fputs("<p>Structural parameters (causality structuralParameter), settable in configuration "
               "mode as well as before initialization: <code>" FMU_STRUCTURAL_PARAMETERS "</code>. "
               "The arrays above are their shape, row-major (the last index fastest); "
@@ -670,7 +673,7 @@ static void manifest(FILE *f) {
         fputs(i + 1 < NROWS ? "},\n" : "}\n", f);
     }
     fputs("  ],\n", f);
-    if (NARRAYS > 0 || *FMU_STRUCTURAL_PARAMETERS) {
+    if (NARRAYS > 0 || HAS_STRUCTURAL) {
         /* FMI 3.0 only: n1, n2 are structural parameters there, and the arrays */
         fputs("  \"fmi3\": {\"structuralParameters\": [", f);
         char name[64], kind[16];
