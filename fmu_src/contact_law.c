@@ -309,104 +309,199 @@ int oc_law_init(oc_law *out, const oc_params *p) {
  * that an evaluation costs one square root and one division; its products
  * (up to W^7) stay finite while W < 1e40, which the caller guarantees
  * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest. */
-/* The solve as a start and single evaluations, so that a batch of cells
- * (oc_law_step_batch) can interleave its cells' iterations, each lane the
- * same arithmetic as a cell's own solve. */
-typedef struct {
-    double a[2];         /* the trial's direction a_raw / n_tr */
-    double rho, inv_rho; /* N / n_tr and its inverse */
-    double x;            /* the iterate y */
-    int it;              /* evaluations made */
-} dgamma_solve;
-
-/* The start of the solve: no square root, so that it runs beside the
- * caller's. */
-static OC_ALWAYS_INLINE void dgamma_start(const double a_raw[2], double sq, double n_tr, double N,
-                                          const double sh[2], dgamma_solve *S) {
-    /* The divisions depend only on the trial, not on its square root:
-     * they run beside it.  Moments are taken over a_i^2 / |a|^2. */
-    const double A0 = a_raw[0] * a_raw[0], A1 = a_raw[1] * a_raw[1];
-    const double s0 = sh[0], s1 = sh[1];
-    const double R1 = A0 * s0 + A1 * s1;
-    const double inv_sq = 1.0 / sq, inv_R1 = 1.0 / R1, inv_N = 1.0 / N;
-    const double inv_ntr = n_tr * inv_sq, rho = N * inv_ntr, inv_rho = n_tr * inv_N;
-    S->a[0] = a_raw[0] * inv_ntr;
-    S->a[1] = a_raw[1] * inv_ntr;
-    S->rho = rho;
-    S->inv_rho = inv_rho;
-    /* The start: the root's series in the Newton step h from y = 0, to
-     * third order (error O(h^4)), from the moments M_j = sum_i a_i^2 s_i^j:
-     * k(0) = rho - 1, k' = rho M1, k''/(2 k') = A2 = 3 (M1^2 - M2) / (2 M1),
-     * k'''/(6 k') = A3 = (15 M1^3 - 27 M1 M2 + 12 M3) / (6 M1). */
-    const double M1 = R1 * inv_sq, M2 = (A0 * s0 * s0 + A1 * s1 * s1) * inv_sq;
-    const double M3 = (A0 * s0 * s0 * s0 + A1 * s1 * s1 * s1) * inv_sq;
-    const double inv_M1 = sq * inv_R1;
-    const double h = (1.0 - rho) * inv_rho * inv_M1;
-    const double A2 = 1.5 * (M1 * M1 - M2) * inv_M1;
-    const double A3 = (15 * M1 * M1 * M1 - 27 * M1 * M2 + 12 * M3) * inv_M1 * (1.0 / 6.0);
-    double x = h * (1.0 - A2 * h + (2 * A2 * A2 - A3) * h * h);
-    /* Far from the root the series need not converge: Newton's step then. */
-    if (!(x > 0) || !(x < 4 * h)) x = h;
-    S->x = x;
-    S->it = 0;
+/* The solve is written once, below, over a lane type T holding one cell's
+ * numbers (double, the functions dgamma1_*) or two cells' (v2d, GCC/Clang
+ * vector extensions: SSE2 on x86-64, NEON on aarch64; dgamma2_*), so that a
+ * batch of cells (oc_law_step_batch) steps two cells by one vector
+ * instruction, each lane its cell's own arithmetic bit for bit: a lane
+ * operation acts on each lane as the scalar operation does.  Where the
+ * iteration branches, both sides are formed and each lane takes its own by
+ * a select of one comparison's mask (gcc makes a select by a combined mask,
+ * without SSE4.1's blend, lane by lane in integer registers).  The lane
+ * helpers: sel (m ? a : b, lane by lane); sel_usual, the same where m is
+ * nearly always true (for a double a branch the processor predicts, so that
+ * the iteration need not wait for the test: clang, which builds the shipped
+ * binaries, otherwise makes the start's test a select); abs, sqrt, max
+ * (max2's); not, of a mask (0 or 1 a double's, all ones or zero a vector
+ * lane's); splat, a number into every lane. */
+#if defined(__GNUC__) || defined(__clang__)
+#define OC_USUALLY(c) __builtin_expect(!!(c), 1)
+#else
+#define OC_USUALLY(c) (c)
+#endif
+static OC_ALWAYS_INLINE double lane1_sel(int m, double a, double b) { return m ? a : b; }
+static OC_ALWAYS_INLINE double lane1_sel_usual(int m, double a, double b) {
+    if (OC_USUALLY(m)) return a;
+    return b;
 }
+static OC_ALWAYS_INLINE double lane1_abs(double a) { return fabs(a); }
+static OC_ALWAYS_INLINE double lane1_sqrt(double a) { return sqrt(a); }
+static OC_ALWAYS_INLINE double lane1_max(double a, double b) { return max2(a, b); }
+static OC_ALWAYS_INLINE int lane1_not(int m) { return !m; }
+static OC_ALWAYS_INLINE double lane1_splat(double a) { return a; }
 
-/* One evaluation: 0 if the iterate moved; 1 when done, with the root y in
- * *root and the p (and 1 / |p|) there. */
-static OC_ALWAYS_INLINE int dgamma_step(dgamma_solve *S, const double sh[2], double p[2],
-                                        double *inv_norm, double *root) {
-    const double x = S->x, rho = S->rho, inv_rho = S->inv_rho;
-    const double w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;
-    const double g0 = S->a[0] * w1x, g1 = S->a[1] * w0x;
-    const double G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = sqrt(m2);
-    const double res = m - rho * W;
-    /* u_i = W s_i / w_i: in these, k' = rho C / m^3 with C = sum g_i^2 u_i
-     * and k'' / k' = -3 (m^2 D2 - C^2) / (W m^2 C), D2 = sum g_i^2 u_i^2. */
-    const double u0 = sh[0] * w1x, u1 = sh[1] * w0x;
-    double dx = 0.0;
-    if (fabs(res) > 2 * DBL_EPSILON * rho * W && S->it < 100) {
-        const double C = G0 * u0 + G1 * u1;
-        int last;
-        if (res > 0) { /* left of the root: Halley, in one division */
-            /* dx = -(k / k') / (1 - k k'' / (2 k'^2)): k < 0 and k'' <= 0
-             * make the bracket < 1, a step longer than Newton's.  Where
-             * the bracket falls below 1/2 (far from the root) the step is
-             * held at twice Newton's: overshooting the root is harmless
-             * (Newton from the right lands left of it). */
-            const double D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
-            dx = res * m2 * W * C / max2(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2);
-            last = fabs(dx) <= 5e-6 * x;
-        } else {
-            dx = res * m2 * inv_rho / C;
-            last = fabs(dx) <= 1e-8 * x;
-        }
-        if (!last) {
-            S->x = max2(x + dx, 0.0);
-            ++S->it;
-            return 0;
-        }
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(OC_SCALAR_LANES)
+#define OC_VECTOR_LANES 1
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2m __attribute__((vector_size(16))); /* a lane all ones or zero */
+static OC_ALWAYS_INLINE v2d lane2_sel(v2m m, v2d a, v2d b) {
+    return (v2d)(((v2m)a & m) | ((v2m)b & ~m));
+}
+static OC_ALWAYS_INLINE v2d lane2_abs(v2d a) {
+    const v2m mag = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+    return (v2d)((v2m)a & mag);
+}
+static OC_ALWAYS_INLINE v2d lane2_sqrt(v2d a) {
+    const v2d r = {sqrt(a[0]), sqrt(a[1])};
+    return r;
+}
+static OC_ALWAYS_INLINE v2d lane2_max(v2d a, v2d b) { /* max2's: a > b || b != b ? a : b */
+    return lane2_sel((v2m)(b != b), a, lane2_sel((v2m)(a > b), a, b));
+}
+static OC_ALWAYS_INLINE v2d lane2_sel_usual(v2m m, v2d a, v2d b) { return lane2_sel(m, a, b); }
+static OC_ALWAYS_INLINE v2m lane2_not(v2m m) { return ~m; }
+static OC_ALWAYS_INLINE v2d lane2_splat(double a) {
+    const v2d r = {a, a};
+    return r;
+}
+#endif
+
+/* The solve of N lanes of type T with masks of type M:
+ *
+ * dgammaN_start (no square root, so that it runs beside the caller's):
+ * from the trial a_raw = (ar0, ar1), |a_raw|^2 = sq, |a_raw| = n_tr, and
+ * N (N_: N names the lanes), the direction a = a_raw / n_tr,
+ * rho = N / n_tr and the start x.  Its
+ * divisions depend only on the trial, not on its square root: they run
+ * beside it.  Moments are taken over a_i^2 / |a|^2.  The start is the
+ * root's series in the Newton step h from y = 0, to third order (error
+ * O(h^4)), from the moments M_j = sum_i a_i^2 s_i^j: k(0) = rho - 1,
+ * k' = rho M1, k''/(2 k') = A2 = 3 (M1^2 - M2) / (2 M1),
+ * k'''/(6 k') = A3 = (15 M1^3 - 27 M1 M2 + 12 M3) / (6 M1).  Far from the
+ * root the series need not converge: Newton's step then (x > 0 && x < 4 h
+ * ? x : h).
+ *
+ * dgammaN_step: one evaluation at the iterate x, into *E; moves the iterate
+ * and returns the mask of the lanes where it was the last (a lane whose
+ * evaluation ends it unmoved has dx = 0).  In u_i = W s_i / w_i,
+ * k' = rho C / m^3 with C = sum g_i^2 u_i and
+ * k'' / k' = -3 (m^2 D2 - C^2) / (W m^2 C), D2 = sum g_i^2 u_i^2.  Left of
+ * the root (res > 0): Halley in one division, dx = -(k / k') /
+ * (1 - k k'' / (2 k'^2)): k < 0 and k'' <= 0 make the bracket < 1, a step
+ * longer than Newton's.  Where the bracket falls below 1/2 (far from the
+ * root) the step is held at twice Newton's: overshooting the root is
+ * harmless (Newton from the right lands left of it).  Right of it: Newton.
+ *
+ * dgammaN_root: the root y = x + dx of the evaluation *E, and p there:
+ * p_i(x + dx) = p_i / (1 + t_i) with t_i = s_i dx / w_i = u_i dx / W.
+ * |p| = rho to rounding then, so 1 / |p| is one Newton step of the inverse
+ * square root from 1 / rho: no square root, no division.
+ *
+ * dgammaN_weights: what the tangent needs of the root y (oc_step.w,
+ * inv_wmax): w_i = 1 + y s_i as w_i / max w, and 1 / max w. */
+#define OC_DGAMMA_SOLVE(N, T, M)                                                           \
+    typedef struct {                                                                       \
+        T a0, a1;       /* the trial's direction a_raw / n_tr */                           \
+        T rho, inv_rho; /* N / n_tr and its inverse */                                     \
+        T x;            /* the iterate y */                                                \
+        T it;           /* evaluations made */                                             \
+    } dgamma##N##_solve;                                                                   \
+    typedef struct {                                                                       \
+        T x, dx, W, g0, g1, u0, u1;                                                        \
+    } dgamma##N##_eval;                                                                    \
+                                                                                           \
+    static OC_ALWAYS_INLINE void dgamma##N##_start(T ar0, T ar1, T sq, T n_tr, T N_,       \
+                                                   const double sh[2],                     \
+                                                   dgamma##N##_solve *S) {                 \
+        const T A0 = ar0 * ar0, A1 = ar1 * ar1;                                            \
+        const double s0 = sh[0], s1 = sh[1];                                               \
+        const T R1 = A0 * s0 + A1 * s1;                                                    \
+        const T inv_sq = 1.0 / sq, inv_R1 = 1.0 / R1, inv_N = 1.0 / N_;                    \
+        const T inv_ntr = n_tr * inv_sq, rho = N_ * inv_ntr, inv_rho = n_tr * inv_N;       \
+        S->a0 = ar0 * inv_ntr;                                                             \
+        S->a1 = ar1 * inv_ntr;                                                             \
+        S->rho = rho;                                                                      \
+        S->inv_rho = inv_rho;                                                              \
+        const T M1 = R1 * inv_sq, M2 = (A0 * s0 * s0 + A1 * s1 * s1) * inv_sq;             \
+        const T M3 = (A0 * s0 * s0 * s0 + A1 * s1 * s1 * s1) * inv_sq;                     \
+        const T inv_M1 = sq * inv_R1;                                                      \
+        const T h = (1.0 - rho) * inv_rho * inv_M1;                                        \
+        const T A2 = 1.5 * (M1 * M1 - M2) * inv_M1;                                        \
+        const T A3 =                                                                       \
+            (15.0 * M1 * M1 * M1 - 27.0 * M1 * M2 + 12.0 * M3) * inv_M1 * (1.0 / 6.0);     \
+        const T x = h * (1.0 - A2 * h + (2.0 * A2 * A2 - A3) * h * h);                     \
+        S->x = lane##N##_sel_usual((M)(x < 4.0 * h),                                       \
+                                   lane##N##_sel_usual((M)(x > 0.0), x, h), h);            \
+        S->it = lane##N##_splat(0.0);                                                      \
+    }                                                                                      \
+                                                                                           \
+    static OC_ALWAYS_INLINE M dgamma##N##_step(dgamma##N##_solve *S, const double sh[2],   \
+                                               dgamma##N##_eval *E) {                      \
+        const T x = S->x, rho = S->rho, inv_rho = S->inv_rho;                              \
+        const T w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;               \
+        const T g0 = S->a0 * w1x, g1 = S->a1 * w0x;                                        \
+        const T G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = lane##N##_sqrt(m2);          \
+        const T res = m - rho * W;                                                         \
+        const T u0 = sh[0] * w1x, u1 = sh[1] * w0x;                                        \
+        const M far = (M)(lane##N##_abs(res) > 2 * DBL_EPSILON * rho * W);                 \
+        const M more = (M)(S->it < 100.0);                                                 \
+        const M left = (M)(res > 0.0);                                                     \
+        const T C = G0 * u0 + G1 * u1;                                                     \
+        const T D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;                   \
+        const T num = lane##N##_sel(left, res * m2 * W * C, res * m2 * inv_rho);           \
+        const T den = lane##N##_sel(                                                       \
+            left, lane##N##_max(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2), C);       \
+        const T zero = lane##N##_splat(0.0);                                               \
+        const T dx = lane##N##_sel(more, lane##N##_sel(far, num / den, zero), zero);       \
+        const M small = (M)(lane##N##_abs(dx) <= lane##N##_sel(left, 5e-6 * x, 1e-8 * x)); \
+        E->x = x;                                                                          \
+        E->dx = dx;                                                                        \
+        E->W = W;                                                                          \
+        E->g0 = g0;                                                                        \
+        E->g1 = g1;                                                                        \
+        E->u0 = u0;                                                                        \
+        E->u1 = u1;                                                                        \
+        S->x = lane##N##_max(x + dx, zero);                                                \
+        S->it = S->it + 1.0;                                                               \
+        return lane##N##_not(far & more) | small;                                          \
+    }                                                                                      \
+                                                                                           \
+    static OC_ALWAYS_INLINE void dgamma##N##_root(const dgamma##N##_solve *S,              \
+                                                  const dgamma##N##_eval *E, T *p0, T *p1, \
+                                                  T *inv_norm, T *root) {                  \
+        const T invW = 1.0 / E->W, inv_rho = S->inv_rho;                                   \
+        const T t0 = E->u0 * E->dx * invW, t1 = E->u1 * E->dx * invW;                      \
+        *p0 = E->g0 * invW * (1.0 - t0 + t0 * t0);                                         \
+        *p1 = E->g1 * invW * (1.0 - t1 + t1 * t1);                                         \
+        const T pp = *p0 * *p0 + *p1 * *p1;                                                \
+        *inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho);                        \
+        *root = E->x + E->dx;                                                              \
+    }                                                                                      \
+                                                                                           \
+    static OC_ALWAYS_INLINE void dgamma##N##_weights(T y, const double sh[2], T *w0, T *w1, \
+                                                     T *inv_wmax) {                        \
+        const T v0 = 1.0 + y * sh[0], v1 = 1.0 + y * sh[1], wmax = lane##N##_max(v0, v1);  \
+        *w0 = v0 / wmax;                                                                   \
+        *w1 = v1 / wmax;                                                                   \
+        *inv_wmax = 1.0 / wmax;                                                            \
     }
-    /* p_i(x + dx) = p_i / (1 + t_i) with t_i = s_i dx / w_i = u_i dx / W. */
-    const double invW = 1.0 / W;
-    const double t0 = u0 * dx * invW, t1 = u1 * dx * invW;
-    p[0] = g0 * invW * (1.0 - t0 + t0 * t0);
-    p[1] = g1 * invW * (1.0 - t1 + t1 * t1);
-    /* |p| = rho to rounding now, so 1 / |p| is one Newton step of the
-     * inverse square root from 1 / rho: no square root, no division. */
-    const double pp = p[0] * p[0] + p[1] * p[1];
-    *inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho);
-    *root = x + dx;
-    return 1;
-}
 
+OC_DGAMMA_SOLVE(1, double, int)
+#ifdef OC_VECTOR_LANES
+OC_DGAMMA_SOLVE(2, v2d, v2m)
+#endif
+
+/* One cell's solve: y, and p (and 1 / |p|) there. */
 static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr,
                                              double N, const double sh[2], double p[2],
                                              double *inv_norm) {
-    dgamma_solve S;
-    dgamma_start(a_raw, sq, n_tr, N, sh, &S);
-    double y;
-    while (!dgamma_step(&S, sh, p, inv_norm, &y)) {
+    dgamma1_solve S;
+    dgamma1_eval E;
+    dgamma1_start(a_raw[0], a_raw[1], sq, n_tr, N, sh, &S);
+    while (!dgamma1_step(&S, sh, &E)) {
     }
+    double y;
+    dgamma1_root(&S, &E, &p[0], &p[1], inv_norm, &y);
     return y;
 }
 
@@ -456,36 +551,32 @@ static OC_ALWAYS_INLINE void return_map_implicit(const oc_law *L, const double a
      * same numbers in any units, down to which squares of a small
      * component underflow (scaled only where |a|^2 left a range, the
      * units decided whether a_i^2 was subnormal). */
-    double inv_np, scale, w[2], wfac; /* w = wfac (1 + dgamma sigma) */
+    double inv_np, scale;
     if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
         const double sc = trial_scale(sq, n_tr);
         const double as[2] = {a[0] * sc, a[1] * sc};
         const double y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc,
                                       L->sig_hat, p, &inv_np);
-        w[0] = 1.0 + y * L->sig_hat[0];
-        w[1] = 1.0 + y * L->sig_hat[1];
+        dgamma1_weights(y, L->sig_hat, &out->w[0], &out->w[1], &out->inv_wmax);
         scale = N * inv_np;
         /* y a_i with a = p scale, as the energy needs it */
         yp[0] = y * (p[0] * scale);
         yp[1] = y * (p[1] * scale);
         out->dgamma = y * L->inv_sigma_ref;
-        wfac = 1.0;
     } else {
         const double an[2] = {a[0] / n_tr, a[1] / n_tr}, rho = N / n_tr;
         const double v = solve_dgamma_far(an, L->sig_hat, rho, p, &inv_np);
         /* wt_i = rho w_i; y a_i = v (p_i / |p|) n_tr, without y = v / rho */
-        w[0] = rho + v * L->sig_hat[0];
-        w[1] = rho + v * L->sig_hat[1];
+        const double w0 = rho + v * L->sig_hat[0], w1 = rho + v * L->sig_hat[1];
+        const double wmax = max2(w0, w1);
+        out->w[0] = w0 / wmax;
+        out->w[1] = w1 / wmax;
+        out->inv_wmax = rho / wmax;
         scale = N * inv_np;
         yp[0] = v * (p[0] * inv_np) * n_tr;
         yp[1] = v * (p[1] * inv_np) * n_tr;
         out->dgamma = (v / rho) * L->inv_sigma_ref;
-        wfac = rho;
     }
-    const double wmax = max2(w[0], w[1]);
-    out->w[0] = w[0] / wmax;
-    out->w[1] = w[1] / wmax;
-    out->inv_wmax = wfac / wmax;
     *scale_out = scale;
 }
 
@@ -680,100 +771,32 @@ static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *
                          o);
 }
 
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(OC_SCALAR_LANES)
-/* Two cells in the two lanes of a vector (GCC/Clang vector extensions: SSE2
- * on x86-64, NEON on aarch64): each operation acts on each lane as the
- * scalar operation in dgamma_start, dgamma_step and return_map_implicit,
- * in their order, so that each lane is its cell's own arithmetic bit for
- * bit; where those branch, both sides are formed and each lane takes its
- * own.  One vector division serves two cells: the divisions are what the
- * slip's time goes to. */
-typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2m __attribute__((vector_size(16))); /* a lane all ones or zero */
-static OC_ALWAYS_INLINE v2d v2_sel(v2m m, v2d a, v2d b) {
-    return (v2d)(((v2m)a & m) | ((v2m)b & ~m));
-}
-/* Each select's mask is one comparison: gcc makes a select of a combined
- * mask (without SSE4.1's blend) lane by lane in integer registers. */
-static OC_ALWAYS_INLINE v2d v2_max2(v2d a, v2d b) { /* max2's: a > b || b != b ? a : b */
-    return v2_sel((v2m)(b != b), a, v2_sel((v2m)(a > b), a, b));
-}
-static OC_ALWAYS_INLINE v2d v2_abs(v2d a) {
-    const v2m mag = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
-    return (v2d)((v2m)a & mag);
-}
-static OC_ALWAYS_INLINE v2d v2_sqrt(v2d a) {
-    const v2d r = {sqrt(a[0]), sqrt(a[1])};
-    return r;
-}
-
-/* dgamma_solve, two cells. */
+#ifdef OC_VECTOR_LANES
+/* Two cells in the two lanes of a vector (dgamma2_*): one vector division
+ * or square root serves two cells, and the divisions are what the slip's
+ * time goes to.  A lane done goes on being evaluated (harmlessly: nothing
+ * traps) until the other is; its results are those of the evaluation that
+ * ended it. */
 typedef struct {
-    v2d a0, a1, rho, inv_rho, x, it;
+    dgamma2_solve s;
     int done[2];
     double p0[2], p1[2], inv_norm[2], root[2]; /* a lane's, once done */
-} dgamma_solve2;
+} dgamma_pair;
 
-/* dgamma_start, lane by lane. */
-static OC_ALWAYS_INLINE void dgamma_start2(v2d ar0, v2d ar1, v2d sq, v2d n_tr, v2d N,
-                                           const double sh[2], dgamma_solve2 *S) {
-    const v2d A0 = ar0 * ar0, A1 = ar1 * ar1;
-    const double s0 = sh[0], s1 = sh[1];
-    const v2d R1 = A0 * s0 + A1 * s1;
-    const v2d inv_sq = 1.0 / sq, inv_R1 = 1.0 / R1, inv_N = 1.0 / N;
-    const v2d inv_ntr = n_tr * inv_sq, rho = N * inv_ntr, inv_rho = n_tr * inv_N;
-    S->a0 = ar0 * inv_ntr;
-    S->a1 = ar1 * inv_ntr;
-    S->rho = rho;
-    S->inv_rho = inv_rho;
-    const v2d M1 = R1 * inv_sq, M2 = (A0 * s0 * s0 + A1 * s1 * s1) * inv_sq;
-    const v2d M3 = (A0 * s0 * s0 * s0 + A1 * s1 * s1 * s1) * inv_sq;
-    const v2d inv_M1 = sq * inv_R1;
-    const v2d h = (1.0 - rho) * inv_rho * inv_M1;
-    const v2d A2 = 1.5 * (M1 * M1 - M2) * inv_M1;
-    const v2d A3 = (15.0 * M1 * M1 * M1 - 27.0 * M1 * M2 + 12.0 * M3) * inv_M1 * (1.0 / 6.0);
-    const v2d x = h * (1.0 - A2 * h + (2.0 * A2 * A2 - A3) * h * h);
-    /* x > 0 && x < 4 h ? x : h */
-    S->x = v2_sel((v2m)(x < 4.0 * h), v2_sel((v2m)(x > 0.0), x, h), h);
-    S->it = (v2d){0.0, 0.0};
-    S->done[0] = S->done[1] = 0;
-}
-
-/* dgamma_step on both lanes: 1 when both are done.  A lane done goes on
- * being evaluated (harmlessly: nothing traps) until the other is; its
- * results are those of the evaluation that ended it. */
-static OC_ALWAYS_INLINE int dgamma_step2(dgamma_solve2 *S, const double sh[2]) {
-    const v2d zero = {0.0, 0.0};
-    const v2d x = S->x, rho = S->rho, inv_rho = S->inv_rho;
-    const v2d w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;
-    const v2d g0 = S->a0 * w1x, g1 = S->a1 * w0x;
-    const v2d G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = v2_sqrt(m2);
-    const v2d res = m - rho * W;
-    const v2d u0 = sh[0] * w1x, u1 = sh[1] * w0x;
-    const v2m far = (v2m)(v2_abs(res) > 2 * DBL_EPSILON * rho * W), more = (v2m)(S->it < 100.0);
-    const v2m left = (v2m)(res > 0.0); /* left of the root: Halley, else Newton */
-    const v2d C = G0 * u0 + G1 * u1;
-    const v2d D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;
-    const v2d num = v2_sel(left, res * m2 * W * C, res * m2 * inv_rho);
-    const v2d den = v2_sel(left, v2_max2(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2), C);
-    const v2d quot = num / den, invW = 1.0 / W;
-    const v2d dx = v2_sel(more, v2_sel(far, quot, zero), zero); /* 0 where the step ends unmoved */
-    const v2m small = (v2m)(v2_abs(dx) <= v2_sel(left, 5e-6 * x, 1e-8 * x));
-    const v2d t0 = u0 * dx * invW, t1 = u1 * dx * invW;
-    const v2d p0 = g0 * invW * (1.0 - t0 + t0 * t0);
-    const v2d p1 = g1 * invW * (1.0 - t1 + t1 * t1);
-    const v2d pp = p0 * p0 + p1 * p1;
-    const v2d inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho), root = x + dx;
+/* One evaluation of both lanes: 1 when both are done. */
+static OC_ALWAYS_INLINE int dgamma_pair_step(dgamma_pair *S, const double sh[2]) {
+    dgamma2_eval E;
+    const v2m end = dgamma2_step(&S->s, sh, &E);
+    v2d p0, p1, inv_norm, root;
+    dgamma2_root(&S->s, &E, &p0, &p1, &inv_norm, &root);
     for (int l = 0; l < 2; ++l)
-        if (!S->done[l] && (!(far[l] && more[l]) || small[l])) {
+        if (!S->done[l] && end[l]) {
             S->done[l] = 1;
             S->p0[l] = p0[l];
             S->p1[l] = p1[l];
             S->inv_norm[l] = inv_norm[l];
             S->root[l] = root[l];
         }
-    S->x = v2_max2(x + dx, zero);
-    S->it = S->it + 1.0;
     return S->done[0] && S->done[1];
 }
 
@@ -784,7 +807,7 @@ static OC_ALWAYS_INLINE int dgamma_step2(dgamma_solve2 *S, const double sh[2]) {
 static void slip_lanes(const oc_law *L, const slip_cell c[], int n) {
     enum { PAIRS = (OC_LANES + 1) / 2 };
     const int pairs = (n + 1) / 2;
-    dgamma_solve2 S[PAIRS];
+    dgamma_pair S[PAIRS];
     for (int v = 0; v < pairs; ++v) {
         const slip_cell *c0 = &c[2 * v], *c1 = 2 * v + 1 < n ? &c[2 * v + 1] : c0;
         const v2d sc = {c0->sc, c1->sc};
@@ -792,46 +815,49 @@ static void slip_lanes(const oc_law *L, const slip_cell c[], int n) {
         const v2d ar1 = (v2d){c0->r->a[1], c1->r->a[1]} * sc;
         const v2d n_tr = (v2d){c0->n_tr, c1->n_tr} * sc;
         const v2d N = (v2d){c0->r->out->next.N, c1->r->out->next.N} * sc;
-        dgamma_start2(ar0, ar1, ar0 * ar0 + ar1 * ar1, n_tr, N, L->sig_hat, &S[v]);
+        dgamma2_start(ar0, ar1, ar0 * ar0 + ar1 * ar1, n_tr, N, L->sig_hat, &S[v].s);
+        S[v].done[0] = S[v].done[1] = 0;
     }
     for (int left = pairs; left > 0;)
         for (int v = 0; v < pairs; ++v)
-            if (!(S[v].done[0] && S[v].done[1]) && dgamma_step2(&S[v], L->sig_hat)) --left;
+            if (!(S[v].done[0] && S[v].done[1]) && dgamma_pair_step(&S[v], L->sig_hat)) --left;
     for (int v = 0; v < pairs; ++v) {
         const v2d y = {S[v].root[0], S[v].root[1]};
-        const v2d w0 = 1.0 + y * L->sig_hat[0], w1 = 1.0 + y * L->sig_hat[1];
-        const v2d wmax = v2_max2(w0, w1);
-        const v2d r0 = w0 / wmax, r1 = w1 / wmax, inv_wmax = 1.0 / wmax; /* wfac = 1 */
+        v2d w0, w1, inv_wmax;
+        dgamma2_weights(y, L->sig_hat, &w0, &w1, &inv_wmax);
         for (int l = 0; l < 2 && 2 * v + l < n; ++l) {
             const double p[2] = {S[v].p0[l], S[v].p1[l]};
-            slip_cell_finish(L, &c[2 * v + l], y[l], p, S[v].inv_norm[l], r0[l], r1[l],
+            slip_cell_finish(L, &c[2 * v + l], y[l], p, S[v].inv_norm[l], w0[l], w1[l],
                              inv_wmax[l]);
         }
     }
 }
 #else
-/* Without vector extensions: the lanes as scalars, the same functions as
- * oc_law_step's own solve (dgamma_start, dgamma_step), evaluations in turn. */
+/* Without vector extensions: the lanes as scalars, the functions of
+ * oc_law_step's own solve (dgamma1_*), evaluations in turn. */
 static void slip_lanes(const oc_law *L, const slip_cell c[], int n) {
-    dgamma_solve S[OC_LANES];
+    dgamma1_solve S[OC_LANES];
     double p[OC_LANES][2], inv_np[OC_LANES], y[OC_LANES];
     int done[OC_LANES];
     for (int l = 0; l < n; ++l) {
-        const double as[2] = {c[l].r->a[0] * c[l].sc, c[l].r->a[1] * c[l].sc};
-        dgamma_start(as, as[0] * as[0] + as[1] * as[1], c[l].n_tr * c[l].sc,
-                     c[l].r->out->next.N * c[l].sc, L->sig_hat, &S[l]);
+        const double as0 = c[l].r->a[0] * c[l].sc, as1 = c[l].r->a[1] * c[l].sc;
+        dgamma1_start(as0, as1, as0 * as0 + as1 * as1, c[l].n_tr * c[l].sc,
+                      c[l].r->out->next.N * c[l].sc, L->sig_hat, &S[l]);
         done[l] = 0;
     }
     for (int left = n; left > 0;)
-        for (int l = 0; l < n; ++l)
-            if (!done[l] && dgamma_step(&S[l], L->sig_hat, p[l], &inv_np[l], &y[l])) {
+        for (int l = 0; l < n; ++l) {
+            dgamma1_eval E;
+            if (!done[l] && dgamma1_step(&S[l], L->sig_hat, &E)) {
+                dgamma1_root(&S[l], &E, &p[l][0], &p[l][1], &inv_np[l], &y[l]);
                 done[l] = 1;
                 --left;
             }
+        }
     for (int l = 0; l < n; ++l) {
-        const double w0 = 1.0 + y[l] * L->sig_hat[0], w1 = 1.0 + y[l] * L->sig_hat[1];
-        const double wfac = 1.0, wmax = max2(w0, w1);
-        slip_cell_finish(L, &c[l], y[l], p[l], inv_np[l], w0 / wmax, w1 / wmax, wfac / wmax);
+        double w0, w1, inv_wmax;
+        dgamma1_weights(y[l], L->sig_hat, &w0, &w1, &inv_wmax);
+        slip_cell_finish(L, &c[l], y[l], p[l], inv_np[l], w0, w1, inv_wmax);
     }
 }
 #endif
