@@ -39,7 +39,7 @@ def test_contact_params_refuse_what_the_fmu_refuses_at_its_own_ranges():
     own model description (fmpy, not the package's manifest) and, for every
     law parameter, a value just past its min or max is refused by
     ContactParams with the parameter's name, and the value at the limit is
-    taken; an angle's refusal names degrees, a stiffness' error its unit."""
+    taken; an angle's refusal names degrees, a range error the unit."""
     from fmpy import read_model_description
 
     from orthocontact.fmu.files import find_fmu
@@ -50,12 +50,15 @@ def test_contact_params_refuse_what_the_fmu_refuses_at_its_own_ranges():
     for name, v in law.items():
         lo, hi = float(v.min), float(v.max)
         assert getattr(ContactParams(**{**base, name: lo}), name) == lo
+        assert getattr(ContactParams(**{**base, name: hi}), name) == hi
         for outside in (lo * (1 - 1e-9) if lo > 0 else lo - abs(lo) * 1e-9 - 1e-300, hi * (1 + 1e-9)):
             with pytest.raises(ValueError, match=rf"ContactParams: {name}\b"):
                 ContactParams(**{**base, name: outside})
         if v.unit == "rad":
             with pytest.raises(ValueError, match="degrees"):
                 ContactParams(**{**base, name: 90.0})
+    with pytest.raises(ValueError, match=r"eps2 = 2e\+300 \[N/m\] is outside"):
+        ContactParams(**{**base, "eps2": 2e300})
     with pytest.raises(ValueError, match=r"eps1 must be a finite number > 0, got -1"):
         ContactParams(**{**base, "eps1": -1.0})
     with pytest.raises(ValueError, match=r"alpha \[rad\] must be a finite number, got nan"):
@@ -73,3 +76,15 @@ def test_from_degrees_takes_the_angles_in_degrees_by_position_or_name():
         ContactParams.from_degrees(0.1, 0.5, 1e4, 1e3, alpha=0.5)
     import pickle
     assert pickle.loads(pickle.dumps(by_name)) == by_name      # crosses to worker processes
+
+
+def test_numpy_numbers_are_taken_as_floats():
+    """Angles from numpy (np.arange, np.int64, np.float32) as users have them."""
+    import numpy as np
+    p = ContactParams.from_degrees(np.float32(0.3), 0.4, np.int64(100000), 2e5,
+                                   alpha_deg=np.int64(30), beta_deg=np.arange(0, 91, 15)[2])
+    assert p.alpha == pytest.approx(math.radians(30)) and p.beta == pytest.approx(math.radians(30))
+    assert all(type(getattr(p, n)) is float for n in ContactParams.law_parameters())
+    assert ContactParams(0.3, 0.4, 1e5, 2e5, alpha=np.float64(0.5)) == ContactParams(0.3, 0.4, 1e5, 2e5, 0.5)
+    with pytest.raises(ValueError, match="mu1 must be a finite number > 0, got True"):
+        ContactParams(True, 0.4, 1e5, 2e5)

@@ -11,8 +11,9 @@ from __future__ import annotations
 import dataclasses
 import inspect
 import math
+import numbers
 
-from .variables import Variable, contact
+from .variables import Variable, contact, law_parameters
 
 # The sliding rules' names and the numbers the FMU's slidingRule takes (the
 # table's enumeration SlidingRule).
@@ -23,7 +24,7 @@ DEFAULT_RULE = "coupled"
 
 
 def _law_rows() -> tuple[Variable, ...]:
-    return tuple(v for v in contact().variables if v.group == "law")
+    return tuple(contact().variable(name) for name in law_parameters())
 
 
 def _is_angle(v: Variable) -> bool:
@@ -33,11 +34,11 @@ def _is_angle(v: Variable) -> bool:
 def _angle_text(x: float) -> str:
     """An angle limit as the FMU's range states it: a multiple of pi where it is one."""
     turns = x / math.pi
-    return f"{round(turns):d} pi" if turns == round(turns) or abs(turns - round(turns)) < 1e-12 else repr(x)
+    return f"{round(turns):d} pi" if abs(turns - round(turns)) < 1e-12 else repr(x)
 
 
 def _unit_text(v: Variable) -> str:
-    return f" [{v.unit}]" if v.unit else ""
+    return f" [{v.unit or '-'}]"
 
 
 def _check(v: Variable, value) -> None:
@@ -45,19 +46,26 @@ def _check(v: Variable, value) -> None:
     the unit and, for an angle, the degrees a user may have typed."""
     lo, hi = v.min, v.max
     positive = lo is not None and lo > 0 and not _is_angle(v)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-            or (positive and value <= 0):
+    given = value                # as the user typed it, for the messages
+    if _is_real(value):
+        value = float(value)     # numpy's float32 compared with 1e150 would overflow
+    if not isinstance(value, float) or not math.isfinite(value) or (positive and value <= 0):
         need = "a finite number > 0" if positive else "a finite number"
         unit = "" if positive else _unit_text(v)
-        raise ValueError(f"ContactParams: {v.name}{unit} must be {need}, got {value!r}")
+        raise ValueError(f"ContactParams: {v.name}{unit} must be {need}, got {given!r}")
     if (lo is None or value >= lo) and (hi is None or value <= hi):
         return
     if _is_angle(v):
-        raise ValueError(f"ContactParams: {v.name} = {value!r} rad is outside [{_angle_text(lo)}, "
+        raise ValueError(f"ContactParams: {v.name} = {given!r} rad is outside [{_angle_text(lo)}, "
                          f"{_angle_text(hi)}] rad, the FMU's range; degrees? ({v.name} is in rad: "
                          "ContactParams.from_degrees takes deg)")
-    raise ValueError(f"ContactParams: {v.name} = {value!r}{_unit_text(v)} is outside [{lo!r}, {hi!r}], "
+    raise ValueError(f"ContactParams: {v.name} = {given!r}{_unit_text(v)} is outside [{lo!r}, {hi!r}], "
                      "the FMU's range")
+
+
+def _is_real(value) -> bool:
+    """A real number of any kind (numpy's too), not a bool."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 def _post_init(self) -> None:
@@ -65,7 +73,9 @@ def _post_init(self) -> None:
         raise ValueError(f"ContactParams: rule must be one of {', '.join(map(repr, RULES))}, "
                          f"got {self.rule!r}")
     for v in _law_rows():
-        _check(v, getattr(self, v.name))
+        value = getattr(self, v.name)
+        _check(v, value)
+        object.__setattr__(self, v.name, float(value))   # numpy's numbers become floats
 
 
 def _from_degrees(cls, *args, **kwargs) -> "ContactParams":
@@ -75,7 +85,7 @@ def _from_degrees(cls, *args, **kwargs) -> "ContactParams":
     values = dict(zip(cls.law_parameters() + ("rule",), args))
     if len(args) > len(values):
         raise TypeError(f"ContactParams.from_degrees takes at most {len(values)} arguments, got {len(args)}")
-    angles = {v.name for v in _law_rows() if _is_angle(v)}
+    angles = _ANGLES
     for key, value in kwargs.items():
         name = key[:-len("_deg")] if key.endswith("_deg") and key[:-len("_deg")] in angles else key
         if name in angles and not key.endswith("_deg"):
@@ -85,7 +95,7 @@ def _from_degrees(cls, *args, **kwargs) -> "ContactParams":
         values[name] = value
     for name in angles & set(values):
         value = values[name]
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
+        if _is_real(value):
             values[name] = math.radians(value)
     return cls(**values)
 
@@ -116,7 +126,7 @@ def _fmu_values(self) -> dict:
 
 def _law_parameters(cls) -> tuple[str, ...]:
     """The law's parameters in the table's order (the fields but `rule`)."""
-    return tuple(v.name for v in _law_rows())
+    return law_parameters()
 
 
 def _degrees_property(name: str) -> property:
@@ -148,6 +158,10 @@ ContactParams = dataclasses.make_dataclass(
     namespace={"__post_init__": _post_init, "from_degrees": classmethod(_from_degrees),
                "law_parameters": classmethod(_law_parameters), "replace": _replace,
                "fmu_values": _fmu_values, "__doc__": _doc(), "__module__": __name__})
+for _name, _member in list(vars(ContactParams).items()):   # help() names them as members
+    _function = getattr(_member, "__func__", _member)
+    if _name in ("__post_init__", "from_degrees", "law_parameters", "replace", "fmu_values"):
+        _function.__name__, _function.__qualname__ = _name, f"ContactParams.{_name}"
 _ANGLES = frozenset(v.name for v in _law_rows() if _is_angle(v))
 for _name in _ANGLES:
     setattr(ContactParams, f"{_name}_deg", _degrees_property(_name))
