@@ -773,8 +773,8 @@ static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *
 
 #ifdef OC_VECTOR_LANES
 /* Two cells in the two lanes of a vector (dgamma2_*): one vector division
- * or square root serves two cells, and the divisions are what the slip's
- * time goes to.  A lane done goes on being evaluated (harmlessly: nothing
+ * serves two cells, and the divisions are what the slip's time goes to (the
+ * square roots stay one a lane: sqrt may set errno).  A lane done goes on being evaluated (harmlessly: nothing
  * traps) until the other is; its results are those of the evaluation that
  * ended it. */
 typedef struct {
@@ -866,7 +866,10 @@ void oc_law_step_rest(const oc_law *L, const oc_rest rest[], int n) {
     /* 1: what oc_law_step does after its first stick test: a trial whose
      * square is normal sticks by its square root; a cell that slips by an
      * implicit rule where oc_law_step takes its fast solve waits for 2; any
-     * other is oc_law_step's own. */
+     * other is oc_law_step's own.  A larger n goes in chunks: the cells are
+     * independent, and slip[] holds OC_BATCH_MAX. */
+    for (; n > OC_BATCH_MAX; n -= OC_BATCH_MAX, rest += OC_BATCH_MAX)
+        oc_law_step_rest(L, rest, OC_BATCH_MAX);
     slip_cell slip[OC_BATCH_MAX];
     int n_slip = 0;
     const int fast = L->p.rule != OC_RULE_EQ20 && L->kappa <= 1e20;
@@ -907,6 +910,10 @@ void oc_law_step_rest(const oc_law *L, const oc_rest rest[], int n) {
 
 void oc_law_step_batch(const oc_law *L, const oc_state *const start[], const double u[][2],
                        const double N[], oc_step out[], int n) {
+    for (; n > OC_BATCH_MAX; n -= OC_BATCH_MAX) { /* in chunks: rest[] holds OC_BATCH_MAX */
+        oc_law_step_batch(L, start, u, N, out, OC_BATCH_MAX);
+        start += OC_BATCH_MAX, u += OC_BATCH_MAX, N += OC_BATCH_MAX, out += OC_BATCH_MAX;
+    }
     oc_rest rest[OC_BATCH_MAX];
     int n_rest = 0;
     for (int k = 0; k < n; ++k) {

@@ -203,7 +203,7 @@ typedef struct {
     double a[2];
 } oc_rest;
 
-/* Finishes n <= OC_BATCH_MAX steps that oc_law_step_quick left: each
+/* Finishes n steps that oc_law_step_quick left (in chunks of OC_BATCH_MAX): each
  * rest[k].out is then, bit for bit, what oc_law_step gives.  The cells that
  * slip by an implicit rule are stepped OC_LANES at a time, their solves'
  * evaluations interleaved and their divisions paired (the cells share the
@@ -212,7 +212,7 @@ typedef struct {
 enum { OC_BATCH_MAX = 64, OC_LANES = 8 };
 void oc_law_step_rest(const oc_law *law, const oc_rest rest[], int n);
 
-/* n <= OC_BATCH_MAX steps with one law: out[k] is, bit for bit, what
+/* n steps with one law (in chunks of OC_BATCH_MAX): out[k] is, bit for bit, what
  * oc_law_step(law, start[k], u[k], N[k], &out[k]) gives (oc_law_step_quick
  * on each, then oc_law_step_rest on those it left).  No out[k] may overlap a
  * start or an input. */

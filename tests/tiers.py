@@ -63,8 +63,9 @@ SLOW = {
                           "test_identify_refuses_validation_runs_above_the_limits"},   # an identify run
     "reproduction/test_sensitivity.py": "*",   # the rig's assumptions, 168 rig runs
     "contracts/test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
-    "contracts/test_doc_blocks.py": {"test_slow_page"},
-    "fmus/test_model_structure.py": {"test_the_patchs_declared_dependencies_are_what_the_binary_does"},   # the pages' blocks marked slow: identify, run, uq
+    "contracts/test_doc_blocks.py": {"test_slow_page"},   # the pages' blocks marked slow: identify, run, uq
+    "fmus/test_model_structure.py": {   # every n1, n2 from 1 to 32 at each base point: 3-11 s
+        "test_the_patchs_declared_dependencies_are_what_the_binary_does"},
     "fmus/test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
     "fmus/test_fmu.py": {"test_sources_compile_into_a_working_binary"},           # builds from sources/
     "closed_forms/test_rig.py": {

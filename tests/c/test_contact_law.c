@@ -825,28 +825,33 @@ static int same_step(const oc_step *x, const oc_step *y) {
 }
 
 /* oc_law_step_batch is oc_law_step, cell by cell, bit for bit: batches of
- * every size up to OC_BATCH_MAX (whole groups of OC_LANES lanes and not),
+ * every size up to 3 OC_BATCH_MAX (whole groups of OC_LANES lanes and not,
+ * whole chunks of OC_BATCH_MAX and not),
  * open, sticking and slipping cells mixed in one batch, all three rules,
  * contrasts up to 1e10 (the far solve), tiny and subnormal normal forces,
  * trials whose square leaves the normal range, each cell from the state its
  * previous step committed. */
 static void test_batch_is_the_cell_by_cell_step(void) {
     rng_state = 0x5eedu;
-    static oc_state from[OC_BATCH_MAX];
-    static oc_step want[OC_BATCH_MAX], got[OC_BATCH_MAX];
-    const oc_state *start[OC_BATCH_MAX];
-    double u[OC_BATCH_MAX][2], N[OC_BATCH_MAX];
+    enum { MOST = 3 * OC_BATCH_MAX };
+    static oc_state from[MOST];
+    static oc_step want[MOST], got[MOST];
+    const oc_state *start[MOST];
+    static double u[MOST][2], N[MOST];
     long compared = 0, kinds[3] = {0, 0, 0}, laned = 0;
     for (int episode = 0; episode < 400; ++episode) {
+        /* drawn one by one: the order of a call's arguments is the compiler's */
         const int rule = 1 + (int)pick(3);
         const double contrast = pick(4) == 0 ? pow(10, 20 * uniform() - 10) : 0.5 + uniform();
         const double mu1 = 0.2 + uniform(), e1 = pow(10, 2 + 4 * uniform());
-        const oc_params p = params(rule, mu1, mu1 * (pick(2) ? contrast : 1.0), e1,
-                                   e1 * (pick(2) ? contrast : 1.0), PI * (2 * uniform() - 1),
-                                   PI * (2 * uniform() - 1));
+        const double mu2 = mu1 * (pick(2) ? contrast : 1.0);
+        const double e2 = e1 * (pick(2) ? contrast : 1.0);
+        const double alpha = PI * (2 * uniform() - 1);
+        const double beta = PI * (2 * uniform() - 1);
+        const oc_params p = params(rule, mu1, mu2, e1, e2, alpha, beta);
         oc_law L;
         if (oc_law_init(&L, &p) != 0) continue;
-        const int n = 1 + (int)pick(OC_BATCH_MAX);
+        const int n = 1 + (int)pick(pick(4) ? OC_BATCH_MAX : MOST);
         const double scale = pick(6) == 0 ? pow(2, (double)pick(2000) - 1000) : 1.0;
         const double reach = (pick(2) ? 3.0 : 0.3) * fmax(p.mu1, p.mu2) / fmin(p.eps1, p.eps2);
         for (int k = 0; k < n; ++k) {
