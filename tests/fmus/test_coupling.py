@@ -209,3 +209,66 @@ def test_the_fmus_documentation_states_the_limit_with_this_example(version):
     assert f"h &lt; 2 sqrt({M} / {EPS1:.0f}) = {H_LIMIT * 1e3:.2f} ms" in text
     assert f"At h = {H_LARGE * 1e3:.0f} ms (h &omega; = {H_LARGE * W:.2f})" in text
     assert f"= {(H_LARGE * W) ** 2:.0f} F / &epsilon;" in text and f"fmi{version}GetDirectionalDerivative" in text
+
+
+# -- the patch turning: the same limit in rotation, h < 2 sqrt(I / k) ----------------
+
+def _turn_explicitly(version, h, steps):
+    """A body of inertia I on a 0.1 m x 0.1 m patch of 4 x 4 cells (isotropic
+    eps = 1e4 N/m, mu = 0.5, N = 10 N), turned from rest about the patch
+    centre by a constant moment, coupled explicitly: the body steps with the
+    patch's moment held, the patch takes the new angle.  Returns the angles,
+    the contact states and the dissipated energy."""
+    from orthocontact.fmu.params import ContactParams
+    from orthocontact.fmu.patch import PatchFMU, PatchGeometry
+    law = ContactParams(0.5, 0.5, 1e4, 1e4)
+    theta, omega, Mz, angles, states = 0.0, 0.0, 0.0, [], []
+    with PatchFMU(fmi_version=version) as f:
+        f.initialize(law, PatchGeometry(0.1, 0.1, 4, 4), inputs=(0.0, 0.0, 0.0, PATCH_N))
+        for _ in range(steps):
+            omega += h * (PATCH_MOMENT + Mz) / INERTIA
+            theta += h * omega
+            f.set_inputs(0.0, 0.0, theta, PATCH_N)
+            out = f.outputs()
+            Mz = out["Mz"]
+            angles.append(theta)
+            states.append(out["contactState"])
+            f.do_step(h)
+        return np.array(angles), states, out["dissipatedEnergy"]
+
+
+INERTIA = 1e-4                                        # [kg m^2]
+PATCH_N = 10.0                                        # [N]
+K_PATCH = 1e4 * (0.1**2 + 0.1**2) * (1 - 1 / 16) / 12  # the 4 x 4 grid's torsional stiffness [N m/rad]
+# A corner cell (r = 0.0375 sqrt 2 m) slides past mu N / (eps r) [rad] (its
+# shares of eps and N alike); the moment holds the body at a quarter of it,
+# so the stuck truth, never past twice that, stays below it.
+CORNER_SLIDES = 0.5 * PATCH_N / (1e4 * 0.0375 * math.sqrt(2))
+PATCH_MOMENT = K_PATCH * 0.25 * CORNER_SLIDES         # [N m]
+W_TURN = math.sqrt(K_PATCH / INERTIA)                 # [rad/s]
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_the_patch_turning_explicitly_slides_above_2_sqrt_I_over_k_and_sticks_below(version):
+    """Above h = 2 sqrt(I/k) (h w = 2.83) the first step turns the body by
+    (h w)^2 theta_eq = 2 CORNER_SLIDES: the corner cells slide at once.
+    Below (h w = 1) it sticks for 300 steps, dissipates nothing, and follows
+    the same scheme run on the stuck patch's closed-form moment, -k sin theta
+    (closed_forms.patch.stick_rotation_torque); the scheme on the linear
+    spring, theta_n = theta_eq (1 - cos((n + 1/2) phi) / cos(phi / 2)) with
+    cos phi = 1 - (h w)^2 / 2, never exceeds 2.155 theta_eq (a peak 2.0 at
+    the sampled steps, phi being 60 deg)."""
+    from orthocontact.closed_forms import patch as cp
+    assert K_PATCH == pytest.approx(cp.torsional_stiffness_grid(1e4, 1e4, 0.0, 0.1, 0.1, 4, 4), rel=1e-12)
+    theta_eq = PATCH_MOMENT / K_PATCH
+    angles, states, energy = _turn_explicitly(version, 2 * math.sqrt(2) / W_TURN, 3)
+    assert angles[0] == pytest.approx(8 * theta_eq, rel=1e-12) and states[0] == 2 and energy > 0
+    angles, states, energy = _turn_explicitly(version, 1.0 / W_TURN, 300)
+    assert set(states) == {1} and energy == 0.0
+    h, theta, omega, scheme = 1.0 / W_TURN, 0.0, 0.0, []
+    for _ in range(300):
+        omega += h * (PATCH_MOMENT + cp.stick_rotation_torque(1e4, 0.1, 0.1, theta, grid=(4, 4))) / INERTIA
+        theta += h * omega
+        scheme.append(theta)
+    np.testing.assert_allclose(angles, scheme, rtol=1e-9)
+    assert 1.99 * theta_eq < angles.max() < 2.01 * theta_eq
