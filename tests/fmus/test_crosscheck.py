@@ -16,9 +16,21 @@ from orthocontact.fmu.files import find_fmu
 
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = ("OrthotropicContact", "ContactPatch")
-# The FMUs' default parameters, as their model descriptions give them.
-B = cf.adhesion_tensor(12510.0, 1e4, math.pi / 2)
-F = cf.friction_tensor(0.408, 0.625, 0.0)
+
+
+def _defaults(model):
+    """The law's default parameters, as the FMU's own model description (read
+    by fmpy) gives them: both models' are the same (checked)."""
+    from fmpy import read_model_description
+    md = read_model_description(str(find_fmu(fmi_version=2, model=model)))
+    return {v.name: float(v.start) for v in md.modelVariables
+            if v.name in ("mu1", "mu2", "eps1", "eps2", "alpha", "beta")}
+
+
+LAW = _defaults("OrthotropicContact")
+assert _defaults("ContactPatch") == LAW
+B = cf.adhesion_tensor(LAW["eps1"], LAW["eps2"], LAW["alpha"])
+F = cf.friction_tensor(LAW["mu1"], LAW["mu2"], LAW["beta"])
 
 
 def _read(path):
@@ -30,7 +42,8 @@ def _read(path):
 def _crosscheck_dir(version, model):
     platform = {2: "linux64", 3: "x86_64-linux"}[version]
     found = sorted((ROOT / "cross-check" / "fmus" / f"{version}.0" / "cs" / platform /
-                    "orthocontact").glob(f"*/{model}"))
+                    "orthocontact").glob(f"*/{model}"),
+                   key=lambda d: tuple(int(x) for x in d.parent.name.split(".") if x.isdigit()))
     assert found, f"cross-check files of {model} missing (make crosscheck)"
     return found[-1]
 
@@ -125,9 +138,10 @@ def test_patch_crosscheck_files_reproduce_and_obey_the_law(version):
     end = np.flatnonzero(t_in[:, 0] < 0.75)[-1]
     assert state[end] == 3 and at["slipFraction"][end] == 1.0
     th = theta[end]
-    steady = cp.full_slip_rotation_grid(0.408, 0.625, 12510.0, 1e4, math.pi / 2 - th, -th, "coupled",
+    steady = cp.full_slip_rotation_grid(LAW["mu1"], LAW["mu2"], LAW["eps1"], LAW["eps2"],
+                                        LAW["alpha"] - th, LAW["beta"] - th, "coupled",
                                         0.1, 0.1, N[end], 8, 8)[2]
-    lag = 0.625 * N[end] / 1e4 / np.mean(np.hypot(x, y))
+    lag = max(LAW["mu1"], LAW["mu2"]) * N[end] / min(LAW["eps1"], LAW["eps2"]) / np.mean(np.hypot(x, y))
     assert abs(Mz[end] - steady) <= lag * abs(steady) and np.sign(Mz[end]) == np.sign(steady)
 
     # held: sticks with the last force and moment, dissipates nothing
