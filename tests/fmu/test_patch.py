@@ -76,8 +76,10 @@ def test_cell_states_in_a_first_twist_are_the_isotropic_stick_criterion_cell_by_
             theta = 1e-3 * k
             patch.set_inputs(0.0, 0.0, theta, N)
             states = patch.cell_states()
-            expected = [[2 if 1e4 * 2 * r[i][j] * math.sin(theta / 2) > 0.5 * N else 1
-                         for j in range(g.n2)] for i in range(g.n1)]
+            ratio = [[1e4 * 2 * r[i][j] * math.sin(theta / 2) / (0.5 * N) for j in range(g.n2)]
+                     for i in range(g.n1)]
+            assert all(abs(x - 1) > 1e-9 for row in ratio for x in row)   # no cell on the threshold
+            expected = [[2 if x > 1 else 1 for x in row] for row in ratio]
             assert states == expected, theta
             seen |= {s for row in states for s in row}
             patch.do_step(1e-3)
