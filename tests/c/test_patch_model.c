@@ -127,6 +127,16 @@ typedef struct {
     int n1, n2;
 } ref_setup;
 
+/* The inputs u1, u2, theta, N, p1, p2 (KNOWN's order) into a setup. */
+static void ref_set_inputs(ref_setup *g, const double x[6]) {
+    g->u[0] = x[0];
+    g->u[1] = x[1];
+    g->theta = x[2];
+    g->N = x[3];
+    g->p[0] = x[4];
+    g->p[1] = x[5];
+}
+
 /* Cell c's displacement d, share nu of N and moment arm R r, as
  * patch_variables.h defines them, formed cell by cell from the index. */
 static void ref_cell(const ref_setup *g, int c, double d[2], double *nu, double Rr[2]) {
@@ -292,12 +302,7 @@ static void step_matches_the_plain_per_cell_step(void) {
                     /* it names the first cell (in the order c = i + n1 j) whose
                      * result is not finite, else the sums */
                     ref_setup gb = g;
-                    gb.u[0] = bad[0];
-                    gb.u[1] = bad[1];
-                    gb.theta = bad[2];
-                    gb.N = bad[3];
-                    gb.p[0] = bad[4];
-                    gb.p[1] = bad[5];
+                    ref_set_inputs(&gb, bad);
                     double yb[5];
                     int sb;
                     ref_step(&law, &gb, ref_from, ref_bad, yb, &sb);
@@ -315,12 +320,7 @@ static void step_matches_the_plain_per_cell_step(void) {
                 fmi2FreeFMUstate(c, &saved);
             }
             if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) continue; /* refused: nothing changed */
-            g.u[0] = x[0];
-            g.u[1] = x[1];
-            g.theta = x[2];
-            g.N = x[3];
-            g.p[0] = x[4];
-            g.p[1] = x[5];
+            ref_set_inputs(&g, x);
             double want[5], got[5];
             int want_state, got_state;
             ref_step(&law, &g, ref_from, ref_out, want, &want_state);
