@@ -101,9 +101,18 @@ class LockedFolder:
     fd: int | None   # the lock's file descriptor (None without flock)
 
     def remove(self) -> None:
-        """Removes the folder and everything in it, then releases the lock."""
+        """Removes the folder and everything in it, then releases the lock.
+        A file that appears while the tree is removed (a process of ours
+        ending as it writes) makes a folder non-empty: removed again, for up
+        to a second; what is still left goes with the next command (its
+        maker is gone by then)."""
         import shutil
-        shutil.rmtree(self.path, ignore_errors=True)
+        import time
+        for _ in range(20):
+            shutil.rmtree(self.path, ignore_errors=True)
+            if not self.path.exists():
+                break
+            time.sleep(0.05)
         if self.fd is not None:
             os.close(self.fd)
 
