@@ -159,9 +159,21 @@ def pytest_runtest_setup(item):
 
 
 def pytest_sessionfinish(session, exitstatus):
+    worker_output = getattr(session.config, "workeroutput", None)
+    if worker_output is not None:   # a pytest-xdist worker (make check): the controller sums up
+        worker_output["optional_parts"] = dict(STATUS)
+        return
     if missing_required(session.config) and exitstatus in (pytest.ExitCode.OK,
                                                            pytest.ExitCode.NO_TESTS_COLLECTED):
         session.exitstatus = pytest.ExitCode.TESTS_FAILED
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """pytest-xdist's controller: a worker's record of the parts joins the
+    session's (a part not run on any worker is not run)."""
+    for name, why_not in getattr(node, "workeroutput", {}).get("optional_parts", {}).items():
+        record(name, why_not)
 
 
 def pytest_terminal_summary(terminalreporter, exitstatus, config):

@@ -123,9 +123,10 @@ def test_every_required_python_part_is_in_the_test_extra_the_test_command_instal
     extra = {re.split(r"[<>=!~;\s]", r, 1)[0].lower().replace("_", "-") for r in declared("test")}
     wanted = {p.distribution for p in PARTS.values() if p.required and p.distribution}
     assert wanted == {"libcosimpy", "ecospy", "fmu-manipulation-toolbox", "hypothesis"}
-    # besides the optional parts: the runner, and what tests import outright
-    # (jsonschema validates identified.json against its schema)
-    assert wanted | {"pytest", "jsonschema"} == extra
+    # besides the optional parts: the runner and its workers for make check,
+    # and what tests import outright (jsonschema validates identified.json
+    # against its schema)
+    assert wanted | {"pytest", "pytest-xdist", "jsonschema"} == extra
 
 
 def test_the_set_up_scripts_declare_no_requirement_of_their_own():
