@@ -17,7 +17,7 @@ CONFTEST = f"""
 import sys
 sys.path.insert(0, {str(TESTS)!r})
 from optional_parts import (PARTS, Part, pytest_addoption, pytest_configure, pytest_runtest_setup,
-                            pytest_sessionfinish, pytest_terminal_summary)
+                            pytest_sessionfinish, pytest_terminal_summary, pytest_testnodedown)
 PARTS.clear()
 PARTS["here"] = Part("here", "a part that is installed", lambda: None)
 PARTS["gone"] = Part("gone", "a part that is missing", lambda: "no module named gone")
@@ -89,6 +89,21 @@ def test_a_missing_required_part_fails_the_session_in_ci_and_with_require_parts(
         assert status == 1, (args, ci, out)
         assert summary(out)[-1].startswith("FAILED: required here but not run: gone (installed by "), out
         assert "platform" not in summary(out)[-1]   # a platform's condition is never required
+
+
+def test_in_worker_processes_the_summary_is_the_workers_and_a_required_part_still_fails(tmp_path):
+    """make check's pytest-xdist workers: each records its parts, the
+    controller's summary and verdict are those of a session in one process."""
+    status, out = session(tmp_path, "-n", "2")
+    assert status == 0 and "2 passed, 2 skipped" in out, out
+    assert summary(out) == [
+        "here (a part that is installed): ran",
+        "gone (a part that is missing): NOT RUN: no module named gone",
+        "unused (a part no test needs): not needed by the tests selected",
+        "platform (a platform's condition): NOT RUN: not root (never required)",
+    ]
+    status, out = session(tmp_path, "-n", "2", ci="true")
+    assert status == 1 and summary(out)[-1].startswith("FAILED: required here but not run: gone"), out
 
 
 def test_a_required_part_the_selected_tests_do_not_need_fails_nothing(tmp_path):
