@@ -38,7 +38,7 @@ N_LOAD = 18.39  # N: the rig's block, 1.875 kg * 9.806 m/s^2
 
 
 @dataclass(frozen=True)
-class Path_:
+class CrossCheck:
     """One model's cross-check path: piecewise-linear inputs through knots
     (time first), the outputs recorded, and the README's text."""
     model: str
@@ -111,8 +111,8 @@ The FMU is rate-independent: the outputs do not depend on StepSize beyond
 which input values it samples.
 """
 
-PATHS = (
-    Path_("OrthotropicContact", ("u1", "u2", "N"),
+CROSS_CHECKS = (
+    CrossCheck("OrthotropicContact", ("u1", "u2", "N"),
           # time [s], u1 [m], u2 [m], N [N]; the elastic range is mu N / eps ~ 0.6-1.2 mm
           ((0.00, 0.0, 0.0, N_LOAD),          # unloaded
            (0.15, 0.3e-3, 0.1e-3, N_LOAD),    # stick: T = -B u
@@ -123,7 +123,7 @@ PATHS = (
            (0.66, 7.0e-3, 2.0e-3, N_LOAD),    # re-contact, unloaded
            (1.00, 2.0e-3, 6.0e-3, N_LOAD)),   # slide the other way
           ("T1", "T2", "s1", "s2", "contactState", "dissipatedEnergy"), POINT_README),
-    Path_("ContactPatch", ("u1", "u2", "theta", "N", "p1", "p2"),
+    CrossCheck("ContactPatch", ("u1", "u2", "theta", "N", "p1", "p2"),
           # time [s], u1 [m], u2 [m], theta [rad], N [N], p1 [m], p2 [m]; an
           # outer cell slides past ~11 mrad, the innermost past ~85 mrad
           ((0.00, 0.0, 0.0, 0.0, N_LOAD, 0.0, 0.0),
@@ -141,19 +141,19 @@ PATHS = (
 )
 
 
-def input_table(path: Path_) -> np.ndarray:
+def input_table(path: CrossCheck) -> np.ndarray:
     t = np.round(np.arange(START, path.stop + STEP / 2, STEP), 12)
     k = np.array(path.knots)
     cols = [np.interp(t, k[:, 0], k[:, j]) for j in range(1, k.shape[1])]
     return np.column_stack([t] + cols)
 
 
-def folder(path: Path_, version: int) -> Path:
+def folder(path: CrossCheck, version: int) -> Path:
     return (ROOT / "cross-check" / "fmus" / f"{version}.0" / "cs" / PLATFORM[version] / "orthocontact"
             / __version__ / path.model)
 
 
-def simulate(path: Path_, fmu: Path, inputs: np.ndarray) -> np.ndarray:
+def simulate(path: CrossCheck, fmu: Path, inputs: np.ndarray) -> np.ndarray:
     """fmpy's co-simulation of the FMU on the input table, as an importer would."""
     from fmpy import simulate_fmu
     signals = np.array([tuple(r) for r in inputs], dtype=[("time", float)] + [(n, float) for n in path.inputs])
@@ -177,7 +177,7 @@ def read_csv(path: Path) -> tuple[list, np.ndarray]:
 
 def main(check: bool = False) -> int:
     status = 0
-    for path in PATHS:
+    for path in CROSS_CHECKS:
         inputs = input_table(path)
         refs = {}
         for version in (2, 3):
