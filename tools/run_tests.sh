@@ -78,14 +78,16 @@ for variant in "${variants[@]}"; do
 done
 # pytest's configuration: pyproject.toml.  Its summary lists the optional
 # parts; every one is required in `make test` (and wherever CI=true).
+# One worker process per core (pytest-xdist, in the test extra), or as many
+# as OC_TEST_WORKERS says (0: pytest's own process, one test after another).
+workers=()
+if .venv/bin/python -c "import xdist" 2>/dev/null; then
+  workers=(-n "${OC_TEST_WORKERS:-auto}")
+fi
 if [ $fast = 1 ]; then
-  # The fast tier in one worker process per core (pytest-xdist, in the test
-  # extra); the whole suite stays in one, as CI runs it.
-  workers=()
-  if .venv/bin/python -c "import xdist" 2>/dev/null; then workers=(-n auto); fi
   echo "== pytest, fast tier (-m 'not slow') =="
   .venv/bin/python -m pytest -q -m "not slow" "${workers[@]}" "$@"
 else
   echo "== pytest =="
-  .venv/bin/python -m pytest -q --require-parts "$@"
+  .venv/bin/python -m pytest -q --require-parts "${workers[@]}" "$@"
 fi
