@@ -308,8 +308,9 @@ int oc_law_init(oc_law *out, const oc_params *p) {
  * The iteration works on g_i = W p_i with W = w_0 w_1, w_i = 1 + y s_i, so
  * that an evaluation costs one square root and one division; its products
  * (up to W^7) stay finite while W < 1e40, which the caller guarantees
- * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest. */
-/* The solve is written once, below, over a lane type T holding one cell's
+ * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest.
+ *
+ * The solve is written once, below, over a lane type T holding one cell's
  * numbers (double, the functions dgamma1_*) or two cells' (v2d, GCC/Clang
  * vector extensions: SSE2 on x86-64, NEON on aarch64; dgamma2_*), so that a
  * batch of cells (oc_law_step_batch) steps two cells by one vector
@@ -491,7 +492,8 @@ OC_DGAMMA_SOLVE(1, double, int)
 OC_DGAMMA_SOLVE(2, v2d, v2m)
 #endif
 
-/* One cell's solve: y, and p (and 1 / |p|) there. */
+/* One cell's solve (dgamma1_*, section 3's opening comment): y, and p (and
+ * 1 / |p|) there. */
 static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr,
                                              double N, const double sh[2], double p[2],
                                              double *inv_norm) {
@@ -774,9 +776,9 @@ static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *
 #ifdef OC_VECTOR_LANES
 /* Two cells in the two lanes of a vector (dgamma2_*): one vector division
  * serves two cells, and the divisions are what the slip's time goes to (the
- * square roots stay one a lane: sqrt may set errno).  A lane done goes on being evaluated (harmlessly: nothing
- * traps) until the other is; its results are those of the evaluation that
- * ended it. */
+ * square roots stay one a lane: sqrt may set errno).  A lane done goes on
+ * being evaluated (harmlessly: nothing traps) until the other is; its
+ * results are those of the evaluation that ended it. */
 typedef struct {
     dgamma2_solve s;
     int done[2];
