@@ -4,7 +4,6 @@ FMI 2.0 and 3.0 references agree, and each path's phases obey independent
 truths (the law's tensors over the FMU's default parameters, the cells'
 sums written out here)."""
 import csv
-import math
 from pathlib import Path
 
 import numpy as np
@@ -97,11 +96,6 @@ def test_point_crosscheck_files_reproduce_and_obey_the_law(version):
     assert np.all(np.diff(T[held], axis=0) == 0) and np.all(np.diff(E[1:][held]) == 0)
 
 
-def _rotation(theta):
-    c, s = math.cos(theta), math.sin(theta)
-    return np.array([[c, -s], [s, c]])
-
-
 @pytest.mark.parametrize("version", [2, 3])
 def test_patch_crosscheck_files_reproduce_and_obey_the_law(version):
     """The patch's path against the cells written out here (0.1 m x 0.1 m,
@@ -126,7 +120,7 @@ def test_patch_crosscheck_files_reproduce_and_obey_the_law(version):
     assert np.all(state[turned] == 1)
     r = np.stack([x, y])
     for k in np.flatnonzero(turned)[::20]:
-        Rr = _rotation(theta[k]) @ r
+        Rr = cf.rotation(theta[k]) @ r
         t = -(B / 64) @ (Rr - r)
         assert Mz[k] == pytest.approx(np.sum(Rr[0] * t[1] - Rr[1] * t[0]), rel=1e-12)
         np.testing.assert_allclose(T[k], t.sum(axis=1), atol=1e-12 * abs(Mz[k]) / 0.05)
