@@ -1,7 +1,11 @@
 """What an FMU file holds as an importer that sets nothing sees it: the
 parameters' values of a fresh instance, and the FMI schema's errors on its
-model description.  Shared by the start-value and export tests."""
+model description; and one unpacked copy of an FMU per test process
+(unzipped), removed when the process ends.  Shared by the FMU tests."""
+import atexit
 import os
+import shutil
+import tempfile
 import zipfile
 
 import fmpy
@@ -11,16 +15,35 @@ from fmpy.fmi3 import FMU3Slave
 from lxml import etree
 
 
+_UNZIPPED: dict = {}
+
+
+def unzipped(path) -> str:
+    """The FMU at `path` unpacked once in this process (again if the file
+    changed), for fmpy's Slave classes: fmpy's extract() makes a new
+    temporary folder a call and leaves it behind, which a test making an
+    instance per perturbation multiplied into thousands.  The folders go
+    when the process ends."""
+    path = os.path.abspath(str(path))
+    stat = os.stat(path)
+    key = (path, stat.st_mtime_ns, stat.st_size)
+    if key not in _UNZIPPED:
+        if not _UNZIPPED:
+            atexit.register(lambda: [shutil.rmtree(d, ignore_errors=True) for d in _UNZIPPED.values()])
+        folder = tempfile.mkdtemp(prefix="orthocontact-test-fmu-")
+        _UNZIPPED[key] = extract(path, unzipdir=folder)
+    return _UNZIPPED[key]
+
+
 def values_with_nothing_set(path, names):
     """The parameters' values of a fresh instance of the FMU at `path`
     initialized without any value set: the binary's own start values."""
     md = read_model_description(str(path))
     vr = {v.name: v.valueReference for v in md.modelVariables}
     kind = {v.name: v.type for v in md.modelVariables}
-    unzipped = extract(str(path))
     fmi3 = md.fmiVersion.startswith("3")
     slave = (FMU3Slave if fmi3 else FMU2Slave)(
-        guid=md.guid, unzipDirectory=unzipped, modelIdentifier=md.coSimulation.modelIdentifier,
+        guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier=md.coSimulation.modelIdentifier,
         instanceName="nothing_set")
     try:
         slave.instantiate()

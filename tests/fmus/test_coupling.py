@@ -20,7 +20,8 @@ import zipfile
 
 import numpy as np
 import pytest
-from fmpy import extract, read_model_description
+from fmpy import read_model_description
+from fmu_values import unzipped
 
 from orthocontact.fmu import find_fmu
 
@@ -59,7 +60,7 @@ class Contact:
         else:
             from fmpy.fmi3 import FMU3Slave as Slave
         self.version = version
-        self.s = Slave(guid=md.guid, unzipDirectory=extract(path), modelIdentifier="OrthotropicContact",
+        self.s = Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier="OrthotropicContact",
                        instanceName="coupled")
         self.s.instantiate()
         self.set = self.s.setReal if version == 2 else self.s.setFloat64

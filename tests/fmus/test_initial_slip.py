@@ -8,7 +8,8 @@ gives the same results bit for bit."""
 import math
 
 import pytest
-from fmpy import extract, read_model_description
+from fmpy import read_model_description
+from fmu_values import unzipped
 
 from orthocontact.fmu import RULES, ContactFMU, ContactParams, find_fmu
 
@@ -23,7 +24,7 @@ def _slave(version):
         from fmpy.fmi2 import FMU2Slave as Slave
     else:
         from fmpy.fmi3 import FMU3Slave as Slave
-    s = Slave(guid=md.guid, unzipDirectory=extract(path), modelIdentifier="OrthotropicContact",
+    s = Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier="OrthotropicContact",
               instanceName="initial")
     s.instantiate()
     return s, vr, md

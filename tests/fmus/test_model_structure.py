@@ -15,9 +15,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from fmpy import extract, read_model_description
+from fmpy import read_model_description
 from fmpy.validation import validate_fmu
-from fmu_values import schema_errors
+from fmu_values import schema_errors, unzipped
 
 from orthocontact import closed_forms as cf
 from orthocontact.fmu import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
@@ -38,7 +38,7 @@ class Instance:
         else:
             from fmpy.fmi3 import FMU3Slave as Slave
         self.version = version
-        self.s = Slave(guid=self.md.guid, unzipDirectory=extract(path), modelIdentifier=model,
+        self.s = Slave(guid=self.md.guid, unzipDirectory=unzipped(path), modelIdentifier=model,
                        instanceName="structure")
         self.s.instantiate()
 

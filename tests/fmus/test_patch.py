@@ -16,7 +16,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from fmpy import extract, read_model_description
+from fmpy import read_model_description
+from fmu_values import unzipped
 
 from orthocontact.closed_forms import patch as cp
 from orthocontact.fmu.files import find_fmu
@@ -56,7 +57,7 @@ class Slave:
             from fmpy.fmi2 import FMU2Slave as S
         else:
             from fmpy.fmi3 import FMU3Slave as S
-        self.s = S(guid=md.guid, unzipDirectory=extract(path),
+        self.s = S(guid=md.guid, unzipDirectory=unzipped(path),
                    modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
         if version == 2:
             import ctypes
@@ -597,7 +598,7 @@ def test_fmi3_structural_parameters_resize_the_arrays_in_configuration_mode():
 
     def log(env, status, category, message):
         messages.append(message.decode(errors="replace"))
-    s = FMU3Slave(guid=md.guid, unzipDirectory=extract(str(patch_fmu(3))),
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(str(patch_fmu(3))),
                   modelIdentifier=md.coSimulation.modelIdentifier, instanceName="config")
     s.instantiate(logMessage=log)
     try:

@@ -4,7 +4,8 @@ harness's dynamic rig; its state restores into a fresh instance."""
 import math
 
 import pytest
-from fmpy import extract, read_model_description
+from fmpy import read_model_description
+from fmu_values import unzipped
 from fmpy.validation import validate_fmu
 
 from orthocontact.fmu.contact import ContactFMU
@@ -28,7 +29,7 @@ def _rig_slave(version, name="rig", messages=None):
         from fmpy.fmi2 import FMU2Slave as Slave
     else:
         from fmpy.fmi3 import FMU3Slave as Slave
-    s = Slave(guid=md.guid, unzipDirectory=extract(path), modelIdentifier="CarriageBlock",
+    s = Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier="CarriageBlock",
               instanceName=name)
     if messages is None:
         s.instantiate()
