@@ -53,8 +53,15 @@ def files_read():
     _logs.append(log)
     try:
         yield log
-    finally:
-        _logs.remove(log)
+    finally:   # by identity: two logs that read the same files are equal dicts
+        del _logs[next(i for i, x in enumerate(_logs) if x is log)]
+
+
+def paths_being_read() -> list[Path]:
+    """Every file read inside the files_read() blocks open now (a command's:
+    cli.main records what it reads, so that its output folder can be held to
+    hold none of it)."""
+    return sorted({entry.path for log in _logs for entry in log.values()})
 
 
 def sha256_of(path) -> str:

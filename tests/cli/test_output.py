@@ -54,12 +54,14 @@ def test_failed_run_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
     f = tmp_path / "c4.toml"
     f.write_text(sc)
     with pytest.raises(RuntimeError):
-        main(["run", str(f), "--out", str(out), "--workers", "1"])
+        main(["run", str(f), "--out", str(out), "--workers", "1", "--force"])
     assert [p.name for p in out.iterdir()] == ["keep.txt"]
     assert not list(tmp_path.glob(".out.partial-*"))
 
 
 def test_reproduce_replaces_only_the_files_it_writes(tmp_path):
+    """A folder of the user's own files is refused; with --force the run
+    writes beside them and replaces only a file named as its output."""
     folder = case4_named(tmp_path, "case4")
     out = tmp_path / "out"
     (out / "case4").mkdir(parents=True)
@@ -67,11 +69,18 @@ def test_reproduce_replaces_only_the_files_it_writes(tmp_path):
     (out / "case4" / "summary.json").write_text("old")
     (out / "mine.txt").write_text("keep me too")
     p = run(["reproduce", "--scenarios", folder, "--out", out], tmp_path)
+    one_error_line(p, f"--out {out}: holds 2 file(s) or folder(s) no orthocontact run wrote (case4, mine.txt)",
+                   "--force")
+    assert (out / "case4" / "summary.json").read_text() == "old" and files_under(out) == [
+        "case4/my_notes.txt", "case4/summary.json", "mine.txt"]
+    p = run(["reproduce", "--scenarios", folder, "--out", out, "--force"], tmp_path)
     assert p.returncode in (0, 1), p.stderr  # 1: the packaged report compares rows of all scenarios
     assert (out / "case4" / "my_notes.txt").read_text() == "keep me"
     assert (out / "mine.txt").read_text() == "keep me too"
     assert (out / "case4" / "summary.json").read_text() != "old"
     assert (out / "case4" / "sweep.csv").is_file() and (out / "report.md").is_file()
+    assert (f"orthocontact: --force: {out}: wrote beside 2 file(s) or folder(s) no orthocontact run wrote; "
+            "replaced case4/summary.json") in p.stderr.splitlines()
 
 
 def test_output_checks_in_process_name_the_users_path(tmp_path):
@@ -166,10 +175,9 @@ def test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs(tmp_
     into out/identify; before, the first run's reduction and rig scenario
     stayed beside the second run's identified.json (and uq took that rig)."""
     out = tmp_path / "out" / "identify"
-    out.mkdir(parents=True)
-    (out / "my_notes.txt").write_text("mine")
     p = run(["identify", SCEN / "example_recordings", "--out", out, "--no-validate"], tmp_path)
     assert p.returncode == 0, p.stderr
+    (out / "my_notes.txt").write_text("mine")   # in identify's folder: the user's, kept
     first = files_under(out)
     assert {"rig_scenario.toml", "reduction.csv", "reduction.json", "reduction_45deg.png"} <= set(first)
     p = run(["identify", SCEN / "example_identification", "--out", out, "--no-validate"], tmp_path)
@@ -238,3 +246,142 @@ def test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_sta
         os.kill(live.pid, signal.SIGCONT)
     assert live.wait(timeout=120) == 0
     assert partials() == [] and json.loads((tmp_path / "out" / "summary.json").read_text())["scenario"] == "case1"
+
+
+# -- an output folder has one owner -------------------------------------------------
+
+def snapshot(folder: Path) -> dict:
+    """Every file under `folder` (the manifest too) -> its SHA-256."""
+    return {f: file_sha256(folder / f) for f in files_under(folder)}
+
+
+@pytest.fixture(scope="module")
+def identified_once(tmp_path_factory):
+    """An identify run's folder (the reduced example set, no validation runs)."""
+    base = tmp_path_factory.mktemp("identified")
+    p = run(["identify", SCEN / "example_identification", "--out", base / "id", "--no-validate"], base)
+    assert p.returncode == 0, p.stderr
+    return base / "id"
+
+
+@pytest.fixture
+def identified(tmp_path, identified_once):
+    """A copy of identified_once's folder in this test's tmp_path (its manifest's paths are relative)."""
+    import shutil
+    return Path(shutil.copytree(identified_once, tmp_path / "id"))
+
+
+def coarse_case4(folder: Path) -> Path:
+    """Case 4 at 45 deg steps (3 angles): a run or reproduce of a second."""
+    folder.mkdir(exist_ok=True)
+    from cli_run import scenario_variant
+    return scenario_variant(SCEN / "case4.toml", "step_deg = 1.0", "step_deg = 45.0", folder / "case4.toml")
+
+
+@pytest.mark.parametrize("second", ["export", "uq"])
+def test_a_command_into_identifys_folder_is_refused_and_loses_nothing(tmp_path, identified, second):
+    """The guides chain identify -> export and identify -> uq: with --out
+    the identify folder, the second command used to delete identified.json
+    (its own input), identified.md and fit.png, with exit 0."""
+    before = snapshot(identified)
+    args = {"export": ["export", identified / "identified.json", "--angle", "40"],
+            "uq": ["uq", identified / "identified.json", "--scenario", SCEN / "mat_aged.toml",
+                   "--samples", "4", "--scheduler", "none"]}[second]
+    p = run(args + ["--out", identified], tmp_path)
+    one_error_line(p, f"--out {identified}: holds {identified / 'identified.json'}, which "
+                      f"`orthocontact {second}` reads", "`orthocontact identify` run", "--force")
+    assert snapshot(identified) == before
+
+
+def test_export_then_uq_into_the_export_folder_is_refused_naming_export(tmp_path, identified):
+    exported = tmp_path / "export"
+    p = run(["export", identified / "identified.json", "--angle", "40", "--out", exported], tmp_path)
+    assert p.returncode == 0, p.stderr
+    before = snapshot(exported)
+    p = run(["uq", identified / "identified.json", "--scenario", SCEN / "mat_aged.toml", "--samples", "4",
+             "--scheduler", "none", "--out", exported], tmp_path)
+    one_error_line(p, f"--out {exported}: holds the outputs of `orthocontact export` run", "--force to replace "
+                      "them (4 file(s))")
+    assert snapshot(exported) == before
+
+
+@pytest.mark.parametrize("into", [".", "case4"])
+def test_run_into_a_reproduce_folder_or_one_of_its_scenarios_is_refused(tmp_path, into):
+    """`run case5.toml --out <a reproduce folder>` turned its 64 files into
+    case5's 7; its scenario's subfolder is reproduce's too."""
+    scen = coarse_case4(tmp_path / "scen")
+    results = tmp_path / "results"
+    p = run(["reproduce", "--scenarios", scen.parent, "--out", results], tmp_path)
+    assert p.returncode in (0, 1), p.stderr
+    before = snapshot(results)
+    p = run(["run", scen, "--out", results / into], tmp_path)
+    one_error_line(p, f"--out {results / into}: holds the outputs of `orthocontact reproduce` run", "--force")
+    assert snapshot(results) == before
+
+
+def test_force_replaces_another_runs_files_but_never_what_the_command_reads(tmp_path, identified):
+    said = json.loads((identified / MANIFEST).read_text())
+    p = run(["export", identified / "identified.json", "--angle", "40", "--out", identified, "--force"],
+            tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert files_under(identified) == [MANIFEST, "calibration.ssv", "fmi2/OrthotropicContact.fmu",
+                                       "fmi3/OrthotropicContact.fmu", "identified.json", "rig_40.ssp"]
+    assert file_sha256(identified / "identified.json") == said["files"]["identified.json"]
+    now = json.loads((identified / MANIFEST).read_text())
+    assert now["command"] == "export" and "identified.json" not in now["files"]
+    assert (f"orthocontact: --force: {identified}: replaced `orthocontact identify` run {said['run_id'][:12]} of "
+            f"{said['date']} (3 file(s); kept identified.json, read by this command)") in p.stderr.splitlines()
+
+
+def test_the_same_command_replaces_its_earlier_run_and_says_so_in_one_line(tmp_path):
+    scen = coarse_case4(tmp_path / "scen")
+    out = tmp_path / "out"
+    assert run(["run", scen, "--out", out], tmp_path).returncode == 0
+    first = json.loads((out / MANIFEST).read_text())
+    p = run(["run", scen, "--out", out], tmp_path)
+    assert p.returncode == 0, p.stderr
+    said = [line for line in p.stderr.splitlines() if line.startswith("orthocontact:")]   # not the progress
+    assert said == [f"orthocontact: {out}: replaced `orthocontact run` run {first['run_id'][:12]} "
+                    f"of {first['date']} ({len(first['files'])} file(s))"]
+    assert p.stderr.count("warning") == 0   # not a warning: --strict does not count it
+
+
+@pytest.mark.parametrize("case", ["run", "identify", "ssp"])
+def test_a_commands_own_input_is_never_its_output(tmp_path, case):
+    """A folder (or file) holding what the command reads is refused; with
+    --force a folder is written, the input kept (ssp's file: never)."""
+    if case == "identify":
+        import shutil
+        folder = Path(shutil.copytree(SCEN / "example_identification", tmp_path / "data"))
+        args, read = ["identify", folder, "--no-validate", "--out", folder], folder
+    elif case == "run":
+        read = coarse_case4(tmp_path / "scen")
+        folder = read.parent
+        args = ["run", read, "--out", folder]
+    else:
+        read = coarse_case4(tmp_path / "scen")
+        folder = read.parent
+        args = ["ssp", read, "--angle", "40", "--out", read]
+    before = snapshot(folder)
+    p = run(args, tmp_path)
+    says = "is a file this command reads" if case == "ssp" else f"which `orthocontact {case}` reads"
+    one_error_line(p, says)
+    assert snapshot(folder) == before
+    p = run(args + ["--force"], tmp_path)
+    if case == "ssp":
+        one_error_line(p, says)
+        assert snapshot(folder) == before
+    else:
+        assert p.returncode == 0, p.stderr
+        assert all(snapshot(folder)[f] == h for f, h in before.items())   # every file kept as it was
+
+
+def test_ssp_replaces_an_ssp_but_another_file_only_with_force(tmp_path):
+    scen = coarse_case4(tmp_path / "scen")
+    target = tmp_path / "notes.ssp"
+    target.write_text("my notes")
+    p = run(["ssp", scen, "--angle", "40", "--out", target], tmp_path)
+    one_error_line(p, f"--out {target}: exists and is not an SSP package", "--force")
+    assert target.read_text() == "my notes"
+    assert run(["ssp", scen, "--angle", "40", "--out", target, "--force"], tmp_path).returncode == 0
+    assert run(["ssp", scen, "--angle", "40", "--out", target], tmp_path).returncode == 0   # an SSP now

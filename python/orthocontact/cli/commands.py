@@ -74,7 +74,7 @@ def packaged_scenarios() -> Path:
 def cmd_run(args) -> int:
     from ..output.figures import FigureDrawer
     sc = load_scenario(args.scenario, args.yes)
-    with staged_output(args.out, args.cmd) as stage, _dask_for(args) as dask, \
+    with staged_output(args.out, args.cmd, args.force) as stage, _dask_for(args) as dask, \
             FigureDrawer(args.workers or _default_workers()) as draw:
         summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
                                 dask=dask)
@@ -111,7 +111,7 @@ def cmd_reproduce(args) -> int:
         taken[sc.name] = f"the name of {sc.path}"
     t0 = time.time()
     runs, rows = [], []
-    with staged_output(args.out, args.cmd) as stage:
+    with staged_output(args.out, args.cmd, args.force) as stage:
         # The figures are drawn in worker processes while the rig runs on.
         with _dask_for(args) as dask, FigureDrawer(args.workers or _default_workers()) as draw:
             # The rig's hidden assumptions, on the calibrated experiment: a
@@ -151,7 +151,7 @@ def cmd_identify(args) -> int:
         check_work(str(args.data), identify.validation_work(data), "the data's points", "rig.toml's step_s",
                    args.yes, remedy="raise rig.toml's step_s (steps per run), or pass --no-validate (no "
                                     "validation runs) or --yes to run them anyway")
-    with staged_output(args.out, args.cmd) as stage:
+    with staged_output(args.out, args.cmd, args.force) as stage:
         from ..fmu.files import find_fmu
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
                               fmu_path=str(find_fmu(fmi_version=args.fmi)), recordings=recordings)
@@ -181,7 +181,7 @@ def cmd_sensitivity(args) -> int:
     check_work(str(sc.path), sensitivity.work(planned), "its runs", "rig.travel_m", args.yes,
                remedy="lower rig.travel_m (steps per run, at the study's 4 ms step), or pass --yes to "
                       "run it anyway")
-    with staged_output(args.out, args.cmd) as stage, _dask_for(args) as dask, \
+    with staged_output(args.out, args.cmd, args.force) as stage, _dask_for(args) as dask, \
             FigureDrawer(1) as draw:
         res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
                               dask=dask, planned=planned)
@@ -211,7 +211,7 @@ def cmd_uq(args) -> int:
     # every run uq makes: the draws and the step check at the scenario's own step
     check_uq_size(sc, args.yes, args.samples, uq.uq_step(sc, args.step_s), "--samples",
                   "--step-s or rig.travel_m")
-    with staged_output(args.out, args.cmd) as stage:
+    with staged_output(args.out, args.cmd, args.force) as stage:
         res = uq.propagate(est, sc, args.samples, args.seed, None,
                            scheduler=None if args.scheduler == "none" else args.scheduler,
                            workers=args.workers or _default_workers(), step_s=args.step_s,
@@ -272,7 +272,7 @@ def cmd_export(args) -> int:
     if forced:
         warn(f"--force: exporting {len(forced)} value(s) that cannot be right (said in "
              f"documentation/calibration.html): " + "; ".join(forced))
-    with staged_output(args.out, args.cmd) as stage:
+    with staged_output(args.out, args.cmd, args.force) as stage:
         res = export(cal, stage, args.angle, args.scenario, forced)
     from ..rig.checks import system_settling_warning
     line = system_settling_warning(f"{res['ssp'].name}", res["ssp_params"], res["ssp_rig"])

@@ -38,7 +38,9 @@ from pathlib import Path
 
 from ..errors import InputError
 from .interrupts import install_signal_handlers, interrupted, quiet_interrupts, written
-from .output import check_output_file, check_output_folder, forget_warnings, warn, warnings_said
+from ..textfiles import files_read
+from .output import (check_output_file, check_output_folder, check_owner, forget_warnings, warn,
+                     warnings_said)
 from .parser import build_parser
 
 __all__ = ["main", "entry", "InputError", "OS_ERROR"]
@@ -111,11 +113,16 @@ def run_command(argv=None) -> int:
         if getattr(args, "scheduler", None) not in (None, "none"):
             from ..runs.cluster import check_address
             check_address(args.scheduler)
+        # What the command reads (the paths its arguments name; every file
+        # read through textfiles once it runs) its output may not hold.
+        reads = [Path(v) for v in (getattr(args, name) for name in getattr(args, "reads", ())) if v is not None]
         if out is not None and args.cmd == "ssp":
-            check_output_file(out)
+            check_output_file(out, reads=reads, force=args.force)
         elif out is not None:
             check_output_folder(out)
-        status = args.func(args)
+            check_owner(out, args.cmd, args.force, reads)
+        with files_read():
+            status = args.func(args)
         if interrupted() and written() is None:
             raise KeyboardInterrupt
         if interrupted():  # it came after the commit: the results stand

@@ -1,19 +1,26 @@
 """Where a command's results go: output paths checked before any work, a
 staging folder committed only when everything is written, the folder's
-manifest (output.manifest: a new run removes its predecessor's files, never
-another's), and the warning lines that --strict counts."""
+owner (output.manifest: a command writes into a new or empty folder, or one
+of an earlier run of its own, whose files it replaces; another command's
+folder, or one holding a file the command reads, only with --force, and
+what the command reads is never removed), and the warning lines that
+--strict counts."""
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import errno
 import os
 import shutil
 import sys
 import tempfile
+import zipfile
 from pathlib import Path
 
 from ..errors import InputError
-from ..output.manifest import new_manifest, read_manifest, remove_earlier, write_manifest
+from ..output.manifest import (MANIFEST, Manifest, new_manifest, owner_of, read_manifest, remove_earlier,
+                               write_manifest)
+from ..textfiles import paths_being_read
 from .interrupts import hold_interrupts, interrupted, results_written
 
 
@@ -47,12 +54,87 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
         read_manifest(out)   # its list decides what the run removes: a bad one is refused now
 
 
-def check_output_file(out: Path, option: str = "--out") -> None:
+def check_owner(out: Path, command: str | None, force: bool = False, reads=(), option: str = "--out") -> None:
+    """Refuses (InputError, one line naming the owner and --force) to write
+    the results of `orthocontact COMMAND` into `out` unless it is new, empty
+    (but for a killed run's scratch folders) or holds an earlier run of the
+    same command: not a folder of another command's run, nor one holding
+    files no orthocontact run wrote, nor one holding a file or folder of
+    `reads` (what the command reads).  `force` lets each through: the
+    commit then replaces the other run's files and keeps what is read."""
+    out = Path(out)
+    inside = [r for r in (Path(r) for r in reads) if _holds(out, r)]
+    owner = owner_of(out)
+    mine = owner is not None and owner[1].command == command and owner[0] == out.absolute()
+    if force or (mine and not inside):
+        return
+    by = f"`orthocontact {command}`" if command else "this command"
+    if inside:
+        what = f"holds {inside[0]}, which {by} reads"
+        if owner is not None:
+            what += f" (the folder holds the outputs of {owner[1].describe()})"
+        remedy = "pass --force to write there all the same (it never removes what it reads)"
+    elif owner is not None:
+        what = f"holds the outputs of {owner[1].describe()}"
+        remedy = f"pass --force to replace them ({_count(owner, out)})"
+    else:
+        strangers = _entries(out)
+        if not strangers:
+            return
+        what = (f"holds {len(strangers)} file(s) or folder(s) no orthocontact run wrote "
+                f"({', '.join(sorted(strangers)[:3])}{', ...' if len(strangers) > 3 else ''})")
+        remedy = "pass --force to write beside them (only files named as its outputs are replaced)"
+    raise InputError(f"{option} {out}: {what}; {by} writes into a new or empty folder or one of its own "
+                     f"earlier runs: choose another {option}, or {remedy}")
+
+
+def _holds(out: Path, path: Path) -> bool:
+    """Whether `path` is `out` or lies under it (both resolved: links too)."""
+    out, path = out.resolve(), path.resolve()
+    return path == out or out in path.parents
+
+
+def _entries(out: Path) -> list[str]:
+    """The names in `out` but for killed runs' scratch folders (removed by
+    the next run) and the command's own probe: what makes it not empty."""
+    if not out.is_dir():
+        return []
+    scratch = (f".{out.name}.partial-", ".orthocontact-probe-")
+    return [p.name for p in out.iterdir() if not p.name.startswith(scratch)]
+
+
+def _count(owner: tuple[Path, Manifest], out: Path) -> str:
+    home, m = owner
+    prefix = _prefix(home, out)
+    n = sum(1 for name in m.files if name.startswith(prefix))
+    return f"{n} file(s)"
+
+
+def _prefix(home: Path, out: Path) -> str:
+    """The path of `out` under the manifest's folder `home`, as a prefix of its list's names."""
+    rel = Path(out).absolute().relative_to(Path(home).absolute()).as_posix()
+    return "" if rel == "." else rel + "/"
+
+
+def note(line: str) -> None:
+    """One line on stderr that is no warning (--strict does not count it)."""
+    print(f"orthocontact: {line}", file=sys.stderr, flush=True)
+
+
+def check_output_file(out: Path, option: str = "--out", reads=(), force: bool = False,
+                      kind: str = "an SSP package", marker: str = "SystemStructure.ssd") -> None:
     """Raises InputError, naming the user's path, unless a file can be written
-    at `out` (in an existing, writable folder); OSError as check_output_folder."""
+    at `out` (in an existing, writable folder): not a file the command reads
+    (`reads`, --force or not), nor an existing file other than `kind` (a zip
+    holding `marker`) unless `force`; OSError as check_output_folder."""
     out = Path(out)
     if out.is_dir():
         raise InputError(f"{option} {out}: is a folder; expected a file name")
+    if any(out.resolve() == Path(r).resolve() for r in reads):
+        raise InputError(f"{option} {out}: is a file this command reads; choose another {option}")
+    if out.exists() and not force and not _is_zip_with(out, marker):
+        raise InputError(f"{option} {out}: exists and is not {kind}; choose another {option}, or pass "
+                         "--force to replace it")
     if not out.parent.is_dir():
         raise InputError(f"{option} {out}: the folder {out.parent} does not exist")
     try:
@@ -63,15 +145,27 @@ def check_output_file(out: Path, option: str = "--out") -> None:
         raise InputError(f"{option} {out}: {out.parent} is not writable ({e.strerror})") from None
 
 
+def _is_zip_with(path: Path, member: str) -> bool:
+    try:
+        with zipfile.ZipFile(path) as z:
+            return member in z.namelist()
+    except (OSError, zipfile.BadZipFile):
+        return False
+
+
 @contextlib.contextmanager
-def staged_output(out: Path, command: str | None = None):
+def staged_output(out: Path, command: str | None = None, force: bool = False):
     """A scratch folder beside `out`; its files move into `out` only if the
     block completes, so a failure or an interrupt leaves nothing behind: not
     the scratch folder, nor parent folders made for it, nor a half-written `out`.
     On success `out` is this run's (commit_run): the files an earlier run's
-    manifest lists are replaced or removed, the user's own stay."""
+    manifest lists are replaced or removed, the user's own stay.  The owner
+    of `out` is checked (check_owner) against every file the command has
+    read by now (textfiles.paths_being_read) before the block and again
+    before the commit."""
     from ..fmu.files import locked_folder
     out = Path(out)
+    check_owner(out, command, force, paths_being_read())
     made = []
     for parent in reversed(out.parents):
         if not parent.exists():
@@ -102,25 +196,53 @@ def staged_output(out: Path, command: str | None = None):
                 parent.rmdir()
         raise
     try:
-        commit_run(stage, out, command)
+        reads = paths_being_read()
+        check_owner(out, command, force, reads)   # another command may have written there meanwhile
+        commit_run(stage, out, command, reads)
     finally:   # a commit the system refused (disk full) leaves no scratch folder either
         held.remove()
     results_written(out)
 
 
-def commit_run(stage: Path, out: Path, command: str | None) -> None:
+def commit_run(stage: Path, out: Path, command: str | None, reads=()) -> None:
     """Moves the run's files from `stage` into `out`, removes what the
-    folder's earlier manifest lists and this run did not write, and writes
-    this run's manifest last (a reader that finds it finds its files)."""
+    folder's earlier run (owner_of) wrote there and this run did not write,
+    but for what the command read (`reads`), says so in one line, and
+    writes this run's manifest last (a reader that finds it finds its files)."""
     from .. import __version__
-    earlier = read_manifest(out) if out.is_dir() else None
+    out = Path(out)
+    owner = owner_of(out)
     run = new_manifest(stage, command, __version__)
+    strangers = sorted(set(_entries(out)) - {MANIFEST}) if owner is None else []
+    replaced = sorted(n for n in run.files if (out / n).exists()) if strangers else []
+    clash = [n for n in run.files if any(Path(r).resolve() == (out / n).resolve() for r in reads)]
+    if clash:   # --force or not: what the command read is never replaced
+        raise InputError(f"--out {out}: {clash[0]} is a file this command read and would write; "
+                         "choose another --out")
     _move_into(stage, out)
-    if earlier is not None:
-        kept = remove_earlier(out, earlier, run.files)
-        if kept:
-            warn(f"{out}: kept {', '.join(kept)} of {earlier.describe()}: changed since that run "
+    if owner is not None:
+        home, earlier = owner
+        prefix = _prefix(home, out)
+        kept_read = {n for n in earlier.files if any(_holds(Path(r), home / n) for r in reads)}
+        theirs = dataclasses.replace(earlier, files={k: v for k, v in earlier.files.items()
+                                                     if k.startswith(prefix)})
+        keep = {prefix + n for n in run.files} | kept_read
+        changed = remove_earlier(home, theirs, keep)
+        if prefix:   # a folder inside another run's: that run's list no longer names it
+            write_manifest(home, dataclasses.replace(earlier, files={
+                k: v for k, v in earlier.files.items() if not k.startswith(prefix)}))
+        if changed:
+            warn(f"{out}: kept {', '.join(changed)} of {earlier.describe()}: changed since that run "
                  "wrote them, so they are taken as yours; they are not this run's outputs")
+        said = f"replaced {earlier.describe()} ({len(theirs.files)} file(s)"
+        read_here = sorted(kept_read & set(theirs.files))
+        if read_here:
+            said += f"; kept {', '.join(read_here)}, read by this command"
+        said += ")"
+        note(f"{out}: {said}" if earlier.command == command and not prefix else f"--force: {out}: {said}")
+    elif strangers:
+        note(f"--force: {out}: wrote beside {len(strangers)} file(s) or folder(s) no orthocontact run "
+             f"wrote" + (f"; replaced {', '.join(replaced)}" if replaced else "; none replaced"))
     write_manifest(out, run)
 
 

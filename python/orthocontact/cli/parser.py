@@ -109,6 +109,12 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"orthocontact: error: {self.prog}: {message} (see {self.prog} --help)\n")
 
 
+OUT_RULE = "new, empty, or an earlier run's of this command, whose files are replaced"
+OWNER_HELP = ("write into --out even if another command's run or files of your own are there: the "
+              "other run's files are replaced, files of yours only where named as an output, and what "
+              "the command reads is never removed; without it such a folder is refused")
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = _Parser(
         prog="orthocontact",
@@ -140,8 +146,12 @@ def build_parser() -> argparse.ArgumentParser:
                             "(2e6 rig runs or 2e9 rig steps, about 5 minutes on 2 cores): a "
                             "sweep.step_deg or rig.step_s that small is usually a typo")
 
+    def force(p, what=OWNER_HELP):
+        p.add_argument("--force", action="store_true", help=what)
+
     def common(p, out_help, scheduler=True):
         p.add_argument("--out", required=True, type=_out_path, metavar="DIR", help=out_help)
+        force(p)
         p.add_argument("--workers", type=_workers, default=None, metavar="N",
                        help="worker processes for sweeps (default: the number of cores, at most 8; "
                             "refused above 4 per core or what the free memory holds, about 128 MB "
@@ -166,19 +176,18 @@ def build_parser() -> argparse.ArgumentParser:
                                    "PNG figures into DIR.")
     r.add_argument("scenario", metavar="SCENARIO", help="scenario file (TOML; format in "
                    "docs/reference/file-formats.md); angles in degrees, forces in N, lengths in m")
-    common(r, "output folder: created if missing, files replaced; written only when the run "
-              "completes")
-    r.set_defaults(func=cmd_run)
+    common(r, f"output folder ({OUT_RULE}); written only when the run completes")
+    r.set_defaults(func=cmd_run, reads=("scenario",))
     p = sub.add_parser("reproduce", help="run every bundled scenario (the paper's and the contact "
                                          "patch's) and write report.md",
                        description="Run every scenario of the folder (default: the paper's and the "
                                    "contact patch's, packaged) and write report.md beside one folder "
                                    "per scenario into DIR.")
-    common(p, "output folder for report.md, summary.json and one folder per scenario; written "
-              "only when everything completes")
+    common(p, f"output folder for report.md, summary.json and one folder per scenario ({OUT_RULE}); "
+              "written only when everything completes")
     p.add_argument("--scenarios", default=None, metavar="FOLDER",
                    help="folder of scenario files (*.toml; default: the packaged ones)")
-    p.set_defaults(func=cmd_reproduce)
+    p.set_defaults(func=cmd_reproduce, reads=("scenarios",))
     i = sub.add_parser("identify", help="identify mu1, mu2, the stiffness ratio and the absolute "
                                         "stiffness [N/m] from measurements",
                        description="Identify the law's parameters from a measurement folder (mu1, "
@@ -191,10 +200,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "(run,kind,mat_angle_deg,velocity_m_s), trajectories/RUN.csv (t_s,x1_m,x2_m), "
                         "forces/RUN.csv (t_s,force_N); angles in degrees, forces in N, positions in m, "
                         "times in s, velocity in m/s")
-    common(i, "output folder: created if missing; written only when the fit completes", scheduler=False)
+    common(i, f"output folder ({OUT_RULE}); written only when the fit completes", scheduler=False)
     i.add_argument("--no-validate", action="store_true",
                    help="skip the validation runs of the identified parameters on the FMU")
-    i.set_defaults(func=cmd_identify)
+    i.set_defaults(func=cmd_identify, reads=("data",))
     s = sub.add_parser("ssp", help="write the experiment at one angle as an SSP 1.0 package "
                                    "(rig FMU + contact FMU) for any SSP-capable simulator",
                        description="Write SystemStructure.ssd and both FMI 2.0 FMUs (CarriageBlock, "
@@ -204,8 +213,10 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--angle", type=_angle_deg, required=True, metavar="DEG",
                    help="the mat angle a [deg] (the scenario's geometry sets the law's axes from it)")
     s.add_argument("--out", type=_out_path, required=True, metavar="FILE.ssp",
-                   help="the package to write (replaced if it exists)")
-    s.set_defaults(func=cmd_ssp)
+                   help="the package to write (an SSP there is replaced; any other file only with --force, "
+                        "and never the scenario it reads)")
+    force(s, "replace the file --out names even if it is no SSP package")
+    s.set_defaults(func=cmd_ssp, reads=("scenario",))
     x = sub.add_parser("export", help="write both contact FMUs calibrated with an identification's "
                                       "estimates, an SSV file and an SSP of the rig",
                        description="Write DIR/fmi2/ and DIR/fmi3/OrthotropicContact.fmu whose parameters' "
@@ -218,18 +229,17 @@ def build_parser() -> argparse.ArgumentParser:
                    help="identified.json written by `orthocontact identify` (its data folder must be "
                         "readable: the export names the data's digest)")
     x.add_argument("--out", type=_out_path, required=True, metavar="DIR",
-                   help="output folder: created if missing, files replaced; written only when "
-                        "everything completes")
+                   help=f"output folder ({OUT_RULE}); written only when everything completes")
     x.add_argument("--angle", type=float, default=45.0, metavar="DEG",
                    help="mat angle [deg] in the measurement's geometry that the FMUs' axes alpha, "
                         "beta are set for and the SSP's rig runs at (default 45)")
     x.add_argument("--scenario", type=Path, default=None, metavar="SCENARIO",
                    help="sweep scenario file (TOML) whose rig the SSP uses (default: the data's "
                         "rig.toml)")
-    x.add_argument("--force", action="store_true",
-                   help="export values outside the plausible range too (refused otherwise, with the "
-                        "reason); said in a warning and in the FMUs' documentation")
-    x.set_defaults(func=cmd_export)
+    force(x, "export values the plausibility gate refuses or warns about (said in a warning and in "
+             "the FMUs' documentation and model description), and write into --out even if another "
+             "command's run is there (its files are replaced; what export reads is never removed)")
+    x.set_defaults(func=cmd_export, reads=("identification", "scenario"))
     v = sub.add_parser("sensitivity", help="how the rig's unmeasured strip friction and viscosity, "
                                            "and the velocity, move the peak angle and the identified "
                                            "eps1/eps2",
@@ -240,8 +250,8 @@ def build_parser() -> argparse.ArgumentParser:
                                    "0.244 m/s after calibrating at 0.125 m/s; CSV, JSON, PNG into DIR.")
     v.add_argument("scenario", metavar="SCENARIO", help="a sweep scenario with the experiment's "
                    "geometry (closed_form = \"mat\"), e.g. scenarios/mat_aged.toml")
-    common(v, "output folder: created if missing; written only when everything completes")
-    v.set_defaults(func=cmd_sensitivity)
+    common(v, f"output folder ({OUT_RULE}); written only when everything completes")
+    v.set_defaults(func=cmd_sensitivity, reads=("scenario",))
     u = sub.add_parser("uq", help="propagate an identification's uncertainty to the predicted "
                                   "trajectory angle over a scenario's angles (Dask)",
                        description="Draw parameter sets from identified.json's estimates and "
@@ -258,7 +268,8 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--samples", required=True, type=_positive_int("parameter sets"), metavar="N",
                    help="parameter sets to draw; rig runs = N x the scenario's angles")
     u.add_argument("--out", required=True, type=_out_path, metavar="DIR",
-                   help="output folder: created if missing; written only when all runs complete")
+                   help=f"output folder ({OUT_RULE}); written only when all runs complete")
+    force(u)
     u.add_argument("--seed", type=_seed, default=0, metavar="S",
                    help="seed of the draws (default 0): the same seed gives the same files, "
                         "serial or on any cluster")
@@ -277,5 +288,5 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--chunk-runs", type=_positive_int("runs"), default=20000, metavar="RUNS",
                    help="most rig runs per task sent to a worker (default 20000; the last tasks are smaller)")
     strict(u)
-    u.set_defaults(func=cmd_uq)
+    u.set_defaults(func=cmd_uq, reads=("identification", "scenario"))
     return ap

@@ -105,6 +105,25 @@ def read_manifest(folder: Path) -> Manifest | None:
     return Manifest(d.get("command"), d["run_id"], str(d.get("date")), str(d.get("version")), dict(files))
 
 
+def owner_of(folder: Path) -> tuple[Path, Manifest] | None:
+    """The run whose outputs `folder` holds, with the folder of its manifest:
+    the folder's own manifest, else the nearest enclosing folder's whose
+    list names a file under `folder` (reproduce's <out>/<scenario>/ is
+    reproduce's); None if no run wrote there.  InputError as read_manifest."""
+    folder = Path(folder).absolute()
+    m = read_manifest(folder) if folder.is_dir() else None
+    if m is not None:
+        return folder, m
+    for parent in folder.parents:
+        if not (parent / MANIFEST).is_file():
+            continue
+        m = read_manifest(parent)
+        under = folder.relative_to(parent).as_posix() + "/"
+        if any(name.startswith(under) for name in m.files):
+            return parent, m
+    return None
+
+
 def remove_earlier(folder: Path, old: Manifest, keep: dict) -> list[str]:
     """Removes from `folder` the files `old` lists that are not in `keep`
     (the new run's paths) and are still as `old` recorded them, and the
