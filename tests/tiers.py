@@ -32,6 +32,8 @@ SLOW = {
     },
     "identification/test_export.py": {   # identifies the bundled recordings twice
         "test_force_logs_changed_after_identify_are_refused_by_export_and_uq_naming_them",
+        # an identify and two exports per unit slip: 3-5 s each
+        "test_a_unit_slip_identify_warns_about_is_refused_by_export_unless_forced",
     },
     "cli/test_output.py": {"test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs",
                            "test_reproduce_into_the_same_folder_leaves_no_scenario_of_the_earlier_run",
@@ -64,6 +66,7 @@ SLOW = {
     "reproduction/test_sensitivity.py": "*",   # the rig's assumptions, 168 rig runs
     "contracts/test_install.py": {"test_editable_install_finds_its_fmus_and_runs"},   # a fresh venv
     "contracts/test_doc_blocks.py": {"test_slow_page"},   # the pages' blocks marked slow: identify, run, uq
+    "contracts/test_cli_fuzz.py": {"test_hostile_runs_of_every_command_end_without_a_traceback"},   # 40 runs
     "fmus/test_model_structure.py": {   # every n1, n2 from 1 to 32 at each base point: 3-11 s
         "test_the_patchs_declared_dependencies_are_what_the_binary_does"},
     "fmus/test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
