@@ -209,3 +209,22 @@ def test_identify_refuses_a_stiffness_that_cannot_be_right_and_writes_nothing(tm
     one_error_line(p, "identified eps", "none above 1e+12 N/m can be right",
                    "refused: identified.json not written")
     assert not (tmp_path / "o").exists()
+
+
+def test_forces_all_in_kn_are_named_by_their_size_against_m_g():
+    """The bundled recordings with every force in kN: each ratio is sane,
+    but every (F - F_int)/(m g) is 1000 times too small (measured 0.00041 ..
+    0.00063 over the slides, F_int 0.00498 N)."""
+    N = 1.875 * 9.806
+    f = plausibility.force_unit_check([0.00041, 0.00063], 0.00498, "d: ", "mu1, mu2")
+    assert f.level == "warning" and f.line == (
+        "d: mu1, mu2 = 0.00041 .. 0.00063 (F_int = 0.00498 N): all below the usual 0.01-3 of a friction "
+        "coefficient, and 1000 times each within it; forces in kN? (force_N is in N)")
+    assert "(m g = 18.39 N, F_int" in plausibility.force_unit_check([0.0004], 0.005, normal_force=N).line
+    assert plausibility.force_unit_check([0.41, 0.63], 4.98) is None              # in N
+    assert plausibility.force_unit_check([0.0004, 0.41], 0.005) is None           # not every force
+    assert plausibility.force_unit_check([0.00041, 0.0045], 0.005) is None        # 4.5: no factor 1000 fits
+    assert plausibility.force_unit_check([0.00041], 5.0) is None                  # F_int 5 kN: no
+    # a force in kN against F_int in N is below F_int: the refusal names kN where 1000 F fits
+    assert plausibility.force_check(0.0125, 5.0, N).line.endswith("; force_N in kN?")
+    assert "kN" not in plausibility.force_check(4.0, 5.0, N).line

@@ -64,7 +64,8 @@ QUANTITIES = {
     "eps_ratio": Quantity("-", (0.0, 1e6), (1e-3, 1e3), "stiffness ratios eps1/eps2 are 1e-3-1e3"),
     # a ramp run's stick stiffness dF/dx1 (raw recordings): a stiffness of the contact along x1
     "stiffness_N_m": Quantity("N/m", (0.0, 1e12), (10.0, 1e9),
-                              "a ramp's stick stiffness dF/dx1 is 10-1e9 N/m", ((1e3, "positions in mm"),)),
+                              "a ramp's stick stiffness dF/dx1 is 10-1e9 N/m",
+                              ((1e3, "positions in mm or forces in kN"),)),
 }
 
 
@@ -253,16 +254,48 @@ def ramp_extent_check(max_x1_m: float, travel_m: float, where: str = "",
 # up to 5 (the hard range of mu_strip; mu1, mu2's usual range ends at 3).
 MU_FROM_FORCE = (0.0, 5.0)
 
+# A force logged in kN comes out this many times too small.
+KN = 1e3
+
 
 def force_check(force_N: float, f_int_N: float, normal_force: float, where: str = "") -> Finding | None:
     """A driving force of sliding [N] against the carriage's internal
     resistance F_int [N] and the normal force m g [N]: an error at or below
-    F_int (the sensor reads F_int plus the push), or implying a friction
-    coefficient (F - F_int)/(m g) outside MU_FROM_FORCE (N? kN, or lbf?)."""
+    F_int (the sensor reads F_int plus the push; kN named where KN times
+    the force would imply a friction coefficient in MU_FROM_FORCE), or
+    implying a friction coefficient (F - F_int)/(m g) outside MU_FROM_FORCE
+    (N? kN, or lbf?)."""
     mu = (force_N - f_int_N) / normal_force
     if MU_FROM_FORCE[0] < mu < MU_FROM_FORCE[1]:
         return None
-    why = (f"below f_int_N = {f_int_N:g} N (the sensor reads F_int plus the push)" if force_N <= f_int_N else
-           f"mu = (F - F_int)/(m g) = {mu:.3g}, outside ({MU_FROM_FORCE[0]:g}, {MU_FROM_FORCE[1]:g}): "
-           "N? (kN, or lbf?)")
+    if force_N <= f_int_N:
+        why = f"below f_int_N = {f_int_N:g} N (the sensor reads F_int plus the push)"
+        if MU_FROM_FORCE[0] < (KN * force_N - f_int_N) / normal_force < MU_FROM_FORCE[1]:
+            why += "; force_N in kN?"
+    else:
+        why = (f"mu = (F - F_int)/(m g) = {mu:.3g}, outside ({MU_FROM_FORCE[0]:g}, {MU_FROM_FORCE[1]:g}): "
+               "N? (kN, or lbf?)")
     return Finding("error", f"{where}force_N = {force_N:g}: {why}")
+
+
+def force_unit_check(mus: Iterable[float], f_int_N: float, where: str = "", what: str = "mu",
+                     normal_force: float | None = None) -> Finding | None:
+    """A warning naming kN where every friction coefficient `mus` [-] the
+    forces give ((F - F_int)/(m g) of each measured force, or mu1, mu2 as
+    identified) lies below the usual range of mu1, mu2 and KN times each
+    within it, and KN times F_int [N] is a usual F_int too: the forces were
+    likely logged in kN.  A whole set in kN (slides, carriage runs, ramps)
+    keeps every ratio, the angles and eps1/eps2 sane; only the forces'
+    size against m g shows it.  `what` names the coefficients; m g [N] is
+    said where given."""
+    mus = [float(m) for m in mus]
+    lo, hi = QUANTITIES["mu1"].usual
+    if not mus or not all(0 < m < lo and lo <= KN * m <= hi for m in mus):
+        return None
+    if check("f_int_N", KN * f_int_N) is not None:
+        return None
+    mg = "" if normal_force is None else f"m g = {normal_force:.4g} N, "
+    return Finding("warning", f"{where}{what} = {min(mus):.3g} .. {max(mus):.3g} ({mg}F_int = "
+                              f"{f_int_N:.3g} N): all below the usual {lo:g}-{hi:g} of a friction "
+                              f"coefficient, and {KN:g} times each within it; forces in kN? (force_N is "
+                              "in N)")

@@ -211,10 +211,12 @@ def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None, ramp
     (mat angles in radians, forces at or below F_int or implying mu
     outside (0, 5), a ramp reaching beyond the rig's travel, a velocity or a
     ramp run's stiffness outside its hard range); returns warnings for
-    unusual ones (trajectory angles that all look like radians).  names: the
-    run of each force and angle (raw recordings), else rows of the files;
-    velocities [m/s] of angles.csv's rows; stiffness the ramp runs' (n, 3)
-    array and ramp_names their runs."""
+    unusual ones (trajectory angles that all look like radians; every force,
+    with ramp.csv's sliding level, so small against m g that kN is likely:
+    plausibility.force_unit_check).  names: the run of each force and
+    angle (raw recordings), else rows of the files; velocities [m/s] of
+    angles.csv's rows; stiffness the ramp runs' (n, 3) array and ramp_names
+    their runs."""
     warnings = []
     for name, arr in (("forces.csv", forces), ("angles.csv", angles)):
         if arr is not None and plausibility.looks_like_radians(arr[:, 0], RADIAN_ORIENTATIONS):
@@ -226,14 +228,20 @@ def plausible_data(folder: Path, rig: RigSetup, forces, angles, names=None, ramp
                         f"+-{RADIAN_TRAJECTORY} deg: radians? the column is in degrees")
     found = []
     if forces is not None:
+        # the whole set against m g: in kN, every ratio (and the angles) looks sane
+        tops = forces[:, 1] if ramp is None else np.append(forces[:, 1], ramp[:, 1].max())
+        found.append(plausibility.force_unit_check((tops - rig.f_int_N) / rig.normal_force, rig.f_int_N,
+                                                   f"{folder}: ", "its driving forces' (F - F_int)/(m g)",
+                                                   rig.normal_force))
         for k, (a, F) in enumerate(forces):
             where = (f"{folder}: run {names[k]}" if names else f"{folder / 'forces.csv'}: row {k + 1}")
             found.append(plausibility.force_check(F, rig.f_int_N, rig.normal_force,
                                                   f"{where} ({ANGLE} = {a:g}): "))
     if velocities is not None:
         for k, v in enumerate(velocities):
-            found += plausibility.findings({"velocity_m_s": float(v)},
-                                           f"{folder / 'angles.csv'}: row {k + 1}: ")
+            if v != rig.velocity_m_s:   # rig.toml's (the column's default) is judged as rig.toml's
+                found += plausibility.findings({"velocity_m_s": float(v)},
+                                               f"{folder / 'angles.csv'}: row {k + 1}: ")
     if ramp is not None:
         found.append(plausibility.ramp_extent_check(float(ramp[:, 0].max()), rig.travel_m,
                                                     f"{folder / 'ramp.csv'}: ", TRAVEL_SAID))
