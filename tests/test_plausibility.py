@@ -228,3 +228,20 @@ def test_forces_all_in_kn_are_named_by_their_size_against_m_g():
     # a force in kN against F_int in N is below F_int: the refusal names kN where 1000 F fits
     assert plausibility.force_check(0.0125, 5.0, N).line.endswith("; force_N in kN?")
     assert "kN" not in plausibility.force_check(4.0, 5.0, N).line
+
+
+def test_the_last_gate_refuses_a_warning_too_unless_forced():
+    """export's gate: what gate() only warns about is refused; a cross-check
+    (which names the cause) is the line said, before a single value."""
+    from orthocontact.errors import InputError
+    assert plausibility.gate({"eps2": 5.0}, "f: ") != []          # identify: a warning
+    kn = plausibility.force_unit_check([0.0004], 0.005, "f: ")
+    with pytest.raises(InputError) as e:
+        plausibility.last_gate({"mu1": 0.0004, "eps2": 5.0}, "f: ", [None, kn], override="--force")
+    assert str(e.value) == kn.line + "; refused (--force)"
+    found = plausibility.last_gate({"mu1": 0.0004, "eps1": 1e13}, "f: ", [kn], force=True)
+    assert [f.level for f in found] == ["error", "warning", "warning"] and found[1] == kn
+    assert plausibility.last_gate({"mu1": 0.4}, "f: ", [None]) == []
+    assert [f.line for f in plausibility.angle_findings({"--angle": 0.7854, "a": 45.0, "b": float("nan")})] \
+        == ["--angle = 0.7854: looks like pi/4 in radians; this key is in degrees (45.0001 deg if it was "
+            "meant in rad)"]

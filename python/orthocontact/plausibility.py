@@ -197,6 +197,34 @@ def gate(values: Mapping[str, float], where: str = "", also: Iterable[Finding | 
     return warnings
 
 
+def last_gate(values: Mapping[str, float], where: str = "", also: Iterable[Finding | None] = (),
+              force: bool = False, override: str = "") -> list[Finding]:
+    """gate()'s verdict where values leave the tool (export: FMUs, an SSV,
+    an SSP, read by a simulator where no one reads a terminal): a value gate()
+    would only warn about is refused too.  Raises InputError (one line: the
+    first finding, an error before a warning, a cross-check in `also` (it
+    names a cause) before a single value; then `refused (override)`) unless
+    `force`; then returns every finding, errors first, for the terminal and
+    what is exported."""
+    found = [f for f in list(also) + list(findings(values, where)) if f is not None]
+    found = [f for f in found if f.level == "error"] + [f for f in found if f.level != "error"]
+    if found and not force:
+        raise InputError(f"{found[0].line}; refused" + (f" ({override})" if override else ""))
+    return found
+
+
+def angle_findings(values_deg: Mapping[str, float], where: str = "") -> list[Finding]:
+    """A warning Finding for each angle of `values_deg` {name: deg} that
+    looks typed in radians (check_angle_deg); non-finite ones are left to
+    the readers that need them."""
+    found = []
+    for key, v in values_deg.items():
+        hit = check_angle_deg(key, v) if math.isfinite(v) else None
+        if hit is not None:
+            found.append(Finding(hit[0], where + hit[1]))
+    return found
+
+
 # The rig's fitted part of a path starts at half its travel (Rig.fit_from),
 # and the quasi-static rig settles within ELASTIC_LENGTHS elastic lengths of
 # the start (experiment.scenario: over 300 random laws, < 3e-8 deg off at 10).

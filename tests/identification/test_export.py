@@ -1,12 +1,14 @@
 """`orthocontact export`: identify on the bundled example, export, and run
 the exported FMUs with no parameter set anywhere (fmpy, libcosim): the
 trajectory angle is the identified model's closed-form prediction."""
+import html
 import json
 import re
 import shutil
 import subprocess
 import sys
 import zipfile
+import xml.etree.ElementTree as ET
 from datetime import datetime, timezone
 from pathlib import Path
 
@@ -247,15 +249,20 @@ def test_export_refuses_a_value_that_cannot_be_right_and_force_overrides_it(iden
     p = cli("export", path, "--out", tmp_path / "o", "--force")
     assert p.returncode == 0, p.stderr
     warnings = [x for x in p.stderr.splitlines() if x.startswith("orthocontact: warning:")]
-    assert len(warnings) == 1 and warnings[0].startswith("orthocontact: warning: --force: exporting 2 "
-                                                         "value(s) that cannot be right")
-    assert "eps1 = 1e+13 N/m" in warnings[0] and "Warning" not in p.stderr.replace("warning:", "")
+    said = "orthocontact: warning: --force: exporting a value that cannot be right (said in the FMUs' " \
+           f"documentation/calibration.html and description): {path}: "
+    assert len(warnings) == 2, p.stderr
+    assert warnings[0] == said + ("eps1 = 1e+13 N/m: a contact's tangential stiffness is 10-1e9 N/m; "
+                                  "none above 1e+12 N/m can be right")
+    assert warnings[1].startswith(said + "eps_ratio = ")
+    assert warnings[1].endswith("none above 1e+06 can be right")
+    assert "Warning" not in p.stderr.replace("warning:", "")
     for v in (2, 3):
-        with zipfile.ZipFile(tmp_path / "o" / f"fmi{v}/OrthotropicContact.fmu") as z:
-            doc = z.read("documentation/calibration.html").decode()
-            md = z.read("modelDescription.xml").decode()
-        assert "<b>Exported with --force</b>" in doc and "eps1 = 1e+13 N/m" in doc
-        assert "Exported with --force: 2 value(s) outside the plausible range" in md
+        doc, description = exported_notes(tmp_path / "o" / f"fmi{v}/OrthotropicContact.fmu")
+        assert "<b>Exported with --force</b>" in doc
+        assert "<li>error: " + html.escape(f"{path}: eps1 = 1e+13 N/m") in doc
+        assert "Exported with --force despite the plausibility gate (2 finding(s)" in description
+        assert f"error: {path}: eps1 = 1e+13 N/m" in description
         assert start_values_of(tmp_path / "o" / f"fmi{v}/OrthotropicContact.fmu")["eps1"] == 1e13
 
 
@@ -269,3 +276,107 @@ def test_export_refuses_an_elastic_length_the_rigs_travel_cannot_hold(identified
     one_error_line(p, "the elastic length mu N / eps is 0.594 .. 1.14 m", "the rig's travel is 0.5 m",
                    "the block would stick over the whole travel", "N/mm",
                    "refused (`orthocontact export --force` exports it anyway)")
+
+
+def exported_notes(fmu: Path) -> tuple:
+    """(documentation/calibration.html, the model description's description
+    attribute) of an exported FMU."""
+    with zipfile.ZipFile(fmu) as z:
+        return (z.read("documentation/calibration.html").decode(),
+                ET.fromstring(z.read("modelDescription.xml")).get("description"))
+
+
+# --- export is the last gate: a unit slip identify warns about is refused ----------------
+
+def reduced_variant(folder: Path, rig=(), append="", ramp=None) -> Path:
+    """The bundled reduced example in `folder` with rig.toml's text `old`
+    replaced by `new` for each (old, new) of `rig`, `append` added to it,
+    and ramp.csv's x1_m times `ramp` (None: as it is; 0: no ramp.csv)."""
+    shutil.copytree(DATA, folder, ignore=shutil.ignore_patterns("README.md"))
+    text = (folder / "rig.toml").read_text()
+    for old, new in rig:
+        assert old in text
+        text = text.replace(old, new)
+    (folder / "rig.toml").write_text(text + append)
+    if ramp == 0:
+        (folder / "ramp.csv").unlink()
+    elif ramp is not None:
+        lines = (folder / "ramp.csv").read_text().splitlines()
+        rows = [f"{float(x) * ramp:.6g},{F}" for x, F in (ln.split(",") for ln in lines[1:])]
+        (folder / "ramp.csv").write_text("\n".join([lines[0]] + rows) + "\n")
+    return folder
+
+
+def recordings_in_kn(folder: Path) -> Path:
+    """A part of the bundled recordings (every carriage and ramp run, the
+    slides at 0, 45 and 90 deg at 0.244 m/s, two each: 5 s to identify
+    instead of 77 s) with every force log in kN: each ratio stays sane."""
+    src = ROOT / "scenarios/example_recordings"
+    (folder / "forces").mkdir(parents=True)
+    (folder / "trajectories").mkdir()
+    shutil.copy(src / "rig.toml", folder)
+    lines = (src / "runs.csv").read_text().splitlines()
+    runs = [lines[0]] + [ln for ln in lines[1:] if ln.split(",")[1] != "slide" or
+                         re.fullmatch(r"a0(00|45|90)_v244_0[12],.*", ln)]
+    (folder / "runs.csv").write_text("\n".join(runs) + "\n")
+    for run in (ln.split(",")[0] for ln in runs[1:]):
+        if (src / "trajectories" / f"{run}.csv").exists():
+            shutil.copy(src / "trajectories" / f"{run}.csv", folder / "trajectories")
+        shutil.copy(src / "forces" / f"{run}.csv", folder / "forces")
+    assert scale_forces(folder, "*.csv", 1e-3) and len(runs) == 15
+    return folder
+
+
+# (the data set, what identify's warning says, the file export's refusal names, what it says)
+SLIPS = {
+    "mm": (lambda d: reduced_variant(d, append="travel_m = 5.0\n", ramp=1e3),
+           "would not settle; ramp.csv's x1_m in mm?",
+           "identified.json", "the elastic length mu N / eps is 0.594 .. 1.14 m"),
+    "cm/s": (lambda d: reduced_variant(d, rig=[("velocity_m_s = 0.244", "velocity_m_s = 12.5")]),
+             "rig.toml: velocity_m_s = 12.5 m/s: a lab rig's carriage moves at 0.001-2 m/s; cm/s?",
+             "rig.toml", "velocity_m_s = 12.5 m/s: a lab rig's carriage moves at 0.001-2 m/s; cm/s?"),
+    "kN": (recordings_in_kn, "(m g = 18.39 N, F_int = 0.00498 N): all below the usual 0.01-3 of a "
+                             "friction coefficient, and 1000 times each within it; forces in kN?",
+           "identified.json", "mu1, mu2 = 0.000408 .. 0.000626 (F_int = 0.00498 N)"),
+    "N/mm": (lambda d: reduced_variant(d, append="travel_m = 5.0\neps2_nominal_N_m = 10.0\n", ramp=0),
+             "would not settle; rig.toml's eps2_nominal_N_m in N/mm?",
+             "identified.json", "the elastic length mu N / eps is 0.596 .. 1.15 m"),
+    "rad": (lambda d: reduced_variant(d, rig=[("alpha_offset_deg = 90.0", "alpha_offset_deg = 1.5708")]),
+            "rig.toml: alpha_offset_deg = 1.5708: looks like pi/2 in radians",
+            "identified.json", "assumptions.alpha_offset_deg = 1.5708: looks like pi/2 in radians"),
+}
+SLIP_NAMED = {"mm": "x1_m in mm", "cm/s": "cm/s?", "kN": "forces in kN?", "N/mm": "in N/mm?",
+              "rad": "in radians"}
+
+
+@pytest.mark.parametrize("slip", list(SLIPS), ids=[s.replace("/", "_") for s in SLIPS])
+def test_a_unit_slip_identify_warns_about_is_refused_by_export_unless_forced(tmp_path, slip):
+    """Each unit slip the plausibility gate names (positions in mm, a
+    velocity in cm/s, forces in kN, a stiffness in N/mm, an angle in rad),
+    in a data set identify takes with a warning: export refuses it (one
+    line naming the slip and --force, nothing written); with --force it
+    exports, says so, and both FMUs' documentation and model description
+    carry the warning.  Before, export wrote the FMUs with exit 0: for the
+    bundled recordings in kN, mu1 = 0.000409 and eps2 = 9.96 N/m."""
+    build, identify_says, source, export_says = SLIPS[slip]
+    named = SLIP_NAMED[slip]
+    data = build(tmp_path / "data")
+    p = cli("identify", data, "--out", tmp_path / "id", "--no-validate")
+    assert p.returncode == 0, p.stderr
+    said = [x for x in p.stderr.splitlines() if identify_says in x]
+    assert len(said) == 1 and said[0].startswith("orthocontact: warning: ") and named in said[0], p.stderr
+    identified = tmp_path / "id" / "identified.json"
+    finding = f"{identified if source == 'identified.json' else data / source}: {export_says}"
+    p = cli("export", identified, "--out", tmp_path / "refused")
+    one_error_line(p, f"orthocontact: error: {finding}", named,
+                   "; refused (`orthocontact export --force` exports it anyway)")
+    assert not (tmp_path / "refused").exists()
+    finding = p.stderr.strip()[len("orthocontact: error: "):].split("; refused (`orthocontact export")[0]
+    p = cli("export", identified, "--out", tmp_path / "forced", "--force")
+    assert p.returncode == 0, p.stderr
+    assert ("orthocontact: warning: --force: exporting an unusual value (said in the FMUs' "
+            f"documentation/calibration.html and description): {finding}") in p.stderr.splitlines()
+    for v in (2, 3):
+        doc, description = exported_notes(tmp_path / "forced" / f"fmi{v}/OrthotropicContact.fmu")
+        assert f"<li>warning: {html.escape(finding)}</li>" in doc
+        assert f"warning: {finding}" in description and "Exported with --force despite" in description

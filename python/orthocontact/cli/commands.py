@@ -263,17 +263,18 @@ def cmd_ssp(args) -> int:
 
 
 def cmd_export(args) -> int:
-    from ..identification.export import export, load_calibration, plausible_calibration
+    from ..identification.export import export, load_calibration, plausible_calibration, rig_scenario
     cal = load_calibration(args.identification, force=args.force)
-    forced, unusual = plausible_calibration(cal, force=args.force)
+    sc = rig_scenario(cal, args.scenario)
+    # the last gate: what it would warn about is refused too, unless --force
+    forced = plausible_calibration(cal, sc, args.angle, args.scenario, force=args.force)
     one_run(args.identification, args.scenario)
-    for line in unusual:
-        warn(line)
-    if forced:
-        warn(f"--force: exporting {len(forced)} value(s) that cannot be right (said in "
-             f"documentation/calibration.html): " + "; ".join(forced))
+    for f in forced:
+        what = "a value that cannot be right" if f.level == "error" else "an unusual value"
+        warn(f"--force: exporting {what} (said in the FMUs' documentation/calibration.html and "
+             f"description): {f.line}")
     with staged_output(args.out, args.cmd, args.force) as stage:
-        res = export(cal, stage, args.angle, args.scenario, forced)
+        res = export(cal, stage, args.angle, sc, forced)
     from ..rig.checks import system_settling_warning
     line = system_settling_warning(f"{res['ssp'].name}", res["ssp_params"], res["ssp_rig"])
     if line:

@@ -48,6 +48,7 @@ class Calibration:
     data_folder: Path
     digest: str              # SHA-256 over the data files' listing (measurements.data_digest)
     data_files: dict = dataclasses.field(default_factory=dict)   # path under data_folder -> SHA-256
+    f_int_N: float = 0.0     # F_int [N] as the identification used it: estimated or rig.toml's
 
 
 def _value(f: IdentifiedFile, name: str) -> float:
@@ -79,13 +80,14 @@ def calibration_of(f: IdentifiedFile) -> Calibration:
     eps1 = _value(f, "eps1") if eps2_identified else _value(f, "eps_ratio") * eps2
     intervals = {n: f.estimates[n].ci95 for n in ESTIMATED if isinstance(f.estimates.get(n), Estimate)}
     c_strip = _value(f, "c_strip") if a.c_strip_N_s_m == "estimated" else a.c_strip_N_s_m
+    f_int = _value(f, "f_int") if a.f_int_N == "estimated" else a.f_int_N
     try:
         law = ContactParams(mu1, mu2, eps1, eps2, rule=a.rule)
     except ValueError as e:
         raise InputError(f"{path}: {e}") from None
     return Calibration(path=path, law=law, intervals=intervals, eps2_identified=eps2_identified, rig=rig,
                        c_strip=float(c_strip), data_folder=folder, digest=f.provenance.digest,
-                       data_files=f.provenance.files)
+                       data_files=f.provenance.files, f_int_N=float(f_int))
 
 
 def contact_start_values(cal: Calibration, angle_deg: float) -> dict:
@@ -177,44 +179,76 @@ with its SHA-256:
 FORCE_OVERRIDE = "`orthocontact export --force` exports it anyway"
 
 
-def plausible_calibration(cal: Calibration, force: bool = False) -> tuple[list[str], list[str]]:
-    """(forced, warnings): the calibration's law and strip through the one
-    gate (orthocontact.plausibility), and the elastic length mu N / eps
-    against the travel of the data's rig.  A value that cannot be right is
-    refused (InputError, one line naming --force) unless `force`; then it
-    is among `forced`, for the user's warning and the FMUs' documentation."""
-    law, rig = cal.law, cal.rig
+def check_angle(angle_deg: float):
+    """InputError unless --angle [deg] is a finite number."""
+    if not math.isfinite(angle_deg):
+        raise InputError(f"--angle: expected a finite angle [deg], got {angle_deg!r}")
+
+
+def plausible_calibration(cal: Calibration, sc: Scenario, angle_deg: float, scenario=None,
+                          force: bool = False) -> list:
+    """The last gate (plausibility.last_gate) over every value the export
+    writes: the law (mu1, mu2, eps1, eps2, eps1/eps2), the SSP's rig `sc.rig`
+    (rig_scenario: mass, g, F_int, velocity, travel, step, strip terms; from
+    `scenario`'s file if given, else the data's rig.toml), the axes' angles
+    (the offsets, --angle: radians?), the elastic length mu N / eps against
+    the data's rig travel and the forces' size against m g (kN?).  A value
+    the gate refuses or warns about is refused (InputError, one line naming
+    --force) unless `force`; then every finding (plausibility.Finding) is
+    returned, for the terminal and the FMUs' documentation and description."""
+    check_angle(angle_deg)
+    law, rig, data_rig = cal.law, sc.rig, cal.rig
     where = f"{cal.path}: "
     values = {"mu1": law.mu1, "mu2": law.mu2, "eps1": law.eps1, "eps2": law.eps2,
-              "eps_ratio": law.eps1 / law.eps2, "c_strip": cal.c_strip}
-    slip = ("eps1, eps2 in N/mm (ramp.csv's x1_m in mm)?" if cal.eps2_identified else
+              "eps_ratio": law.eps1 / law.eps2}
+    ramp = "ramp.csv's x1_m" if "ramp.csv" in cal.data_files else "the ramp runs' positions"
+    slip = (f"eps1, eps2 in N/mm ({ramp} in mm)?" if cal.eps2_identified else
             "rig.toml's eps2_nominal_N_m in N/mm?")
-    elastic = plausibility.elastic_length_check(law.mu1, law.mu2, law.eps1, law.eps2, rig.normal_force,
-                                                rig.travel_m, where, slip)
-    errors, warnings = plausibility.split(plausibility.findings(values, where) + [elastic])
-    if errors and not force:
-        raise InputError(f"{errors[0]}; refused ({FORCE_OVERRIDE})")
-    return errors, warnings
+    also = [plausibility.force_unit_check((law.mu1, law.mu2), cal.f_int_N, where, "mu1, mu2"),
+            plausibility.elastic_length_check(law.mu1, law.mu2, law.eps1, law.eps2, data_rig.normal_force,
+                                              data_rig.travel_m, where, slip)]
+    carried = {"mass_kg": rig.mass_kg, "g": rig.g, "f_int_N": rig.f_int_N,
+               "velocity_m_s": rig.velocity_m_s, "travel_m": rig.travel_m, "step_s": rig.step_s,
+               "mu_strip": rig.mu_strip, "c_strip": rig.c_strip}
+    if scenario is not None:
+        also += plausibility.findings(carried, f"{scenario}: rig.")
+    else:   # the data's rig.toml, with the strip's viscosity as the identification used it
+        also += plausibility.findings({"c_strip": carried.pop("c_strip")}, where)
+        also += plausibility.findings(carried, f"{cal.data_folder / 'rig.toml'}: ")
+    also += plausibility.angle_findings({"alpha_offset_deg": data_rig.alpha_offset_deg,
+                                         "beta_offset_deg": data_rig.beta_offset_deg}, f"{where}assumptions.")
+    also += plausibility.angle_findings({"--angle": angle_deg})
+    return plausibility.last_gate(values, where, also, force, FORCE_OVERRIDE)
 
 
 def forced_html(forced) -> str:
-    """The documentation's paragraph on values exported with --force."""
+    """The documentation's paragraph on what was exported with --force
+    (plausible_calibration's findings)."""
     if not forced:
         return ""
-    items = "\n".join(f"<li>{html.escape(line)}</li>" for line in forced)
-    return (f"<p><b>Exported with --force</b>: these values are outside the plausible range "
-            f"(orthocontact.plausibility) and were exported anyway:</p>\n<ul>\n{items}\n</ul>\n")
+    items = "\n".join(f"<li>{f.level}: {html.escape(f.line)}</li>" for f in forced)
+    return (f"<p><b>Exported with --force</b>: the plausibility gate (orthocontact.plausibility) refused "
+            f"these values (an error: they cannot be right; a warning: they are unusual, a unit slip is "
+            f"named where one fits), and they were exported anyway:</p>\n<ul>\n{items}\n</ul>\n")
 
 
-def export(cal: Calibration, out: Path, angle_deg: float, scenario=None, forced=()) -> dict:
+def forced_note(forced) -> str:
+    """The model description's sentence on what was exported with --force."""
+    if not forced:
+        return ""
+    return (f" Exported with --force despite the plausibility gate ({len(forced)} finding(s), also in "
+            "documentation/calibration.html): " + " | ".join(f"{f.level}: {f.line}" for f in forced))
+
+
+def export(cal: Calibration, out: Path, angle_deg: float, sc: Scenario | None = None, forced=()) -> dict:
     """Writes into the folder `out` fmi2/ and fmi3/OrthotropicContact.fmu
-    (calibrated), calibration.ssv and rig_<angle>.ssp; returns what was
-    written.  forced: the lines of values exported with --force
-    (plausible_calibration), said in the documentation and the description."""
+    (calibrated), calibration.ssv and rig_<angle>.ssp of the scenario `sc`
+    (rig_scenario; default: the data's rig); returns what was written.
+    forced: the findings exported with --force (plausible_calibration),
+    said in the documentation and the description."""
     from .. import __version__
-    if not math.isfinite(angle_deg):
-        raise InputError(f"--angle: expected a finite angle [deg], got {angle_deg!r}")
-    sc = rig_scenario(cal, scenario)
+    check_angle(angle_deg)
+    sc = sc or rig_scenario(cal)
     values = contact_start_values(cal, angle_deg)
     date = datetime.now(timezone.utc).strftime("%Y-%m-%d")
     phi = predicted_phi_deg(cal, angle_deg, sc.rig)
@@ -227,9 +261,7 @@ def export(cal: Calibration, out: Path, angle_deg: float, scenario=None, forced=
             f"{cal.law.rule} rule, axes at {angle_deg:g} deg; data sha256 {cal.digest} "
             f"(of {len(cal.data_files)} files, each in documentation/calibration.html); {date}; "
             f"orthocontact {__version__}; 95 % intervals in documentation/calibration.html.")
-    if forced:
-        note += (f" Exported with --force: {len(forced)} value(s) outside the plausible range, listed "
-                 "in documentation/calibration.html.")
+    note += forced_note(forced)
     fmus = {}
     for v in (2, 3):
         fmus[v] = write_with_start_values(find_fmu(fmi_version=v), out / f"fmi{v}" / f"{MODEL_IDENTIFIER}.fmu",
