@@ -257,7 +257,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate) {
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_free(I, FMUstate));
+    return status2(fmu_state_free(I, __func__, FMUstate));
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t *size) {

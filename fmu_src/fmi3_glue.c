@@ -512,7 +512,7 @@ fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState FMUState) {
 fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_free(I, FMUState));
+    return status3(fmu_state_free(I, __func__, FMUState));
 }
 
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState FMUState, size_t *size) {

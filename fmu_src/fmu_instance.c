@@ -301,6 +301,39 @@ void fmu_model_init(fmu_model *m) {
     (void)fmu_model_init_from(m, NULL, &msg);
 }
 
+/* A state object: a link by which its instance lists it, then the
+ * serialized state, to which the importer's handle points.  The list lets
+ * free and get refuse a handle this instance did not give (a double free, a
+ * stray pointer) instead of passing it to the allocator, and free the
+ * states left over with the instance. */
+typedef struct fmu_held_state {
+    struct fmu_held_state *next;
+} fmu_held_state;
+
+static unsigned char *held_bytes(fmu_held_state *s) { return (unsigned char *)(s + 1); }
+
+static unsigned char *held_new(fmu_instance *I, size_t size) {
+    fmu_held_state *s = I->alloc(1, sizeof *s + size);
+    if (!s) return NULL;
+    s->next = I->states;
+    I->states = s;
+    return held_bytes(s);
+}
+
+/* The link that holds the state whose bytes are `p`, or NULL: compares
+ * addresses only, never reads through p. */
+static fmu_held_state **held_find(fmu_instance *I, const void *p) {
+    for (fmu_held_state **at = &I->states; *at; at = &(*at)->next)
+        if (held_bytes(*at) == p) return at;
+    return NULL;
+}
+
+static void held_release(fmu_instance *I, fmu_held_state **at) {
+    fmu_held_state *s = *at;
+    *at = s->next;
+    I->release(s);
+}
+
 /* ---- the instance ------------------------------------------------------- */
 
 fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
@@ -336,6 +369,8 @@ fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
 
 void fmu_instance_free(fmu_instance *I) {
     if (!I) return;
+    /* the standards: freeing an instance frees what its functions allocated */
+    while (I->states) held_release(I, &I->states);
     void (*release)(void *) = I->release;
     release(I->model);
     release(I->start);
@@ -754,7 +789,11 @@ int fmu_state_get(fmu_instance *I, const char *fn, void **state) {
         return FMU_S_ERROR;
     }
     unsigned char *buf = *state;
-    if (!buf && !(buf = I->alloc(1, fmu_state_size()))) {
+    if (buf && !held_find(I, buf)) {
+        FMU_ERROR(I, "%s: *state is neither NULL nor a state of this instance", fn);
+        return FMU_S_ERROR;
+    }
+    if (!buf && !(buf = held_new(I, fmu_state_size()))) {
         FMU_ERROR(I, "%s: out of memory", fn);
         return FMU_S_ERROR;
     }
@@ -768,12 +807,26 @@ int fmu_state_set(fmu_instance *I, const char *fn, const void *state) {
     return fmu_result(I, fmu_state_read(I, state, fmu_state_size(), &msg), &msg, fn);
 }
 
-int fmu_state_free(fmu_instance *I, void **state) {
-    if (state && *state) {
-        I->release(*state);
+int fmu_state_free(fmu_instance *I, const char *fn, void **state) {
+    if (!state || !*state) return FMU_S_OK; /* as the standards ask: nothing to free */
+    fmu_held_state **at = held_find(I, *state);
+    if (at) {
+        held_release(I, at);
         *state = NULL;
+        return FMU_S_OK;
     }
-    return FMU_S_OK;
+    /* The handle itself instead of its address, as fmusim 0.0.39 of the
+     * Reference-FMUs passes it when it saves or restores a state (one of
+     * ours: nothing else is freed); said in the log, the call succeeds. */
+    if ((at = held_find(I, state))) {
+        held_release(I, at);
+        fmu_log(I, FMU_S_WARNING, FMU_LOG_WARNING, "%s: given the state instead of a pointer to "
+                "it; freed it (the importer's handle now dangles)", fn);
+        return FMU_S_OK;
+    }
+    FMU_ERROR(I, "%s: not a state of this instance (freed already, or another instance's): "
+                 "nothing freed", fn);
+    return FMU_S_ERROR;
 }
 
 int fmu_state_size_of(fmu_instance *I, const char *fn, size_t *size) {
@@ -816,7 +869,11 @@ int fmu_state_deserialize(fmu_instance *I, const char *fn, const unsigned char *
     I->release(scratch.model);
     if (st != FMU_OK) return fmu_result(I, st, &msg, fn);
     unsigned char *buf = *state;
-    if (!buf && !(buf = I->alloc(1, size))) {
+    if (buf && !held_find(I, buf)) {
+        FMU_ERROR(I, "%s: *state is neither NULL nor a state of this instance", fn);
+        return FMU_S_ERROR;
+    }
+    if (!buf && !(buf = held_new(I, size))) {
         FMU_ERROR(I, "%s: out of memory", fn);
         return FMU_S_ERROR;
     }

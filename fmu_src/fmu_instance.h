@@ -45,6 +45,7 @@ struct fmu_instance {
     void *(*alloc)(size_t n, size_t size);
     void (*release)(void *p);
     void *glue; /* the version's own data (callbacks, environment) */
+    struct fmu_held_state *states; /* the FMU states it gave out and has not freed (fmu_instance.c) */
 };
 
 /* NULL if out of memory.  Errors and warnings are logged unless switched
@@ -135,13 +136,15 @@ void fmu_state_write(const fmu_instance *I, unsigned char *buf);
 fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size, fmu_msg *msg);
 
 /* The FMU-state entry points of both standards.  A state object is a buffer
- * holding the serialized state itself, from the instance's allocator: getting
- * serializes (into *state, allocated if NULL), setting validates and restores,
+ * holding the serialized state itself, from the instance's allocator and
+ * listed by it: getting serializes (into *state, allocated if NULL, else one
+ * of the instance's states), setting validates and restores,
  * deserializing validates on a scratch model before any buffer is touched.
  * `fn` names the calling FMI function in messages.  Return FMU_S_*. */
 int fmu_state_get(fmu_instance *I, const char *fn, void **state);
 int fmu_state_set(fmu_instance *I, const char *fn, const void *state);
-int fmu_state_free(fmu_instance *I, void **state);
+/* Frees a state this instance gave; refuses (logged) any other pointer. */
+int fmu_state_free(fmu_instance *I, const char *fn, void **state);
 int fmu_state_size_of(fmu_instance *I, const char *fn, size_t *size);
 int fmu_state_serialize(fmu_instance *I, const char *fn, const void *state, unsigned char *bytes,
                         size_t size);

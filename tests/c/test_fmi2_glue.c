@@ -287,6 +287,38 @@ static void test_range_message_names_the_unit(void) {
     fmi2FreeInstance(c);
 }
 
+/* Only a handle this instance gave is freed: a second free and another
+ * instance's state are refused with a logged reason, nothing crashes; the
+ * state itself passed for its address (as fmusim 0.0.39 of the
+ * Reference-FMUs does when it saves or restores a state) is freed with a
+ * warning.  The sanitizer build sees any wrong free. */
+static void test_state_handles(void) {
+    fmi2Component a = make("handles-a"), b = make("handles-b");
+    start(a);
+    fmi2FMUstate st = NULL, kept = NULL, other = NULL;
+    CHECK(fmi2GetFMUstate(a, &st) == fmi2OK && st != NULL, "get state");
+    kept = st;
+    CHECK(fmi2FreeFMUstate(a, &st) == fmi2OK && st == NULL, "free");
+    n_logged = 0;
+    CHECK(fmi2FreeFMUstate(a, &kept) == fmi2Error && kept != NULL, "double free accepted");
+    CHECK(n_logged == 1 && strstr(last_message, "not a state of this instance"), "reason: %s",
+          last_message);
+    CHECK(fmi2GetFMUstate(a, &kept) == fmi2Error, "a freed state reused by get");
+    CHECK(fmi2GetFMUstate(b, &other) == fmi2OK, "get state of b");
+    CHECK(fmi2FreeFMUstate(a, &other) == fmi2Error && other != NULL, "b's state freed by a");
+    CHECK(fmi2FreeFMUstate(b, &other) == fmi2OK && other == NULL, "b frees its own");
+    CHECK(fmi2GetFMUstate(a, &st) == fmi2OK, "get again");
+    n_logged = 0;
+    CHECK(fmi2FreeFMUstate(a, (fmi2FMUstate *)st) == fmi2OK, "the state for its address");
+    CHECK(n_logged == 1 && last_status == fmi2Warning &&
+          strstr(last_message, "given the state instead of a pointer to it"), "warning: %s",
+          last_message);
+    fmi2FMUstate left = NULL; /* one left for FreeInstance to free */
+    CHECK(fmi2GetFMUstate(a, &left) == fmi2OK, "get one to leave");
+    fmi2FreeInstance(a);
+    fmi2FreeInstance(b);
+}
+
 int main(void) {
     CHECK(strcmp(fmi2GetVersion(), "2.0") == 0, "version");
     CHECK(strcmp(fmi2GetTypesPlatform(), "default") == 0, "types platform");
@@ -295,6 +327,7 @@ int main(void) {
     test_logging_filter();
     test_range_message_names_the_unit();
     test_instances_and_state();
+    test_state_handles();
     test_initial_slip();
     return oc_report();
 }
