@@ -2,8 +2,10 @@
  * FMI 3.0 Co-Simulation: the standard's signatures translated onto the shared,
  * version-independent instance (fmu_instance.c) and the model (fmu_model.h).
  * No mechanics and no model variables live here.  Float64 variables, Int32
- * variables and Enumerations (through the Int64 functions, as FMI 3.0 asks)
- * are served; every other type has no variables.
+ * variables, Enumerations (through the Int64 functions, as FMI 3.0 asks) and
+ * structural parameters (UInt64, as the standard's Dimension element asks;
+ * Int32 rows of the table: fmu_model.h) are served; every other type has no
+ * variables.
  */
 #include <math.h>
 #include <stdint.h>
@@ -251,7 +253,8 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
         __func__));
 }
 
-/* Int32 variables through the Int32 functions, Enumerations through Int64. */
+/* Int32 variables through the Int32 functions, Enumerations through Int64,
+ * structural parameters through UInt64 (each refused by the others). */
 #define INT_ACCESS(TYPE, CTYPE, KIND)                                                          \
     fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
                              CTYPE values[], size_t nValues) {                                   \
@@ -279,8 +282,9 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
                                                     KIND, fmu_settable(I), &msg),                \
                                   &msg, __func__));                                       \
     }
-INT_ACCESS(Int32, fmi3Int32, FMU_INT32)
-INT_ACCESS(Int64, fmi3Int64, FMU_ENUM)
+INT_ACCESS(Int32, fmi3Int32, FMU_INT32 | FMU_AS_FMI3)
+INT_ACCESS(Int64, fmi3Int64, FMU_ENUM | FMU_AS_FMI3)
+INT_ACCESS(UInt64, fmi3UInt64, FMU_UINT64 | FMU_AS_FMI3)
 
 /* Types of which this FMU has no variables: any value reference is unknown. */
 static fmi3Status no_such_variables(fmu_instance *I, const char *fn, int phases, size_t nvr,
@@ -309,7 +313,6 @@ NO_VARIABLES(UInt8, fmi3UInt8)
 NO_VARIABLES(Int16, fmi3Int16)
 NO_VARIABLES(UInt16, fmi3UInt16)
 NO_VARIABLES(UInt32, fmi3UInt32)
-NO_VARIABLES(UInt64, fmi3UInt64)
 NO_VARIABLES(Boolean, fmi3Boolean)
 NO_VARIABLES(String, fmi3String)
 

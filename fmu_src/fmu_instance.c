@@ -49,9 +49,27 @@ static inline fmu_status model_refresh(fmu_model *m, fmu_msg *msg) {
     return INFO.refresh ? INFO.refresh(m, msg) : FMU_OK;
 }
 
-static const char *type_name(int type) {
-    return type == FMU_T_Float64 ? "Float64 (Real)" : type == FMU_T_Int32 ? "Int32 (Integer)"
-                                                                         : "Enumeration (Integer)";
+/* The type of vr as a message names it; `kind` as kind_of gives it, so that
+ * a structural parameter is named for both versions where the caller's is
+ * not known (a Float64 set). */
+static const char *type_name(int kind, unsigned int vr) {
+    return kind == FMU_T_Float64 ? "Float64 (Real)"
+           : kind == FMU_UINT64 ? "UInt64 (a structural parameter)"
+           : kind == FMU_T_Int32 && fmu_model_is_structural(vr) ? "Integer (UInt64 in FMI 3.0)"
+           : kind == FMU_T_Int32 ? "Int32 (Integer)" : "Enumeration (Integer)";
+}
+
+/* x's kind as the caller sees it: its table type, but FMU_UINT64 for a
+ * structural parameter when the caller is FMI 3.0 (fmu_model.h). */
+static inline int kind_of(const fmu_var *x, unsigned int vr, int kinds) {
+    return (kinds & FMU_AS_FMI3) && fmu_model_is_structural(vr) ? FMU_UINT64 : x->type;
+}
+
+/* The name of what a get or set asked for, from its kinds. */
+static const char *asked_name(int kinds) {
+    return kinds & FMU_UINT64 ? "UInt64" : (kinds & (FMU_INT32 | FMU_ENUM)) == FMU_ENUM
+           ? "Enumeration (Int64)" : (kinds & (FMU_INT32 | FMU_ENUM)) == FMU_INT32
+           ? ((kinds & FMU_AS_FMI3) ? "Int32" : "Integer") : "Integer";
 }
 
 /* A range in a message names its unit, so that "alpha = 90" outside
@@ -63,11 +81,11 @@ static const char *unit_sep(const fmu_var *x) { return *unit_of(x) ? " " : ""; }
 
 /* The message for a value the fast check refused: only here is anything
  * formatted. */
-static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int type_ok, double value,
-                                   int allow, fmu_msg *msg) {
+static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int kind, int type_ok,
+                                   double value, int allow, fmu_msg *msg) {
     if (!x) return fmu_fail(msg, "unknown value reference %u", vr);
     if (!type_ok)
-        return fmu_fail(msg, "variable %s (vr %u) is of type %s", x->name, vr, type_name(x->type));
+        return fmu_fail(msg, "variable %s (vr %u) is of type %s", x->name, vr, type_name(kind, vr));
     if (x->causality == FMU_C_output)
         return fmu_fail(msg, "variable %s is an output and cannot be set", x->name);
     if (x->causality == FMU_C_independent)
@@ -105,7 +123,7 @@ fmu_status fmu_model_check_range(unsigned int vr, double value, const char *cont
  * a message. */
 enum { SAVED_ON_STACK = 16 };
 
-#define SET_BATCH(CTYPE, TYPE_OK, VALUE, SLOT)                                                  \
+#define SET_BATCH(CTYPE, KIND, TYPE_OK, VALUE, SLOT)                                                \
     const fmu_var *const vars = INFO.vars;                                                      \
     const unsigned int nv = INFO.n_vars;                                                        \
     CTYPE stack[SAVED_ON_STACK], *saved = stack;                                                \
@@ -120,12 +138,12 @@ enum { SAVED_ON_STACK = 16 };
         const double d = (double)(VALUE);                                                       \
         if (!x || !(x->settable & allow) || !(TYPE_OK) || !in_range(x, d)) {                    \
             if (x && !x->name) x = NULL;                                                        \
-            st = why_not_settable(x, vr[i], x && (TYPE_OK), d, allow, msg);                     \
+            st = why_not_settable(x, vr[i], x ? (KIND) : 0, x && (TYPE_OK), d, allow, msg);    \
             break;                                                                              \
         }                                                                                       \
         CTYPE *slot = SLOT(m, x);                                                               \
         saved[i] = *slot;                                                                       \
-        *slot = (CTYPE)(VALUE);                                                                 \
+        *slot = (CTYPE)d; /* in [min, max]: exact for both slot types */                      \
         changed |= x->settable;                                                                 \
     }                                                                                           \
     int refreshed = 0;                                                                          \
@@ -142,20 +160,26 @@ enum { SAVED_ON_STACK = 16 };
 
 FMU_HOT fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
                                  int allow, fmu_msg *msg) {
-    SET_BATCH(double, x->type == FMU_T_Float64, v[i], SLOT_D)
+    SET_BATCH(double, x->type, x->type == FMU_T_Float64, v[i], SLOT_D)
 }
 
 fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, const void *v,
                              size_t width, int kinds, int allow, fmu_msg *msg) {
-    /* In [min, max] (checked before the write): the int slot holds it. */
-    SET_BATCH(int, x->type & kinds, fmu_int_at(v, width, i), SLOT_I)
+    /* In [min, max] (checked before the write): the int slot holds it.  A
+     * UInt64 is read unsigned, so that 2^64 - 1 is refused as itself. */
+    SET_BATCH(int, kind_of(x, vr[i], kinds), kind_of(x, vr[i], kinds) & kinds,
+              (kinds & FMU_UINT64) ? (double)((const uint64_t *)v)[i]
+                                   : (double)fmu_int_at(v, width, i),
+              SLOT_I)
 }
 
-static fmu_status not_of_type(unsigned int vr, const char *asked, fmu_msg *msg) {
+static fmu_status not_of_type(unsigned int vr, int kinds, fmu_msg *msg) {
     const fmu_var *x = var_of(vr);
+    const char *asked = (kinds & ~FMU_AS_FMI3) == FMU_T_Float64 ? "Float64 (Real)"
+                                                                 : asked_name(kinds);
     if (x)
         return fmu_fail(msg, "variable %s (vr %u) is of type %s, not %s", x->name, vr,
-                        type_name(x->type), asked);
+                        type_name(kind_of(x, vr, kinds), vr), asked);
     return fmu_fail(msg, "unknown value reference %u", vr);
 }
 
@@ -167,7 +191,7 @@ FMU_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int 
         /* a row without a variable has type 0: no name test on the way */
         const fmu_var *x = &vars[vr[i] < nv ? vr[i] : 0];
         if (vr[i] >= nv || x->type != FMU_T_Float64)
-            return not_of_type(vr[i], "Float64 (Real)", msg);
+            return not_of_type(vr[i], FMU_T_Float64, msg);
         v[i] = *CSLOT_D(m, x);
     }
     return FMU_OK;
@@ -177,9 +201,7 @@ fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t
                              size_t width, int kinds, fmu_msg *msg) {
     for (size_t i = 0; i < n; ++i) {
         const fmu_var *x = var_of(vr[i]);
-        if (!x || !(x->type & kinds))
-            return not_of_type(vr[i], kinds == FMU_ENUM ? "Enumeration (Int64)"
-                                      : kinds == FMU_INT32 ? "Int32" : "Integer", msg);
+        if (!x || !(kind_of(x, vr[i], kinds) & kinds)) return not_of_type(vr[i], kinds, msg);
         fmu_int_put(v, width, i, *CSLOT_I(m, x));
     }
     return FMU_OK;
@@ -192,26 +214,25 @@ int fmu_model_is_structural(unsigned int vr) {
     return 0;
 }
 
-/* The number of values vr holds (1 for a scalar) and its type (0: unknown). */
+/* The number of values vr holds (1 for a scalar) and its type as FMI 3.0
+ * sees it (0: unknown). */
 static size_t values_of(const fmu_model *m, unsigned int vr, int *type) {
     const fmu_arrays *a = INFO.arrays;
     size_t n;
     if (a && vr >= INFO.n_vars && (n = a->size(m, vr, type)) > 0) return n;
     const fmu_var *x = var_of(vr);
-    *type = x ? x->type : 0;
+    *type = x ? kind_of(x, vr, FMU_AS_FMI3) : 0;
     return 1;
 }
 
 fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
                                 size_t n_values, int type, size_t width, fmu_msg *msg) {
-    const char *asked = type == FMU_T_Float64 ? "Float64" : type == FMU_ENUM ? "Enumeration (Int64)"
-                                                                             : "Int32";
     size_t total = 0;
     for (size_t i = 0; i < n; ++i) {
         int t;
         total += values_of(m, vr[i], &t);
         if (!(t & type)) /* the type codes are the kind bits */
-            return not_of_type(vr[i], asked, msg);
+            return not_of_type(vr[i], type | FMU_AS_FMI3, msg);
     }
     if (total != n_values)
         return fmu_fail(msg, "nValues = %zu but the %zu variables hold %zu values", n_values, n,

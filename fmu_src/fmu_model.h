@@ -58,8 +58,13 @@ enum { FMU_ALLOW_PARAMETERS = 1, FMU_ALLOW_INPUTS = 2 };
 /* Integer kinds as the variable table names them.  FMI 2.0 reads both as
  * Integer; FMI 3.0 reads Int32 through fmi3GetInt32 and Enumerations
  * through fmi3GetInt64.  The type codes are the kind bits, so that "may this
- * function touch this variable" is one AND. */
-enum { FMU_INT32 = 1, FMU_ENUM = 2 };
+ * function touch this variable" is one AND.
+ * FMI 3.0 also has FMU_UINT64: a structural parameter (an array dimension,
+ * an Int32 row of its table) is a UInt64 there, as the standard's Dimension
+ * element requires, served through fmi3GetUInt64 / fmi3SetUInt64 only; an
+ * FMI 3.0 caller adds FMU_AS_FMI3 to its kinds to see it so (FMI 2.0 keeps
+ * the table's Integer).  No variable's type has either bit. */
+enum { FMU_INT32 = 1, FMU_ENUM = 2, FMU_UINT64 = 8, FMU_AS_FMI3 = 16 };
 enum { FMU_T_Int32 = FMU_INT32, FMU_T_Enum = FMU_ENUM, FMU_T_Float64 = 4 };
 enum { FMU_C_independent = 1, FMU_C_parameter, FMU_C_input, FMU_C_output };
 /* Which FMU_ALLOW_* bit a causality needs to be set (0: never settable). */
@@ -184,15 +189,17 @@ fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n
                                  const double v[], int allow, fmu_msg *msg);
 fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n,
                                  double v[], fmu_msg *msg);
-/* Integers travel as int32_t or int64_t arrays (width 4 or 8); `kinds` is
- * the mask of FMU_INT32 / FMU_ENUM the calling function may touch. */
+/* Integers travel as int32_t or int64_t arrays (width 4 or 8; uint64_t
+ * when kinds has FMU_UINT64); `kinds` is the mask of FMU_INT32 / FMU_ENUM /
+ * FMU_UINT64 the calling function may touch, with FMU_AS_FMI3 from FMI 3.0. */
 fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, const void *v,
                              size_t width, int kinds, int allow, fmu_msg *msg);
 fmu_status fmu_model_get_int(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
                              size_t width, int kinds, fmu_msg *msg);
 /* FMI 3.0 gets, arrays included: the values of vr[] in order, each array's
  * in row-major order, nValues their total; `type` FMU_T_Float64 (v double[])
- * or the integer kinds with width as fmu_model_get_int. */
+ * or the integer kinds with width as fmu_model_get_int (structural
+ * parameters are FMU_UINT64 here, whether or not FMU_AS_FMI3 is given). */
 fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], size_t n, void *v,
                                 size_t n_values, int type, size_t width, fmu_msg *msg);
 /* Whether vr is one of the model's structural parameters. */

@@ -268,6 +268,14 @@ static int is_structural(const row *r) {
     return kind_in(FMU_STRUCTURAL_PARAMETERS, r->name) != NULL;
 }
 
+/* A structural parameter is an array dimension here, and FMI 3.0 (its
+ * Dimension element, section 2.4.7) wants a dimension's variable to be a
+ * UInt64 constant or structural parameter with start > 0: written so in
+ * FMI 3.0 whatever its table type, which FMI 2.0 keeps (an Integer).  The
+ * glue serves it through the UInt64 functions (fmu_model.h, FMU_UINT64). */
+#define STRUCTURAL_TYPE_FMI3 "UInt64"
+
+
 /* A known of the mode: at a communication point the inputs (the time moves
  * with doStep as the hidden state does: the importer sets neither); in
  * initialization mode also the start time and every variable with
@@ -298,9 +306,14 @@ static int check_dependencies(void) {
         char name[64], kind[16];
         for (int k = 0; list_item(FMU_STRUCTURAL_PARAMETERS, k, name, kind); ++k) {
             const row *r = row_named(name);
-            if (!r || !is(r->type, "Int32") || !is(r->causality, "parameter") || r->min < 1) {
+            /* an Int32 of the table (FMI 2.0's Integer) becomes FMI 3.0's UInt64:
+             * min >= 1 makes every value it can take, the start too, > 0 */
+            if (!r || !is(r->type, "Int32") || !is(r->causality, "parameter") || r->min < 1 ||
+                !(r->start >= r->min && r->start <= r->max) || !is(r->initial, "exact") ||
+                !(is(r->variability, "fixed") || is(r->variability, "tunable"))) {
                 fprintf(stderr, "gen_model_description: structural parameter %s is not an Int32 "
-                                "parameter with min >= 1\n", name);
+                                "parameter, fixed or tunable, initial exact, with min >= 1 and its "
+                                "start in [min, max]\n", name);
                 bad = 1;
             }
         }
@@ -439,7 +452,8 @@ static void fmi3(FILE *f, const char *token) {
     fputs("  <ModelVariables>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
-        const char *el = is_enum(r) ? "Enumeration" : r->type;
+        const char *el = is_structural(r) ? STRUCTURAL_TYPE_FMI3 : is_enum(r) ? "Enumeration"
+                                                                                : r->type;
         fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\"", el, r->name, r->vr);
         if (is_enum(r)) fprintf(f, " declaredType=\"%s\"", r->type);
         fprintf(f, " causality=\"%s\" variability=\"%s\"",
@@ -533,7 +547,8 @@ static const char *type_name(const row *r, int v, char *buf, size_t n) {
     if (v == 2) {
         snprintf(buf, n, "%s", is(r->type, "Float64") ? "Real" : is_enum(r) ? "Integer (see below)" : "Integer");
     } else {
-        snprintf(buf, n, "%s%s", is_enum(r) ? "Enumeration " : "", r->type);
+        snprintf(buf, n, "%s%s", is_enum(r) ? "Enumeration " : "",
+                 is_structural(r) ? STRUCTURAL_TYPE_FMI3 : r->type);
     }
     return buf;
 }
@@ -582,7 +597,9 @@ static void html(FILE *f, int v) {
     fputs("</table>\n", f);
     if (v == 3 && HAS_STRUCTURAL)
         fputs("<p>Structural parameters (causality structuralParameter), settable in configuration "
-              "mode as well as before initialization: <code>" FMU_STRUCTURAL_PARAMETERS "</code>. "
+              "mode as well as before initialization: <code>" FMU_STRUCTURAL_PARAMETERS "</code>, "
+              "of type " STRUCTURAL_TYPE_FMI3 " (fmi3GetUInt64, fmi3SetUInt64) as the standard "
+              "wants an array's dimension to be (Integer parameters in FMI 2.0). "
               "The arrays above are their shape, row-major (the last index fastest); "
               "fmi3GetFloat64 and fmi3GetInt32 take nValues, the number of values of all the "
               "variables asked for.</p>\n", f);
@@ -675,7 +692,8 @@ static void manifest(FILE *f) {
     fputs("  ],\n", f);
     if (NARRAYS > 0 || HAS_STRUCTURAL) {
         /* FMI 3.0 only: n1, n2 are structural parameters there, and the arrays */
-        fputs("  \"fmi3\": {\"structuralParameters\": [", f);
+        fputs("  \"fmi3\": {\"structuralType\": \"" STRUCTURAL_TYPE_FMI3 "\", "
+              "\"structuralParameters\": [", f);
         char name[64], kind[16];
         for (int k = 0; list_item(FMU_STRUCTURAL_PARAMETERS, k, name, kind); ++k) {
             if (k) fputs(", ", f);

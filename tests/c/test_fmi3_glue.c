@@ -236,12 +236,41 @@ static void test_intermediate_variables_requested(void) {
               NULL, "NULL list with a count accepted");
 }
 
+/* The point has no structural parameter: the UInt64 functions refuse each
+ * of its variables by name and type.  A state is freed once, by its own
+ * instance; the state itself passed for its address (fmusim 0.0.39) is
+ * freed with a warning. */
+static void test_uint64_and_state_handles(void) {
+    fmi3Instance c = make("handles");
+    const fmi3ValueReference vr_mu1 = OC_VR_mu1;
+    fmi3UInt64 u = 1;
+    n_logged = 0;
+    CHECK(fmi3SetUInt64(c, &vr_mu1, 1, &u, 1) == fmi3Error, "mu1 set as UInt64");
+    CHECK(n_logged == 1 && strstr(last_message, "fmi3SetUInt64: variable mu1 (vr 1) is of type Float64 (Real)"),
+          "reason: %s", last_message);
+    start(c);
+    CHECK(fmi3GetUInt64(c, &vr_mu1, 1, &u, 1) == fmi3Error, "mu1 read as UInt64");
+    fmi3FMUState st = NULL, kept = NULL;
+    CHECK(fmi3GetFMUState(c, &st) == fmi3OK, "get state");
+    kept = st;
+    CHECK(fmi3FreeFMUState(c, &st) == fmi3OK && st == NULL, "free");
+    CHECK(fmi3FreeFMUState(c, &kept) == fmi3Error, "double free accepted");
+    CHECK(strstr(last_message, "not a state of this instance"), "reason: %s", last_message);
+    CHECK(fmi3GetFMUState(c, &st) == fmi3OK, "get again");
+    n_logged = 0;
+    CHECK(fmi3FreeFMUState(c, (fmi3FMUState *)st) == fmi3OK && n_logged == 1 &&
+          strstr(last_message, "given the state instead of a pointer to it"), "warning: %s",
+          last_message);
+    fmi3FreeInstance(c);
+}
+
 int main(void) {
     CHECK(strcmp(fmi3GetVersion(), "3.0") == 0, "version");
     test_rejects();
     test_types_and_states();
     test_derivatives();
     test_state_into_fresh_instance();
+    test_uint64_and_state_handles();
     test_intermediate_variables_requested();
     test_initial_slip();
     return oc_report();
