@@ -73,6 +73,7 @@ class ModelSources:
     table: str
     fmi2: object
     fmi3: object
+    ranges: dict = None   # {2 or 3: {name: (min, max)}} from the XML (ranges_of)
 
 
 def installed_models() -> list[ModelSources]:
@@ -83,8 +84,23 @@ def installed_models() -> list[ModelSources]:
               for m in json.loads(installed_file("models.json").read_text())["models"]}
     return [ModelSources(manifest(model), tables[model],
                          model_description(find_fmu(fmi_version=2, model=model)),
-                         model_description(find_fmu(fmi_version=3, model=model)))
+                         model_description(find_fmu(fmi_version=3, model=model)),
+                         {v: ranges_of(find_fmu(fmi_version=v, model=model)) for v in (2, 3)})
             for model in models().values()]
+
+
+def ranges_of(fmu) -> dict:
+    """{name: (min, max)} (texts or None) as the FMU's model description
+    writes them: fmpy 0.3.32 reads no min/max of an FMI 3.0 UInt type."""
+    import xml.etree.ElementTree as ET
+    import zipfile
+    with zipfile.ZipFile(fmu) as z:
+        root = ET.fromstring(z.read("modelDescription.xml"))
+    out = {}
+    for v in root.find("ModelVariables"):
+        typed = v[0] if v.tag == "ScalarVariable" else v   # FMI 2.0 keeps them on the type element
+        out[v.get("name")] = (typed.get("min"), typed.get("max"))
+    return out
 
 
 def _same_number(a, b) -> bool:
@@ -110,15 +126,15 @@ def check_sources(src: ModelSources) -> None:
                     (theirs.valueReference, theirs.type, theirs.unit or "", dims):
                 raise ValueError(f"{where} disagree on the array {a.name}{stale}")
         for ours, theirs in zip(m.variables, md.modelVariables):
+            lo, hi = src.ranges[version][ours.name] if src.ranges else (theirs.min, theirs.max)
             fields = [("valueReference", ours.value_reference, theirs.valueReference, int.__eq__),
                       ("causality", m.causality(ours, version), theirs.causality, str.__eq__),
                       ("variability", ours.variability, theirs.variability, str.__eq__),
                       ("unit", ours.unit, theirs.unit or "", str.__eq__),
                       ("start", ours.start, theirs.start, _same_number),
-                      ("min", ours.min, theirs.min, _same_number),
-                      ("max", ours.max, theirs.max, _same_number)]
-            if md is src.fmi3:
-                fields.append(("type", ours.type, theirs.type, str.__eq__))
+                      ("min", ours.min, lo, _same_number),
+                      ("max", ours.max, hi, _same_number)]
+            fields.append(("type", m.type(ours, version), theirs.type, str.__eq__))
             for field, a, b, same in fields:
                 if not same(a, b):
                     raise ValueError(f"{where} disagree on {ours.name}'s {field} ({a!r} and {b!r}){stale}")
@@ -180,7 +196,8 @@ def model_section(src: ModelSources) -> list[str]:
            f"Table: `{src.table}`. Value references are the same in FMI 2.0 and 3.0."]
     if m.structural:
         out.append(f"In FMI 3.0 {', '.join(f'`{n}`' for n in m.structural)} are structural parameters "
-                   "(settable also in configuration mode; parameters in FMI 2.0) and the arrays "
+                   f"of type {m.structural_type} (settable also in configuration mode, with "
+                   f"fmi3Set{m.structural_type}; Integer parameters in FMI 2.0) and the arrays "
                    + ", ".join(f"`{a.name}`" for a in m.arrays) + " are outputs of that shape "
                    "(row-major, read with nValues their size); FMI 2.0 has no arrays.")
     law = m.group("law")
@@ -190,7 +207,7 @@ def model_section(src: ModelSources) -> list[str]:
     for v in m.variables:
         d3 = md3[v.name]
         du = d3.displayUnit or ""
-        kind = f"{v.type} ({v.declared_type})" if v.declared_type else v.type
+        kind = f"{v.type} ({v.declared_type})" if v.declared_type else m.type(v, 3)
         start = number(v.start) + display(md, v.unit, du, v.start) if v.start is not None else \
             "calculated" if d3.initial == "calculated" else NONE
         if v.declared_type and v.start is not None:

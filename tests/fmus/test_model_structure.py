@@ -21,7 +21,8 @@ from fmu_values import schema_errors, unzipped
 
 from orthocontact import closed_forms as cf
 from orthocontact.fmu import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
-from orthocontact.fmu.variables import models
+from orthocontact.fmu.slave import integer_call
+from orthocontact.fmu.variables import manifest, models
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -47,12 +48,8 @@ class Instance:
             v = self.var[name]
             if v.type in ("Real", "Float64"):
                 (self.s.setReal if self.version == 2 else self.s.setFloat64)([v.valueReference], [x])
-            elif self.version == 2:
-                self.s.setInteger([v.valueReference], [int(x)])
-            elif v.type == "Int32":
-                self.s.setInt32([v.valueReference], [int(x)])
-            else:
-                self.s.setInt64([v.valueReference], [int(x)])
+            else:   # by the function of its type (FMI 3.0: n1, n2 UInt64, enumerations Int64)
+                integer_call(self.s, self.version, v.type)([v.valueReference], [int(x)])
 
     def outputs(self) -> dict:
         out = {}
@@ -64,7 +61,8 @@ class Instance:
             else:
                 get = self.s.getInteger if self.version == 2 else self.s.getInt32
             if v.dimensions:     # an FMI 3.0 array: all its values, its shape the structural parameters'
-                n = math.prod(int(self.s.getInt32([d.variable.valueReference])[0]) for d in v.dimensions)
+                n = math.prod(int(integer_call(self.s, 3, d.variable.type, get=True)(
+                    [d.variable.valueReference])[0]) for d in v.dimensions)
                 out[v.name] = tuple(get([v.valueReference], nValues=n))
             else:
                 out[v.name] = get([v.valueReference])[0]
@@ -112,12 +110,15 @@ def observe(version, model, point, mode):
         f.free()
 
 
-def perturbations(var, value):
+def perturbations(model, var, value):
     """Other admissible values of a known: every other item of an
-    enumeration / integer; 10 % either side of a number (0.1 of its unit
-    beside 0, as an angle, a time or a coefficient that starts at 0)."""
+    enumeration / integer (its range the table's: fmpy 0.3.32 reads no
+    min/max of an FMI 3.0 UInt64, such as n1); 10 % either side of a number
+    (0.1 of its unit beside 0, as an angle, a time or a coefficient that
+    starts at 0)."""
     if var.type not in ("Real", "Float64"):
-        return [k for k in range(int(var.min), int(var.max) + 1) if k != value]
+        row = manifest(model).variable(var.name)
+        return [k for k in range(int(row.min), int(row.max) + 1) if k != value]
     return [value * 1.1, value * 0.9] if value != 0 else [0.1, -0.1] if var.min is None or float(var.min) < 0 else [0.1]
 
 
@@ -131,7 +132,7 @@ def measured_dependencies(version, model, points, mode):
         for known in knowns_by_mode(md)[mode]:
             where = "time" if known == "time" else "step" if mode == "step" else "init"
             value = point[where] if known == "time" else point[where][known]
-            for other in perturbations(var[known], value):
+            for other in perturbations(model, var[known], value):
                 moved = dict(point)
                 if known == "time":
                     moved["time"] = other

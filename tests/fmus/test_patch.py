@@ -21,6 +21,7 @@ from fmu_values import unzipped
 
 from orthocontact.closed_forms import patch as cp
 from orthocontact.fmu.files import find_fmu
+from orthocontact.fmu.slave import integer_call
 
 PATCH_ENV = {2: "ORTHOCONTACT_PATCH_FMU", 3: "ORTHOCONTACT_PATCH_FMU3"}
 INTEGERS = ("n1", "n2", "slidingRule", "initialSlip")
@@ -102,13 +103,8 @@ class Slave:
 
     def set(self, **values):
         for name, v in values.items():
-            if name in INTEGERS:
-                if self.version == 2:
-                    self.s.setInteger([self.vr[name]], [int(v)])
-                elif self.types[name] == "Int32":
-                    self.s.setInt32([self.vr[name]], [int(v)])
-                else:
-                    self.s.setInt64([self.vr[name]], [int(v)])
+            if name in INTEGERS:   # in FMI 3.0 n1, n2 UInt64, the enumerations Int64
+                integer_call(self.s, self.version, self.types[name])([self.vr[name]], [int(v)])
             else:
                 (self.s.setReal if self.version == 2 else self.s.setFloat64)([self.vr[name]], [float(v)])
 
@@ -603,7 +599,7 @@ def test_fmi3_structural_parameters_resize_the_arrays_in_configuration_mode():
     s.instantiate(logMessage=log)
     try:
         s.enterConfigurationMode()
-        s.setInt32([vr["n1"], vr["n2"]], [3, 7])
+        s.setUInt64([vr["n1"], vr["n2"]], [3, 7])
         with pytest.raises(Exception):
             s.setFloat64([vr["mu1"]], [0.5])
         assert any("mu1 (vr 1) is not a structural parameter" in m for m in messages), messages
@@ -629,6 +625,49 @@ def test_fmi3_structural_parameters_resize_the_arrays_in_configuration_mode():
         s.freeInstance()
 
 
+def test_fmi3_n1_n2_are_uint64_and_only_uint64():
+    """FMI 3.0 wants an array's dimension to be a UInt64 structural
+    parameter: n1, n2 are set and read through the UInt64 functions only;
+    the Int32 ones refuse them by name, as does a value outside [1, 32]
+    (2^64 - 1 as itself, not as -1), each with an error status and a log
+    line, the values as they were."""
+    from fmpy.fmi3 import FMU3Slave
+
+    md = read_model_description(str(patch_fmu(3)))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    assert {v.name: v.type for v in md.modelVariables if v.name in ("n1", "n2")} == \
+        {"n1": "UInt64", "n2": "UInt64"}
+    messages = []
+
+    def log(env, status, category, message):
+        messages.append(message.decode(errors="replace"))
+    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(str(patch_fmu(3))),
+                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="uint64")
+    s.instantiate(logMessage=log)
+    try:
+        s.setUInt64([vr["n1"], vr["n2"]], [3, 7])
+        for call, why in [(lambda: s.setInt32([vr["n1"]], [4]),
+                           "fmi3SetInt32: variable n1 (vr 13) is of type UInt64 (a structural parameter)"),
+                          (lambda: s.setUInt64([vr["n2"]], [0]), "n2 = 0 rejected: outside [1, 32]"),
+                          (lambda: s.setUInt64([vr["n1"]], [2**64 - 1]),
+                           "n1 = 1.84467e+19 rejected: outside [1, 32]"),
+                          (lambda: s.setInt64([vr["n1"]], [4]), "is of type UInt64")]:
+            with pytest.raises(Exception):
+                call()
+            assert any(why in m for m in messages), (why, messages)
+        s.enterInitializationMode(startTime=0.0)
+        s.exitInitializationMode()
+        assert list(s.getUInt64([vr["n1"], vr["n2"]])) == [3, 7]
+        with pytest.raises(Exception):
+            s.getInt32([vr["n1"]])
+        assert any("n1 (vr 13) is of type UInt64 (a structural parameter), not Int32" in m
+                   for m in messages), messages
+        assert len(s.getFloat64([vr["cellT1"]], nValues=21)) == 21
+    finally:
+        s.terminate()
+        s.freeInstance()
+
+
 def test_only_fmi3_declares_the_arrays_and_structural_parameters():
     """FMI 3.0: n1, n2 structural parameters, the arrays' dimensions n1, n2 by
     value reference, the arrays outputs in the model structure; FMI 2.0: n1,
@@ -636,6 +675,7 @@ def test_only_fmi3_declares_the_arrays_and_structural_parameters():
     md3 = read_model_description(str(patch_fmu(3)), validate=True)
     by3 = {v.name: v for v in md3.modelVariables}
     assert by3["n1"].causality == by3["n2"].causality == "structuralParameter"
+    assert by3["n1"].type == by3["n2"].type == "UInt64" and int(by3["n1"].start) > 0
     for name in ("cellT1", "cellT2", "cellState"):
         assert [d.variable.name for d in by3[name].dimensions] == ["n1", "n2"]
         assert by3[name].causality == "output"
@@ -643,3 +683,4 @@ def test_only_fmi3_declares_the_arrays_and_structural_parameters():
     md2 = read_model_description(str(patch_fmu(2)), validate=True)
     by2 = {v.name: v for v in md2.modelVariables}
     assert by2["n1"].causality == "parameter" and not any(n.startswith("cell") for n in by2)
+    assert by2["n1"].type == by2["n2"].type == "Integer"

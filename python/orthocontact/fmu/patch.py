@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from .contact import INITIAL_SLIP, FMUError
 from .files import find_fmu, model_description
 from .params import RULES, ContactParams
-from .slave import FreedOnClose, instantiate
+from .slave import FreedOnClose, instantiate, integer_call
 
 PATCH_MODEL = "ContactPatch"
 INPUTS = ("u1", "u2", "theta", "N", "p1", "p2")
@@ -82,13 +82,10 @@ class PatchFMU(FreedOnClose):
             raise FMUError(f"{what} failed: {last}") from e
 
     def _set_integer(self, name: str, value: int):
-        vr = [self.vr[name]]
-        if self.fmi_version == 2:
-            self._call(f"setting {name}", self._slave.setInteger, vr, [int(value)])
-        elif self.types[name] == "Int32":
-            self._call(f"setting {name}", self._slave.setInt32, vr, [int(value)])
-        else:   # an enumeration: Int64 in FMI 3.0
-            self._call(f"setting {name}", self._slave.setInt64, vr, [int(value)])
+        """By the function of its type: in FMI 3.0 n1, n2 are UInt64 (array
+        dimensions), the enumerations Int64."""
+        self._call(f"setting {name}", integer_call(self._slave, self.fmi_version, self.types[name]),
+                   [self.vr[name]], [int(value)])
 
     def initialize(self, params: ContactParams, geometry: PatchGeometry,
                    inputs: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),

@@ -44,6 +44,24 @@ def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on:
     return s, (log3,)
 
 
+# FMI 3.0's function of each integer type a model description can give
+# (fmpy's ModelVariable.type); FMI 2.0 has one for all, Integer.
+_FMI3_INTEGER_FUNCTION = {"Int32": "Int32", "UInt64": "UInt64", "Int64": "Int64", "Enumeration": "Int64"}
+
+
+def integer_call(slave, fmi_version: int, type_name: str, get: bool = False):
+    """The bound fmpy method of `slave` that sets (get=True: gets) a variable
+    of integer type `type_name` as its model description declares it:
+    setInteger in FMI 2.0; in FMI 3.0 its type's own, setInt32, setUInt64
+    (a structural parameter, the dimension of an array: the ContactPatch's
+    n1, n2) or setInt64 (an enumeration).  Another type: ValueError."""
+    if fmi_version == 2:
+        return slave.getInteger if get else slave.setInteger
+    if type_name not in _FMI3_INTEGER_FUNCTION:
+        raise ValueError(f"no FMI 3.0 integer function for a variable of type {type_name!r}")
+    return getattr(slave, ("get" if get else "set") + _FMI3_INTEGER_FUNCTION[type_name])
+
+
 def free(slave, initialized: bool) -> None:
     """Terminates (if it was initialized) and frees the instance; a failed
     terminate (already terminated, or in error) does not keep it from being freed."""

@@ -21,7 +21,7 @@ class Variable:
     """One row of a model's variable table."""
     name: str
     value_reference: int
-    type: str                 # Float64, Int32 or Enumeration
+    type: str                 # Float64, Int32 or Enumeration (the table's: Manifest.type gives each FMI's)
     declared_type: str | None  # the enumeration's type, e.g. SlidingRule
     causality: str
     variability: str
@@ -56,10 +56,19 @@ class Manifest:
     enumerations: dict[str, dict[str, int]]
     structural: tuple[str, ...] = ()
     arrays: tuple[ArrayVariable, ...] = ()
+    structural_type: str = ""   # FMI 3.0's type of the structural parameters (UInt64)
 
     def causality(self, v: Variable, fmi_version: int) -> str:
         """v's causality in that FMI version's model description."""
         return "structuralParameter" if fmi_version == 3 and v.name in self.structural else v.causality
+
+    def type(self, v: Variable, fmi_version: int) -> str:
+        """v's type in that FMI version's model description as fmpy names it
+        (Real, Integer in FMI 2.0; in FMI 3.0 the table's, but a structural
+        parameter, an array's dimension, is the standard's UInt64)."""
+        if fmi_version == 2:
+            return "Real" if v.type == "Float64" else "Integer"
+        return self.structural_type if v.name in self.structural else v.type
 
     def group(self, name: str) -> tuple[str, ...]:
         """The names of the variables of a group, in the table's order."""
@@ -102,7 +111,7 @@ def manifest(model: str) -> Manifest:
                                  tuple(a["dimensions"]), a["dependenciesOf"], a["description"])
                    for a in fmi3.get("arrays", ()))
     return Manifest(d["modelIdentifier"], rows, d["enumerations"],
-                    tuple(fmi3.get("structuralParameters", ())), arrays)
+                    tuple(fmi3.get("structuralParameters", ())), arrays, fmi3.get("structuralType", ""))
 
 
 def contact() -> Manifest:
