@@ -128,7 +128,7 @@ def test_modules_are_small():
 # __main__ shares cli/test_main.py), and that file imports the module.  Tests
 # of no single module live in folders no subpackage is named like.
 TESTS = Path(__file__).resolve().parents[1]
-NOT_A_MODULE = {"fmus", "contracts"}            # the FMU binaries; the repository's contracts
+NOT_A_MODULE = {"fmus", "contracts", "conformance"}   # FMU binaries; the repository's contracts; FMI rules
 SHARED_BY = {"__main__": "cli.main"}            # tested in that module's file
 
 
