@@ -169,3 +169,53 @@ def test_towed_block_refuses_a_pin_not_ahead_of_the_centre():
     with pytest.raises(ValueError, match="pin_m must be a finite number > 0"):
         planar.towed_block(mat(0.0, "coupled"), block(), velocity_m_s=0.2, pin_m=-0.1,
                            duration_s=1.0, step_s=1e-3)
+
+
+# -- the towed block's implicit step: a root wherever the law bounds the moment ------------------
+
+
+def test_a_high_friction_tow_whose_newton_had_no_descent_settles_on_the_closed_form():
+    """mu1 = 3.0 (inside the usual range) on scenarios/towed_block.toml's
+    block, pin and step, coupled at 15 deg: at t = 0.02 s the step's tangent
+    dR/dtheta is negative at Newton's iterate (a cell's stick-slip switch),
+    where the harness raised RuntimeError.  It now bisects there, and the
+    yaw settles at the closed form (an FMU coupled explicitly at 1 ms
+    settles there too)."""
+    body = planar.PlanarBody.uniform(MASS, PatchGeometry(0.05, 0.025, 4, 2), N)
+    p = ContactParams.from_degrees(3.0, 0.625, 1.251e5, 1e5, 15.0 + 90.0, 15.0, "coupled")
+    r = planar.towed_block(p, body, velocity_m_s=0.244, pin_m=0.015, duration_s=30.0, step_s=1e-2)
+    assert r.theta[-1] == pytest.approx(planar.steady_yaw(p), abs=1e-9)
+    assert abs(math.degrees(r.theta[-1])) > 60   # the block turned far: mu1 / mu2 = 4.8
+
+
+def test_step_root_bisects_where_newton_leaves_its_bracket_or_stalls():
+    """R = cbrt(x - 0.1): Newton from any x != 0.1 overshoots by twice its
+    distance and diverges; with the bracket it converges to tol."""
+    calls = []
+
+    def cube_root(x):
+        calls.append(x)
+        d = x - 0.1
+        return math.copysign(abs(d) ** (1 / 3), d), (abs(d) ** (-2 / 3) / 3 if d else math.inf)
+    x = planar.step_root(cube_root, 1.0, 2.0, 1e-13, 30)
+    assert abs(x - 0.1) <= 1e-13 and len(calls) < 100
+
+
+def test_step_root_bisects_where_the_tangent_has_the_wrong_sign():
+    """A kink whose one-sided tangent points away from the root (as a cell
+    switching from stick to slip can give): Newton has no descent there."""
+    def kinked(x):
+        return (x - 0.25, -1.0) if x > 0.3 else (x - 0.25, 1.0)
+    assert planar.step_root(kinked, 1.0, 1.0, 1e-13, 30) == pytest.approx(0.25, abs=1e-13)
+
+
+def test_step_root_refuses_a_residual_it_cannot_bracket_in_one_line():
+    """A non-finite residual, or ends whose signs break the law's bound:
+    StepNotSolved (an InputError: one line naming the cause), never a
+    RuntimeError's traceback."""
+    from orthocontact.errors import InputError
+    assert issubclass(planar.StepNotSolved, InputError)
+    with pytest.raises(planar.StepNotSolved, match="residual is nan"):
+        planar.step_root(lambda x: (math.nan, 1.0), 0.0, 1.0, 1e-13, 30)
+    with pytest.raises(planar.StepNotSolved, match="beyond the bound of the law's forces"):
+        planar.step_root(lambda x: (x - 5.0, -1.0), 0.0, 1.0, 1e-13, 30)

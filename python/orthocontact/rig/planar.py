@@ -57,7 +57,15 @@ Integration of the towed block: backward Euler on theta, solved by Newton
 with the FMU's directional derivatives on the pending (uncommitted) step,
 then committed.  It is stable at any step for the stiff stuck contact, and
 its numerical damping only shortens the transient: the steady yaw is its
-fixed point, which is the continuous one."""
+fixed point, which is the continuous one.  The step's equation
+R(x) = I_pin (x - theta - h omega) - h^2 M(x) always has a root: the
+surface's force on a cell lies on or inside the law's yield ellipse, so
+|T| <= max(mu) N and the moment about the pin |M| <= max(mu) N (d + r_c)
+(r_c the half-diagonal of the patch), and R changes sign over
+x - theta - h omega = -+ h^2 max|M| / I_pin.  Newton steps that leave
+that bracket or stall (the stick-slip switches of the cells put kinks in
+M(x), where the tangent may even have the wrong sign) are replaced by
+bisection, which cannot fail."""
 from __future__ import annotations
 
 import math
@@ -67,6 +75,7 @@ import numpy as np
 
 from ..closed_forms.paper import of_law, steady_tan_phi
 from ..closed_forms.patch import full_slip_rotation_grid, steady_force_direction, torsional_stiffness_grid
+from ..errors import InputError
 from ..fmu.params import ContactParams
 from ..fmu.patch import PatchFMU, PatchGeometry
 
@@ -190,6 +199,53 @@ def steady_yaw_residual(params: ContactParams, theta: float, direction_rad: floa
     return theta + phi - direction_rad
 
 
+class StepNotSolved(InputError):
+    """A towed block's backward Euler step that has no root where the law
+    bounds it (a non-finite moment, or one beyond max(mu) N (d + r_c)): an
+    input the harness cannot integrate; the message names the cause, the
+    caller the step's key."""
+
+
+def step_root(residual, x0: float, half_width: float, tol: float, newton_iterations: int) -> float:
+    """The root of residual(x) -> (R, dR/dx), R <= 0 at x0 - half_width and
+    >= 0 at x0 + half_width, to tol: Newton from x0 while its step stays
+    inside the bracket of the signs seen and at least halves |R| (at most
+    newton_iterations steps), bisection otherwise, which always converges.
+    Raises StepNotSolved for a non-finite R or a bracket whose ends do not
+    have the signs promised."""
+    lo, hi = x0 - half_width, x0 + half_width
+    ends_checked, newton, last, x = False, 0, math.inf, x0
+    while True:
+        R, J = residual(x)
+        if not math.isfinite(R):
+            raise StepNotSolved(f"the step's residual is {R!r} at theta = {x!r} rad")
+        if R == 0:
+            return x
+        if R < 0:
+            lo = x
+        else:
+            hi = x
+        dx = -R / J if math.isfinite(J) and J > 0 else math.nan
+        if abs(dx) <= tol:   # converged (a step this small may not move x at all)
+            return x + dx
+        if not (newton < newton_iterations and lo < x + dx < hi and abs(R) <= 0.5 * last):
+            if not ends_checked:
+                # the bound is the law's (module docstring): checked, not assumed, before bisecting on it
+                ends_checked = True
+                for end, sign in ((x0 - half_width, -1), (x0 + half_width, 1)):
+                    R_end = residual(end)[0]
+                    if not (math.isfinite(R_end) and sign * R_end >= 0):
+                        raise StepNotSolved(f"the step's residual at theta = {end!r} rad is {R_end!r}, "
+                                            "beyond the bound of the law's forces")
+            dx = 0.5 * (lo + hi) - x
+        else:
+            newton += 1
+        last = abs(R)
+        x += dx
+        if abs(dx) <= tol or hi - lo <= tol:
+            return x
+
+
 def towed_block(params: ContactParams, body: PlanarBody, velocity_m_s: float, pin_m: float,
                 duration_s: float, step_s: float, direction_rad: float = 0.0,
                 theta0_rad: float = 0.0, fmi_version: int = 2, fmu_path=None,
@@ -197,8 +253,10 @@ def towed_block(params: ContactParams, body: PlanarBody, velocity_m_s: float, pi
     """Pulls the body through a pin at pin_m [m] ahead of its centre along
     direction_rad at velocity_m_s [m/s] for duration_s [s], starting at yaw
     theta0_rad [rad] at rest (every cell unloaded); backward Euler with step
-    step_s [s].  A Newton solve that does not converge raises RuntimeError
-    (a yaw that is not the step's solution is not recorded)."""
+    step_s [s], each step's yaw solved to newton_tol_rad by step_root (at
+    most newton_iterations Newton steps, then bisection).  A step it cannot
+    solve raises StepNotSolved (a yaw that is not the step's solution is not
+    recorded)."""
     v = _positive("velocity_m_s", velocity_m_s)
     d = _positive("pin_m", pin_m)
     h = _positive("step_s", step_s)
@@ -206,40 +264,37 @@ def towed_block(params: ContactParams, body: PlanarBody, velocity_m_s: float, pi
     m = np.array([math.cos(direction_rad), math.sin(direction_rad)])
     I_pin = body.inertia_kg_m2 + body.mass_kg * d * d
     N = body.normal_N
+    g = body.patch
+    # the step's bracket (module docstring), a little wider than the bound of |M|
+    bound = 1.01 * h * h * max(params.mu1, params.mu2) * N * (d + math.hypot(g.length, g.width) / 2) / I_pin
     theta, omega = float(theta0_rad), 0.0
     pin0 = d * np.array([math.cos(theta), math.sin(theta)])    # centre starts at the origin
     rec = np.empty((9, n))
     with PatchFMU(fmu_path, "towed", fmi_version) as fmu:
         fmu.initialize(params, body.patch, (0.0, 0.0, theta, N))
+
+        def residual(x):
+            """R(x) and dR/dx of the step at yaw x, from the pending step."""
+            e = np.array([math.cos(x), math.sin(x)])
+            de = np.array([-e[1], e[0]])
+            c = pin - d * e
+            fmu.set_inputs(c[0], c[1], x, N)
+            T1, T2, Mz = fmu.load()
+            # moment about the pin and its derivative along theta (the
+            # centre moves by dc = -d de dtheta)
+            M = Mz - d * (e[0] * T2 - e[1] * T1)
+            d_th, d_u1, d_u2 = fmu.derivative("theta"), fmu.derivative("u1"), fmu.derivative("u2")
+            dT = [d_th[k] - d * (de[0] * d_u1[k] + de[1] * d_u2[k]) for k in range(3)]
+            dM = dT[2] - d * (de[0] * T2 - de[1] * T1) - d * (e[0] * dT[1] - e[1] * dT[0])
+            return I_pin * (x - theta - h * omega) - h * h * M, I_pin - h * h * dM
+
         for i in range(n):
             t = h * (i + 1)
             pin = pin0 + v * t * m
-            x = theta + h * omega    # predictor: the rate held
-            for it in range(newton_iterations):
-                e = np.array([math.cos(x), math.sin(x)])
-                de = np.array([-e[1], e[0]])
-                c = pin - d * e
-                fmu.set_inputs(c[0], c[1], x, N)
-                T1, T2, Mz = fmu.load()
-                # moment about the pin and its derivative along theta (the
-                # centre moves by dc = -d de dtheta)
-                M = Mz - d * (e[0] * T2 - e[1] * T1)
-                d_th, d_u1, d_u2 = fmu.derivative("theta"), fmu.derivative("u1"), fmu.derivative("u2")
-                dT = [d_th[k] - d * (de[0] * d_u1[k] + de[1] * d_u2[k]) for k in range(3)]
-                dM = dT[2] - d * (de[0] * T2 - de[1] * T1) - d * (e[0] * dT[1] - e[1] * dT[0])
-                R = I_pin * (x - theta - h * omega) - h * h * M
-                J = I_pin - h * h * dM
-                if not (math.isfinite(R) and math.isfinite(J)) or J <= 0:
-                    raise RuntimeError(f"towed block at t = {t:.6g} s: backward Euler's Newton has no "
-                                       f"descent (R = {R!r}, dR/dtheta = {J!r})")
-                dx = -R / J
-                x += dx
-                if abs(dx) <= newton_tol_rad:
-                    break
-            else:
-                raise RuntimeError(f"towed block at t = {t:.6g} s: backward Euler's Newton did not "
-                                   f"converge in {newton_iterations} iterations (last step {dx:.3g} "
-                                   "rad); a smaller step_s helps")
+            try:
+                x = step_root(residual, theta + h * omega, bound, newton_tol_rad, newton_iterations)
+            except StepNotSolved as e:
+                raise StepNotSolved(f"towed block at t = {t:.6g} s: backward Euler's step: {e}") from None
             e = np.array([math.cos(x), math.sin(x)])
             c = pin - d * e
             fmu.set_inputs(c[0], c[1], x, N)
