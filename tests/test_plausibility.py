@@ -245,3 +245,17 @@ def test_the_last_gate_refuses_a_warning_too_unless_forced():
     assert [f.line for f in plausibility.angle_findings({"--angle": 0.7854, "a": 45.0, "b": float("nan")})] \
         == ["--angle = 0.7854: looks like pi/4 in radians; this key is in degrees (45.0001 deg if it was "
             "meant in rad)"]
+
+
+def test_a_list_of_angles_typed_in_radians_is_named_as_a_list_or_by_its_item():
+    assert plausibility.check_angles_deg("a_deg", [0.0, 15.0, 90.0]) is None
+    assert plausibility.check_angles_deg("a_deg", [0.0]) is None    # one value: no spread to judge
+    level, line = plausibility.check_angles_deg("a_deg", [0.5, 1.0])
+    assert level == "warning" and line == ("a_deg = [0.5, 1]: all within +-pi/2, they look like radians; "
+                                           "this key is in degrees ([28.65, 57.3] deg if they were meant in rad)")
+    item = plausibility.check_angles_deg("a_deg", [45.0, 1.5708])[1]
+    assert item.startswith("a_deg[1] = 1.5708: looks like pi/2 in radians")
+    # the patch's lengths: mm typed as m is an error naming mm
+    assert plausibility.check("length_m", 50.0) == ("error", "length_m = 50 m: a block's contact patch is "
+                                                             "1 mm-1 m long; mm?")
+    assert plausibility.check("length_m", 0.05) is None

@@ -66,6 +66,15 @@ QUANTITIES = {
     "stiffness_N_m": Quantity("N/m", (0.0, 1e12), (10.0, 1e9),
                               "a ramp's stick stiffness dF/dx1 is 10-1e9 N/m",
                               ((1e3, "positions in mm or forces in kN"),)),
+    # the contact patch (scenario kinds twist and towed_block): its sides, the tow's pin (its
+    # distance ahead of the block's centre) and the twist's rate
+    "length_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a block's contact patch is 1 mm-1 m long",
+                         ((0.001, "mm"), (0.01, "cm"))),
+    "width_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a block's contact patch is 1 mm-1 m wide",
+                        ((0.001, "mm"), (0.01, "cm"))),
+    "pin_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a tow's pin is 1 mm-1 m ahead of the block's centre",
+                      ((0.001, "mm"), (0.01, "cm"))),
+    "rate_deg_s": Quantity("deg/s", (0.0, 1e4), (1e-2, 1e3), "a twist turns at 0.01-1000 deg/s"),
 }
 
 
@@ -89,10 +98,11 @@ def radian_slip(value_deg: float) -> str | None:
     return ("-" if value_deg < 0 else "") + text
 
 
-def check(key: str, value: float) -> tuple[str, str] | None:
+def check(key: str, value: float, shown: str | None = None) -> tuple[str, str] | None:
     """("error" | "warning", message) for an implausible value of the
     quantity `key`, None if it is plausible or `key` is not in the table.
-    The message starts with 'key = value' and ends with the likely slip."""
+    The message starts with 'key = value' (`shown` in place of key, e.g. a
+    list's item 'key[2]') and ends with the likely slip."""
     q = QUANTITIES.get(key)
     if q is None:
         return None
@@ -104,7 +114,8 @@ def check(key: str, value: float) -> tuple[str, str] | None:
         level = "warning"
     if level is None:
         return None
-    msg = f"{key} = {value:g} {q.unit}: {q.what}" if q.unit != "-" else f"{key} = {value:g}: {q.what}"
+    name = shown or key
+    msg = f"{name} = {value:g} {q.unit}: {q.what}" if q.unit != "-" else f"{name} = {value:g}: {q.what}"
     for factor, unit in q.slips:
         if q.usual[0] <= value * factor <= q.usual[1]:
             msg += f"; {unit}?"
@@ -126,6 +137,24 @@ def looks_like_radians(values_deg, limit: float) -> bool:
     all lies within +-limit: a sweep in degrees does not, one in radians does."""
     vals = [abs(v) for v in values_deg]
     return len(set(values_deg)) >= 2 and max(vals) <= limit
+
+
+# |angle| [deg] within which a list of mat angles was typed in radians: the
+# paper's 0-90 deg is 0-pi/2 in rad (the identification's columns: the same).
+RADIAN_LIST_DEG = math.pi / 2 + 1e-9
+
+
+def check_angles_deg(key: str, values_deg) -> tuple[str, str] | None:
+    """A warning for a list of angles [deg] that looks typed in radians:
+    every one within +-pi/2 (two distinct values at least), or one a round
+    angle in radians (check_angle_deg, naming it as key[i])."""
+    if looks_like_radians(values_deg, RADIAN_LIST_DEG):
+        shown = ", ".join(f"{v:g}" for v in values_deg)
+        meant = ", ".join(f"{math.degrees(v):.4g}" for v in values_deg)
+        return "warning", (f"{key} = [{shown}]: all within +-pi/2, they look like radians; this key is in "
+                           f"degrees ([{meant}] deg if they were meant in rad)")
+    return next((found for i, v in enumerate(values_deg)
+                 if (found := check_angle_deg(f"{key}[{i}]", v)) is not None), None)
 
 
 # A length column typed in another unit: the factor it comes out too large by.

@@ -54,3 +54,22 @@ def test_read_table_fills_defaults_and_refuses_unknown_and_missing_keys():
         read_table(Path("f"), "rig.", {}, rig_spec(mass_kg=REQUIRED), InputError)
     _, warnings = read_table(Path("f"), "", {"g": 9.7}, spec, InputError)
     assert warnings == ["f: g = 9.7 m/s^2: gravity on Earth is 9.76-9.84 m/s^2"]
+
+
+def test_a_checkers_range_options_and_items_are_readable_and_a_list_is_gated_item_by_item():
+    """The schema's checkers say what they take (the property tests of
+    test_scenario.py draw from them); a list's numbers pass the plausibility
+    gate as their key's quantity, named by their index."""
+    from orthocontact.experiment.keys import ANGLE_DEG, Choice, ListOf, Number, plausible
+    assert (ANGLE_DEG.lo, ANGLE_DEG.hi, ANGLE_DEG.lo_open) == (-360, 360, False)
+    rules = SCHEMA["twist"]["rules"][0]
+    assert isinstance(rules, ListOf) and isinstance(rules.item, Choice) and rules.unique
+    assert rules.item.options == ("associated", "coupled")
+    assert rules(["coupled", "associated"]) is None
+    assert rules(["coupled", "coupled"]) == "a list without repeated items (each is run once)"
+    assert isinstance(SCHEMA["patch"]["n1"][0], Number) and SCHEMA["patch"]["n1"][0].hi == 32
+    assert plausible("pin_m", 0.015) is None
+    assert plausible("pin_m", [0.015, 15.0]) == ("error", "pin_m[1] = 15 m: a tow's pin is 1 mm-1 m ahead of "
+                                                          "the block's centre; mm?")
+    assert plausible("angles_deg", [0.0, 30.0]) is None and plausible("rules", ["coupled"]) is None
+    assert plausible("angles_deg", [0.1, 0.2])[1].startswith("angles_deg = [0.1, 0.2]: all within +-pi/2")

@@ -1,10 +1,12 @@
 """Scenario files (orthocontact.experiment.scenario): every bad key, type,
 range or name is one line naming the file and key, exit 2, nothing written."""
+import json
+import math
 import os
 from pathlib import Path
 
 import pytest
-from cli_run import case4_named, one_error_line, run_cli as run
+from cli_run import SCENARIOS, case4_named, one_error_line, run_cli as run, scenario_variant
 
 from orthocontact.cli.main import main
 from orthocontact.experiment.scenario import ScenarioError, load
@@ -137,3 +139,66 @@ def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
         check_scenario_size(sc, yes=False)
         kinds.add(sc.kind)
     assert kinds == set(KINDS)
+
+
+
+# --- the contact patch's keys: through the same gate as every other length and angle ------------
+
+@pytest.mark.parametrize("scenario,old,new,says", [
+    ("twist", "length_m = 0.05", "length_m = 50.0",
+     "patch.length_m = 50 m: a block's contact patch is 1 mm-1 m long; mm?"),
+    ("twist", "width_m = 0.025", "width_m = 25.0",
+     "patch.width_m = 25 m: a block's contact patch is 1 mm-1 m wide; mm?"),
+    ("towed_block", "pin_m = 0.015", "pin_m = 15.0",
+     "tow.pin_m = 15 m: a tow's pin is 1 mm-1 m ahead of the block's centre; mm?"),
+    # the key at fault, not the size check's "step_s or angle_deg"
+    ("twist", "rate_deg_s = 10.0", "rate_deg_s = 1e9", "twist.rate_deg_s = 1e+09 deg/s: a twist turns at "
+     "0.01-1000 deg/s"),
+])
+def test_a_patch_length_or_rate_that_cannot_be_right_is_refused_naming_its_key(tmp_path, scenario, old, new,
+                                                                                 says):
+    """patch.length_m = 50 (mm typed as m) ran and warned the torque was off
+    its closed forms; tow.pin_m = 15 that the yaw had not settled; a twist
+    rate of 1e9 deg/s was refused naming step_s or angle_deg."""
+    scenario_variant(SCENARIOS / f"{scenario}.toml", old, new, tmp_path / "s.toml")
+    p = run(["run", "s.toml", "--out", "o"], tmp_path)
+    one_error_line(p, f"s.toml: {says}")
+    assert not (tmp_path / "o").exists()
+
+
+def test_tow_angles_typed_in_radians_are_named_like_the_twists_angle(tmp_path):
+    """tow.angles_deg = the bundled angles in radians ran without a word;
+    now a warning naming the key and the degrees they would be (a round one,
+    pi/12, alone: named as that item)."""
+    text = (SCENARIOS / "towed_block.toml").read_text().replace("duration_s = 3.0", "duration_s = 0.05")
+    assert "angles_deg = [15.0, 39.2, 60.0, 75.0]" in text
+    for i, (angles, said) in enumerate([
+            ("[0.2618, 0.6842, 1.0472, 1.309]",
+             "tow.angles_deg = [0.2618, 0.6842, 1.0472, 1.309]: all within +-pi/2, they look like radians; "
+             "this key is in degrees ([15, 39.2, 60, 75] deg if they were meant in rad)"),
+            ("[30.0, 0.5236]",
+             "tow.angles_deg[1] = 0.5236: looks like pi/6 in radians; this key is in degrees (30.0001 deg if "
+             "it was meant in rad)")]):
+        (tmp_path / "s.toml").write_text(text.replace("[15.0, 39.2, 60.0, 75.0]", angles)
+                                         .replace('rules = ["associated", "coupled"]', 'rules = ["coupled"]'))
+        p = run(["run", "s.toml", "--out", f"o{i}"], tmp_path)
+        assert p.returncode == 0, p.stderr
+        assert f"orthocontact: warning: s.toml: {said}" in p.stderr.splitlines()
+
+
+@pytest.mark.parametrize("scenario,old,new,key", [
+    ("twist", 'rules = ["associated", "coupled"]', 'rules = ["coupled", "coupled"]', "twist.rules"),
+    ("towed_block", 'rules = ["associated", "coupled"]', 'rules = ["coupled", "coupled"]', "tow.rules"),
+    ("towed_block", "angles_deg = [15.0, 39.2, 60.0, 75.0]", "angles_deg = [15.0, 15.0]", "tow.angles_deg"),
+    ("step_study", 'rules = ["associated", "coupled", "eq20"]', 'rules = ["eq20", "coupled", "eq20"]',
+     "study.rules"),
+    ("step_study", "steps_s = [2.0e-3, 1.0e-3,", "steps_s = [1.0e-3, 1.0e-3,", "study.steps_s"),
+])
+def test_a_list_of_runs_with_a_repeat_is_one_line(tmp_path, scenario, old, new, key):
+    """A rule (or a tow's angle, a study's step) given twice: its runs are
+    keyed by it in summary.json and the figures, so a repeat would run again
+    and be lost there (twist.rules = ["coupled", "coupled"] ended in a
+    StopIteration): refused at load."""
+    scenario_variant(SCENARIOS / f"{scenario}.toml", old, new, tmp_path / "s.toml")
+    p = run(["run", "s.toml", "--out", "o"], tmp_path)
+    one_error_line(p, f"s.toml: {key}: expected a list without repeated items (each is run once)")

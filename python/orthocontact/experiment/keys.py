@@ -9,6 +9,8 @@ defaults.  Angles are in degrees at this boundary, as the files write them
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from dataclasses import dataclass
 
 from .. import plausibility
 from ..rig.harness import MODES
@@ -16,23 +18,50 @@ from ..rig.harness import MODES
 REQUIRED = object()  # a spec's default for a key that must be given
 
 
-def number(lo=None, hi=None, lo_open=False):
-    """A checker for a finite number in [lo, hi] ((lo, hi] with lo_open)."""
-    def check(v):
+@dataclass(frozen=True)
+class Number:
+    """A checker for a finite number in [lo, hi] ((lo, hi] with lo_open; None
+    unbounded); its range is readable (the property tests draw from it)."""
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+
+    def __call__(self, v):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             return "a finite number"
-        if lo is not None and (v <= lo if lo_open else v < lo):
-            return f"a number {'>' if lo_open else '>='} {lo}"
-        if hi is not None and v > hi:
-            return f"a number <= {hi}"
+        if self.lo is not None and (v <= self.lo if self.lo_open else v < self.lo):
+            return f"a number {'>' if self.lo_open else '>='} {self.lo}"
+        if self.hi is not None and v > self.hi:
+            return f"a number <= {self.hi}"
         return None
-    return check
 
 
-def choice(options):
-    def check(v):
-        return None if v in options else "one of " + ", ".join(repr(o) for o in options)
-    return check
+def number(lo=None, hi=None, lo_open=False) -> Number:
+    """A checker for a finite number in [lo, hi] ((lo, hi] with lo_open)."""
+    return Number(lo, hi, lo_open)
+
+
+@dataclass(frozen=True)
+class Choice:
+    """A checker for one of `options`."""
+    options: tuple
+
+    def __call__(self, v):
+        return None if v in self.options else "one of " + ", ".join(repr(o) for o in self.options)
+
+
+def choice(options) -> Choice:
+    return Choice(tuple(options))
+
+
+@dataclass(frozen=True)
+class AnyOf:
+    """A checker for a value any of `checks` takes, `what` in words."""
+    checks: tuple
+    what: str
+
+    def __call__(self, v):
+        return None if any(c(v) is None for c in self.checks) else self.what
 
 
 def text(v):
@@ -54,16 +83,29 @@ def boolean(v):
     return None if isinstance(v, bool) else "true or false"
 
 
-def list_of(item_check, min_len=1):
-    def check(v):
-        if not isinstance(v, list) or len(v) < min_len:
-            return f"a list of at least {min_len} item(s)"
+@dataclass(frozen=True)
+class ListOf:
+    """A checker for a list of at least min_len items each `item` takes;
+    unique: no item twice (a list of runs whose outputs are keyed by the
+    item: a repeat would run again and be lost in them)."""
+    item: Callable
+    min_len: int = 1
+    unique: bool = False
+
+    def __call__(self, v):
+        if not isinstance(v, list) or len(v) < self.min_len:
+            return f"a list of at least {self.min_len} item(s)"
         for x in v:
-            why = item_check(x)
+            why = self.item(x)
             if why:
                 return f"a list whose items are {why}"
+        if self.unique and len(set(v)) < len(v):
+            return "a list without repeated items (each is run once)"
         return None
-    return check
+
+
+def list_of(item_check, min_len=1, unique=False) -> ListOf:
+    return ListOf(item_check, min_len, unique)
 
 
 POSITIVE = number(0, lo_open=True)
@@ -104,14 +146,28 @@ def read_table(path, where: str, data: dict, spec: dict, error) -> tuple[dict, l
         why = check(v)
         if why:
             raise error(f"{path}: {where}{key}: expected {why}, got {v!r}")
-        if isinstance(v, (int, float)) and not isinstance(v, bool):
-            found = plausibility.check(key, v)
-            if found is None and key.endswith("_deg") and key != "step_deg":
-                found = plausibility.check_angle_deg(key, v)
-            if found is not None:
-                level, message = found
-                if level == "error":
-                    raise error(f"{path}: {where}{message}")
-                warnings.append(f"{path}: {where}{message}")
+        found = plausible(key, v)
+        if found is not None:
+            level, message = found
+            if level == "error":
+                raise error(f"{path}: {where}{message}")
+            warnings.append(f"{path}: {where}{message}")
         out[key] = v
     return out, warnings
+
+
+def plausible(key: str, v) -> tuple[str, str] | None:
+    """The plausibility gate's finding for a key's value (a number, or a
+    list of numbers: each item as the key's quantity, an angle list as a
+    whole too), None if plausible or not a quantity with a unit."""
+    numbers = [x for x in (v if isinstance(v, list) else [v])
+               if isinstance(x, (int, float)) and not isinstance(x, bool)]
+    angles = key.endswith("_deg") and key != "step_deg"
+    if isinstance(v, list):
+        found = next((f for i, x in enumerate(numbers)
+                      if (f := plausibility.check(key, x, f"{key}[{i}]")) is not None), None)
+        return found or (plausibility.check_angles_deg(key, numbers) if angles and numbers else None)
+    if not numbers:
+        return None
+    found = plausibility.check(key, v)
+    return found or (plausibility.check_angle_deg(key, v) if angles else None)

@@ -19,8 +19,8 @@ from ..fmu.params import RULES, ContactParams
 from ..rig.harness import Rig
 from ..textfiles import read_toml
 from .geometry import AxisGeometry
-from .keys import (ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, file_name, list_of,
-                   number, read_table, rig_spec, text)
+from .keys import (ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, AnyOf, boolean, choice, file_name,
+                   list_of, number, read_table, rig_spec, text)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -52,10 +52,8 @@ class ScenarioError(InputError):
 ELASTIC_LENGTHS = 10.0
 
 
-def _eps_ratio(v):
-    if v == "isotropic":
-        return None
-    return None if POSITIVE(v) is None else 'a number > 0 or "isotropic"'
+# eps1/eps2, or "isotropic" (mu2/mu1: straight motion)
+EPS_RATIO = AnyOf((POSITIVE, choice(("isotropic",))), 'a number > 0 or "isotropic"')
 
 
 # What a comparison with a published number is evidence of (report.md):
@@ -75,23 +73,24 @@ SCHEMA = {
          "fmu": (text, None), "description": (text, "")},
     "law": {"rule": (choice(tuple(RULES)), "coupled"), "mu1": (POSITIVE, REQUIRED),
             "mu2": (POSITIVE, REQUIRED), "eps1": (POSITIVE, None), "eps2": (POSITIVE, REQUIRED),
-            "eps_ratio": (_eps_ratio, None)},
+            "eps_ratio": (EPS_RATIO, None)},
     "geometry": {"alpha_offset_deg": (ANGLE_DEG, 0.0), "beta_offset_deg": (ANGLE_DEG, 0.0),
                  "closed_form": (choice(tuple(FORMS)), "general")},
     "sweep": {"start_deg": (ANGLE_DEG, 0.0), "stop_deg": (ANGLE_DEG, 90.0),
               "step_deg": (POSITIVE, 1.0), "refine_extremum": (boolean, True),
               "trajectory_angles_deg": (list_of(ANGLE_DEG), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0])},
-    "study": {"angle_deg": (ANGLE_DEG, REQUIRED), "rules": (list_of(choice(tuple(RULES))), REQUIRED),
-              "steps_s": (list_of(POSITIVE), REQUIRED)},
+    "study": {"angle_deg": (ANGLE_DEG, REQUIRED),
+              "rules": (list_of(choice(tuple(RULES)), unique=True), REQUIRED),
+              "steps_s": (list_of(POSITIVE, unique=True), REQUIRED)},
     "patch": {"length_m": (POSITIVE, REQUIRED), "width_m": (POSITIVE, REQUIRED),
               "n1": (number(1, 32), 8), "n2": (number(1, 32), 8)},
     "twist": {"angle_deg": (number(0, 360, lo_open=True), REQUIRED), "rate_deg_s": (POSITIVE, 10.0),
               "step_s": (number(0, 0.1, lo_open=True), 1e-3),
-              "rules": (list_of(choice(("associated", "coupled"))), ["associated", "coupled"])},
+              "rules": (list_of(choice(("associated", "coupled")), unique=True), ["associated", "coupled"])},
     "tow": {"pin_m": (POSITIVE, REQUIRED), "duration_s": (POSITIVE, 20.0),
             "step_s": (number(0, 0.1, lo_open=True), 5e-3),
-            "angles_deg": (list_of(ANGLE_DEG), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]),
-            "rules": (list_of(choice(("associated", "coupled"))), ["associated", "coupled"])},
+            "angles_deg": (list_of(ANGLE_DEG, unique=True), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]),
+            "rules": (list_of(choice(("associated", "coupled")), unique=True), ["associated", "coupled"])},
     "rig": {**rig_spec(mode="quasistatic", mass_kg=1.875, g=G_STANDARD, f_int_N=5.0, velocity_m_s=0.244,
                        travel_m=0.5, mu_strip=0.0, c_strip=0.0, step_s=2e-4),
             "fit_from": (number(0, 0.95), 0.5)},

@@ -155,7 +155,8 @@ def check_scenario_size(sc, yes: bool) -> None:
         check_work(str(sc.path), scenario_work(sc), "sweep.step_deg or sweep.trajectory_angles_deg",
                    "rig.step_s or rig.travel_m", yes)
     elif sc.kind == "twist":
-        check_work(str(sc.path), scenario_work(sc), "twist.rules", "twist.step_s or twist.angle_deg", yes)
+        check_work(str(sc.path), scenario_work(sc), "twist.rules",
+                   "twist.step_s, twist.rate_deg_s or twist.angle_deg", yes)
     elif sc.kind == "towed_block":
         check_work(str(sc.path), scenario_work(sc), "tow.angles_deg or tow.rules",
                    "tow.step_s or tow.duration_s", yes)
