@@ -21,7 +21,7 @@ def test_reproduce_writes_the_patch_section_apart_from_the_papers_rows(tmp_path)
         (folder / f"{name}.toml").write_text((SCENARIOS / f"{name}.toml").read_text())
     (folder / "case4.toml").write_text((SCENARIOS / "case4.toml").read_text()
                                        .replace("step_deg = 1.0", "step_deg = 10.0"))
-    # a twist stopped before its plateau: its check fails, said in one line
+    # a twist stopped before its plateau: not checked, said in one line with the angle it needs
     (folder / "short.toml").write_text((SCENARIOS / "twist.toml").read_text()
                                        .replace('name = "twist"', 'name = "short"')
                                        .replace("angle_deg = 15.0", "angle_deg = 1.0"))
@@ -29,7 +29,9 @@ def test_reproduce_writes_the_patch_section_apart_from_the_papers_rows(tmp_path)
     p = run_cli(["reproduce", "--scenarios", folder, "--out", out, "--workers", "2"], cwd=tmp_path)
     assert p.returncode == 0, p.stderr      # the patch is not the paper's: no failed reproduction
     warnings = [x for x in p.stderr.splitlines() if ": warning: " in x]
-    assert len(warnings) == 1 and "short: the twist's torque is off its closed forms" in warnings[0]
+    assert len(warnings) == 1 and "short: the full-slip plateau was not checked under the associated, " \
+        "coupled rule(s)" in warnings[0] and "turn to twist.angle_deg >= 11.2 to check it" in warnings[0]
+    assert "off its closed forms" not in warnings[0]
     report = (out / "report.md").read_text()
     rep = json.loads((out / "report.json").read_text())
     # the paper's rows and headline: case 4's only
@@ -44,8 +46,10 @@ def test_reproduce_writes_the_patch_section_apart_from_the_papers_rows(tmp_path)
         r = tw["rules"][rule]
         assert r["ok"] and r["slope_relative_error"] < 1e-6
         assert f"| {rule} | {r['slope_N_m_rad']:.6g} | {r['k_N_m_rad']:.6g} |" in section
-    assert rep["contact_patch"]["twist"]["checks"] == {"ok": True, "warning": None}
+    assert rep["contact_patch"]["twist"]["checks"] == {"ok": True, "warning": None, "not_checked": []}
     assert rep["contact_patch"]["short"]["checks"]["ok"] is False
+    assert rep["contact_patch"]["short"]["checks"]["not_checked"] == ["associated", "coupled"]
+    assert "| not checked: the twist stops before it (" in section
     assert f"Check: **warning**: {rep['contact_patch']['short']['checks']['warning']}" in section
     # the towed block: each mat angle's yaw against its closed form and the paper's phi
     sc = load(SCENARIOS / "towed_block.toml")

@@ -13,7 +13,7 @@ from orthocontact.experiment.scenario import load
 from orthocontact.fmu.params import ContactParams
 from orthocontact.reproduction import planar_outputs
 from orthocontact.rig import planar
-from cli_run import one_error_line, run_cli
+from cli_run import SCENARIOS, one_error_line, run_cli, scenario_variant
 
 LAW = """
 [law]
@@ -60,7 +60,7 @@ def test_twist_run_checks_itself_against_both_closed_forms(tmp_path):
     assert p.returncode == 0, p.stderr
     assert p.stderr == ""
     s = json.loads((tmp_path / "out/summary.json").read_text())
-    assert s["kind"] == "twist" and s["checks"] == {"ok": True, "warning": None}
+    assert s["kind"] == "twist" and s["checks"] == {"ok": True, "warning": None, "not_checked": []}
     sc = load(tmp_path / "t.toml")
     body = planar_outputs.body_of(sc)
     for rule in ("associated", "coupled"):
@@ -207,3 +207,67 @@ def test_an_fmu_whose_twist_the_fmi_3_fmu_does_not_repeat_gets_no_cells_figure(t
     states, said = planar_outputs.cell_states_of(law, body, sc.twist, dataclasses.replace(res, Mz=Mz))
     assert states is None and "does not give this FMU's torque bit for bit" in said
 
+
+
+# -- the bundled scenarios' variants that ended in a traceback or were mislabelled ----------------
+
+def test_a_high_friction_towed_block_settles_on_its_closed_form(tmp_path):
+    """law.mu1 = 3.0 (inside the usual range), coupled, 15 deg: backward
+    Euler's Newton had no descent at t = 0.02 s and `run` ended in a
+    RuntimeError's traceback (exit 1).  Towed for 30 s it settles on the
+    closed form."""
+    f = scenario_variant(SCENARIOS / "towed_block.toml", "\nmu1 = 0.408\n", "\nmu1 = 3.0\n",
+                         tmp_path / "a.toml")
+    text = (f.read_text().replace("duration_s = 3.0", "duration_s = 30.0")
+            .replace("angles_deg = [15.0, 39.2, 60.0, 75.0]", "angles_deg = [15.0]")
+            .replace('rules = ["associated", "coupled"]', 'rules = ["coupled"]'))
+    (tmp_path / "t.toml").write_text(text)
+    p = run_cli(["run", "t.toml", "--out", "out"], cwd=tmp_path)
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    s = json.loads((tmp_path / "out/summary.json").read_text())
+    law = ContactParams.from_degrees(3.0, 0.625, 1.251e5, 1e5, 15.0 + 90.0, 15.0, "coupled")
+    assert s["checks"]["ok"] and s["yaw_deg"]["coupled"]["15"] == pytest.approx(
+        math.degrees(planar.steady_yaw(law)), abs=planar_outputs.YAW_TOL_DEG)
+
+
+def test_a_one_cell_twist_has_no_torque_and_says_so(tmp_path):
+    """n1 = n2 = 1: the one cell sits on the centre and never moves, so the
+    grid's k and plateau are 0 and so is the FMU's torque at every step
+    (twist_outputs divided by k: ZeroDivisionError); drawn on linear axes."""
+    f = scenario_variant(SCENARIOS / "twist.toml", "n1 = 12\nn2 = 6", "n1 = 1\nn2 = 1", tmp_path / "t.toml")
+    p = run_cli(["run", f.name, "--out", "out"], cwd=tmp_path)
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    s = json.loads((tmp_path / "out/summary.json").read_text())
+    assert s["checks"] == {"ok": True, "warning": None, "not_checked": []}
+    for r in s["rules"].values():
+        assert r["k_N_m_rad"] == 0 and r["slope_relative_error"] == 0 and r["plateau_max_relative_error"] == 0
+    rows = list(csv.DictReader(open(tmp_path / "out/twist.csv")))
+    assert len(rows) == 2 * 375 and all(float(r["Mz_N_m"]) == 0 == float(r["Mz_full_slip_N_m"]) for r in rows)
+    assert (tmp_path / "out/twist.png").stat().st_size > 10_000
+
+
+def test_a_twist_that_stops_before_its_plateau_says_not_checked_and_the_angle_it_needs(tmp_path):
+    """A 32 x 32 grid: its innermost cell is so near the centre that the
+    plateau is reached from 37.7 deg, past the twist's 15 deg.  Said "not
+    checked" with that angle (it was "off its closed forms"); its slope is
+    checked and passes.  Turned to the angle named, it is checked and ok."""
+    f = scenario_variant(SCENARIOS / "twist.toml", "n1 = 12\nn2 = 6", "n1 = 32\nn2 = 32", tmp_path / "t.toml")
+    p = run_cli(["run", f.name, "--out", "out"], cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert p.stderr.splitlines() == [
+        "orthocontact: warning: twist: the full-slip plateau was not checked under the associated, coupled "
+        "rule(s): it is reached from 37.69 deg on (five times the angle at which the innermost cell slides), "
+        "past the twist's end at 15 deg; turn to twist.angle_deg >= 37.7 to check it"]
+    s = json.loads((tmp_path / "out/summary.json").read_text())
+    assert s["checks"]["not_checked"] == ["associated", "coupled"] and not s["checks"]["ok"]
+    for r in s["rules"].values():
+        assert r["ok"] and not r["plateau_checked"] and r["plateau_max_relative_error"] is None
+        assert r["slope_relative_error"] <= r["slope_tolerance"]
+    # turned to the angle it names
+    scenario_variant(f, "angle_deg = 15.0\n", "angle_deg = 37.7\n", tmp_path / "u.toml")
+    p = run_cli(["run", "u.toml", "--out", "out2"], cwd=tmp_path)
+    assert p.returncode == 0 and p.stderr == "", p.stderr
+    s = json.loads((tmp_path / "out2/summary.json").read_text())
+    assert s["checks"] == {"ok": True, "warning": None, "not_checked": []}
+    assert all(r["plateau_checked"] and r["plateau_max_relative_error"] <= r["plateau_tolerance"]
+               for r in s["rules"].values())

@@ -62,7 +62,7 @@ def _twist(sc: Scenario, s: dict) -> list[str]:
         lines.append(f"| {rule} | {r['slope_N_m_rad']:.6g} | {r['k_N_m_rad']:.6g} | "
                      f"{r['slope_relative_error']:.1e} ({r['slope_tolerance']:.1e}) | "
                      f"{r['theta_end_deg']:.4g} | {-r['Mz_end_N_m']:.6g} | {-r['Mz_full_slip_end_N_m']:.6g} | "
-                     + ("none: the twist stops before it" if plateau is None else f"{plateau:.1e}")
+                     + ("not checked: the twist stops before it" if plateau is None else f"{plateau:.1e}")
                      + f" ({r['plateau_tolerance']:.1e}, past {r['plateau_from_deg']:.3g}°) |")
     lines += ["", _check_line(s), ""]
     figures = f"[torque against angle]({sc.name}/twist.png)"
