@@ -60,3 +60,18 @@ def test_flat_sweep_has_no_extremum_and_titles_have_no_doubled_parentheses(tmp_p
     assert "flat: |φ|" in text and "extremum φ" not in text
     step = load(ROOT / "scenarios/step_study.toml")
     assert ") (" not in step.title + " " and "((" not in step.title
+
+
+def test_a_step_study_without_an_angle_at_any_step_is_drawn_and_said(tmp_path):
+    """One step of 1 s over the rig's 1 m at 1 m/s: no angle can be fitted
+    (phi is nan), and the figure's log axis had no point to scale
+    (ValueError, a traceback).  The run says why and draws its figure."""
+    from cli_run import run_cli
+    (tmp_path / "s.toml").write_text(
+        'name = "s"\nkind = "step_study"\n[law]\nmu1 = 0.408\nmu2 = 0.625\neps1 = 1.251e4\neps2 = 1.0e4\n'
+        "[rig]\nvelocity_m_s = 1.0\ntravel_m = 1.0\n"
+        '[study]\nangle_deg = 30.0\nrules = ["coupled"]\nsteps_s = [1.0]\n')
+    p = run_cli(["run", "s.toml", "--out", "o"], tmp_path)
+    assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
+    assert "too few steps in a half of the fitted path to fit an angle" in p.stderr
+    assert (tmp_path / "o/step_study.png").stat().st_size > 10_000

@@ -232,3 +232,19 @@ def test_the_remedy_names_the_step_when_the_step_is_the_cause():
     fine = Rig(travel_m=0.5, step_s=1e-3)
     assert run_cause(law, fine, float("nan")) is None
     assert "neither the elastic length, the settling length nor the step" in remedy([(law, fine)], [float("nan")])
+
+
+def test_a_rig_that_fits_from_the_start_of_its_path_is_told_to_fit_later(tmp_path):
+    """rig.fit_from = 0 (its range is [0, 0.95]) puts the fit's start at
+    0 m, within any elastic length: the run's remedy and the default
+    travel's refusal divided by it (ZeroDivisionError, a traceback); they
+    name rig.fit_from instead."""
+    law = "[law]\nmu1 = 0.408\nmu2 = 0.625\neps1 = 1.251e3\neps2 = 1.0e3\n[sweep]\nstep_deg = 45.0\n"
+    p = run(["run", str(scenario(tmp_path, "f0", law + "[rig]\nfit_from = 0.0\ntravel_m = 0.2\n")), "--out",
+             "o"], tmp_path)
+    assert p.returncode == 0 and "Traceback" not in p.stderr, p.stderr
+    assert len(warnings_of(p)) == 1 and "rig.fit_from > 0: the fit starts where the path does" in p.stderr
+    p = run(["run", str(scenario(tmp_path, "d0", law + "[rig]\nfit_from = 0.0\n")), "--out", "o2"], tmp_path)
+    assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, p.stderr
+    assert "d0.toml: rig.travel_m: expected a travel for this law" in p.stderr
+    assert "set rig.fit_from > 0 (the fit starts where the path does)" in p.stderr

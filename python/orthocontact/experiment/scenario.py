@@ -225,8 +225,9 @@ def load(path) -> Scenario:
             raise ScenarioError(path, "rig.travel_m", (
                 f"a travel for this law: the default {rig['travel_m']:g} m starts the fit at "
                 f"{fit_start:g} m, within {ELASTIC_LENGTHS:g} elastic lengths max(mu) N / min(eps) = "
-                f"{elastic:.3g} m of the start, where the block has not settled; set rig.travel_m >= "
-                f"{ELASTIC_LENGTHS * elastic / rig['fit_from']:.3g}"))
+                f"{elastic:.3g} m of the start, where the block has not settled; set "
+                + (f"rig.travel_m >= {ELASTIC_LENGTHS * elastic / rig['fit_from']:.3g}" if rig["fit_from"] > 0
+                   else "rig.fit_from > 0 (the fit starts where the path does)")))
     contact = ContactParams(law["mu1"], law["mu2"], float(eps1), float(law["eps2"]), rule=law["rule"])
     geometry = AxisGeometry(float(geo["alpha_offset_deg"]), float(geo["beta_offset_deg"]))
     refusal = FORMS[geo["closed_form"]].refusal(contact, geometry.beta_minus_alpha_deg)

@@ -207,7 +207,8 @@ def _figure_step_study(sc: Scenario, res: StepStudyResult, path: Path) -> None:
         if same[0] == rule:
             ax.axhline(rs[0]["phi_closed_deg"], color=st["color"], ls=":", lw=1.2,
                        label=f"{'+'.join(same)}: closed form")
-    ax.set_xscale("log")
+    if any(math.isfinite(r["phi_deg"]) for r in res.rows):
+        ax.set_xscale("log")   # (no angle at any step, e.g. a run of too few steps: nothing to scale)
     ax.set_xlabel("communication step [s]")
     ax.set_ylabel("steady trajectory angle φ [deg] (counterclockwise)")
     finish(fig, ax, path, sc.title, "rule (colour)", outside=True)

@@ -185,7 +185,7 @@ def run_cause(params, rig, settling_m: float) -> tuple[str, float] | None:
     start = rig.fit_from * rig.travel_m
     L = elastic_length_m(params, rig)
     if start < plausibility.ELASTIC_LENGTHS * L:
-        return "elastic length", plausibility.ELASTIC_LENGTHS * L / start
+        return "elastic length", plausibility.ELASTIC_LENGTHS * L / start if start > 0 else np.inf
     if rig.step_s > step_limit_s(params, rig, settling_m) or fitted_steps(rig) < MIN_FIT_STEPS:
         return "step", rig.step_s / step_limit_s(params, rig, settling_m)
     if rig.mode == "dynamic" and not start >= SETTLING_LENGTHS * settling_m:
@@ -217,7 +217,8 @@ def remedy(tasks, settling_m, step_name: str = "rig.step_s") -> str:
         return (f"check eps1, eps2 = {p.eps1:.4g}, {p.eps2:.4g} N/m{slip}: the elastic length max(mu) N / "
                 f"min(eps) = {e:.3g} m puts the fit's start at {start:.3g} m within "
                 f"{plausibility.ELASTIC_LENGTHS:g} elastic lengths, where the block has not settled (or "
-                f"rig.travel_m >= {plausibility.ELASTIC_LENGTHS * e / r.fit_from:.3g} m)")
+                + (f"rig.travel_m >= {plausibility.ELASTIC_LENGTHS * e / r.fit_from:.3g} m)" if r.fit_from > 0
+                   else "rig.fit_from > 0: the fit starts where the path does)"))
     if cause == "step":
         return (f"{step_name} <= {step_limit_s(p, r, L):.2g} s (the step {r.step_s:g} s leaves "
                 f"{fitted_steps(r)} steps in "
@@ -261,8 +262,9 @@ def system_settling_warning(label: str, params, rig) -> str | None:
                 f"{start:.3g} m: its angle is not steady sliding; remedy: {remedy([(params, dynamic)], [L])}")
     if np.isfinite(L) and start >= SETTLING_LENGTHS * L:
         return None
-    need = f"rig.travel_m >= {SETTLING_LENGTHS * L / rig.fit_from:.3g} m" if np.isfinite(L) else \
-        "a quasi-static rig (there is no restoring lateral force here)"
+    need = ("a quasi-static rig (there is no restoring lateral force here)" if not np.isfinite(L) else
+            f"rig.travel_m >= {SETTLING_LENGTHS * L / rig.fit_from:.3g} m" if rig.fit_from > 0 else
+            "rig.fit_from > 0 (the fit starts where the path does)")
     mode = "" if rig.mode == "dynamic" else f" (the scenario's rig is {rig.mode}; the SSP's is dynamic)"
     return (f"{label}: the system's dynamic rig settles over {L:.3g} m{mode}, and the fit of its path "
             f"would start at {start:.3g} m: its angle is not steady sliding; remedy: {need}")
