@@ -89,6 +89,11 @@ SLOW = {
         "test_twist_run_checks_itself_against_both_closed_forms",
         "test_towed_block_run_gives_the_closed_form_yaw_at_every_mat_angle",
         "test_an_unsettled_towed_block_is_said_not_passed",
+        # 32 x 32 cells, twice
+        "test_a_twist_that_stops_before_its_plateau_says_not_checked_and_the_angle_it_needs",
+    },
+    "experiment/test_scenario.py": {   # 80 scenarios drawn from the schema, each through `orthocontact run`
+        "test_every_scenario_the_schema_accepts_ends_in_a_result_or_one_line",
     },
     "contracts/test_docs_numbers.py": {   # uq on the example, as the guide has it
         "test_the_uq_guides_example_prints_what_the_guide_says",
