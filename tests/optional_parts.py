@@ -68,16 +68,16 @@ class Part:
 PARTS = {p.name: p for p in (
     Part("libcosimpy", "libcosim runs the FMUs and the SSPs", _module("libcosimpy.CosimExecution"),
          distribution="libcosimpy"),
-    Part("ecospy", "Ecos runs the SSPs (its library needs libtbb12)", _module("ecospy"),
+    Part("ecospy", "Ecos runs the FMUs and the SSPs (its library needs libtbb12)", _module("ecospy"),
          distribution="ecospy"),
-    Part("fmu_manipulation_toolbox", "the SSP as an FMU container",
+    Part("fmu_manipulation_toolbox", "the FMUs and the SSP in an FMU container",
          _module("fmu_manipulation_toolbox.assembly"), distribution="fmu-manipulation-toolbox"),
     Part("hypothesis", "the law's properties at every scale", _module("hypothesis"),
          distribution="hypothesis"),
     Part("qemu-aarch64", "the aarch64 Linux binary run under qemu-user", _qemu),
     Part("root", "a full disk, a read-only folder: tmpfs mounts", _root, required=False),
     Part("cffconvert", "CITATION.cff against the CFF schema", _module("cffconvert"), required=False),
-    Part("libcosim-fmi3", "libcosim runs the FMI 3.0 FMU like fmpy", None, required=False),
+    Part("libcosim-fmi3", "libcosim runs the FMI 3.0 FMUs like fmpy", None, required=False),
 )}
 
 # part -> None when it ran, else why not; only parts some test asked for.

@@ -1,6 +1,7 @@
 """The CarriageBlock rig FMU: a second model of the shared FMI glue.  Coupled
 with the contact FMU by a plain co-simulation master it gives the Python
-harness's dynamic rig; its state restores into a fresh instance."""
+harness's dynamic rig; a step or state whose x1 would overflow is refused.
+Its importers and its state in a fresh instance: tests/conformance/."""
 import math
 
 import pytest
@@ -122,32 +123,6 @@ def test_rig_fmu_with_the_contact_fmu_gives_the_harness(version, mu_strip, c_str
     assert phi == pytest.approx(ref.phi_deg, abs=1e-9)
     assert drive == pytest.approx(ref.drive_mean_N, rel=1e-12)
     assert abs(phi) > 1.0  # the aged mat turns the block
-
-
-@pytest.mark.parametrize("version", [2, 3])
-def test_rig_fmu_state_restores_into_a_fresh_instance(version):
-    a, vr, _, set_real, get_real = _rig_slave(version, "a")
-    set_real([vr["muStrip"], vr["cStrip"]], [0.05, 3.0])
-    _start(a, version)
-    t = 0.0
-    for k in range(50):
-        set_real([vr["T1"], vr["T2"]], [-7.0, 2.0 * math.sin(0.1 * k)])
-        a.doStep(t, 1e-3)
-        t += 1e-3
-    get_state = a.getFMUstate if version == 2 else a.getFMUState
-    ser = a.serializeFMUstate if version == 2 else a.serializeFMUState
-    data = ser(get_state())
-    b, _, _, set_b, get_b = _rig_slave(version, "b")
-    des = b.deSerializeFMUstate if version == 2 else b.deserializeFMUState
-    (b.setFMUstate if version == 2 else b.setFMUState)(des(data))
-    outs = [vr[n] for n in ("x1", "x2", "driveForce")]
-    for k in range(50, 80):
-        for s, set_ in ((a, set_real), (b, set_b)):
-            set_([vr["T1"], vr["T2"]], [-7.0, 2.0 * math.sin(0.1 * k)])
-            s.doStep(t, 1e-3)
-        t += 1e-3
-    assert get_real(outs) == get_b(outs)
-    assert get_real([vr["x2"]])[0] != 0.0
 
 
 # -- every output finite before OK ------------------------------------------------
