@@ -154,6 +154,11 @@ def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
     # the key at fault, not the size check's "step_s or angle_deg"
     ("twist", "rate_deg_s = 10.0", "rate_deg_s = 1e9", "twist.rate_deg_s = 1e+09 deg/s: a twist turns at "
      "0.01-1000 deg/s"),
+    # inside the gate's hard range (0, 10] m, below the FMU's own minimum: a traceback from the FMU
+    # before (tools/cli_fuzz.py found it); refused by the FMU's table when the file is read
+    ("twist", "length_m = 0.05", "length_m = 1e-320",
+     "patch.length_m: length = 1e-320 m is outside [1e-100, 1e+100] m, the FMU's range"),
+    ("twist", "n1 = 12", "n1 = 3.0", "patch.n1: n1 must be an integer, got 3.0"),
 ])
 def test_a_patch_length_or_rate_that_cannot_be_right_is_refused_naming_its_key(tmp_path, scenario, old, new,
                                                                                  says):

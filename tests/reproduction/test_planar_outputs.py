@@ -106,7 +106,7 @@ def test_an_unsettled_towed_block_is_said_not_passed(tmp_path):
 @pytest.mark.parametrize("old,new,says", [
     ("[tow]\n", "[towx]\n", "towx: expected a known table"),
     ("pin_m = 0.1", "pin_m = -0.1", "tow.pin_m: expected a number > 0"),
-    ("n1 = 4", "n1 = 4.5", "patch.n1: expected an integer in 1..32"),
+    ("n1 = 4", "n1 = 4.5", "patch.n1: n1 must be an integer, got 4.5"),
     ('kind = "towed_block"', 'kind = "twist"', "tow: expected no [tow] table in a scenario of kind 'twist'"),
 ])
 def test_a_bad_patch_scenario_is_one_line(tmp_path, old, new, says):

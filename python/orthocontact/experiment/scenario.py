@@ -16,6 +16,7 @@ from ..closed_forms import FORMS
 from ..closed_forms.paper import G_STANDARD, isotropic_eps_ratio
 from ..errors import InputError
 from ..fmu.params import RULES, ContactParams
+from ..fmu.patch import GEOMETRY, geometry_problem, geometry_range
 from ..rig.harness import Rig
 from ..textfiles import read_toml
 from .geometry import AxisGeometry
@@ -83,7 +84,7 @@ SCHEMA = {
               "rules": (list_of(choice(tuple(RULES)), unique=True), REQUIRED),
               "steps_s": (list_of(POSITIVE, unique=True), REQUIRED)},
     "patch": {"length_m": (POSITIVE, REQUIRED), "width_m": (POSITIVE, REQUIRED),
-              "n1": (number(1, 32), 8), "n2": (number(1, 32), 8)},
+              "n1": (number(*geometry_range("n1")), 8), "n2": (number(*geometry_range("n2")), 8)},
     "twist": {"angle_deg": (number(0, 360, lo_open=True), REQUIRED), "rate_deg_s": (POSITIVE, 10.0),
               "step_s": (number(0, 0.1, lo_open=True), 1e-3),
               "rules": (list_of(choice(("associated", "coupled")), unique=True), ["associated", "coupled"])},
@@ -178,9 +179,10 @@ def load(path) -> Scenario:
     sweep = section("sweep", raw["sweep"]) if "sweep" in needed else {}
     study = section("study", raw["study"]) if "study" in needed else {}
     patch = section("patch", raw["patch"]) if "patch" in needed else {}
-    for n in ("n1", "n2"):
-        if patch and (isinstance(patch[n], float) or isinstance(patch[n], bool)):
-            raise ScenarioError(path, f"patch.{n}", "an integer in 1..32 (cells along the side)", patch[n])
+    for name, key in zip(GEOMETRY, ("length_m", "width_m", "n1", "n2")):   # the FMU's own ranges
+        problem = geometry_problem(name, patch[key]) if patch else None
+        if problem is not None:
+            raise ScenarioError(f"{path}: patch.{key}: {problem}")
     twist = section("twist", raw["twist"]) if "twist" in needed else {}
     tow = section("tow", raw["tow"]) if "tow" in needed else {}
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:

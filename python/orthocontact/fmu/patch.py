@@ -20,32 +20,54 @@ from .contact import INITIAL_SLIP, FMUError
 from .files import find_fmu, model_description
 from .params import RULES, ContactParams
 from .slave import FreedOnClose, instantiate, integer_call
+from .variables import manifest
 
 PATCH_MODEL = "ContactPatch"
 INPUTS = ("u1", "u2", "theta", "N", "p1", "p2")
 OUTPUTS = ("T1", "T2", "Mz", "dissipatedEnergy", "slipFraction")
 
 
+# The patch's geometry: its parameters in the FMU's table, in this order.
+GEOMETRY = ("length", "width", "n1", "n2")
+
+
+def geometry_range(name: str) -> tuple:
+    """(min, max) of the patch's geometry parameter `name` in the FMU's table."""
+    v = manifest(PATCH_MODEL).variable(name)
+    return v.min, v.max
+
+
+def geometry_problem(name: str, value) -> str | None:
+    """What is wrong with `value` for the patch's geometry parameter `name`
+    (GEOMETRY) by the FMU's own table: its type (a length a finite number, a
+    cell count an integer) and its range [min, max]; None if it is right."""
+    v = manifest(PATCH_MODEL).variable(name)
+    count = v.type != "Float64"
+    if isinstance(value, bool) or not isinstance(value, int if count else (int, float)) or \
+            (not count and not math.isfinite(value)):
+        return f"{name} must be {'an integer' if count else 'a finite number'}, got {value!r}"
+    if (v.min is not None and value < v.min) or (v.max is not None and value > v.max):
+        unit = f" {v.unit}" if v.unit else ""
+        return f"{name} = {value!r}{unit} is outside [{v.min:g}, {v.max:g}]{unit}, the FMU's range"
+    return None
+
+
 @dataclass(frozen=True)
 class PatchGeometry:
     """The patch: length along the body's axis 1, width along axis 2 [m];
-    n1 x n2 cells.  Invalid values raise ValueError (the FMU would refuse
-    them later, with less context)."""
+    n1 x n2 cells.  A value the FMU's table refuses (geometry_problem)
+    raises ValueError here, where the FMU would refuse it later with less
+    context."""
     length: float
     width: float
     n1: int = 8
     n2: int = 8
 
     def __post_init__(self):
-        for name in ("length", "width"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-                raise ValueError(f"PatchGeometry: {name} [m] must be a finite number > 0, got {v!r}")
-        for name in ("n1", "n2"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int) or not 1 <= v <= 32:
-                raise ValueError(f"PatchGeometry: {name} must be an integer in 1..32 (the FMU's "
-                                 f"largest grid side), got {v!r}")
+        for name in GEOMETRY:
+            problem = geometry_problem(name, getattr(self, name))
+            if problem is not None:
+                raise ValueError(f"PatchGeometry: {problem}")
 
 
 class PatchFMU(FreedOnClose):
