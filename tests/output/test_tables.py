@@ -24,3 +24,14 @@ def test_json_is_indented_ordered_and_ends_in_a_newline(tmp_path):
     text = path.read_text()
     assert text.endswith("}\n") and '\n  "z": 1,' in text
     assert json.loads(text) == data and list(json.loads(text)) == ["z", "a", "m"]
+
+
+def test_json_writes_a_number_that_is_not_finite_as_null(tmp_path):
+    """A step study's summary.json held NaN, which no strict JSON reader takes."""
+    path = tmp_path / "s.json"
+    write_json(path, {"a": float("nan"), "b": [1.0, float("inf"), {"c": -float("inf")}], "d": 2.5})
+
+    def refuse(token):
+        raise ValueError(f"not JSON: {token}")
+    assert json.loads(path.read_text(), parse_constant=refuse) == {"a": None, "b": [1.0, None, {"c": None}],
+                                                                   "d": 2.5}

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 from pathlib import Path
 
 
@@ -18,5 +19,17 @@ def write_csv(path: Path, header: list[str], rows) -> None:
 
 
 def write_json(path: Path, data) -> None:
-    """Indented JSON with a final newline."""
-    path.write_text(json.dumps(data, indent=2, sort_keys=False) + "\n")
+    """Indented JSON with a final newline.  JSON has no NaN or infinity:
+    a number that is not finite (a quantity a run could not give) is
+    written as null, so that every reader of JSON reads the file."""
+    path.write_text(json.dumps(_finite_or_null(data), indent=2, sort_keys=False, allow_nan=False) + "\n")
+
+
+def _finite_or_null(x):
+    if isinstance(x, float):
+        return x if math.isfinite(x) else None
+    if isinstance(x, dict):
+        return {k: _finite_or_null(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_finite_or_null(v) for v in x]
+    return x
