@@ -53,7 +53,8 @@ def test_package_fmus_documentation_crosscheck_and_cli_agree():
     for fmi, platform in (("2.0", "linux64"), ("3.0", "x86_64-linux")):
         base = ROOT / "cross-check" / "fmus" / fmi / "cs" / platform / "orthocontact"
         assert sorted(p.name for p in base.iterdir()) == [VERSION], "one folder, of this version"
-        for model in ("OrthotropicContact", "ContactPatch"):
+        assert sorted(p.name for p in (base / VERSION).iterdir()) == sorted(MODELS), "one folder a model"
+        for model in MODELS:
             readme = (base / VERSION / model / "README.md").read_text()
             assert f"from orthocontact {VERSION}." in readme, (fmi, model)
     out = subprocess.run([sys.executable, "-m", "orthocontact", "--version"], capture_output=True,
