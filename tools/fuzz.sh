@@ -1,6 +1,7 @@
 #!/bin/sh
-# Builds the libFuzzer targets over FMI call sequences (both FMUs, FMI 2.0 and
-# 3.0; tests/fuzz/fuzz_fmi.c) with clang, ASan and UBSan, and runs each in
+# Builds the libFuzzer targets over FMI call sequences (every model of CMake's
+# OC_MODELS, FMI 2.0 and 3.0: fuzz_targets.txt; tests/fuzz/fuzz_fmi.c) with
+# clang, ASan and UBSan, and runs each in
 # turn for SECONDS (default 600), niced, on one core.  Corpora and findings
 # stay in build/fuzz (corpus/<target>, artifacts/).  Exit status 1 if any
 # target found something.

@@ -4,7 +4,11 @@
  *
  * The input is read as a program: each byte picks a call, the bytes after it
  * its arguments (value references from the table or any number, values from
- * a list of edge cases or any 8 bytes).  Besides the sanitizers' findings,
+ * a list of edge cases or any 8 bytes).  An integer is set and read mostly
+ * through its type's call as the table gives it (FMI 3.0: an Int32 through
+ * Int32, an enumeration through Int64, a structural parameter of
+ * FMU_STRUCTURAL_PARAMETERS, an array's dimension, through UInt64, also in
+ * configuration mode), else through another (refused).  Besides the sanitizers' findings,
  * the target aborts where a promise of docs/reference/fmus.md does not hold:
  *   - every call returns a defined status;
  *   - a successful read or derivative is finite (never NaN/inf with OK);
@@ -38,7 +42,7 @@
 
 /* ---- the variable table ------------------------------------------------- */
 
-enum { K_F64 = 1, K_INT = 2 };
+enum { K_F64 = 1, K_INT = 2, K_ENUM = 3 };
 enum { C_IND = 1, C_PAR, C_IN, C_OUT };
 #define C_independent C_IND
 #define C_parameter C_PAR
@@ -46,10 +50,9 @@ enum { C_IND = 1, C_PAR, C_IN, C_OUT };
 #define C_output C_OUT
 #define K_Float64 K_F64
 #define K_Int32 K_INT
-#define K_Enum K_INT
-/* each enumeration type of the table is an integer kind here */
+/* each enumeration type of the table is the enumeration kind here */
 #ifdef FMU_ENUM_TYPES
-#define FUZZ_ENUM_KIND(name, items) K_##name = K_INT,
+#define FUZZ_ENUM_KIND(name, items) K_##name = K_ENUM,
 enum { FMU_ENUM_TYPES(FUZZ_ENUM_KIND) FUZZ_ENUM_KINDS_END };
 #undef FUZZ_ENUM_KIND
 #endif
@@ -68,6 +71,27 @@ static const var *find(const char *name) {
         if (strcmp(VARS[i].name, name) == 0) return &VARS[i];
     return NULL;
 }
+
+#if FUZZ_FMI == 3
+static const var *by_vr(unsigned vr) {
+    for (int i = 0; i < NVARS; ++i)
+        if (VARS[i].vr == vr) return &VARS[i];
+    return NULL;
+}
+
+/* Whether the table lists v among FMU_STRUCTURAL_PARAMETERS (names apart by
+ * spaces): FMI 3.0's UInt64 array dimensions. */
+#ifndef FMU_STRUCTURAL_PARAMETERS
+#define FMU_STRUCTURAL_PARAMETERS ""
+#endif
+static int structural(const var *v) {
+    const char *list = FMU_STRUCTURAL_PARAMETERS;
+    const size_t n = strlen(v->name);
+    for (const char *p = list; (p = strstr(p, v->name)) != NULL; p += n)
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return 1;
+    return 0;
+}
+#endif
 
 /* ---- reading the program --------------------------------------------------- */
 
@@ -131,6 +155,7 @@ static status set_f64(inst c, const unsigned *vr, size_t n, const double *v) {
 static status get_f64(inst c, const unsigned *vr, size_t n, double *v) {
     return fmi2GetReal(c, vr, n, v);
 }
+/* FMI 2.0 has one integer call, Integer, for Int32 and enumerations alike. */
 static status set_int(inst c, unsigned vr, int64_t v, unsigned how) {
     (void)how;
     const fmi2Integer x = (fmi2Integer)v;
@@ -204,15 +229,34 @@ static status set_f64(inst c, const unsigned *vr, size_t n, const double *v) {
 static status get_f64(inst c, const unsigned *vr, size_t n, double *v) {
     return fmi3GetFloat64(c, vr, n, v, n);
 }
+/* The integer call for vr: 0 Int32, 1 Int64, 2 UInt64; its type's as the
+ * table gives it (an unknown vr: Int32), or with how's low bits 3 another. */
+static unsigned int_call(unsigned vr, unsigned how) {
+    if ((how & 3) == 3) return (how >> 2) % 3;
+    const var *x = by_vr(vr);
+    return !x ? 0 : structural(x) ? 2 : x->kind == K_ENUM ? 1 : 0;
+}
 static status set_int(inst c, unsigned vr, int64_t v, unsigned how) {
     const fmi3Int32 x = (fmi3Int32)v;
-    return how & 1 ? fmi3SetInt64(c, &vr, 1, &v, 1) : fmi3SetInt32(c, &vr, 1, &x, 1);
+    const fmi3UInt64 u = (fmi3UInt64)v; /* a negative v: a huge count, refused */
+    switch (int_call(vr, how)) {
+    case 0: return fmi3SetInt32(c, &vr, 1, &x, 1);
+    case 1: return fmi3SetInt64(c, &vr, 1, &v, 1);
+    default: return fmi3SetUInt64(c, &vr, 1, &u, 1);
+    }
 }
 static status get_int(inst c, unsigned vr, unsigned how) {
     fmi3Int32 x;
     fmi3Int64 y;
-    return how & 1 ? fmi3GetInt64(c, &vr, 1, &y, 1) : fmi3GetInt32(c, &vr, 1, &x, 1);
+    fmi3UInt64 u;
+    switch (int_call(vr, how)) {
+    case 0: return fmi3GetInt32(c, &vr, 1, &x, 1);
+    case 1: return fmi3GetInt64(c, &vr, 1, &y, 1);
+    default: return fmi3GetUInt64(c, &vr, 1, &u, 1);
+    }
 }
+static status enter_config(inst c) { return fmi3EnterConfigurationMode(c); }
+static status exit_config(inst c) { return fmi3ExitConfigurationMode(c); }
 static status other_type(inst c, unsigned vr, unsigned how) {
     fmi3Boolean b = fmi3True;
     fmi3Float32 f = 1.0f;
@@ -413,7 +457,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         }
         case 8: {
             const unsigned how = byte(&r);
-            switch (how % 5) {
+            switch (how % 7) {
             case 0: {
                 const double t0 = how & 8 ? value(&r) : 0.0;
                 s = setup(c, t0, value(&r), how & 16);
@@ -424,6 +468,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             case 1: s = enter_init(c); rejected_changes_nothing(c, s, "enter init"); break;
             case 2: s = exit_init(c); rejected_changes_nothing(c, s, "exit init"); stepping = 0; break;
             case 3: s = terminate(c); rejected_changes_nothing(c, s, "terminate"); break;
+#if FUZZ_FMI == 3
+            case 5:
+                s = enter_config(c);
+                rejected_changes_nothing(c, s, "enter configuration mode");
+                break;
+            case 6:
+                s = exit_config(c);
+                rejected_changes_nothing(c, s, "exit configuration mode");
+                break;
+#endif
             default: s = logging(c, how & 32); break;
             }
             break;
