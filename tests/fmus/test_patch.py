@@ -3,8 +3,8 @@ truths: the point FMU bit for bit (one cell), the point law's force in
 uniform translation (any grid), the torsional stiffness and the full-slip
 torque and force of closed_forms.patch, finite differences for the
 directional derivatives; and the point FMU's contracts (ranges refused with
-a reason, all-or-nothing steps, a state that restores into a fresh
-instance).
+a reason, all-or-nothing steps, a damaged state refused; a state restored
+into a fresh instance: tests/conformance/test_state.py).
 
 The FMUs: $ORTHOCONTACT_PATCH_FMU / $ORTHOCONTACT_PATCH_FMU3 (e.g. a CMake
 build's fmi2/ContactPatch.fmu), else the installed ones.  The point FMU
@@ -438,37 +438,6 @@ def test_an_overflowing_step_is_refused_whole_never_nan(make):
 def _path(k):
     return dict(u1=3e-5 * k, u2=1e-5 * math.sin(0.2 * k), theta=2e-3 * math.sin(0.1 * k),
                 N=15.0 + 5.0 * math.cos(0.3 * k), p1=0.002 * math.sin(0.05 * k), p2=0.0)
-
-
-def test_state_restores_into_a_fresh_instance_and_continues_bit_for_bit(make, version):
-    params = dict(AGED, n1=5, n2=3, length=0.05, width=0.02, slidingRule=2)
-    a = make(**params).initialize(**_path(0))
-    for k in range(1, 60):
-        a.move(**_path(k))
-    s = a.s
-    state = s.getFMUState()
-    t_saved = a.t
-    blob = bytes(s.serializeFMUState(state))
-    b = make()   # a fresh instance at the table's defaults
-    bs = b.s
-    bs.setFMUState(bs.deserializeFMUState(blob))
-    b.t = a.t
-    b.initialized = True
-    names = UNKNOWNS + ("slipFraction",)
-    assert [_bits(x) for x in b.get(*names)] == [_bits(x) for x in a.get(*names)]
-    assert b.get("contactState") == a.get("contactState")
-    for k in range(60, 120):
-        a.move(**_path(k))
-        b.move(**_path(k))
-        assert [_bits(x) for x in b.get(*names)] == [_bits(x) for x in a.get(*names)], k
-    # and back into the first instance: it goes on from there again
-    s.setFMUState(state)
-    a.t = t_saved
-    a.move(**_path(60))
-    c = make(**params).initialize(**_path(0))
-    for k in range(1, 61):
-        c.move(**_path(k))
-    assert [_bits(x) for x in a.get(*names)] == [_bits(x) for x in c.get(*names)]
 
 
 def test_a_damaged_state_is_refused_with_its_reason(make, version):
