@@ -84,13 +84,28 @@ const fmu_model_info FMU_MODEL_INFO = {
 typedef struct {
     double cm1, sn; /* cos(theta) - 1 (as -2 sin^2(theta/2): exact for small theta), sin(theta) */
     double w;       /* a cell's share of the area, 1/(n1 n2) */
-    double k[2];    /* 12 p1/length, 12 p2/width: the pressure's slopes per unit xi, eta */
+    double c[2];    /* the pressure's slope per unit xi (eta) and unit p1/length (p2/width) */
+    double k[2];    /* c[0] p1/length, c[1] p2/width: the pressure's slopes per unit xi, eta */
 } patch_frame;
+
+/* The cells' normal forces N_c = N w (1 + p1 x/S1 + p2 y/S2), S1 = sum of
+ * w x^2 over the cells = length^2 (1 - 1/n1^2)/12 (likewise S2): resultant N
+ * and first moment N (p1, p2) on the grid exactly (the continuum's pressure
+ * sampled at the centres, 12 p1 x/length^2, has N p1 (1 - 1/n1^2)).  Per unit
+ * xi = x/length that is 12 n1^2/(n1^2 - 1) (p1/length) xi.  One cell along an
+ * axis has S = 0 and carries no p along it (check_pressure refuses one), nor
+ * does an open contact (N <= 0): there the slopes are 0 and every cell gets
+ * N w <= 0, whatever p is. */
+static double pressure_slope(int n, double N) {
+    const double nn = (double)n * (double)n;
+    return n > 1 && N > 0.0 ? 12.0 * nn / (nn - 1.0) : 0.0;
+}
 
 static patch_frame frame_of(const patch_setup *g) {
     const double h = sin(0.5 * g->theta);
+    const double c0 = pressure_slope(g->n[0], g->N), c1 = pressure_slope(g->n[1], g->N);
     patch_frame f = {-2.0 * h * h, sin(g->theta), 1.0 / ((double)g->n[0] * (double)g->n[1]),
-                     {12.0 * (g->p[0] / g->length), 12.0 * (g->p[1] / g->width)}};
+                     {c0, c1}, {c0 * (g->p[0] / g->length), c1 * (g->p[1] / g->width)}};
     return f;
 }
 
@@ -128,8 +143,7 @@ static inline patch_cell cell_at(const patch_setup *g, const patch_frame *f, dou
         x.Rr[0] += dr0;
         x.Rr[1] += dr1;
     }
-    /* the linear pressure integrated over the cell is its value at the centre
-     * times the area, exactly */
+    /* the grid's linear pressure (frame_of) */
     x.nu = f->w * (1.0 + f->k[0] * x.xi + f->k[1] * x.eta);
     return x;
 }
@@ -188,16 +202,27 @@ typedef struct {
     int contact;
 } patch_sums;
 
-/* The centre of pressure must lie in the kern: a linear pressure of
- * resultant N > 0 at (p1, p2) is >= 0 at every corner exactly there.
- * A few roundings of slack, so that p1 = length/6 typed as such is in. */
-static fmu_status check_kern(const patch_setup *g, fmu_msg *msg) {
+/* The centre of pressure of a closed contact (N > 0; an open one has no
+ * pressure, and p is not looked at): in the kern, where the linear pressure
+ * of resultant N at (p1, p2) is >= 0 at every corner (and so every cell's
+ * N_c, frame_of's, is > 0), with a few roundings of slack so that
+ * p1 = length/6 typed as such is in; and 0 along an axis of one cell, whose
+ * cells all lie on the other axis and cannot move the resultant off it. */
+static fmu_status check_pressure(const patch_setup *g, fmu_msg *msg) {
+    if (!(g->N > 0.0)) return FMU_OK;
     const double e = fabs(g->p[0]) / g->length + fabs(g->p[1]) / g->width;
-    if (6.0 * e <= 1.0 + 8 * DBL_EPSILON) return FMU_OK;
-    return fmu_fail(msg, "centre of pressure p1=%g m, p2=%g m outside the kern of the %g m x %g m "
-                         "patch: |p1|/length + |p2|/width = %g > 1/6, where a linear pressure "
-                         "would pull at a corner (no-tension pressure is not modelled)",
-                    g->p[0], g->p[1], g->length, g->width, e);
+    if (!(6.0 * e <= 1.0 + 8 * DBL_EPSILON))
+        return fmu_fail(msg, "centre of pressure p1=%g m, p2=%g m outside the kern of the %g m x %g m "
+                             "patch: |p1|/length + |p2|/width = %g > 1/6, where a linear pressure "
+                             "would pull at a corner (no-tension pressure is not modelled)",
+                        g->p[0], g->p[1], g->length, g->width, e);
+    for (int a = 0; a < 2; ++a)
+        if (g->n[a] == 1 && g->p[a] != 0.0)
+            return fmu_fail(msg, "centre of pressure p%d=%g m off the axis of a grid with n%d = 1: "
+                                 "one cell along %s has its centre on that axis and cannot carry a "
+                                 "centre of pressure off it (set p%d = 0, or n%d >= 2)",
+                            a + 1, g->p[a], a + 1, a ? "width" : "length", a + 1, a + 1);
+    return FMU_OK;
 }
 
 /* Cell (i, j)'s message: its force or slip would not be finite. */
@@ -330,8 +355,7 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
                     rr[0] += dr0;
                     rr[1] += dr1;
                 }
-                /* the linear pressure integrated over the cell is its value at
-                 * the centre times the area, exactly */
+                /* the grid's linear pressure (frame_of) */
                 const double Nc = N * (w * (p0[i] + p1[j]));
                 const oc_state *start;
                 if (base) {
@@ -461,7 +485,7 @@ static fmu_status cell_law(const oc_params *p, const patch_setup *g, oc_law *law
 }
 
 fmu_status fmu_model_update(patch_model *m, int changed, int allow, fmu_msg *msg) {
-    if (check_kern(&m->g, msg) != FMU_OK) return FMU_ERR;
+    if (check_pressure(&m->g, msg) != FMU_OK) return FMU_ERR;
     oc_law law;
     const oc_law *use = &m->law;
     if (changed & FMU_CHANGED_PARAMETERS) {
@@ -538,8 +562,8 @@ static void patch_jacobian(const patch_model *m, double P[P_ROWS][P_COLS]) {
         oc_law_jacobian(&m->law, start_of(m, c), x.d, g->N * x.nu, st, J);
         /* d(d)/dx and dN_c/dx over x = (u1, u2, theta, N, p1, p2) */
         const double dd[2][P_COLS] = {{1, 0, -x.Rr[1], 0, 0, 0}, {0, 1, x.Rr[0], 0, 0, 0}};
-        const double dN[P_COLS] = {0, 0, 0, x.nu, g->N * f.w * 12.0 * x.xi / g->length,
-                                   g->N * f.w * 12.0 * x.eta / g->width};
+        const double dN[P_COLS] = {0, 0, 0, x.nu, g->N * f.w * f.c[0] * x.xi / g->length,
+                                   g->N * f.w * f.c[1] * x.eta / g->width};
         const int law_row[3] = {0, 1, 4}; /* T1, T2, energy in the law's rows */
         double dy[3][P_COLS];
         for (int r = 0; r < 3; ++r)
@@ -661,7 +685,7 @@ fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg 
     g.N = in[3];
     g.p[0] = in[4];
     g.p[1] = in[5];
-    if (check_kern(&g, msg) != FMU_OK) return FMU_ERR;
+    if (check_pressure(&g, msg) != FMU_OK) return FMU_ERR;
     if (done > 1) return fmu_fail(msg, "serialized state: commit flag %u is not 0 or 1", (unsigned)done);
     /* A master that saves and restores every step restores the parameters
      * it already has: keep their tensors instead of recomputing them.  Bit

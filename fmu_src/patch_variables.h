@@ -8,10 +8,14 @@
  *   - a cell centre r = (xi length, eta width) in body coordinates, xi, eta
  *     the midpoints of n1 (n2) equal parts of [-1/2, 1/2];
  *   - its displacement relative to the surface d = u + (R(theta) - I) r;
- *   - its normal force N_c = N w (1 + 12 (p1/length) xi + 12 (p2/width) eta),
- *     w = 1/(n1 n2) its share of the area: the linear pressure with
- *     resultant N at (p1, p2), integrated over the cell (exact for a linear
- *     pressure);
+ *   - its normal force N_c = N w (1 + p1 x / S1 + p2 y / S2), (x, y) = r,
+ *     w = 1/(n1 n2) its share of the area, S1 = sum of w x^2 over the cells
+ *     = length^2 (1 - 1/n1^2)/12 (likewise S2): the grid's linear pressure,
+ *     whose resultant is N and first moment N (p1, p2) exactly (the
+ *     continuum's sampled at the centres, 12 p1 x / length^2, falls short by
+ *     the factor 1 - 1/n1^2).  One cell along an axis (S = 0) cannot carry
+ *     p along it: with N > 0 that p must be 0, as (p1, p2) must lie in the
+ *     kern; with N <= 0 (open) every cell gets N w and p is not looked at;
  *   - its stiffness eps w: the patch in uniform translation is exactly as
  *     stiff as the point.
  *   - the texture's axes (alpha, beta) are the surface's, shared by every cell.
@@ -52,15 +56,21 @@
     "<h2>The patch</h2>\n<ul>\n"                                                                 \
     "<li>A rigid rectangle length &times; width on a flat surface, n1 &times; n2 equal cells. "  \
     "Each cell is the point law (the OrthotropicContact FMU's) at its centre r (body "          \
-    "coordinates) with its own slip: displacement d = u + (R(theta) - I) r, normal force the "   \
-    "linear pressure of resultant N at (p1, p2) over the cell, stiffness (eps1, eps2) times "   \
-    "the cell's share of the area.  The texture's axes alpha, beta are the surface's.</li>\n"    \
+    "coordinates) with its own slip: displacement d = u + (R(theta) - I) r, normal force "      \
+    "N w (1 + p1 x/S1 + p2 y/S2) with w = 1/(n1 n2) and S1 = length<sup>2</sup> (1 - "         \
+    "1/n1<sup>2</sup>)/12, S2 likewise (the mean of x<sup>2</sup>, y<sup>2</sup> over the "      \
+    "cells), so that the cells' normal forces have resultant N and first moment N (p1, p2) "  \
+    "exactly on every grid; stiffness (eps1, eps2) times the cell's share of the area.  The " \
+    "texture's axes alpha, beta are the surface's.</li>\n"                                     \
     "<li>T1, T2: the sum of the cells' forces on the body; Mz: their moment about the patch "    \
     "centre, sum of (R r) &times; T<sub>cell</sub>, counterclockwise; all in the surface "      \
     "frame.</li>\n"                                                                              \
-    "<li>The centre of pressure must lie in the kern, |p1|/length + |p2|/width &le; 1/6 "       \
-    "(no corner in tension): outside it a set is refused, as is any value that would make an " \
-    "output not finite.</li>\n"                                                                  \
+    "<li>With N &gt; 0 the centre of pressure must lie in the kern, |p1|/length + |p2|/width " \
+    "&le; 1/6 (no corner in tension), and be 0 along a side of one cell (p1 = 0 if n1 = 1: "   \
+    "its cells cannot carry it); with N &le; 0 the contact is open and p is not looked at.  "  \
+    "The pending step is computed when inputs are set, so the set call that leaves N, p1, p2 " \
+    "otherwise is refused (an error status, the reason logged, nothing changed), as is any "   \
+    "value that would make an output not finite: set N, p1, p2 in one call.</li>\n"            \
     "<li>Not modelled: rolling, a curved surface, a pressure other than linear, the body's "    \
     "deformation.</li>\n</ul>\n"                                                                 \
     "<h2>Step semantics</h2>\n<p>As the point FMU: setting inputs computes every cell's step "    \
@@ -131,11 +141,11 @@
     X(N, 18, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                         \
       "Total normal force pressing the body on the surface (N <= 0: open contact)")              \
     X(p1, 19, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
-      "Centre of pressure along the body's axis 1 (0: uniform pressure); "                       \
-      "|p1|/length + |p2|/width <= 1/6")                                                         \
+      "Centre of pressure along the body's axis 1 (0: uniform pressure); while N > 0, "          \
+      "|p1|/length + |p2|/width <= 1/6 and p1 = 0 if n1 = 1")                                    \
     X(p2, 20, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
-      "Centre of pressure along the body's axis 2 (0: uniform pressure); "                       \
-      "|p1|/length + |p2|/width <= 1/6")                                                         \
+      "Centre of pressure along the body's axis 2 (0: uniform pressure); while N > 0, "          \
+      "|p1|/length + |p2|/width <= 1/6 and p2 = 0 if n2 = 1")                                    \
     X(T1, 21, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
       "Tangential force of the surface on the body along X1 (sum over the cells)")              \
     X(T2, 22, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \

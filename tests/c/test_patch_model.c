@@ -69,8 +69,9 @@ static void derivatives_match_differences(void) {
         fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
         fmi2EnterInitializationMode(c);
         double x[6] = {0, 0, 0, 20, 0, 0};
-        x[4] = (uniform() - 0.5) * pv[2] / 7;
-        x[5] = (uniform() - 0.5) * pv[3] / 7;
+        /* off the axis only where the grid has more than one cell across it */
+        x[4] = iv[0] > 1 ? (uniform() - 0.5) * pv[2] / 7 : 0.0;
+        x[5] = iv[1] > 1 ? (uniform() - 0.5) * pv[3] / 7 : 0.0;
         fmi2SetReal(c, KNOWN, 6, x);
         fmi2ExitInitializationMode(c);
         double t = 0;
@@ -137,6 +138,13 @@ static void ref_set_inputs(ref_setup *g, const double x[6]) {
     g->p[1] = x[5];
 }
 
+/* The pressure's slope per unit xi and unit p/side along a side of n cells
+ * while the contact is closed: 1/S of patch_variables.h in those units,
+ * 12 n^2/(n^2 - 1); 0 for one cell (which carries no p) and for N <= 0. */
+static double ref_slope(int n, double N) {
+    return n > 1 && N > 0.0 ? 12.0 * ((double)n * (double)n) / ((double)n * (double)n - 1.0) : 0.0;
+}
+
 /* Cell c's displacement d, share nu of N and moment arm R r, as
  * patch_variables.h defines them, formed cell by cell from the index. */
 static void ref_cell(const ref_setup *g, int c, double d[2], double *nu, double Rr[2]) {
@@ -157,7 +165,8 @@ static void ref_cell(const ref_setup *g, int c, double d[2], double *nu, double 
         Rr[0] += dr0;
         Rr[1] += dr1;
     }
-    *nu = w * (1.0 + (12.0 * (g->p[0] / g->length)) * xi + (12.0 * (g->p[1] / g->width)) * eta);
+    *nu = w * (1.0 + (ref_slope(g->n1, g->N) * (g->p[0] / g->length)) * xi +
+               (ref_slope(g->n2, g->N) * (g->p[1] / g->width)) * eta);
 }
 
 /* The outputs T1, T2, Mz, dissipatedEnergy, slipFraction and contactState
@@ -229,7 +238,7 @@ static void step_matches_the_plain_per_cell_step(void) {
     static const fmi2ValueReference OUT[5] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz,
                                               PATCH_VR_dissipatedEnergy, PATCH_VR_slipFraction};
     const fmi2ValueReference vstate = PATCH_VR_contactState;
-    long compared = 0, restored = 0, refused = 0;
+    long compared = 0, restored = 0, refused = 0, off_axis_refused = 0, open_far = 0;
     int seen[4] = {0, 0, 0, 0};
     for (int episode = 0; episode < 60; ++episode) {
         ref_setup g;
@@ -289,6 +298,8 @@ static void step_matches_the_plain_per_cell_step(void) {
             const double e1 = uniform() / 6, e2 = uniform() * (1.0 / 6 - e1);
             x[4] = (pick(2) ? 1 : -1) * e1 * g.length;
             x[5] = (pick(2) ? 1 : -1) * e2 * g.width;
+            if (g.n1 == 1) x[4] = 0.0; /* a side of one cell carries no p */
+            if (g.n2 == 1) x[5] = 0.0;
             if (pick(6) == 0) { /* a step that overflows: refused, it changes nothing */
                 fmi2FMUstate saved = NULL;
                 CHECK(fmi2GetFMUstate(c, &saved) == fmi2OK, "episode %d: get state", episode);
@@ -319,7 +330,23 @@ static void step_matches_the_plain_per_cell_step(void) {
                 } else CHECK(fmi2SetFMUstate(c, saved) == fmi2OK, "episode %d: restore", episode);
                 fmi2FreeFMUstate(c, &saved);
             }
-            if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) continue; /* refused: nothing changed */
+            /* sometimes p off the axis of a side of one cell (refused while
+             * pressed) or, open, p outside the kern (not looked at) */
+            if (g.n1 == 1 && pick(5) == 0) x[4] = 0.01 * g.length, x[5] *= 0.9; /* in the kern */
+            if (g.n2 == 1 && pick(5) == 0) x[5] = -0.01 * g.width, x[4] *= 0.9;
+            if (x[3] <= 0 && pick(2) == 0) x[4] = (pick(2) ? 1 : -1) * 10 * g.length;
+            const int off_axis = (g.n1 == 1 && x[4] != 0.0) || (g.n2 == 1 && x[5] != 0.0);
+            last_message[0] = 0;
+            if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) { /* refused: nothing changed */
+                CHECK(off_axis && x[3] > 0 && strstr(last_message, "cannot carry a centre of pressure"),
+                      "episode %d step %d: p = (%g, %g) on %d x %d cells, N = %g refused: %s",
+                      episode, k, x[4], x[5], g.n1, g.n2, x[3], last_message);
+                ++off_axis_refused;
+                continue;
+            }
+            CHECK(!(off_axis && x[3] > 0), "episode %d step %d: p off a side of one cell accepted",
+                  episode, k);
+            open_far += x[3] <= 0 && fabs(x[4]) > g.length;
             ref_set_inputs(&g, x);
             double want[5], got[5];
             int want_state, got_state;
@@ -354,14 +381,117 @@ static void step_matches_the_plain_per_cell_step(void) {
         }
         fmi2FreeInstance(c);
     }
-    CHECK(compared > 1000 && restored > 50 && refused > 50,
-          "compared %ld steps, restored %ld, refused %ld", compared, restored, refused);
+    CHECK(compared > 1000 && restored > 50 && refused > 50 && off_axis_refused > 10 && open_far > 10,
+          "compared %ld steps, restored %ld, refused %ld overflowing and %ld off a side of one "
+          "cell, %ld open with p far outside the kern", compared, restored, refused,
+          off_axis_refused, open_far);
     CHECK(seen[0] > 20 && seen[1] > 20 && seen[2] > 20 && seen[3] > 20,
           "patch states seen: open %d, stick %d, partly %d, all slipping %d", seen[0], seen[1],
           seen[2], seen[3]);
     printf("plain per-cell step: %ld steps bit for bit (open %d, stick %d, partly slipping %d, "
-           "all slipping %d), %ld restores, %ld overflowing steps refused\n", compared, seen[0],
-           seen[1], seen[2], seen[3], restored, refused);
+           "all slipping %d), %ld restores, %ld overflowing steps and %ld p off a side of one "
+           "cell refused, %ld open steps with p far outside the kern\n", compared, seen[0],
+           seen[1], seen[2], seen[3], restored, refused, off_axis_refused, open_far);
+}
+
+/* The cells' normal forces, read from the committed states the FMU
+ * serialized (each cell's N, the third of its 8 doubles): their resultant is
+ * N and their first moment about the centre N (p1, p2), to 1e-12, on every
+ * grid (patch_variables.h's pressure; the continuum's sampled at the cell
+ * centres falls short by 1 - 1/n^2).  Along a side of one cell p must be 0
+ * while pressed: refused otherwise, with the reason, and nothing changed;
+ * an open contact (N <= 0) takes any p, outside the kern too, and so does
+ * one call that opens it.  Then closing it with p still outside is refused. */
+static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
+    static const int GRIDS[][2] = {{1, 1}, {2, 2}, {3, 1}, {1, 3}, {4, 2}, {8, 8}, {5, 7}, {32, 32}};
+    int checked = 0;
+    for (size_t gi = 0; gi < sizeof GRIDS / sizeof GRIDS[0]; ++gi) {
+        for (int trial = 0; trial < 5; ++trial) {
+            const int n1 = GRIDS[gi][0], n2 = GRIDS[gi][1];
+            const double L = 0.02 + 0.2 * uniform(), W = 0.02 + 0.2 * uniform(), N = 1 + 50 * uniform();
+            /* in the kern, |p|/side at least 1/60 wherever the side has cells to carry it */
+            const double e1 = n1 > 1 ? (0.1 + 0.8 * uniform()) / 6 : 0.0;
+            const double e2 = n2 > 1 ? (0.1 + 0.8 * uniform()) * (1.0 / 6 - e1) : 0.0;
+            const double p[2] = {(pick(2) ? 1 : -1) * e1 * L, (pick(2) ? 1 : -1) * e2 * W};
+            fmi2Component c = make();
+            const fmi2ValueReference ivr[2] = {PATCH_VR_n1, PATCH_VR_n2};
+            const fmi2Integer iv[2] = {n1, n2};
+            const fmi2ValueReference gvr[2] = {PATCH_VR_length, PATCH_VR_width};
+            const double gv[2] = {L, W};
+            CHECK(fmi2SetInteger(c, ivr, 2, iv) == fmi2OK && fmi2SetReal(c, gvr, 2, gv) == fmi2OK,
+                  "%d x %d: geometry", n1, n2);
+            fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
+            fmi2EnterInitializationMode(c);
+            const double x[6] = {1e-4 * uniform(), 1e-4 * uniform(), 0.01 * uniform(), N, p[0], p[1]};
+            CHECK(fmi2SetReal(c, KNOWN, 6, x) == fmi2OK && fmi2ExitInitializationMode(c) == fmi2OK,
+                  "%d x %d: p = (%g, %g) refused: %s", n1, n2, p[0], p[1], last_message);
+            /* the state holds the shown step's start: a second step with the
+             * inputs held starts from the first one's, which carry N_c */
+            CHECK(fmi2DoStep(c, 0.0, 1e-3, fmi2True) == fmi2OK &&
+                      fmi2DoStep(c, 1e-3, 1e-3, fmi2True) == fmi2OK, "%d x %d: doStep", n1, n2);
+            const size_t size = serialize(c, before);
+            CHECK(size >= (size_t)PATCH_MAX_CELLS * 64, "%d x %d: state", n1, n2);
+            const unsigned char *cells = before + size - (size_t)PATCH_MAX_CELLS * 64;
+            double sum = 0, sum_abs = 0, m[2] = {0, 0}, m_abs[2] = {0, 0};
+            for (int k = 0; k < n1 * n2; ++k) {
+                double Nc;
+                memcpy(&Nc, cells + (size_t)k * 64 + 16, 8); /* little-endian hosts */
+                const int i = k % n1, j = k / n1;
+                const double r[2] = {(2 * i + 1 - n1) / (2.0 * n1) * L, (2 * j + 1 - n2) / (2.0 * n2) * W};
+                CHECK(Nc > 0, "%d x %d: cell %d pressed by %g", n1, n2, k, Nc);
+                sum += Nc;
+                sum_abs += fabs(Nc);
+                for (int a = 0; a < 2; ++a) {
+                    m[a] += Nc * r[a];
+                    m_abs[a] += fabs(Nc * r[a]);
+                }
+            }
+            CHECK(fabs(sum - N) <= 1e-12 * N, "%d x %d: resultant %.17g, N %.17g", n1, n2, sum, N);
+            for (int a = 0; a < 2; ++a) {
+                const double want = N * p[a];
+                CHECK(fabs(m[a] - want) <= 1e-12 * (p[a] != 0 ? fabs(want) : m_abs[a]),
+                      "%d x %d: first moment %d %.17g, N p %.17g", n1, n2, a + 1, m[a], want);
+            }
+            ++checked;
+            /* a side of one cell refuses p off its axis while pressed, whole */
+            for (int a = 0; a < 2; ++a) {
+                if (iv[a] != 1) continue;
+                double y[6];
+                memcpy(y, x, sizeof y);
+                y[4 + a] = 0.01 * (a ? W : L); /* in the kern: e1 + e2 <= 0.15 + 0.01 */
+                const size_t nb = serialize(c, before);
+                last_message[0] = 0;
+                CHECK(fmi2SetReal(c, KNOWN, 6, y) == fmi2Error, "%d x %d: p%d off the axis accepted",
+                      n1, n2, a + 1);
+                char want[48];
+                snprintf(want, sizeof want, "off the axis of a grid with n%d = 1", a + 1);
+                CHECK(strstr(last_message, want) != NULL, "%d x %d: refused with \"%s\"", n1, n2,
+                      last_message);
+                CHECK(serialize(c, after) == nb && memcmp(before, after, nb) == 0,
+                      "%d x %d: the refused set changed the instance", n1, n2);
+            }
+            /* open, p anywhere: accepted, every cell open; closing with p outside: refused */
+            const double open[6] = {x[0], x[1], x[2], -N * uniform(), 3 * L, -2 * W};
+            CHECK(fmi2SetReal(c, KNOWN, 6, open) == fmi2OK, "%d x %d: open with p outside the kern "
+                  "refused: %s", n1, n2, last_message);
+            const fmi2ValueReference vstate = PATCH_VR_contactState;
+            fmi2Integer state = -1;
+            double T[3];
+            CHECK(fmi2GetInteger(c, &vstate, 1, &state) == fmi2OK && state == 0 &&
+                      fmi2GetReal(c, UNKNOWN, 3, T) == fmi2OK && T[0] == 0 && T[1] == 0 && T[2] == 0,
+                  "%d x %d: open contact state %d", n1, n2, (int)state);
+            CHECK(fmi2DoStep(c, 2e-3, 1e-3, fmi2True) == fmi2OK, "%d x %d: open doStep", n1, n2);
+            const fmi2ValueReference vN = PATCH_VR_N;
+            const double press = N;
+            last_message[0] = 0;
+            CHECK(fmi2SetReal(c, &vN, 1, &press) == fmi2Error && strstr(last_message, "outside the kern"),
+                  "%d x %d: closed with p outside the kern: %s", n1, n2, last_message);
+            CHECK(fmi2SetReal(c, KNOWN, 6, x) == fmi2OK, "%d x %d: closed again", n1, n2);
+            fmi2Terminate(c);
+            fmi2FreeInstance(c);
+        }
+    }
+    printf("normal forces: resultant N and first moment N p to 1e-12 on %d grids\n", checked);
 }
 
 static int defined(fmi2Status s) {
@@ -441,6 +571,7 @@ int main(void) {
     rng_state = 0x9e3779b97f4a7c15ull;
     derivatives_match_differences();
     step_matches_the_plain_per_cell_step();
+    normal_forces_have_resultant_n_and_first_moment_n_p();
     random_sequences();
     return oc_report();
 }

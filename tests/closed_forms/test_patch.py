@@ -52,6 +52,61 @@ def test_quadrature_gives_the_isotropic_squares_closed_form():
     assert cp.FULL_SLIP_SQUARE_FACTOR == pytest.approx(0.38260, abs=5e-6)
 
 
+@pytest.mark.parametrize("n1,n2,p", [(2, 2, (0.01, -0.004)), (3, 1, (-0.02, 0.0)), (1, 3, (0.0, 0.006)),
+                                      (8, 8, (0.012, 0.005)), (4, 2, (0.004, 0.002)), (1, 1, (0.0, 0.0)),
+                                      (32, 32, (-0.02, 0.003))])
+def test_grid_normal_forces_have_resultant_n_and_first_moment_n_p(n1, n2, p):
+    """Every grid, one cell along a side included: sum N_i = N and
+    sum N_i (x_i, y_i) = N (p1, p2) to 1e-12, every N_i > 0 in the kern."""
+    L, W, N = 0.2, 0.05, 7.0
+    assert abs(p[0]) / L + abs(p[1]) / W <= 1 / 6
+    Nc = cp.grid_normal_forces(L, W, n1, n2, N, *p)
+    x, y = cp.cell_centres(L, W, n1, n2)
+    assert Nc.sum() == pytest.approx(N, rel=1e-14)
+    for r, pk, side in ((x, p[0], L), (y, p[1], W)):
+        assert np.sum(Nc * r) == pytest.approx(N * pk, rel=1e-12, abs=1e-15 * N * side)
+    assert np.all(Nc > 0)
+
+
+def test_the_continuums_pressure_sampled_at_the_centres_falls_short_by_one_minus_one_over_n_squared():
+    """Why the grid has its own pressure: 12 p1 x / L^2 sampled at the cell
+    centres gives the first moment N p1 (1 - 1/n1^2), 25 % short at n1 = 2."""
+    L, W, N, p1 = 0.2, 0.05, 7.0, 0.01
+    for n in (2, 3, 8):
+        x, _ = cp.cell_centres(L, W, n, 1)
+        sampled = N / n * (1 + 12 * p1 * x / L**2)
+        assert np.sum(sampled * x) == pytest.approx(N * p1 * (1 - 1 / n**2), rel=1e-13)
+        assert np.sum(cp.grid_normal_forces(L, W, n, 1, N, p1) * x) == pytest.approx(N * p1, rel=1e-13)
+
+
+def test_a_side_of_one_cell_carries_no_centre_of_pressure_unless_open():
+    with pytest.raises(ValueError, match="n1 = 1: its cells all lie on the axis"):
+        cp.grid_normal_forces(0.2, 0.05, 1, 4, 7.0, 0.001, 0.0)
+    with pytest.raises(ValueError, match="n2 = 1"):
+        cp.grid_normal_forces(0.2, 0.05, 4, 1, 7.0, 0.0, -0.001)
+    # open (N <= 0): no pressure, p not looked at, outside the kern too
+    for N in (0.0, -3.0):
+        assert cp.grid_normal_forces(0.2, 0.05, 1, 4, N, 5.0, -2.0) == pytest.approx(np.full(4, N / 4))
+
+
+@pytest.mark.parametrize("n1,n2", [(2, 2), (3, 1), (8, 8), (4, 2)])
+def test_full_slip_in_translation_is_mu_n_at_the_centre_of_pressure(n1, n2):
+    """Isotropic mu, every cell sliding along s: the grid's sum of
+    r_i x (-mu N_i s) is full_slip_translation's p x T, to rounding."""
+    L, W, N, mu = 0.2, 0.05, 7.0, 0.4
+    p = (0.01, -0.003 if n2 > 1 else 0.0)
+    x, y = cp.cell_centres(L, W, n1, n2)
+    Nc = cp.grid_normal_forces(L, W, n1, n2, N, *p)
+    for psi in (0.0, 0.7, 2.5, -1.2):
+        s = np.array([math.cos(psi), math.sin(psi)])
+        T1, T2, Mz = cp.full_slip_translation(mu, N, *p, psi)
+        assert (T1, T2) == pytest.approx(tuple(-mu * N * s), rel=1e-15)
+        grid = np.sum(x * (-mu * Nc * s[1]) - y * (-mu * Nc * s[0]))
+        assert grid == pytest.approx(Mz, rel=1e-12, abs=1e-15 * mu * N * L)
+    # the sign: pressed ahead (p1 > 0) and pushed along +X2, the body is turned clockwise
+    assert cp.full_slip_translation(mu, N, 0.01, 0.0, math.pi / 2)[2] < 0
+
+
 def _brute_midpoint(mu1, mu2, eps1, eps2, alpha, beta, rule, L, W, N, n, p1, p2):
     """The steady force summed point by point in plain Python: q parallel
     to H v with |q|_F = N_c, H = F^-1 (associated) or B F B (coupled)."""
@@ -61,10 +116,13 @@ def _brute_midpoint(mu1, mu2, eps1, eps2, alpha, beta, rule, L, W, N, n, p1, p2)
     B = Q @ np.diag([eps1, eps2]) @ Q.T
     H = np.linalg.inv(F) if rule == "associated" else B @ F @ B
     T, Mz = np.zeros(2), 0.0
+    # the grid's second moments, summed: the pressure's first moment is N p on the grid
+    S1 = sum((((i + 0.5) / n - 0.5) * L) ** 2 for i in range(n)) / n
+    W_S2 = sum((((j + 0.5) / n - 0.5) * W) ** 2 for j in range(n)) / n
     for i in range(n):
         for j in range(n):
             x, y = ((i + 0.5) / n - 0.5) * L, ((j + 0.5) / n - 0.5) * W
-            Nc = N / n**2 * (1 + 12 * p1 * x / L**2 + 12 * p2 * y / W**2)
+            Nc = N / n**2 * (1 + p1 * x / S1 + p2 * y / W_S2)
             q = H @ np.array([-y, x])
             q = Nc * q / math.sqrt(q @ F @ q)
             T -= q

@@ -390,7 +390,7 @@ def test_parameters_out_of_range_are_refused_with_their_reason(make, name, value
 def test_a_centre_of_pressure_outside_the_kern_is_refused_and_changes_nothing(make):
     """|p1|/length + |p2|/width > 1/6 would pull at a corner: refused with
     the reason, the pending outputs as they were; on the kern's edge it is
-    accepted and the far corner's cells carry almost nothing."""
+    accepted."""
     patch = make(n1=4, n2=4, length=0.06, width=0.03, **AGED).initialize(N=10.0)
     patch.move(u1=1e-4, N=10.0)
     before = patch.get("T1", "T2", "Mz")
@@ -401,6 +401,75 @@ def test_a_centre_of_pressure_outside_the_kern_is_refused_and_changes_nothing(ma
     assert patch.get("T1", "T2", "Mz") == before
     patch.set(p1=0.06 / 6, p2=0.0)
     assert patch.get("contactState") in (1, 2, 3)
+
+
+def _set_together(patch, **values):
+    """Sets Float64 inputs in one call (one fmi2SetReal / fmi3SetFloat64)."""
+    (patch.s.setReal if patch.version == 2 else patch.s.setFloat64)(
+        [patch.vr[n] for n in values], [float(v) for v in values.values()])
+
+
+def test_an_open_contact_takes_any_centre_of_pressure(make):
+    """N <= 0: no pressure, p not looked at (outside the kern, off the axis of a
+    side of one cell), every cell open; closing it with such a p is refused by
+    that call, whole, and one call setting N and p together closes it."""
+    patch = make(n1=4, n2=1, length=0.06, width=0.03, **AGED).initialize(N=10.0)
+    patch.move(u1=1e-4, N=10.0)
+    patch.set(N=-1.0)
+    patch.set(p1=0.5, p2=-0.2)          # far outside the kern, and p2 on a side of one cell
+    assert patch.get("contactState") == 0
+    assert patch.get("T1", "T2", "Mz") == [0.0, 0.0, 0.0]
+    patch.step()
+    before = patch.get(*UNKNOWNS)
+    with pytest.raises(Exception):
+        patch.set(N=10.0)
+    assert "outside the kern" in patch.messages[-1], patch.messages
+    assert patch.get(*UNKNOWNS) == before
+    _set_together(patch, N=0.0, p1=0.5, p2=-0.2)   # N = 0 is open too
+    assert patch.get("contactState") == 0
+    _set_together(patch, N=10.0, p1=0.005, p2=0.0)
+    assert patch.get("contactState") in (1, 2, 3)
+
+
+@pytest.mark.parametrize("n1,n2,name", [(1, 4, "p1"), (3, 1, "p2"), (1, 1, "p1"), (1, 1, "p2")])
+def test_a_side_of_one_cell_refuses_a_centre_of_pressure_off_its_axis(make, n1, n2, name):
+    """One cell along a side: every cell's centre is on the patch's axis, so
+    no pressure on the grid has its resultant off it.  With N > 0 a p off it
+    is refused, with the reason, changing nothing; with N <= 0 accepted."""
+    patch = make(n1=n1, n2=n2, length=0.06, width=0.03, **AGED).initialize(N=10.0)
+    patch.move(u1=1e-4, N=10.0)
+    before = patch.get(*UNKNOWNS)
+    with pytest.raises(Exception):
+        patch.set(**{name: 0.001})
+    axis = name[1]
+    assert f"{name}=0.001 m off the axis of a grid with n{axis} = 1" in patch.messages[-1], patch.messages
+    assert patch.get(*UNKNOWNS) == before
+    _set_together(patch, N=-2.0, **{name: 0.001})
+    assert patch.get("contactState") == 0
+
+
+@pytest.mark.parametrize("grid,p", [((1, 1), (0.0, 0.0)), ((2, 2), (0.005, -0.002)),
+                                    ((3, 1), (-0.007, 0.0)), ((1, 3), (0.0, 0.003)),
+                                    ((4, 2), (0.004, 0.002)), ((8, 8), (-0.005, 0.002)),
+                                    ((32, 32), (0.002, -0.004))])
+def test_full_slip_in_translation_acts_at_the_centre_of_pressure(make, grid, p):
+    """Isotropic mu and eps, theta = 0, every cell sliding along s: T = -mu N s
+    at the centre of pressure, Mz = p x T (closed_forms.patch.full_slip_translation)
+    to 1e-12 on every grid: the cells' normal forces have first moment N p."""
+    L, W, N, mu = 0.06, 0.03, 18.0, 0.4
+    assert abs(p[0]) / L + abs(p[1]) / W <= 1 / 6
+    patch = make(n1=grid[0], n2=grid[1], length=L, width=W, mu1=mu, mu2=mu, eps1=1e4, eps2=1e4,
+                 alpha=0.3, beta=1.1).initialize(N=N, p1=p[0], p2=p[1])
+    moments = []
+    for psi in (0.0, 2.0, -0.9):
+        s = 0.01 * np.array([math.cos(psi), math.sin(psi)])   # mu N / eps = 0.7 mm: every cell slides
+        _set_together(patch, u1=s[0], u2=s[1], theta=0.0, N=N, p1=p[0], p2=p[1])
+        assert patch.get("slipFraction") == 1.0
+        T1, T2, Mz = cp.full_slip_translation(mu, N, *p, psi)
+        assert patch.get("T1", "T2") == pytest.approx([T1, T2], rel=1e-12, abs=1e-15 * N)
+        assert patch.get("Mz") == pytest.approx(Mz, rel=1e-12, abs=1e-15 * N * L)
+        moments.append(Mz)
+    assert any(moments) == (p != (0.0, 0.0))
 
 
 @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])

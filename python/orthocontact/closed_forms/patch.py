@@ -8,10 +8,12 @@ Conventions: body coordinates (x, y) with the origin at the patch centre,
 x along `length`; theta counterclockwise; the surface's force and moment on
 the body (T [N], Mz [N m] about the normal through the centre).  The
 pressure is linear with resultant N [N] at the centre of pressure (p1, p2)
-[m]: p = N/A (1 + 12 p1 x / length^2 + 12 p2 y / width^2).  The patch's
-stiffness (eps1, eps2) [N/m] is shared by area (a point of area dA holds
-eps dA / A).  A grid of n1 x n2 cells puts each cell's share at its centre
-(the midpoint rule)."""
+[m]: over the continuum p = N/A (1 + 12 p1 x / length^2 + 12 p2 y / width^2).
+The patch's stiffness (eps1, eps2) [N/m] is shared by area (a point of area
+dA holds eps dA / A).  A grid of n1 x n2 cells puts each cell's share at its
+centre (the midpoint rule), its normal force the grid's linear pressure
+(grid_normal_forces), whose first moment is N (p1, p2) exactly: the
+continuum's pressure sampled at the centres would have N p1 (1 - 1/n1^2)."""
 from __future__ import annotations
 
 import math
@@ -33,6 +35,39 @@ def cell_centres(length: float, width: float, n1: int, n2: int) -> tuple[np.ndar
     y = (2.0 * np.arange(n2) + 1.0 - n2) / (2.0 * n2) * width
     X, Y = np.meshgrid(x, y)
     return X.ravel(), Y.ravel()
+
+
+def grid_normal_forces(length, width, n1: int, n2: int, N, p1=0.0, p2=0.0) -> np.ndarray:
+    """The n1 x n2 cells' normal forces [N] (cell_centres' order) of a linear
+    pressure with resultant N [N] at (p1, p2) [m]: N_i = N w (1 + p1 x_i / S1
+    + p2 y_i / S2), w = 1/(n1 n2), S1 = sum of w x_i^2 = length^2 (1 - 1/n1^2)/12
+    (likewise S2), so that sum N_i = N and sum N_i (x_i, y_i) = N (p1, p2)
+    exactly.  A side of one cell has S = 0 and cannot carry p along it:
+    ValueError for p off that axis while N > 0.  With N <= 0 (no contact)
+    every cell gets N w, whatever p."""
+    x, y = cell_centres(length, width, n1, n2)
+    if not N > 0:
+        return np.full(x.shape, N / (n1 * n2))
+    share = np.ones(x.shape)
+    for p, r, n, name in ((p1, x, n1, "1"), (p2, y, n2, "2")):
+        if n == 1:
+            if p != 0:
+                raise ValueError(f"grid_normal_forces: p{name} = {p!r} m on a grid with n{name} = 1: "
+                                 f"its cells all lie on the axis and cannot carry p{name}")
+            continue
+        share = share + p * r / np.mean(r * r)
+    return N / (n1 * n2) * share
+
+
+def full_slip_translation(mu, N, p1, p2, direction_rad) -> tuple[float, float, float]:
+    """(T1, T2, Mz) [N, N, N m] with isotropic friction mu, every point of the
+    patch (at theta = 0) sliding along s = (cos, sin)(direction_rad), the body's
+    displacement relative to the surface: each point's force is -mu s times
+    its normal force, so T = -mu N s acts at the centre of pressure and
+    Mz = p x T = -mu N (p1 s2 - p2 s1), for the continuum and for any grid
+    whose normal forces have first moment N p (grid_normal_forces)."""
+    s1, s2 = math.cos(direction_rad), math.sin(direction_rad)
+    return -mu * N * s1, -mu * N * s2, -mu * N * (p1 * s2 - p2 * s1)
 
 
 def torsional_stiffness(eps1, eps2, alpha, length, width) -> float:
@@ -132,9 +167,10 @@ def full_slip_rotation(mu1, mu2, eps1, eps2, alpha, beta, rule, length, width, N
 def full_slip_rotation_grid(mu1, mu2, eps1, eps2, alpha, beta, rule, length, width, N, n1: int,
                             n2: int, p1=0.0, p2=0.0) -> tuple[float, float, float]:
     """(T1, T2, Mz) as full_slip_rotation for the n1 x n2 grid: each cell's
-    steady force with its share of N at its centre (the midpoint rule)."""
+    steady force with its normal force (grid_normal_forces) at its centre
+    (the midpoint rule)."""
     x, y = cell_centres(length, width, n1, n2)
-    Nc = N / (n1 * n2) * (1.0 + 12.0 * p1 * x / length**2 + 12.0 * p2 * y / width**2)
+    Nc = grid_normal_forces(length, width, n1, n2, N, p1, p2)
     at_centre = (x == 0) & (y == 0)   # the centre does not move: no force there
     v = np.stack([np.where(at_centre, 1.0, -y), x])
     t = np.where(at_centre, 0.0,
