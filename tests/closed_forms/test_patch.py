@@ -43,6 +43,35 @@ def test_stick_torque_is_minus_k_sin_theta():
     assert cp.stick_rotation_torque(1e4, L, W, 0.01) == pytest.approx(-k * math.sin(0.01), rel=1e-15)
 
 
+@pytest.mark.parametrize("eps1,eps2,alpha", [(1e4, 1e4, 0.3), (1e4, 3e4, 0.0), (1e4, 3e4, math.pi / 2),
+                                             (1e4, 3e4, 0.3)])
+@pytest.mark.parametrize("n1,n2", [(5, 3), (4, 4), (1, 6)])
+def test_stick_torque_of_any_stiffness_is_the_cells_sum(eps1, eps2, alpha, n1, n2):
+    """The grid's stuck torque at finite theta against the sum of (R r) x
+    (-w B (R - I) r) over the cells, written out; -k sin(theta) where the
+    stiffness is isotropic or the grid's second moments are equal (a square
+    of n x n cells), not otherwise."""
+    L, W = 0.08, 0.08 if n1 == n2 else 0.05   # a square grid: S1 = S2
+    B = np.array([[math.cos(alpha), -math.sin(alpha)], [math.sin(alpha), math.cos(alpha)]])
+    B = B @ np.diag([eps1, eps2]) @ B.T
+    k = cp.torsional_stiffness_grid(eps1, eps2, alpha, L, W, n1, n2)
+    for theta in (1e-3, 0.2, -0.7):
+        c, s = math.cos(theta), math.sin(theta)
+        Mz = 0.0
+        for i in range(n1):
+            for j in range(n2):
+                r = np.array([((i + 0.5) / n1 - 0.5) * L, ((j + 0.5) / n2 - 0.5) * W])
+                Rr = np.array([c * r[0] - s * r[1], s * r[0] + c * r[1]])
+                T = -B @ (Rr - r) / (n1 * n2)
+                Mz += Rr[0] * T[1] - Rr[1] * T[0]
+        got = cp.stick_rotation_torque_grid(eps1, eps2, alpha, L, W, n1, n2, theta)
+        assert got == pytest.approx(Mz, rel=1e-12, abs=1e-15 * eps1 * L**2)
+        if eps1 == eps2 or n1 == n2:
+            assert got == pytest.approx(-k * s, rel=1e-12)
+        elif theta == -0.7:
+            assert abs(got / (-k * s) - 1) > 1e-3   # not -k sin(theta) at a finite turn
+
+
 def test_quadrature_gives_the_isotropic_squares_closed_form():
     """mu N a (sqrt 2 + ln(1 + sqrt 2))/6, for both rules (isotropic: the same)."""
     for rule in ("associated", "coupled"):

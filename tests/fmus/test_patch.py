@@ -263,6 +263,26 @@ def test_stick_in_rotation_is_minus_k_sin_theta_with_the_grids_stiffness(make, g
                               rel=1e-13)
 
 
+@pytest.mark.parametrize("alpha", [0.0, 0.4])
+def test_stick_in_rotation_with_orthotropic_stiffness_is_the_grids_sum(make, alpha):
+    """Orthotropic eps, stuck (mu large), finite turns: Mz is
+    closed_forms.patch.stick_rotation_torque_grid, which departs from
+    -k sin(theta) (to O(theta^2) relative with the axes along the sides,
+    O(theta) otherwise); its tangent at 0 is -k."""
+    L, W, grid, eps = 0.08, 0.05, (5, 3), (1e4, 3e4)
+    patch = make(n1=grid[0], n2=grid[1], length=L, width=W, mu1=1e3, mu2=1e3, eps1=eps[0],
+                 eps2=eps[1], alpha=alpha, beta=0.0).initialize(N=100.0)
+    k = cp.torsional_stiffness_grid(*eps, alpha, L, W, *grid)
+    assert patch.derivative(["Mz"], ["theta"], [1.0])[0] == pytest.approx(-k, rel=1e-12)
+    for theta in (1e-3, 0.3, -0.5):
+        patch.set(theta=theta)
+        assert patch.get("contactState") == 1
+        want = cp.stick_rotation_torque_grid(*eps, alpha, L, W, *grid, theta)
+        assert patch.get("Mz") == pytest.approx(want, rel=1e-12)
+        if abs(theta) > 0.1:
+            assert abs(want / (-k * math.sin(theta)) - 1) > 1e-3
+
+
 def _full_slip(make, grid, rule, mu, eps, L, W, N, p=(0.0, 0.0), beta=0.0, alpha=0.0):
     """T1, T2, Mz of one step turning the body by 1e-9 rad from rest with a
     stiffness so high that every cell slides (rigid-plastic: the cell's force

@@ -100,6 +100,24 @@ def stick_rotation_torque(eps, length, width, theta, grid: tuple[int, int] | Non
     return -k * math.sin(theta)
 
 
+def stick_rotation_torque_grid(eps1, eps2, alpha, length, width, n1: int, n2: int, theta) -> float:
+    """Mz [N m] of the n1 x n2 grid stuck at rest at theta = 0 and turned to
+    theta (no translation, any pressure), any stiffness B (eps1, eps2 at
+    alpha, the surface's): each cell pulled back by B (R - I) r / (n1 n2), its
+    moment about the centre taken at R r.  On the grid's symmetric cells that
+    sums to Mz = -k sin(theta) - (S1 - S2) [(B11 - B22) sin(theta) (1 - cos(theta))
+    + B12 (cos(2 theta) - cos(theta))], k = torsional_stiffness_grid = B22 S1
+    + B11 S2, S1 and S2 the cells' mean x^2 and y^2: -k sin(theta) exactly for
+    isotropic stiffness or S1 = S2, otherwise to a relative O(theta^2) with
+    B12 = 0 (axes along the patch's sides) and O(theta) with B12 != 0."""
+    B = adhesion_tensor(eps1, eps2, alpha)
+    x, y = cell_centres(length, width, n1, n2)
+    S1, S2 = float(np.mean(x * x)), float(np.mean(y * y))
+    k = torsional_stiffness_grid(eps1, eps2, alpha, length, width, n1, n2)
+    s, c = math.sin(theta), math.cos(theta)
+    return -k * s - (S1 - S2) * ((B[0, 0] - B[1, 1]) * s * (1.0 - c) + B[0, 1] * (math.cos(2 * theta) - c))
+
+
 def full_slip_torque_square(mu, N, a) -> float:
     """|Mz| [N m] of a square of side a [m] under uniform pressure with
     isotropic friction mu, every point sliding as the body turns about the
