@@ -20,7 +20,9 @@ fmu_src/<model>_variables.h), the closed forms (formulas of the physics,
 closed_forms.paper.of_law the one place that spreads a law over their
 arguments), tests, the independent references (benchmarks/peer/,
 tools/rig_reference.py and tools/make_recordings.py, which import nothing of
-the package: the test checks) and data (scenario files).  The closed forms'
+the package: the test checks), data (scenario files) and source generated
+from the tables (python/orthocontact/fmu/generated.py: tools/make_generated.py
+writes it, tests/fmu/test_generated.py holds it to the tables).  The closed forms'
 names are counted as quoted strings ("eq11", "mat", ...): two or more, each
 within GAP_FORMS lines of the one before, make a place."""
 from __future__ import annotations
@@ -43,6 +45,7 @@ ASIDE = (  # (category, path pattern), first match wins; the rest is "code"
     ("tests", r"^tests/"),
     ("independent references", r"^benchmarks/peer/|^tools/(rig_reference|make_recordings)\.py$"),
     ("data", r"^scenarios/"),
+    ("generated", r"^python/orthocontact/fmu/generated\.py$"),   # tools/make_generated.py writes it
     ("this counter", r"^tools/count_facts\.py$"),
 )
 

@@ -7,6 +7,7 @@ import re
 from pathlib import Path
 
 import count_facts as facts   # tools/ is on sys.path (conftest)
+import make_generated
 
 ROOT = Path(__file__).resolve().parents[2]
 ROWS = ("six", "rules", "models", "sources", "forms", "fmi")   # the table's rows, in order
@@ -49,3 +50,11 @@ def test_the_counter_sees_a_place_and_not_a_comment():
     assert facts.form_places(['if sc.closed_form == "mat":']) == []     # one name: not a list
     assert facts.category("fmu_src/patch_variables.h") == "table"
     assert facts.category("python/orthocontact/experiment/scenario.py") == "code"
+
+
+def test_only_what_the_generator_writes_is_set_aside_as_generated():
+    """A file counted apart as generated is one tools/make_generated.py
+    writes (and tests/fmu/test_generated.py holds to the tables)."""
+    generated = [f for f in facts.tracked_files() if facts.category(f) == "generated"]
+    assert generated == [make_generated.TARGET.as_posix()]
+    assert facts.category("python/orthocontact/fmu/params.py") == "code"

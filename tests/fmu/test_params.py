@@ -4,9 +4,11 @@ import math
 import pytest
 
 from orthocontact import ContactParams
+from orthocontact.fmu.params import ANGLE_LIMIT_RAD
 
 
 def test_contact_params_refuse_angles_outside_4_pi_naming_radians():
+    assert ANGLE_LIMIT_RAD == 4 * math.pi     # the table's range of both angles
     with pytest.raises(ValueError, match=r"alpha = 90 rad is outside \[-4 pi, 4 pi\] rad.*degrees\?"):
         ContactParams(0.408, 0.625, 1e4, 1e4, alpha=90)
     with pytest.raises(ValueError, match="beta"):
