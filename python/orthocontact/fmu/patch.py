@@ -18,30 +18,45 @@ from dataclasses import dataclass
 
 from .contact import INITIAL_SLIP, FMUError
 from .files import find_fmu, model_description
-from .params import RULES, ContactParams
+from .generated import PATCH_FLOAT_OUTPUTS, PATCH_GEOMETRY, PATCH_INPUTS, PATCH_INTEGER_OUTPUTS, PATCH_MODEL
+from .param_checks import Row
+from .params import ContactParams
 from .slave import FreedOnClose, instantiate, integer_call
-from .variables import manifest
 
-PATCH_MODEL = "ContactPatch"
-INPUTS = ("u1", "u2", "theta", "N", "p1", "p2")
-OUTPUTS = ("T1", "T2", "Mz", "dissipatedEnergy", "slipFraction")
+# The FMU's inputs and outputs, and the patch's geometry (its parameters the
+# point contact has not), in the table's order: fmu/generated.py.
+INPUTS = PATCH_INPUTS
+OUTPUTS = PATCH_FLOAT_OUTPUTS          # read as reals; PATCH_INTEGER_OUTPUTS as integers
+GEOMETRY = tuple(row.name for row in PATCH_GEOMETRY)
 
 
-# The patch's geometry: its parameters in the FMU's table, in this order.
-GEOMETRY = ("length", "width", "n1", "n2")
+def geometry_row(name: str) -> Row:
+    """The row of the patch's geometry parameter `name` (GEOMETRY) in the FMU's table."""
+    for row in PATCH_GEOMETRY:
+        if row.name == name:
+            return row
+    raise KeyError(f"{PATCH_MODEL} has no geometry parameter {name!r} (it has {', '.join(GEOMETRY)})")
 
 
 def geometry_range(name: str) -> tuple:
     """(min, max) of the patch's geometry parameter `name` in the FMU's table."""
-    v = manifest(PATCH_MODEL).variable(name)
+    v = geometry_row(name)
     return v.min, v.max
+
+
+def cells_start(name: str) -> int:
+    """The table's start of the cell count `name` (n1, n2): PatchGeometry's default."""
+    start = geometry_row(name).start
+    if not isinstance(start, int):
+        raise TypeError(f"{PATCH_MODEL}: {name}'s start {start!r} is no cell count")
+    return start
 
 
 def geometry_problem(name: str, value) -> str | None:
     """What is wrong with `value` for the patch's geometry parameter `name`
     (GEOMETRY) by the FMU's own table: its type (a length a finite number, a
     cell count an integer) and its range [min, max]; None if it is right."""
-    v = manifest(PATCH_MODEL).variable(name)
+    v = geometry_row(name)
     count = v.type != "Float64"
     if isinstance(value, bool) or not isinstance(value, int if count else (int, float)) or \
             (not count and not math.isfinite(value)):
@@ -60,8 +75,8 @@ class PatchGeometry:
     context."""
     length: float
     width: float
-    n1: int = 8
-    n2: int = 8
+    n1: int = cells_start("n1")   # the table's start, 8
+    n2: int = cells_start("n2")
 
     def __post_init__(self):
         for name in GEOMETRY:
@@ -117,14 +132,18 @@ class PatchFMU(FreedOnClose):
         starts unloaded where the inputs put it (initialSlip = atInputs)."""
         if len(inputs) != 4:
             raise ValueError(f"inputs must be (u1 [m], u2 [m], theta [rad], N [N]), got {inputs!r}")
-        values = {**{k: v for k, v in params.fmu_values().items() if k != "slidingRule"},
-                  "length": float(geometry.length), "width": float(geometry.width)}
+        law = params.fmu_values()
+        rule = law.pop(params.RULE_VARIABLE)
+        sizes = {row.name: float(getattr(geometry, row.name))
+                 for row in PATCH_GEOMETRY if row.type == "Float64"}
+        values = {**law, **sizes}
         self._call("setting parameters", self._set_real, [self.vr[n] for n in values],
                    list(values.values()))
-        self._set_integer("slidingRule", RULES[params.rule])
+        self._set_integer(params.RULE_VARIABLE, int(rule))
         self._set_integer("initialSlip", INITIAL_SLIP["atInputs"])
-        self._set_integer("n1", geometry.n1)
-        self._set_integer("n2", geometry.n2)
+        for row in PATCH_GEOMETRY:
+            if row.type != "Float64":
+                self._set_integer(row.name, getattr(geometry, row.name))
         self.shape = (geometry.n1, geometry.n2)
         if self.fmi_version == 2:
             self._call("setupExperiment", self._slave.setupExperiment)
@@ -149,7 +168,8 @@ class PatchFMU(FreedOnClose):
         of the pending step."""
         out = dict(zip(OUTPUTS, self._call("getting outputs", self._get_real, self._out_vr)))
         get_int = self._slave.getInteger if self.fmi_version == 2 else self._slave.getInt32
-        out["contactState"] = self._call("getting contactState", get_int, [self.vr["contactState"]])[0]
+        for name in PATCH_INTEGER_OUTPUTS:
+            out[name] = self._call(f"getting {name}", get_int, [self.vr[name]])[0]
         return out
 
     def cell_states(self) -> list[list[int]]:
