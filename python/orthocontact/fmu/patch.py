@@ -157,7 +157,10 @@ class PatchFMU(FreedOnClose):
     def set_inputs(self, u1: float, u2: float, theta: float, N: float, p1: float = 0.0,
                    p2: float = 0.0):
         """Displacement of the patch centre [m], rotation [rad], normal force
-        [N], centre of pressure [m]: the pending step, not committed."""
+        [N], centre of pressure [m]: the pending step, not committed.  All six
+        in one call: with N > 0, p must lie in the kern and be 0 along a side
+        of one cell (else FMUError with the FMU's reason, nothing changed);
+        with N <= 0 the contact is open and p is not looked at."""
         self._call(f"setting inputs (u1={u1}, u2={u2}, theta={theta}, N={N}, p1={p1}, p2={p2})",
                    self._set_real, self._in_vr, [float(u1), float(u2), float(theta), float(N),
                                                  float(p1), float(p2)])
