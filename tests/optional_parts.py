@@ -49,6 +49,25 @@ def _qemu() -> Optional[str]:
     return None
 
 
+def wine64() -> Optional[str]:
+    """The loader that runs a 64-bit Windows program: wine64 on PATH,
+    Debian's (/usr/lib/wine/wine64, which its `wine` script calls), or a
+    `wine` of the new WoW64 mode (wine >= 9, one loader for both); None if
+    there is none."""
+    for path in (shutil.which("wine64"), "/usr/lib/wine/wine64", shutil.which("wine")):
+        if path and os.access(path, os.X_OK):
+            return path
+    return None
+
+
+def _wine() -> Optional[str]:
+    path = wine64()
+    if path is None:
+        return "no wine64 (apt: wine64)"
+    p = subprocess.run([path, "--version"], capture_output=True, text=True, timeout=60)
+    return None if p.returncode == 0 else f"{path} --version exited {p.returncode}"
+
+
 def _root() -> Optional[str]:
     return None if os.geteuid() == 0 else "mounting a tmpfs needs root"
 
@@ -75,6 +94,7 @@ PARTS = {p.name: p for p in (
     Part("hypothesis", "the law's properties at every scale", _module("hypothesis"),
          distribution="hypothesis"),
     Part("qemu-aarch64", "the aarch64 Linux binary run under qemu-user", _qemu),
+    Part("wine", "the win64 binaries run under wine64", _wine),
     Part("root", "a full disk, a read-only folder: tmpfs mounts", _root, required=False),
     Part("cffconvert", "CITATION.cff against the CFF schema", _module("cffconvert"), required=False),
     Part("libcosim-fmi3", "libcosim runs the FMI 3.0 FMUs like fmpy", None, required=False),

@@ -70,6 +70,7 @@ SLOW = {
     "fmus/test_model_structure.py": {   # every n1, n2 from 1 to 32 at each base point: 3-11 s
         "test_the_patchs_declared_dependencies_are_what_the_binary_does"},
     "fmus/test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
+    "fmus/test_windows.py": "*",   # builds two hosts with zig, starts a wine prefix: 20 s warm
     "fmus/test_fmu.py": {"test_sources_compile_into_a_working_binary"},           # builds from sources/
     "closed_forms/test_rig.py": {
         "test_strip_steady_state_matches_the_independent_reference_simulator",

@@ -17,8 +17,9 @@ tools/bootstrap.sh
 # other FMU/SSP importers: libcosim, Ecos, fmu-manipulation-toolbox's
 # container), those not yet satisfied; then the system's parts: oneTBB for
 # Ecos's library, qemu-user with the arm64 C library to run the aarch64
-# binary (`make test` only).  A part that cannot be installed is reported by
-# pytest as not run, and fails `make test` and CI (tests/optional_parts.py).
+# binary and wine64 to run the win64 ones (`make test` only).  A part that
+# cannot be installed is reported by pytest as not run, and fails `make test`
+# and CI (tests/optional_parts.py).
 missing_reqs=$(.venv/bin/python tools/requirements.py test --missing)
 test_reqs=()
 while IFS= read -r req; do
@@ -60,6 +61,10 @@ fi
 if [ $fast = 0 ] && { ! command -v qemu-aarch64 >/dev/null 2>&1 ||
                       [ ! -e /usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1 ]; }; then
   apt_install qemu qemu-user libc6-arm64-cross
+fi
+# wine64 to run the win64 binaries (tests/fmus/test_windows.py; `make test` only).
+if [ $fast = 0 ] && ! command -v wine64 >/dev/null 2>&1 && [ ! -x /usr/lib/wine/wine64 ]; then
+  apt_install wine wine64
 fi
 FMI_DIR=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
 variants=(release asan)
