@@ -53,6 +53,21 @@ def one_error_line(p, *says):
         assert s in lines[0], lines[0]
 
 
+def error_lines(p, *says):
+    """The command refused its input with one line per problem: exit 2 and
+    each line of stderr `orthocontact: error: ...`.  With `says` given, one
+    line each, in order, the i-th containing says[i].  The lines, without
+    the prefix."""
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2, p.stderr
+    assert lines and all(line.startswith("orthocontact: error: ") for line in lines), p.stderr
+    if says:
+        assert len(lines) == len(says), p.stderr
+        for line, s in zip(lines, says):
+            assert s in line, (s, line)
+    return [line[len("orthocontact: error: "):] for line in lines]
+
+
 def leftovers(folder: Path):
     """The names in `folder`, sorted."""
     return sorted(p.name for p in folder.iterdir())

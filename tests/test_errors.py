@@ -43,6 +43,25 @@ def test_an_input_error_from_any_layer_is_one_line_and_exit_2(tmp_path, capsys, 
     assert not (tmp_path / "o").exists()
 
 
+def test_every_problem_of_an_input_error_is_a_line_of_its_own(tmp_path, capsys, monkeypatch):
+    """A reader that found several problems (errors.Problems) raises one
+    InputError of them: the CLI prints each as its own `orthocontact: error:`
+    line, exit 2."""
+    from orthocontact.errors import Problems
+
+    def refuse(args):
+        problems = Problems()
+        problems.add("f.toml: a: expected 1, got 2")
+        problems.add("f.toml: b: expected 3, got 4")
+        problems.raise_any()
+    args = cli_main.build_parser().parse_args(["run", "x.toml", "--out", str(tmp_path / "o")])
+    monkeypatch.setattr(cli_main, "build_parser", lambda: _Fixed(args, refuse))
+    assert cli_main.main([]) == 2
+    assert capsys.readouterr().err == ("orthocontact: error: f.toml: a: expected 1, got 2\n"
+                                       "orthocontact: error: f.toml: b: expected 3, got 4\n")
+    Problems().raise_any()   # none: nothing raised
+
+
 class _Fixed:
     """A parser that gives `args` with its command replaced by `func`."""
 

@@ -15,7 +15,7 @@ Exit status:
   1    a result that does not match the paper (or, with --strict, any
        warning: an implausible input, a rig run that is not steady sliding)
   2    bad input: one line on stderr naming the file, option, key or row, and
-       what was expected
+       what was expected (a file with several problems: one line each)
   74   (sysexits.h's EX_IOERR) the system refused a read or a write -- the
        disk is full, permission denied, a read-only file system: one line
        naming what failed, the system's reason and the path; the results'
@@ -136,7 +136,8 @@ def run_command(argv=None) -> int:
         print(f"orthocontact: interrupted; nothing written to {out}", file=sys.stderr)
         return 130
     except InputError as e:   # a scenario's (ScenarioError) too: one hierarchy
-        print(f"orthocontact: error: {e}", file=sys.stderr)
+        for line in e.lines or [""]:   # each problem of a file, one line each
+            print(f"orthocontact: error: {line}", file=sys.stderr)
         return 2
     except FileNotFoundError as e:  # e.g. the FMU is missing
         print(f"orthocontact: error: {e}", file=sys.stderr)

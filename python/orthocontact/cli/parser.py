@@ -124,7 +124,8 @@ def build_parser() -> argparse.ArgumentParser:
                     "measurements.",
         epilog="Exit status: 0 success, 1 a result that does not match the paper (or, with "
                "--strict, any warning), 2 bad input "
-               "(one line naming the file or option), 74 the system refused a read or a write "
+               "(one line naming the file or option; a file's every problem, one line each), 74 the "
+               "system refused a read or a write "
                "(disk full, permission denied, a read-only file system; one line), 130 "
                "interrupted before the output was written; a closed standard output (| head) "
                "is no error.  CSV "
