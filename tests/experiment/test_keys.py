@@ -22,13 +22,37 @@ step_deg = 45.0
 
 def test_both_files_check_the_rigs_keys_with_the_same_checkers():
     for key, check in RIG_KEYS.items():
-        assert SCHEMA["rig"][key][0] is check and RIG_TOML[key][0] is check, key
+        assert SCHEMA["rig"][key][0] is check, key
+        assert key == "fit_from" or RIG_TOML[key][0] is check, key   # a lab's rig fits no path
+
+
+def test_the_rigs_keys_their_defaults_and_ranges_are_the_rigs_fields():
+    """Rig (rig.harness) is the one place of the rig's fields, defaults and
+    checks: the scenario's [rig] table has them all with Rig's defaults,
+    rig.toml its own defaults where it says so, and Rig refuses what the
+    files refuse, in the same words."""
+    import dataclasses
+
+    from orthocontact.experiment.rig_setup import LAB_DEFAULTS, RigSetup
+    from orthocontact.rig.harness import Rig
+    fields = {f.name: f for f in dataclasses.fields(Rig)}
+    assert list(SCHEMA["rig"]) == list(fields)
+    assert {k: d for k, (_, d) in SCHEMA["rig"].items()} == {k: f.default for k, f in fields.items()}
+    lab = RigSetup(mass_kg=1.875)
+    for key, (_, default) in RIG_TOML.items():
+        if key in fields and key != "mass_kg":
+            assert default == LAB_DEFAULTS.get(key, fields[key].default) == getattr(lab, key), key
+    for key, value in (("fit_from", 0.96), ("velocity_m_s", 0.0), ("mode", "fast"), ("c_strip", -1.0)):
+        why = SCHEMA["rig"][key][0](value)
+        with pytest.raises(ValueError, match=f"Rig: {key} must be {why}, got"):
+            Rig(**{key: value})
 
 
 @pytest.mark.parametrize("key,value,says", [
     ("velocity_m_s", -1.0, "velocity_m_s: expected a number > 0, got -1.0"),
     ("mode", "fast", "mode: expected one of 'dynamic', 'quasistatic', got 'fast'"),
-    ("step_s", 0.5, "step_s: expected a number <= 0.1, got 0.5"),
+    ("step_s", 0.5, "step_s = 0.5 s: a communication step of 1e-7-1e-2 s"),
+    ("step_s", -1e-3, "step_s: expected a number > 0, got -0.001"),
     ("travel_m", 500.0, "travel_m = 500 m: a lab rig's travel is 0.005-10 m; mm?"),
 ])
 def test_a_bad_rig_value_reads_the_same_in_both_files(tmp_path, key, value, says):
@@ -44,7 +68,7 @@ def test_a_bad_rig_value_reads_the_same_in_both_files(tmp_path, key, value, says
 
 
 def test_read_table_fills_defaults_and_refuses_unknown_and_missing_keys():
-    spec = rig_spec(mass_kg=1.0, g=9.806)
+    spec = {k: v for k, v in rig_spec(mass_kg=1.0, g=9.806).items() if k in ("mass_kg", "g")}
     values, warnings = read_table(Path("f"), "", {"g": 9.81}, spec, InputError)
     assert values == {"mass_kg": 1.0, "g": 9.81} and warnings == []
     with pytest.raises(InputError, match="f: colour: expected one of the known keys g, mass_kg"):
@@ -54,6 +78,38 @@ def test_read_table_fills_defaults_and_refuses_unknown_and_missing_keys():
         read_table(Path("f"), "rig.", {}, rig_spec(mass_kg=REQUIRED), InputError)
     _, warnings = read_table(Path("f"), "", {"g": 9.7}, spec, InputError)
     assert warnings == ["f: g = 9.7 m/s^2: gravity on Earth is 9.76-9.84 m/s^2"]
+
+
+def test_read_table_names_every_problem_of_the_table_one_line_each():
+    """An unknown key, a missing required one, a wrong type, a value out of
+    range and one that cannot be right for its unit: five lines in one error;
+    with a Problems collector given, the lines join it and the good keys'
+    values come back."""
+    from orthocontact.errors import Problems
+    from orthocontact.experiment.keys import REQUIRED
+    spec = rig_spec(mass_kg=REQUIRED)
+    data = {"colour": 1, "g": "9.8", "velocity_m_s": -1.0, "travel_m": 500.0, "step_s": 1e-3}
+    with pytest.raises(InputError) as e:
+        read_table(Path("f"), "rig.", data, spec, InputError)
+    assert e.value.lines == [
+        "f: rig.colour: expected one of the known keys " + ", ".join(sorted(spec)),
+        "f: rig.mass_kg: expected a value (the key is required)",
+        "f: rig.g: expected a finite number, got '9.8'",
+        "f: rig.velocity_m_s: expected a number > 0, got -1.0",
+        "f: rig.travel_m = 500 m: a lab rig's travel is 0.005-10 m; mm?"]
+    problems = Problems(InputError)
+    values, _ = read_table(Path("f"), "rig.", data, spec, InputError, problems)
+    assert len(problems.lines) == 5 and values["step_s"] == 1e-3 and "g" not in values
+    with pytest.raises(InputError) as again:
+        problems.raise_any()
+    assert again.value.lines == e.value.lines
+
+
+def test_rig_toml_names_every_problem_in_one_error(tmp_path):
+    (tmp_path / "rig.toml").write_text('g = -9.8\nmode = "fast"\nrule = "sticky"\n')
+    with pytest.raises(InputError) as e:
+        load_rig_toml(tmp_path / "rig.toml")
+    assert [line.split(": ")[1] for line in e.value.lines] == ["mass_kg", "g", "mode", "rule"]
 
 
 def test_a_checkers_range_options_and_items_are_readable_and_a_list_is_gated_item_by_item():

@@ -3,17 +3,22 @@ and of a lab's rig.toml are checked here, each against its type and range,
 then against the plausible range of its unit (orthocontact.plausibility), with
 one message style: '<file>: <key>: expected <what>, got <value>'.
 
-The rig's keys (RIG_KEYS) are shared by both files; each file gives its own
-defaults.  Angles are in degrees at this boundary, as the files write them
-(experiment.geometry turns them into the law's radians)."""
+The rig's keys (RIG_KEYS) are the fields of rig.harness.Rig, with what
+each takes and its default from there; both files read them (rig_spec), a
+file overriding a default where it must (rig.toml: the mass is required).
+Angles are in degrees at this boundary, as the files write them
+(experiment.geometry turns them into the law's radians).
+
+A table's reader names every problem of the table, not only the first
+(errors.Problems): one line each."""
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 from .. import plausibility
-from ..rig.harness import MODES
+from ..errors import Problems
+from ..rig.harness import Rig
 
 REQUIRED = object()  # a spec's default for a key that must be given
 
@@ -27,13 +32,7 @@ class Number:
     lo_open: bool = False
 
     def __call__(self, v):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            return "a finite number"
-        if self.lo is not None and (v <= self.lo if self.lo_open else v < self.lo):
-            return f"a number {'>' if self.lo_open else '>='} {self.lo}"
-        if self.hi is not None and v > self.hi:
-            return f"a number <= {self.hi}"
-        return None
+        return plausibility.number_problem(v, self.lo, self.hi, self.lo_open)
 
 
 def number(lo=None, hi=None, lo_open=False) -> Number:
@@ -112,47 +111,66 @@ POSITIVE = number(0, lo_open=True)
 NON_NEGATIVE = number(0)
 ANGLE_DEG = number(-360, 360)
 
-# The rig, as both files describe it: mass [kg], g [m/s^2], F_int [N],
-# velocity [m/s], travel [m], the strip's friction [-] and viscosity
-# [N s/m], the communication step [s].
-RIG_KEYS = {
-    "mode": choice(MODES), "mass_kg": POSITIVE, "g": POSITIVE, "f_int_N": NON_NEGATIVE,
-    "velocity_m_s": POSITIVE, "travel_m": POSITIVE, "mu_strip": NON_NEGATIVE,
-    "c_strip": NON_NEGATIVE, "step_s": number(0, 0.1, lo_open=True),
-}
+
+def rig_key(f) -> Callable:
+    """The checker of Rig's field `f` (a dataclasses.Field): what it takes."""
+    options = f.metadata["options"]
+    return choice(options) if options is not None else number(*f.metadata["range"])
 
 
-def rig_spec(**defaults) -> dict:
-    """{key: (checker, default)} of the rig's keys with a file's defaults."""
-    return {k: (RIG_KEYS[k], defaults[k]) for k in RIG_KEYS if k in defaults}
+# The rig's keys and their checkers: Rig's fields (mass [kg], g [m/s^2],
+# F_int [N], velocity [m/s], travel [m], the strip's friction [-], the mode,
+# the communication step [s], the fit's start [-] and the strip's viscosity
+# [N s/m]).
+RIG_KEYS = {f.name: rig_key(f) for f in fields(Rig)}
 
 
-def read_table(path, where: str, data: dict, spec: dict, error) -> tuple[dict, list[str]]:
-    """The table's values (defaults filled in) and its warnings.  Raises
-    error(message) for an unknown key, a missing required one, a value of the
-    wrong type or range, or one that cannot be right for its unit; `where` is
-    the table's prefix in messages ('rig.' or '')."""
+def rig_spec(omit=(), **defaults) -> dict:
+    """{key: (checker, default)} of the rig's keys but those in `omit`, each
+    with Rig's default unless `defaults` gives the file's own (REQUIRED for
+    a key the file must give)."""
+    return {f.name: (RIG_KEYS[f.name], defaults.get(f.name, f.default)) for f in fields(Rig)
+            if f.name not in omit}
+
+
+def read_table(path, where: str, data: dict, spec: dict, error, problems: Problems | None = None
+               ) -> tuple[dict, list[str]]:
+    """The table's values (defaults filled in) and its warnings.  Every
+    problem is one line '<path>: <where><key>: ...' (`where` the table's
+    prefix, 'rig.' or ''): an unknown key, a missing required one, a value
+    of the wrong type or range, or one that cannot be right for its unit.
+    They are added to `problems` where given (the values then lack the keys
+    in question: a check across keys needs them all), else raised together
+    as one error(lines)."""
+    own = problems is None
+    if own:
+        problems = Problems(error)
     for key in data:
         if key not in spec:
-            raise error(f"{path}: {where}{key}: expected one of the known keys {', '.join(sorted(spec))}")
+            problems.add(f"{path}: {where}{key}: expected one of the known keys {', '.join(sorted(spec))}")
     out, warnings = {}, []
     for key, (check, default) in spec.items():
         if key not in data:
             if default is REQUIRED:
-                raise error(f"{path}: {where}{key}: expected a value (the key is required)")
-            out[key] = default
+                problems.add(f"{path}: {where}{key}: expected a value (the key is required)")
+            else:
+                out[key] = default
             continue
         v = data[key]
         why = check(v)
         if why:
-            raise error(f"{path}: {where}{key}: expected {why}, got {v!r}")
+            problems.add(f"{path}: {where}{key}: expected {why}, got {v!r}")
+            continue
         found = plausible(key, v)
         if found is not None:
             level, message = found
             if level == "error":
-                raise error(f"{path}: {where}{message}")
+                problems.add(f"{path}: {where}{message}")
+                continue
             warnings.append(f"{path}: {where}{message}")
         out[key] = v
+    if own:
+        problems.raise_any()
     return out, warnings
 
 

@@ -10,12 +10,12 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .. import closed_forms as cf
 from ..errors import InputError
 from ..fmu.params import RULES, ContactParams
+from ..rig.harness import Rig
 from ..textfiles import read_toml
 from .geometry import AxisGeometry
-from .keys import ANGLE_DEG, POSITIVE, REQUIRED, choice, read_table, rig_spec
+from .keys import ANGLE_DEG, POSITIVE, REQUIRED, RIG_KEYS, choice, read_table, rig_spec
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -23,25 +23,32 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 
+# rig.toml's own defaults of the rig's keys (the rest are Rig's): no
+# carriage resistance known, the strip's viscosity estimated unless given.
+LAB_DEFAULTS = {"f_int_N": 0.0, "c_strip": None}
+
+
 @dataclass
 class RigSetup:
-    """What rig.toml says: the rig and the assumptions of the fit."""
+    """What rig.toml says: the rig (its keys, defaults and checks are
+    rig.harness.Rig's but for LAB_DEFAULTS; the mass is required) and the
+    assumptions of the fit."""
     mass_kg: float
-    g: float = cf.G_STANDARD
-    f_int_N: float = 0.0
-    velocity_m_s: float = 0.244
+    g: float = Rig.g
+    f_int_N: float = LAB_DEFAULTS["f_int_N"]
+    velocity_m_s: float = Rig.velocity_m_s
     rule: str = "coupled"
     alpha_offset_deg: float = 90.0   # the paper's mat: adhesion axis 1 across the ripples
     beta_offset_deg: float = 0.0     # friction axis 1 along the ripples
     phi_convention: str = "counterclockwise"   # or "paper" (opposite sign)
     ramp_angle_deg: float = 0.0
-    mode: str = "quasistatic"        # rig mode of the validation runs (settles within elastic lengths)
-    travel_m: float = 0.5
-    step_s: float = 2e-4
+    mode: str = Rig.mode             # rig mode of the validation runs (settles within elastic lengths)
+    travel_m: float = Rig.travel_m
+    step_s: float = Rig.step_s
     eps2_nominal_N_m: float = 1e4    # for validation runs when eps2 is not identifiable
-    mu_strip: float = 0.0            # the Teflon strip's Coulomb friction, a known input
-    c_strip: float | None = None     # its lateral viscosity [N s/m]: known if given, else
-                                     # estimated from angles at two velocities (else 0)
+    mu_strip: float = Rig.mu_strip   # the Teflon strip's Coulomb friction, a known input
+    c_strip: float | None = LAB_DEFAULTS["c_strip"]   # its lateral viscosity [N s/m]: known if
+                                     # given, else estimated from angles at two velocities (else 0)
     warnings: tuple = ()             # one line each: unusual values in the files
 
     @property
@@ -62,12 +69,10 @@ class RigSetup:
         return self.geometry.params_at(law, angle_deg, self.rule)
 
     def harness(self, **overrides):
-        """The rig harness (orthocontact.rig.Rig) for this setup."""
-        from ..rig.harness import Rig
-        kw = dict(mass_kg=self.mass_kg, g=self.g, f_int_N=self.f_int_N,
-                  velocity_m_s=self.velocity_m_s, travel_m=self.travel_m, mode=self.mode,
-                  step_s=self.step_s, mu_strip=self.mu_strip, c_strip=self.c_strip or 0.0)
-        kw.update(overrides)
+        """The rig harness (orthocontact.rig.Rig) for this setup: its rig's
+        keys (a strip viscosity not given: 0), Rig's defaults for the rest."""
+        kw = {k: getattr(self, k) for k in RIG_TOML if k in RIG_KEYS}
+        kw.update({"c_strip": self.c_strip or 0.0, **overrides})
         return Rig(**kw)
 
     @property
@@ -77,8 +82,7 @@ class RigSetup:
 
 
 RIG_TOML = {
-    **rig_spec(mode="quasistatic", mass_kg=REQUIRED, g=cf.G_STANDARD, f_int_N=0.0, velocity_m_s=0.244,
-               travel_m=0.5, mu_strip=0.0, c_strip=None, step_s=2e-4),
+    **rig_spec(omit=("fit_from",), mass_kg=REQUIRED, **LAB_DEFAULTS),
     "rule": (choice(tuple(RULES)), "coupled"),
     "alpha_offset_deg": (ANGLE_DEG, 90.0), "beta_offset_deg": (ANGLE_DEG, 0.0),
     "phi_convention": (choice(("counterclockwise", "paper")), "counterclockwise"),
@@ -87,7 +91,8 @@ RIG_TOML = {
 
 
 def load_rig_toml(path: Path) -> RigSetup:
-    """Reads and validates rig.toml (experiment.keys); raises InputError."""
+    """Reads and validates rig.toml (experiment.keys); raises one InputError
+    naming every problem of the file, one line each."""
     try:   # a BOM, CRLF, a decimal comma, a missing file: textfiles
         raw = read_toml(path, "a rig.toml in the data folder (mass_kg, f_int_N, ...)")
     except tomllib.TOMLDecodeError as e:

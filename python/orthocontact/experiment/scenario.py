@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..closed_forms import FORMS
-from ..closed_forms.paper import G_STANDARD, isotropic_eps_ratio
+from ..closed_forms.paper import isotropic_eps_ratio
 from ..errors import InputError
 from ..fmu.params import RULES, ContactParams
 from ..fmu.patch import GEOMETRY, geometry_problem, geometry_range
@@ -92,9 +92,7 @@ SCHEMA = {
             "step_s": (number(0, 0.1, lo_open=True), 5e-3),
             "angles_deg": (list_of(ANGLE_DEG, unique=True), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]),
             "rules": (list_of(choice(("associated", "coupled")), unique=True), ["associated", "coupled"])},
-    "rig": {**rig_spec(mode="quasistatic", mass_kg=1.875, g=G_STANDARD, f_int_N=5.0, velocity_m_s=0.244,
-                       travel_m=0.5, mu_strip=0.0, c_strip=0.0, step_s=2e-4),
-            "fit_from": (number(0, 0.95), 0.5)},
+    "rig": rig_spec(),   # the rig's keys with Rig's defaults (rig.harness)
     "paper": {"extremum_angle_deg": (ANGLE_DEG, None), "extremum_phi_deg": (ANGLE_DEG, None),
               "phi_sign_differs": (boolean, False), "max_abs_phi_deg": (NON_NEGATIVE, None),
               "drive_0_N": (POSITIVE, None), "drive_90_N": (POSITIVE, None), "mu1": (POSITIVE, None),
@@ -242,8 +240,5 @@ def load(path) -> Scenario:
     return Scenario(
         path=path, name=top["name"], title=top["title"] or top["name"], kind=top["kind"],
         description=top["description"], law=contact, geometry=geometry, closed_form=geo["closed_form"],
-        rig=Rig(mass_kg=rig["mass_kg"], g=rig["g"], f_int_N=rig["f_int_N"],
-                velocity_m_s=rig["velocity_m_s"], travel_m=rig["travel_m"], mu_strip=rig["mu_strip"],
-                c_strip=rig["c_strip"],
-                mode=rig["mode"], step_s=rig["step_s"], fit_from=rig["fit_from"]),
+        rig=Rig(**rig),
         sweep=sweep, study=study, patch=patch, twist=twist, tow=tow, paper=paper, fmu=fmu, warnings=warnings)

@@ -22,56 +22,68 @@ Modes:
                solved by a safeguarded Newton on u2 with the FMU's directional
                derivative, iterating on a saved FMU state before committing.
 
-The same rig in C (fmu_src/rig_core.c: the CarriageBlock FMU's step and the
+The same rig in C (fmu_src/rig/rig_core.c: the CarriageBlock FMU's step and the
 compiled master's loop) is tested against this module bit for bit
 (tests/rig/test_compiled.py): this is the reference, and the path that needs no
 compiled master."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields
 from typing import NamedTuple
 
 import numpy as np
 
 from ..closed_forms.paper import G_STANDARD
+from ..plausibility import number_problem
 from ..fmu.contact import ContactFMU
 from ..fmu.params import ContactParams
 
 MODES = ("dynamic", "quasistatic")
 
 
+def limits(default, lo=None, hi=None, lo_open=False, options=None):
+    """A field of Rig with its default and what it takes: a finite number in
+    [lo, hi] ((lo, hi] with lo_open; None unbounded), or one of `options`."""
+    return field(default=default, metadata={"range": (lo, hi, lo_open), "options": options})
+
+
+def field_problem(f, v) -> str | None:
+    """What Rig's field `f` (a dataclasses.Field) takes, in words, if `v` is
+    not that; None if it is."""
+    options = f.metadata["options"]
+    if options is not None:
+        return None if v in options else "one of " + ", ".join(map(repr, options))
+    return number_problem(v, *f.metadata["range"])
+
+
 @dataclass(frozen=True)
 class Rig:
-    """The test rig.  Units: kg, m/s^2, N, m/s, m, s.
+    """The test rig: the one place of its fields, their defaults and what
+    each takes (`limits`); a scenario's [rig] table and a lab's rig.toml are
+    read with them (experiment.keys.rig_spec).  Units: kg, m/s^2, N, m/s, m, s.
 
     mode: "dynamic" (the block's lateral inertia integrated) or "quasistatic"
-    (lateral equilibrium every step); anything else raises ValueError."""
-    mass_kg: float = 1.875
-    g: float = G_STANDARD
-    f_int_N: float = 5.0
-    velocity_m_s: float = 0.244
-    travel_m: float = 0.5
-    mu_strip: float = 0.0
-    mode: str = "quasistatic"      # or "dynamic" (settles over a length: closed_forms.settling_length_array)
-    step_s: float = 2e-4           # communication step
-    fit_from: float = 0.5          # fit phi over the travel after this fraction
-    c_strip: float = 0.0           # N s/m: the strip's lateral viscous resistance
+    (lateral equilibrium every step); a field outside what it takes raises
+    ValueError."""
+    mass_kg: float = limits(1.875, 0, lo_open=True)
+    g: float = limits(G_STANDARD, 0, lo_open=True)
+    f_int_N: float = limits(5.0, 0)
+    velocity_m_s: float = limits(0.244, 0, lo_open=True)
+    travel_m: float = limits(0.5, 0, lo_open=True)
+    mu_strip: float = limits(0.0, 0)
+    # or "dynamic" (settles over a length: closed_forms.settling_length_array)
+    mode: str = limits("quasistatic", options=MODES)
+    # communication step; in a file at most 0.1 s too (the plausibility gate's hard range)
+    step_s: float = limits(2e-4, 0, lo_open=True)
+    fit_from: float = limits(0.5, 0, 0.95)   # fit phi over the travel after this fraction
+    c_strip: float = limits(0.0, 0)          # N s/m: the strip's lateral viscous resistance
 
     def __post_init__(self):
-        if self.mode not in MODES:
-            raise ValueError(f"Rig: mode must be one of {', '.join(map(repr, MODES))}, "
-                             f"got {self.mode!r}")
-        for name in ("mass_kg", "g", "velocity_m_s", "travel_m", "step_s"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-                raise ValueError(f"Rig: {name} must be a finite number > 0, got {v!r}")
-        for name in ("f_int_N", "mu_strip", "c_strip"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
-                raise ValueError(f"Rig: {name} must be a finite number >= 0, got {v!r}")
-        if not 0 <= self.fit_from < 1:
-            raise ValueError(f"Rig: fit_from must be in [0, 1), got {self.fit_from!r}")
+        for f in fields(self):
+            why = field_problem(f, getattr(self, f.name))
+            if why is not None:
+                raise ValueError(f"Rig: {f.name} must be {why}, got {getattr(self, f.name)!r}")
 
     @property
     def normal_force(self) -> float:
