@@ -52,14 +52,14 @@ SLOW = {
                              "test_sweeps_on_dask_give_the_local_results",
                              "test_a_local_cluster_listens_on_the_loopback_interface_only",
                              "test_no_dask_process_outlives_the_command"},   # Dask clusters
-    "runs/test_pool.py": {"test_no_worker_outlives_the_main_process_at_the_most_workers",  # 4 per core
-                          # runs long enough for their progress lines
-                          "test_the_sweeps_refinement_and_recordings_say_they_are_running",
-                          "test_a_long_run_says_how_far_it_is_within_2_s_and_stops_on_ctrl_c"},
+    "runtime/test_processes.py": {"test_no_worker_outlives_the_main_process_at_the_most_workers"},  # 4 per core
+    "runs/test_progress.py": {   # runs long enough for their progress lines
+        "test_the_sweeps_refinement_and_recordings_say_they_are_running",
+        "test_a_long_run_says_how_far_it_is_within_2_s_and_stops_on_ctrl_c"},
     "cli/test_interrupts.py": {"test_a_dask_run_signalled_after_writing_everything_reports_success",
                                "test_ctrl_c_on_uq_is_one_line_and_leaves_nothing"},   # uq runs to interrupt
-    "fmu/test_files.py": {"test_ctrl_c_on_reproduce_leaves_no_unpacked_fmu",
-                          "test_a_killed_commands_folder_goes_with_the_next_command"},
+    "runtime/test_temp.py": {"test_ctrl_c_on_reproduce_leaves_no_unpacked_fmu",
+                             "test_a_killed_commands_folder_goes_with_the_next_command"},
     "runs/test_size.py": {"test_uqs_estimate_is_the_runs_it_makes",    # identifies the example first
                           "test_identifys_estimate_is_its_validations_runs",   # the recordings: 19 s
                           "test_identify_refuses_validation_runs_above_the_limits"},   # an identify run

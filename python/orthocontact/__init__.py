@@ -16,11 +16,12 @@ The public API (docs/reference/python-api.md):
 Subpackages by layer, lowest first (tests/contracts/test_structure.py keeps every
 import going down):
     errors, plausibility  -- one-line errors; the plausible ranges of inputs with a unit
+    runtime        -- a command's processes and folders: scratch, workers, signals
     fmu            -- the law's parameters, the installed FMUs, an FMU instance through fmpy
     closed_forms   -- the paper's closed forms; the rig's steady state with its strip
     rig            -- the carriage/block rig: harness (fmpy), compiled master (C), self-checks
     experiment     -- scenario files, a lab's rig.toml, the experiment as an SSP package
-    runs           -- many runs: worker processes, batches, sweeps, Dask
+    runs           -- many runs: batches on an executor and a master, sweeps, Dask
     output         -- CSV/JSON tables and PNG figures
     identification -- measurements, the joint casadi fit, statistics, the job and its report
     uq, reproduction -- uncertainty propagation; the paper reproduced, sensitivity

@@ -17,8 +17,8 @@ from orthocontact.cli.main import main
 from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings,
                                      staged_output, warn, warnings_said)
 from orthocontact.errors import InputError
-from orthocontact.fmu.files import LOCK
 from orthocontact.output.manifest import MANIFEST, file_sha256
+from orthocontact.runtime.folders import LOCK
 
 SCEN = Path(__file__).resolve().parents[2] / "scenarios"
 ROOT = Path(__file__).resolve().parents[2]

@@ -74,6 +74,7 @@ def test_the_cycle_finder_finds_cycles():
 LAYERS = [
     {"errors"},
     {"textfiles", "plausibility"},
+    {"runtime"},
     {"fmu", "closed_forms"},
     {"rig"},
     {"experiment"},
@@ -94,7 +95,7 @@ def upward_imports(graph: dict) -> list:
 
 
 def test_the_layers_read_one_way():
-    """fmu, closed forms -> rig -> experiment -> runs -> output ->
+    """runtime -> fmu, closed forms -> rig -> experiment -> runs -> output ->
     identification -> uq, reproduction -> cli: every import goes down."""
     graph = import_graph()
     missing = {m.split(".")[0] for m in graph} - set(RANK)

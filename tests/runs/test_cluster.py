@@ -15,7 +15,7 @@ from procs import alive, descendants
 
 from orthocontact.errors import InputError
 from orthocontact.runs.cluster import check_address
-from orthocontact.runs.pool import worker_bound
+from orthocontact.runtime.workers import worker_bound
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"

@@ -203,7 +203,7 @@ def entry() -> None:
         print(os_error_line(e, None), file=sys.stderr)
         status = status or OS_ERROR
     if status == 130:
-        from ..fmu.files import remove_unzipped
+        from ..runtime.temp import remove_unzipped
         remove_unzipped()  # os._exit skips atexit
         sys.stdout.flush()
         sys.stderr.flush()

@@ -20,6 +20,7 @@ from pathlib import Path
 from ..errors import InputError
 from ..output.manifest import (MANIFEST, Manifest, new_manifest, owner_of, read_manifest, remove_earlier,
                                write_manifest)
+from ..runtime.folders import locked_folder
 from ..textfiles import paths_being_read
 from .interrupts import hold_interrupts, interrupted, results_written
 
@@ -163,7 +164,6 @@ def staged_output(out: Path, command: str | None = None, force: bool = False):
     of `out` is checked (check_owner) against every file the command has
     read by now (textfiles.paths_being_read) before the block and again
     before the commit."""
-    from ..fmu.files import locked_folder
     out = Path(out)
     check_owner(out, command, force, paths_being_read())
     made = []
@@ -175,7 +175,7 @@ def staged_output(out: Path, command: str | None = None, force: bool = False):
     # mount point, a container's volume): a file moves by renaming only
     # within one file system.
     inside = out.is_dir() and out.stat().st_dev != out.parent.stat().st_dev
-    # A locked folder (fmu.files): this run's while it lives; one a killed
+    # A locked folder (runtime.folders): this run's while it lives; one a killed
     # run left there (SIGKILL cleans nothing) goes with the next run into `out`.
     held = None
     try:

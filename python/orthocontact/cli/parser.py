@@ -61,7 +61,7 @@ def _out_path(text):
 def _workers(text):
     # Checked here, before any work, for every command that takes --workers:
     # above the machine's bound a run would fork until memory runs out.
-    from ..runs.pool import check_workers
+    from ..runtime.workers import check_workers
     n = _positive_int("worker processes")(text)
     try:
         return check_workers(n)

@@ -20,7 +20,8 @@ import zipfile
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu, locked_folder
+from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
+from ..runtime.folders import locked_folder
 from ..fmu.start_values import write_with_start_values
 from .scenario import Scenario
 
@@ -146,7 +147,7 @@ def write_ssp(sc: Scenario, angle_deg: float, out: Path, contact_fmu=None) -> Pa
     contact = Path(contact_fmu or sc.fmu or find_fmu(fmi_version=2))
     rig = find_fmu(fmi_version=2, model=RIG_MODEL_IDENTIFIER)
     # The FMUs and the package are made in a locked folder beside `out`
-    # (fmu.files): the package takes its name by a rename, and what a killed
+    # (runtime.folders): the package takes its name by a rename, and what a killed
     # run left there goes with the next package written to `out`.
     work = locked_folder(out.parent, f".{out.name}.partial-")
     try:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import ctypes
 from typing import Callable
 
-from .files import unzipped
+from ..runtime.temp import unzipped
 
 # on_message(status, category, message): an FMI log call, its texts decoded
 OnMessage = Callable[[int, str, str], None]

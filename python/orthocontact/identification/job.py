@@ -40,7 +40,7 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     from ..rig.checks import check_runs, warning_line
     from ..rig.harness import run
     from ..runs.batch import run_many
-    from ..runs.pool import default_workers
+    from ..runtime.workers import default_workers
     rig = data.rig
     if "f_int" in values:
         rig = dataclasses.replace(rig, f_int_N=values["f_int"])

@@ -1,4 +1,4 @@
-"""The compiled master: the rig in C (fmu_src/rig_core.c, the CarriageBlock
+"""The compiled master: the rig in C (fmu_src/rig/rig_core.c, the CarriageBlock
 FMU's rig too) run by master_src/rig_master.c over a contact FMU's FMI 2.0
 functions (dlopen of the extracted binary) for a batch of parameter sets per
 call.
@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from ..fmu.contact import FMUError
-from ..fmu.files import MODEL_IDENTIFIER, fmi_version_of, installed_file, model_description, unzipped
+from ..fmu.files import MODEL_IDENTIFIER, fmi_version_of, installed_file, model_description
+from ..runtime.temp import unzipped
 from ..fmu.params import RULES, ContactParams
 from ..fmu.variables import law_parameters
 from .harness import Rig, RigResult, RunFigures

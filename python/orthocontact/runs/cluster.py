@@ -34,14 +34,14 @@ def _master_for(fmu):
     unpacked once per worker process."""
     digest, name, blob = fmu
     if digest not in _masters:
-        from ..fmu.files import temp_folder
+        from ..runtime.temp import temp_folder
         from ..rig.compiled import CMaster
         folder = Path(tempfile.mkdtemp(prefix=f"fmu-{digest[:16]}-{os.getpid()}-", dir=temp_folder()))
         try:
             path = folder / name
             path.write_bytes(blob)
             # CMaster unpacks the FMU (removed when this process ends:
-            # fmu.files.remove_unzipped); the archive is not needed after.
+            # runtime.temp.remove_unzipped); the archive is not needed after.
             _masters[digest] = CMaster(path)
         finally:
             shutil.rmtree(folder, ignore_errors=True)
@@ -59,7 +59,7 @@ def dask_setup(worker):
     holds it)."""
     import threading
 
-    from .pool import end_with_parent
+    from ..runtime.processes import end_with_parent
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     if os.environ.get(PARENT_ENV, "").isdigit():
@@ -144,8 +144,8 @@ class DaskRunner:
     def _local_cluster(self, LocalCluster):
         import dask
 
-        from ..fmu.files import TEMP_ENV, temp_folder
-        from .pool import check_workers
+        from ..runtime.temp import TEMP_ENV, temp_folder
+        from ..runtime.workers import check_workers
         check_workers(self.workers)
         self._scratch = tempfile.mkdtemp(prefix="dask-", dir=temp_folder())
         # Ctrl-C reaches the whole process group; the command decides (it

@@ -14,8 +14,10 @@ from ..experiment.scenario import Scenario
 from ..fmu.contact import ContactFMU
 from ..rig.checks import RunChecks, check_runs, warning_line
 from ..rig.harness import run
-from .batch import resolve_master, run_many
-from .pool import Heartbeat, default_workers
+from ..runtime.workers import default_workers
+from .batch import run_many
+from .executors import resolve_master
+from .progress import Heartbeat
 
 # -- closed form for a scenario --------------------------------------------------
 
