@@ -62,6 +62,59 @@ def test_an_owner_frees_its_instance_once_on_close_and_on_leaving_with():
 
 
 @pytest.mark.parametrize("version", [2, 3])
+def test_an_interrupt_while_fmpy_loads_the_binary_leaves_the_working_folder(tmp_path, monkeypatch, version):
+    """fmpy loads the binary with the working folder changed to the FMU's
+    and changes it back after: SIGINT right as the library loads used to
+    raise between the two, and the interrupted command ran on in the FMU's
+    folder (its relative staging folder then stayed: 2 runs of 50 of the
+    interrupt test).  Now the interrupt comes after the folder is back."""
+    import ctypes
+    import os
+    import signal
+
+    import fmpy.fmi1
+    load = ctypes.cdll.LoadLibrary
+
+    def load_and_interrupt(path):
+        os.kill(os.getpid(), signal.SIGINT)   # arrives as the library loads
+        return load(path)
+    monkeypatch.setattr(fmpy.fmi1.cdll, "LoadLibrary", load_and_interrupt)
+    monkeypatch.chdir(tmp_path)
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    path = find_fmu(fmi_version=version)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            instantiate(path, model_description(path), "probe", lambda *a: None)
+        assert os.getcwd() == str(tmp_path)
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
+def test_an_owner_closed_twice_frees_once_even_if_interrupted_in_between():
+    """close() forgets the instance before it frees it: an interrupt right
+    after the free used to leave it remembered, and the owner's collection
+    freed it again (a double free: the process crashed)."""
+    freed = []
+
+    class Slave:
+        def freeInstance(self):
+            freed.append("free")
+            if len(freed) == 1:
+                raise KeyboardInterrupt   # as a signal arriving when the call returns
+
+    class Owner(FreedOnClose):
+        def __init__(self):
+            self._slave = Slave()
+
+    o = Owner()
+    with pytest.raises(KeyboardInterrupt):
+        o.close()
+    o.close()
+    del o
+    assert freed == ["free"]
+
+
+@pytest.mark.parametrize("version", [2, 3])
 @pytest.mark.parametrize("model", list(models().values()))
 def test_every_integer_parameter_round_trips_through_its_types_call(model, version):
     """integer_call picks the call of each integer parameter's declared type

@@ -21,6 +21,7 @@ from ..errors import InputError
 from ..output.manifest import (MANIFEST, Manifest, new_manifest, owner_of, read_manifest, remove_earlier,
                                write_manifest)
 from ..runtime.folders import locked_folder
+from ..runtime.processes import signals_held
 from ..textfiles import paths_being_read
 from .interrupts import hold_interrupts, interrupted, results_written
 
@@ -170,7 +171,7 @@ def staged_output(out: Path, command: str | None = None, force: bool = False):
     for parent in reversed(out.parents):
         if not parent.exists():
             parent.mkdir()
-            made.append(parent)
+            made.append(parent.absolute())
     # Beside `out`, or in it where `out` is a file system of its own (a
     # mount point, a container's volume): a file moves by renaming only
     # within one file system.
@@ -179,7 +180,8 @@ def staged_output(out: Path, command: str | None = None, force: bool = False):
     # run left there (SIGKILL cleans nothing) goes with the next run into `out`.
     held = None
     try:
-        held = locked_folder(out if inside else out.parent, f".{out.name}.partial-")
+        with signals_held():   # made and kept in `held` as one step: an interrupt comes after
+            held = locked_folder(out if inside else out.parent, f".{out.name}.partial-")
         stage = held.path / "files"
         stage.mkdir()
         yield stage

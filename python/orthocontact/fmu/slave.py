@@ -6,6 +6,7 @@ from __future__ import annotations
 import ctypes
 from typing import Callable
 
+from ..runtime.processes import signals_held
 from ..runtime.temp import unzipped
 
 # on_message(status, category, message): an FMI log call, its texts decoded
@@ -15,7 +16,11 @@ OnMessage = Callable[[int, str, str], None]
 def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on: bool = False):
     """(fmpy's FMU2Slave or FMU3Slave, instantiated; the callbacks, which the
     caller keeps alive as long as the instance) of the Co-Simulation FMU at
-    `path` whose model description fmpy read as `md`."""
+    `path` whose model description fmpy read as `md`.  fmpy changes the
+    working folder to the FMU's binaries while it loads them and back after:
+    an interrupt in between left the command in that folder, and its
+    relative paths (the staging folder of a relative --out) pointing
+    elsewhere, so the two happen with the signals held."""
     model = md.coSimulation.modelIdentifier
     if md.fmiVersion.startswith("2"):
         from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE,
@@ -30,16 +35,20 @@ def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on:
         cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         addLoggerProxy(ctypes.byref(cb))  # formats the printf-style message in C
-        s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier=model,
-                      instanceName=instance_name)
+        folder = unzipped(path)
+        with signals_held():   # the working folder changes and comes back in here
+            s = FMU2Slave(guid=md.guid, unzipDirectory=folder, modelIdentifier=model,
+                          instanceName=instance_name)
         s.instantiate(callbacks=cb, loggingOn=logging_on)
         return s, (cb, log)
     from fmpy.fmi3 import FMU3Slave
 
     def log3(env, status, category, message):
         on_message(status, category.decode(errors="replace"), message.decode(errors="replace"))
-    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier=model,
-                  instanceName=instance_name)
+    folder = unzipped(path)
+    with signals_held():   # as above
+        s = FMU3Slave(guid=md.guid, unzipDirectory=folder, modelIdentifier=model,
+                      instanceName=instance_name)
     s.instantiate(loggingOn=logging_on, logMessage=log3)
     return s, (log3,)
 
@@ -81,9 +90,11 @@ class FreedOnClose:
     initialized = False
 
     def close(self):
-        if self._slave is not None:
-            free(self._slave, self.initialized)
-            self._slave = None
+        # forgotten before it is freed: an interrupt between the two must not
+        # free it twice (here and again when collected: a crash)
+        slave, self._slave = self._slave, None
+        if slave is not None:
+            free(slave, self.initialized)
 
     def __enter__(self):
         return self

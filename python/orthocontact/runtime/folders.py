@@ -52,9 +52,10 @@ class LockedFolder:
 
 
 def locked_folder(parent, prefix: str) -> LockedFolder:
-    """A new folder `prefix` + random in `parent`, holding its lock;
-    first removes the abandoned folders of the same prefix there
-    (remove_abandoned)."""
+    """A new folder `prefix` + random in `parent`, holding its lock, by its
+    absolute path; first removes the abandoned folders of the same prefix
+    there (remove_abandoned)."""
+    parent = Path(parent).absolute()   # its removal must not depend on the working folder then
     remove_abandoned(parent, prefix)
     folder = Path(tempfile.mkdtemp(prefix=f"{prefix}{maker_tag(os.getpid())}-", dir=parent))
     making, fd = folder / (LOCK + ".new"), None
@@ -63,10 +64,10 @@ def locked_folder(parent, prefix: str) -> LockedFolder:
         if _fcntl is not None:
             _fcntl.flock(fd, _fcntl.LOCK_EX | _fcntl.LOCK_NB)
         os.replace(making, folder / LOCK)
+        return LockedFolder(folder, fd)
     except BaseException:   # a full disk, an interrupt: no folder left
         LockedFolder(folder, fd).remove()
         raise
-    return LockedFolder(folder, fd)
 
 
 def maker_tag(pid: int) -> str | None:

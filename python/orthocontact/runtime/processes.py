@@ -1,9 +1,10 @@
 """Worker processes that behave: they ignore Ctrl-C (the main process
 decides), end when their parent ends whatever ended it, and are forked by a
-pool that holds the stop signals while it forks; stop_pool ends such a pool
-at once."""
+pool that holds the stop signals while it forks, so that none is left
+unlisted; stop_pool ends such a pool at once."""
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import sys
@@ -16,6 +17,48 @@ from .temp import temp_folder
 from .workers import check_workers
 
 STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
+
+
+@contextlib.contextmanager
+def signals_held():
+    """SIGINT and SIGTERM held while the block runs: one that arrives
+    meanwhile reaches its handler when the block ends, so a step that must
+    not be cut (a fork and its record, a folder made and kept, a library
+    loaded between two chdir calls) completes first.  Blocking the signals
+    in this thread (pthread_sigmask) is not enough: the kernel hands a
+    signal sent to the process to any thread that does not block it (a
+    progress bar's, a pool's), and Python then runs the handler in the main
+    thread between any two steps.  So, in the main thread, the handlers
+    themselves wait too (a stand-in notes the signal and calls the handler
+    after the block); the mask still holds it from a process forked here."""
+    held = {}      # signal -> its handler, while a stand-in takes its place
+    arrived = []   # signals noted while held
+    holding = [True]
+
+    def stand_in(signum, frame):
+        if holding[0]:
+            arrived.append(signum)
+        else:   # the block has ended: at once, as without the stand-in
+            held[signum](signum, frame)
+
+    if threading.current_thread() is threading.main_thread():
+        for s in STOP_SIGNALS:
+            handler = signal.getsignal(s)
+            if callable(handler):   # a Python handler (SIG_IGN, SIG_DFL: the mask holds those)
+                held[s] = handler
+                signal.signal(s, stand_in)
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS) if hasattr(signal, "pthread_sigmask") \
+        else None
+    try:
+        yield
+    finally:
+        holding[0] = False
+        if old is not None:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for s, handler in held.items():
+            signal.signal(s, handler)
+        for s in dict.fromkeys(arrived):
+            held[s](s, None)
 
 
 def worker_signals():
@@ -100,13 +143,8 @@ class _SignalSafePool(ProcessPoolExecutor):
     def submit(self, fn, /, *args, **kwargs):
         global _forked_by_main_thread
         _forked_by_main_thread = threading.current_thread() is threading.main_thread()
-        if not hasattr(signal, "pthread_sigmask"):
+        with signals_held():
             return super().submit(fn, *args, **kwargs)
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
-        try:
-            return super().submit(fn, *args, **kwargs)
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 def process_pool(workers: int, initializer=None, *initargs) -> ProcessPoolExecutor:
