@@ -1,11 +1,12 @@
 """Folders that say whether their maker lives (orthocontact.runtime.folders):
 a folder is removed by the next one of its kind once no process of its
-maker lives, and never while it lives."""
+maker lives, whenever a SIGKILL cut its making, and never while it lives."""
 import fcntl
 import os
 import subprocess
 import sys
 
+import pytest
 from cli_run import CMD
 
 from orthocontact.runtime.folders import LOCK, locked_folder, maker_tag, remove_abandoned
@@ -67,3 +68,66 @@ def test_a_locked_folder_is_held_while_its_maker_lives(tmp_path):
     again.remove()
     assert sorted(os.listdir(tmp_path)) == [f"{TEMP_PREFIX}x"]
 
+
+# -- a SIGKILL at any point of locked_folder leaves a folder the next one removes -----
+
+DIE_AT = """
+import fcntl, os, signal, sys
+from orthocontact.runtime import folders
+point, real = sys.argv[2], {"open": os.open, "flock": fcntl.flock, "replace": os.replace}
+die = lambda: os.kill(os.getpid(), signal.SIGKILL)
+def at(name, cut):
+    def call(*a, **k):
+        if cut(*a):
+            die()
+        return real[name](*a, **k)
+    return call
+os.open = at("open", lambda path, *a: point == "made" and str(path).endswith(".lock.new"))
+fcntl.flock = at("flock", lambda *a: point == "lock file made")
+os.replace = at("replace", lambda *a: point == "locked")
+folders.locked_folder(sys.argv[1], ".out.partial-")
+die()   # named: the folder is complete, its lock held until now
+"""
+
+
+@pytest.mark.parametrize("point", ["made", "lock file made", "locked", "named"])
+@pytest.mark.parametrize("reaped", [True, False], ids=["reaped", "zombie"])
+def test_a_folder_killed_at_any_point_of_its_making_goes_with_the_next(tmp_path, point, reaped):
+    """SIGKILL right after mkdtemp (an empty folder), after .lock.new is
+    made, after it is locked, after it took its name: the next
+    remove_abandoned of the kind removes it, also while the killed process
+    is a zombie its parent has not reaped yet (it holds no lock then, and a
+    folder judged by its name's maker used to stay until the reaping)."""
+    proc = subprocess.Popen([sys.executable, "-c", DIE_AT, str(tmp_path), point])
+    try:
+        if reaped:
+            proc.wait(timeout=30)
+        else:
+            while (maker_tag(proc.pid) or "").startswith(f"{proc.pid}."):   # until it is a zombie
+                pass
+        left = list(tmp_path.iterdir())
+        assert len(left) == 1 and left[0].name.startswith(f".out.partial-{proc.pid}."), left
+        assert [p.name for p in left[0].iterdir()] == {"made": [], "lock file made": [LOCK + ".new"],
+                                                       "locked": [LOCK + ".new"], "named": [LOCK]}[point]
+        assert remove_abandoned(tmp_path, ".out.partial-") == left
+        assert list(tmp_path.iterdir()) == []
+    finally:
+        proc.kill()
+        proc.wait(timeout=30)
+    assert proc.returncode == -9
+
+
+def test_a_prefix_with_pattern_characters_finds_its_own_folders(tmp_path):
+    """--out 'run[1]': its staging folders' prefix `.run[1].partial-` is a
+    glob pattern that matched none of them (a killed run's stayed)."""
+    prefix = ".run[1].partial-"
+    mine = locked_folder(tmp_path, prefix)
+    abandoned = tmp_path / f"{prefix}x"
+    abandoned.mkdir()
+    (abandoned / LOCK).write_text("")
+    decoy = tmp_path / ".run1.partial-x"   # what the pattern matched
+    decoy.mkdir()
+    (decoy / LOCK).write_text("")
+    assert remove_abandoned(tmp_path, prefix) == [abandoned]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([mine.path.name, decoy.name])
+    mine.remove()

@@ -10,10 +10,11 @@ locked before it takes its name (.lock), so a folder whose .lock is free is
 never one being made.  A folder killed before its lock took its name has
 none; its name says whose it was (<prefix><pid>.<start>-...: the maker's
 pid and the kernel's start time of that process), so it is removed once
-that process is gone, and a folder of
+that process is gone (or a zombie: killed, not yet reaped), and a folder of
 that prefix with no such name is not one of ours and stays."""
 from __future__ import annotations
 
+import glob
 import os
 import shutil
 import tempfile
@@ -73,7 +74,9 @@ def locked_folder(parent, prefix: str) -> LockedFolder:
 def maker_tag(pid: int) -> str | None:
     """`<pid>.<start>`: the process and the kernel's clock ticks at its
     start (/proc/<pid>/stat's 22nd field), which no later process of that
-    pid shares; None if the process does not exist (or, off Linux, `<pid>.0`)."""
+    pid shares; None if the process does not exist or has ended (a zombie
+    its parent has not reaped: its files are closed, its locks free), or,
+    off Linux, `<pid>.0`."""
     try:
         with open(f"/proc/{pid}/stat", "rb") as fh:
             stat = fh.read()
@@ -82,7 +85,18 @@ def maker_tag(pid: int) -> str | None:
     except OSError:
         return f"{pid}.0"
     # the name (field 2) is in parentheses and may hold spaces: count after it
-    return f"{pid}.{int(stat[stat.rindex(b')') + 2:].split()[19])}"
+    fields = stat[stat.rindex(b')') + 2:].split()
+    if fields[0] in (b"Z", b"X") and _threads(pid) <= 1:
+        return None   # ended, not yet reaped: its files are closed (with threads: once the last ends)
+    return f"{pid}.{int(fields[19])}"
+
+
+def _threads(pid: int) -> int:
+    """The threads of process `pid` that have not ended (0 if it is gone)."""
+    try:
+        return len(os.listdir(f"/proc/{pid}/task"))
+    except OSError:
+        return 0
 
 
 def _maker_gone(name: str, prefix: str) -> bool:
@@ -105,7 +119,8 @@ def remove_abandoned(parent, prefix: str) -> list[Path]:
     gone = []
     if _fcntl is None:
         return gone
-    for folder in Path(parent).glob(prefix + "*"):
+    # escaped: an --out named like a pattern (`run[1]`) still finds its own
+    for folder in Path(parent).glob(glob.escape(prefix) + "*"):
         try:
             if folder.is_symlink() or not folder.is_dir() or folder.stat().st_uid != os.getuid():
                 continue
