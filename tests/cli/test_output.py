@@ -385,3 +385,140 @@ def test_ssp_replaces_an_ssp_but_another_file_only_with_force(tmp_path):
     assert target.read_text() == "my notes"
     assert run(["ssp", scen, "--angle", "40", "--out", target, "--force"], tmp_path).returncode == 0
     assert run(["ssp", scen, "--angle", "40", "--out", target], tmp_path).returncode == 0   # an SSP now
+
+
+# -- the commit: --out takes its new content in one step, manifest included ------------
+
+def _earlier_run(out: Path) -> dict:
+    """`out` as an earlier identify run left it, with a file of the user's
+    beside and one of the run's changed since; its snapshot."""
+    with staged_output(out, "identify") as stage:
+        for name in ("identified.json", "figs/reduction.png", "identified.md"):
+            (stage / name).parent.mkdir(exist_ok=True)
+            (stage / name).write_text(f"first run's {name}")
+    (out / "my_notes.txt").write_text("mine")
+    (out / "identified.md").write_text("the first run's, with my notes")
+    return snapshot(out)
+
+
+def _second_run(out: Path) -> None:
+    forget_warnings()
+    with staged_output(out, "identify") as stage:
+        (stage / "identified.json").write_text("second run's")
+    forget_warnings()
+
+
+def _is_second_run(out: Path) -> bool:
+    m = json.loads((out / MANIFEST).read_text())
+    return (files_under(out) == [MANIFEST, "identified.json", "identified.md", "my_notes.txt"]
+            and m["files"] == {"identified.json": file_sha256(out / "identified.json")}
+            and (out / "my_notes.txt").read_text() == "mine")
+
+
+def test_the_commit_exchanges_the_folder_whole(tmp_path):
+    """The new content is built beside --out (hard links of what stays) and
+    takes its place in one step: the user's files are the same files (their
+    inode), the earlier run's are gone, the manifest is the new run's."""
+    out = tmp_path / "out"
+    _earlier_run(out)
+    inode = (out / "my_notes.txt").stat().st_ino
+    _second_run(out)
+    assert _is_second_run(out) and (out / "my_notes.txt").stat().st_ino == inode
+    assert leftovers(tmp_path) == ["out"]
+
+
+@pytest.mark.parametrize("step", ["link", "write_manifest", "exchange"])
+def test_a_full_disk_at_any_step_of_the_commit_leaves_out_as_it_was(tmp_path, monkeypatch, step):
+    """ENOSPC from the system at each step before --out takes its new
+    content: the command fails (exit 74 in the CLI), --out is as it was,
+    nothing is left beside it."""
+    import errno
+
+    import orthocontact.cli.output as output
+    out = tmp_path / "out"
+    before = _earlier_run(out)
+    real = {"link": os.link, "write_manifest": output.write_manifest, "exchange": output.exchange}[step]
+    calls = []
+
+    def full(*a, **k):
+        calls.append(a)
+        if len(calls) == 2 or step != "link":   # link: the second file
+            raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(a[-1]))
+        return real(*a, **k)
+    monkeypatch.setattr(*((os, "link") if step == "link" else (output, step)), full)
+    with pytest.raises(OSError, match="No space left"):
+        _second_run(out)
+    assert snapshot(out) == before and leftovers(tmp_path) == ["out"]
+
+
+def test_a_full_disk_as_a_new_out_is_written_leaves_no_out(tmp_path, monkeypatch):
+    import errno
+
+    import orthocontact.cli.output as output
+
+    def full(folder, m):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(folder))
+    monkeypatch.setattr(output, "write_manifest", full)
+    with pytest.raises(OSError):
+        _second_run(tmp_path / "new" / "out")
+    assert leftovers(tmp_path) == []   # not a folder of files without their manifest
+
+
+KILL_AT = """
+import os, signal, sys
+from pathlib import Path
+import orthocontact.cli.output as output
+step = sys.argv[2]
+real = getattr(output, step.split()[-1])
+def at(*a, **k):
+    if not step.startswith("after"):
+        os.kill(os.getpid(), signal.SIGKILL)
+    value = real(*a, **k)
+    os.kill(os.getpid(), signal.SIGKILL)
+setattr(output, step.split()[-1], at)
+with output.staged_output(Path(sys.argv[1]), "identify") as stage:
+    (stage / "identified.json").write_text("second run's")
+"""
+
+
+@pytest.mark.parametrize("step", ["link_tree", "merge_into", "write_manifest", "exchange", "after exchange"])
+def test_a_commit_killed_at_any_step_leaves_out_as_it_was_or_complete(tmp_path, step):
+    """SIGKILL (no cleanup) before each step of the commit and after its
+    last: --out is the earlier run's folder as it was, or the new run's,
+    complete with its manifest, and the user's file is there either way."""
+    out = tmp_path / "out"
+    before = _earlier_run(out)
+    p = subprocess.run([CMD[0], "-c", KILL_AT, str(out), step], capture_output=True, text=True, timeout=60)
+    assert p.returncode == -signal.SIGKILL, p.stderr
+    if step == "after exchange":
+        assert _is_second_run(out)
+    else:
+        assert snapshot(out) == before
+    # the killed run's locked folder (the old content, or the one being built) goes with the next run
+    _second_run(out)
+    assert _is_second_run(out) and leftovers(tmp_path) == ["out"]
+
+
+@pytest.mark.parametrize("why", ["no exchange", "no hard links", "a symbolic link"])
+def test_where_no_exchange_can_be_made_the_files_move_one_by_one(tmp_path, monkeypatch, why):
+    """The way of before, manifest last: a system without renameat2 or a
+    file system without RENAME_EXCHANGE, one without hard links, and --out
+    a symbolic link (its target is written, the link stays)."""
+    import errno
+
+    import orthocontact.cli.output as output
+    out = tmp_path / "out"
+    _earlier_run(out)
+    if why == "no exchange":
+        monkeypatch.setattr(output, "can_exchange", lambda folder: False)
+    elif why == "no hard links":
+        def refused(*a, **k):
+            raise OSError(errno.EPERM, os.strerror(errno.EPERM), str(a[-1]))
+        monkeypatch.setattr(os, "link", refused)
+    else:
+        out.rename(tmp_path / "target")
+        out.symlink_to(tmp_path / "target")
+    _second_run(out)
+    assert _is_second_run(out)
+    assert out.is_symlink() == (why == "a symbolic link")
+    assert sorted(leftovers(tmp_path)) == sorted(["out"] + (["target"] if why == "a symbolic link" else []))

@@ -18,10 +18,11 @@ import zipfile
 from pathlib import Path
 
 from ..errors import InputError
-from ..output.manifest import (MANIFEST, Manifest, new_manifest, owner_of, read_manifest, remove_earlier,
-                               write_manifest)
+from ..output.manifest import (MANIFEST, Manifest, new_manifest, outdated, owner_of, read_manifest,
+                               remove_earlier, write_manifest)
 from ..runtime.folders import locked_folder
 from ..runtime.processes import signals_held
+from ..runtime.swap import UNSUPPORTED, can_exchange, exchange, link_tree, merge_into, prune_empty
 from ..textfiles import paths_being_read
 from .interrupts import hold_interrupts, interrupted, results_written
 
@@ -193,24 +194,35 @@ def staged_output(out: Path, command: str | None = None, force: bool = False):
     except BaseException:
         if held is not None:
             held.remove()
-        for parent in reversed(made):
-            with contextlib.suppress(OSError):
-                parent.rmdir()
+        _unmake(made)
         raise
     try:
         reads = paths_being_read()
         check_owner(out, command, force, reads)   # another command may have written there meanwhile
         commit_run(stage, out, command, reads)
-    finally:   # a commit the system refused (disk full) leaves no scratch folder either
+    except BaseException:   # a commit the system refused (disk full) leaves nothing either
         held.remove()
+        _unmake(made)
+        raise
+    held.remove()
     results_written(out)
 
 
+def _unmake(made) -> None:
+    """Removes the folders made for the output, if they are still empty."""
+    for parent in reversed(made):
+        with contextlib.suppress(OSError):
+            parent.rmdir()
+
+
 def commit_run(stage: Path, out: Path, command: str | None, reads=()) -> None:
-    """Moves the run's files from `stage` into `out`, removes what the
-    folder's earlier run (owner_of) wrote there and this run did not write,
-    but for what the command read (`reads`), says so in one line, and
-    writes this run's manifest last (a reader that finds it finds its files)."""
+    """Makes `out` this run's: the run's files from `stage`, its manifest,
+    the files of the folder's earlier run (owner_of) removed but for those
+    this run writes again, those changed since and what the command read
+    (`reads`); the user's own stay.  Says so in one line.  `out` takes its
+    new content in one step, manifest included (swap_in); where that cannot
+    be done, file by file with the manifest last (a reader that finds it
+    finds its files)."""
     from .. import __version__
     out = Path(out)
     owner = owner_of(out)
@@ -221,7 +233,7 @@ def commit_run(stage: Path, out: Path, command: str | None, reads=()) -> None:
     if clash:   # --force or not: what the command read is never replaced
         raise InputError(f"--out {out}: {clash[0]} is a file this command read and would write; "
                          "choose another --out")
-    _move_into(stage, out)
+    gone, changed, prefix = [], [], ""
     if owner is not None:
         home, earlier = owner
         prefix = _prefix(home, out)
@@ -229,7 +241,13 @@ def commit_run(stage: Path, out: Path, command: str | None, reads=()) -> None:
         theirs = dataclasses.replace(earlier, files={k: v for k, v in earlier.files.items()
                                                      if k.startswith(prefix)})
         keep = {prefix + n for n in run.files} | kept_read
-        changed = remove_earlier(home, theirs, keep)
+        gone, changed = outdated(home, theirs, keep)
+    swapped = swap_in(stage, out, run, [n[len(prefix):] for n in gone])
+    if not swapped:
+        merge_into(stage, out)
+    if owner is not None:
+        if not swapped:
+            changed = remove_earlier(home, theirs, keep)
         if prefix:   # a folder inside another run's: that run's list no longer names it
             write_manifest(home, dataclasses.replace(earlier, files={
                 k: v for k, v in earlier.files.items() if not k.startswith(prefix)}))
@@ -245,22 +263,42 @@ def commit_run(stage: Path, out: Path, command: str | None, reads=()) -> None:
     elif strangers:
         note(f"--force: {out}: wrote beside {len(strangers)} file(s) or folder(s) no orthocontact run "
              f"wrote" + (f"; replaced {', '.join(replaced)}" if replaced else "; none replaced"))
-    write_manifest(out, run)
+    if not swapped:
+        write_manifest(out, run)
 
 
-def _move_into(src: Path, dst: Path) -> None:
-    """Every file under `src` to the same place under `dst`, replacing only
-    the files written: what else the user keeps in `dst` (and in its
-    subfolders, e.g. reproduce's <out>/<scenario>/) stays."""
-    dst.mkdir(exist_ok=True)
-    for item in src.iterdir():
-        target = dst / item.name
-        if item.is_dir() and target.is_dir() and not target.is_symlink():
-            _move_into(item, target)
-            continue
-        if target.is_dir() and not target.is_symlink():
-            shutil.rmtree(target)  # a folder where this command writes a file
-        os.replace(item, target)
+def swap_in(stage: Path, out: Path, run: Manifest, gone) -> bool:
+    """`out` with its new content in one step, the manifest `run` in it
+    before it takes the name: a new `out` is `stage`, renamed; an existing
+    one is exchanged (runtime.swap) with a folder built beside `stage` of
+    hard links: every file of `out` that stays (the user's own, what the
+    command read, an earlier run's files it keeps; not `gone`, the earlier
+    run's files this run removes, nor the old manifest) and the run's files
+    over them.  The old content is then in the locked folder and goes with
+    it.  A crash at any step leaves `out` as it was or complete.  False,
+    `out` untouched, where this cannot be done: no renameat2 (not Linux),
+    `out` a symbolic link or a mount point (the staging folder is then
+    inside it), a file system without hard links or RENAME_EXCHANGE; the
+    caller then moves the files one by one (merge_into), manifest last."""
+    if not out.exists() and not out.is_symlink():
+        write_manifest(stage, run)
+        os.rename(stage, out)
+        return True
+    if not can_exchange(out) or out.absolute() in stage.absolute().parents:
+        return False
+    nxt = stage.with_name("next")
+    try:
+        link_tree(out, nxt, skip=set(gone) | {MANIFEST})
+        merge_into(stage, nxt, os.link)
+        prune_empty(nxt, gone)
+        write_manifest(nxt, run)
+        exchange(nxt, out)
+    except OSError as e:
+        shutil.rmtree(nxt, ignore_errors=True)   # links and this run's files only: `out` is as it was
+        if e.errno in UNSUPPORTED:
+            return False
+        raise
+    return True
 
 
 _warnings: list[str] = []

@@ -17,6 +17,7 @@ from datetime import datetime, timezone
 from pathlib import Path, PurePosixPath
 
 from ..errors import InputError
+from ..runtime.swap import prune_empty
 
 MANIFEST = ".orthocontact-manifest.json"
 
@@ -124,32 +125,36 @@ def owner_of(folder: Path) -> tuple[Path, Manifest] | None:
     return None
 
 
-def remove_earlier(folder: Path, old: Manifest, keep: dict) -> list[str]:
-    """Removes from `folder` the files `old` lists that are not in `keep`
-    (the new run's paths) and are still as `old` recorded them, and the
-    subfolders this empties; returns the listed files left because they
-    changed since (the user's now).  Nothing else is touched, and nothing
-    through a symbolic link."""
+def outdated(folder: Path, old: Manifest, keep) -> tuple[list[str], list[str]]:
+    """What a new run does with the files `old` lists in `folder` that are
+    not in `keep` (the new run's paths): (those it removes, still as `old`
+    recorded them; those it leaves because they changed since, the user's
+    now).  Files that are gone, not regular, outside the folder or behind a
+    symbolic link are in neither."""
     folder = Path(folder)
     root = folder.resolve()
-    changed = []
+    gone, changed = [], []
     for name, sha in sorted(old.files.items()):
         if name in keep:
             continue
         p = folder / name
         if p.is_symlink() or not p.is_file() or root not in p.resolve().parents:
             continue
-        if file_sha256(p) != sha:
-            changed.append(name)
-            continue
-        p.unlink()
-        for parent in p.parents:
-            if parent == folder:
-                break
-            try:
-                parent.rmdir()   # only if empty
-            except OSError:
-                break
+        (gone if file_sha256(p) == sha else changed).append(name)
+    return gone, changed
+
+
+def remove_earlier(folder: Path, old: Manifest, keep) -> list[str]:
+    """Removes from `folder` the files `old` lists that are not in `keep`
+    (the new run's paths) and are still as `old` recorded them, and the
+    subfolders this empties; returns the listed files left because they
+    changed since (the user's now).  Nothing else is touched, and nothing
+    through a symbolic link."""
+    folder = Path(folder)
+    gone, changed = outdated(folder, old, keep)
+    for name in gone:
+        (folder / name).unlink()
+    prune_empty(folder, gone)
     return changed
 
 

@@ -2,4 +2,4 @@
 locked and temporary folders (folders, temp: a killed command's scratch goes
 with the next command), the worker bound (workers), worker processes that
 ignore Ctrl-C and end with their parent, and a pool that forks them safely
-(processes)."""
+(processes), and a folder's content replaced in one step (swap)."""
