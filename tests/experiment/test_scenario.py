@@ -6,7 +6,7 @@ import os
 from pathlib import Path
 
 import pytest
-from cli_run import SCENARIOS, case4_named, one_error_line, run_cli as run, scenario_variant
+from cli_run import SCENARIOS, case4_named, error_lines, one_error_line, run_cli as run, scenario_variant
 
 from orthocontact.cli.main import main
 from orthocontact.experiment.scenario import ScenarioError, load
@@ -55,6 +55,42 @@ def test_bad_scenario_one_line_exit_2_nothing_written(tmp_path, capsys, what, li
     assert str(f) in err[0] and key in err[0] and "expected" in err[0]
     assert not out.exists() or not any(out.iterdir())
     assert not list(tmp_path.glob(".out.partial-*"))
+
+
+def test_every_problem_of_a_file_is_a_line_of_one_run(tmp_path):
+    """The twist with a negative patch length, a negative mu1 and no cells
+    along its length: three lines in one run, each naming the file and its
+    key, exit 2, nothing written; the three fixed, it loads."""
+    bad = scenario_variant(SCEN / "twist.toml", "length_m = 0.05", "length_m = -0.05", tmp_path / "t.toml")
+    scenario_variant(bad, "\nmu1 = 0.408\n", "\nmu1 = -0.408\n", bad)   # the key, not the description
+    scenario_variant(bad, "n1 = 12", "n1 = 0", bad)
+    p = run(["run", bad, "--out", "out"], tmp_path)
+    lines = error_lines(p, "law.mu1: expected a number > 0, got -0.408",
+                        "patch.length_m: expected a number > 0, got -0.05",
+                        "patch.n1: expected a number >= 1, got 0")
+    assert all(line.startswith(f"{bad}: ") for line in lines)
+    assert sorted(os.listdir(tmp_path)) == ["t.toml"]
+    with pytest.raises(ScenarioError) as e:
+        load(bad)
+    assert e.value.lines == lines
+
+
+def test_a_problem_across_keys_is_said_beside_the_keys_own(tmp_path):
+    """A check across keys (a sweep's stop before its start; eps1 and
+    eps_ratio both given) joins the keys' own problems; one whose keys are
+    wrong themselves is left out (it would say nothing more)."""
+    text = (SCEN / "case1.toml").read_text()
+    f = tmp_path / "s.toml"
+    for old, new in (("start_deg = 0.0", "start_deg = 80.0"), ("stop_deg = 90.0", "stop_deg = 10.0"),
+                     ('mode = "quasistatic"', 'mode = "fast"'),
+                     ("eps2 = 1.0e4", "eps2 = 1.0e4\neps_ratio = 1.0")):
+        assert old in text
+        text = text.replace(old, new, 1)
+    f.write_text(text)
+    with pytest.raises(ScenarioError) as e:
+        load(f)
+    keys = [line.split(": ")[1] for line in e.value.lines]
+    assert sorted(keys) == ["law.eps_ratio", "rig.mode", "sweep.stop_deg"], e.value.lines
 
 
 def test_toml_syntax_error_is_one_line(tmp_path, capsys):
@@ -130,7 +166,7 @@ def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
     """scenarios/*.toml, which `reproduce` runs: each named after its file,
     no value outside its plausible range, its work within the limits; every
     kind has one (the patch's twist and towed block beside the paper's)."""
-    from orthocontact.experiment.scenario import KINDS
+    from orthocontact.experiment.kinds import KINDS
     from orthocontact.runs.size import check_scenario_size
     kinds = set()
     for f in sorted(SCEN.glob("*.toml")):
@@ -249,7 +285,8 @@ def _scenarios(kind):
 
     from orthocontact import plausibility
     from orthocontact.experiment.keys import REQUIRED, AnyOf, Choice, ListOf, Number, boolean
-    from orthocontact.experiment.scenario import SCHEMA, SECTION_FOR_KIND
+    from orthocontact.experiment.kinds import KINDS
+    from orthocontact.experiment.scenario import SCHEMA
 
     def log_uniform(lo, hi):
         return st.floats(math.log10(lo), math.log10(hi)).map(lambda e: float(10.0 ** e))
@@ -342,7 +379,7 @@ def _scenarios(kind):
             else:
                 t["duration_s"] = draw(value("tow", "duration_s", lo=h / BELOW_ONE_STEP,
                                              hi=SIZE_CAPS["tow steps"] * h))
-        assert set(tables) - {""} <= {"law", "geometry", "rig"} | SECTION_FOR_KIND[kind]
+        assert set(tables) - {""} <= {"law", "geometry", "rig"} | set(KINDS[kind].tables)
         return _scenario_text(tables)
 
     return draw_tables()
@@ -357,7 +394,7 @@ def test_every_scenario_the_schema_accepts_ends_in_a_result_or_one_line(tmp_path
     import tempfile
 
     from hypothesis import HealthCheck, given, settings
-    from orthocontact.experiment.scenario import KINDS
+    from orthocontact.experiment.kinds import KINDS
     assert kind in KINDS
 
     @settings(max_examples=PROPERTY_EXAMPLES, deadline=None, derandomize=True, database=None,
@@ -369,6 +406,6 @@ def test_every_scenario_the_schema_accepts_ends_in_a_result_or_one_line(tmp_path
             p = run(["run", "s.toml", "--out", "out"], d, timeout=300)
             assert "Traceback" not in p.stderr, text + p.stderr
             assert p.returncode in (0, 2), text + p.stderr
-            if p.returncode == 2:
-                one_error_line(p, "s.toml")
+            if p.returncode == 2:   # a line per problem, each naming the file
+                assert all("s.toml" in line for line in error_lines(p)), p.stderr
     check()

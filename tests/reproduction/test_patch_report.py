@@ -78,5 +78,15 @@ def test_reproduce_writes_the_patch_section_apart_from_the_papers_rows(tmp_path)
         assert (out / link).stat().st_size > 0, link
 
 
-def test_no_patch_scenario_no_section():
-    assert patch_report.patch_section([]) == [] and patch_report.patch_json([]) == {}
+def test_no_patch_scenario_no_section(tmp_path):
+    """A report without a patch scenario has no patch section, and an empty
+    "contact_patch" in report.json; its kinds' parts are the patch's."""
+    import json
+
+    from orthocontact.experiment.kinds import KINDS
+    from orthocontact.reproduction import paper_report
+    assert {KINDS[k].part("report").section for k in ("twist", "towed_block")} == {patch_report.PATCH}
+    assert paper_report.section_lines(patch_report.PATCH, []) == []
+    text = paper_report.reproduction_report(tmp_path, [], [], 1.0)
+    assert "## The contact patch" not in text and "## Scenarios" in text
+    assert json.loads((tmp_path / "report.json").read_text())["contact_patch"] == {}

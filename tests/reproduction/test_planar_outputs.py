@@ -13,7 +13,7 @@ from orthocontact.experiment.scenario import load
 from orthocontact.fmu.params import ContactParams
 from orthocontact.reproduction import planar_outputs
 from orthocontact.rig import planar
-from cli_run import SCENARIOS, one_error_line, run_cli, scenario_variant
+from cli_run import SCENARIOS, error_lines, one_error_line, run_cli, scenario_variant
 
 LAW = """
 [law]
@@ -104,17 +104,19 @@ def test_an_unsettled_towed_block_is_said_not_passed(tmp_path):
 
 
 @pytest.mark.parametrize("old,new,says", [
-    ("[tow]\n", "[towx]\n", "towx: expected a known table"),
-    ("pin_m = 0.1", "pin_m = -0.1", "tow.pin_m: expected a number > 0"),
-    ("n1 = 4", "n1 = 4.5", "patch.n1: n1 must be an integer, got 4.5"),
-    ('kind = "towed_block"', 'kind = "twist"', "tow: expected no [tow] table in a scenario of kind 'twist'"),
+    ("[tow]\n", "[towx]\n", ["towx: expected a known table",
+                             "tow: expected a [tow] table for kind 'towed_block'"]),
+    ("pin_m = 0.1", "pin_m = -0.1", ["tow.pin_m: expected a number > 0"]),
+    ("n1 = 4", "n1 = 4.5", ["patch.n1: n1 must be an integer, got 4.5"]),
+    ('kind = "towed_block"', 'kind = "twist"', ["tow: expected no [tow] table in a scenario of kind 'twist'",
+                                                "twist: expected a [twist] table for kind 'twist'"]),
 ])
-def test_a_bad_patch_scenario_is_one_line(tmp_path, old, new, says):
+def test_a_bad_patch_scenario_is_a_line_per_problem(tmp_path, old, new, says):
     text = TOWED.format(duration=1.0)
     assert old in text
     (tmp_path / "t.toml").write_text(text.replace(old, new))
     p = run_cli(["run", tmp_path / "t.toml", "--out", tmp_path / "out"], cwd=tmp_path)
-    one_error_line(p, says)
+    error_lines(p, *says)
     assert not (tmp_path / "out").exists()
 
 

@@ -7,20 +7,10 @@ import time
 from pathlib import Path
 
 from ..errors import InputError
+from ..experiment.kinds import RunOptions, fmu_for, kind_of, require_mat_angles
 from ..experiment.scenario import load
 from ..output.manifest import one_run
 from .output import staged_output, warn
-
-
-def _fmu_for(sc, args) -> str:
-    """The scenario's own FMU if it names one, else the installed FMU of the
-    FMI version asked for with --fmi (the ContactPatch FMU for the kinds of
-    a body on a patch)."""
-    from ..experiment.scenario import PATCH_KINDS
-    from ..fmu.files import find_fmu
-    if sc.kind in PATCH_KINDS:
-        return sc.fmu or str(find_fmu(fmi_version=args.fmi, model="ContactPatch"))
-    return sc.fmu or str(find_fmu(fmi_version=args.fmi))
 
 
 def load_scenario(path, yes: bool | None = None):
@@ -35,32 +25,13 @@ def load_scenario(path, yes: bool | None = None):
     return sc
 
 
-def _run_scenario(sc, out: Path, workers, fmu_path, master="auto", progress=True, draw=None,
-                  dask=None) -> dict:
-    from ..fmu.files import fmi_version_of
-    from ..output.tables import write_json
-    from ..reproduction import scenario_outputs
-    from ..runs import sweep
-    if sc.kind in ("twist", "towed_block"):
-        from ..reproduction import planar_outputs
-        write = planar_outputs.twist_outputs if sc.kind == "twist" else planar_outputs.towed_outputs
-        summary = write(sc, out, fmu_path, draw)
-        if summary["checks"]["warning"]:
-            warn(summary["checks"]["warning"])
-        summary["fmi_version"] = fmi_version_of(fmu_path)
-        write_json(out / "summary.json", summary)
-        return summary
-    if sc.kind == "sweep":
-        res = sweep.run_sweep(sc, workers, progress, fmu_path, master, dask)
-        summary = scenario_outputs.sweep_outputs(sc, res, out, draw)
-    else:
-        res = sweep.run_step_study(sc, workers, progress, fmu_path, master, dask)
-        summary = scenario_outputs.step_study_outputs(sc, res, out, draw)
-    line = res.warning(sc)
-    if line:
-        warn(line)
-    summary["fmi_version"] = fmi_version_of(fmu_path)
-    write_json(out / "summary.json", summary)
+def _run_scenario(sc, out: Path, fmu_path, how) -> dict:
+    """The scenario run by its kind (reproduction.kinds) on the FMU the
+    command resolved, its warning line said."""
+    from ..reproduction.kinds import run_scenario
+    summary = run_scenario(sc, out, fmu_path, how)
+    if summary["checks"]["warning"]:
+        warn(summary["checks"]["warning"])
     return summary
 
 
@@ -74,10 +45,11 @@ def packaged_scenarios() -> Path:
 def cmd_run(args) -> int:
     from ..output.figures import FigureDrawer
     sc = load_scenario(args.scenario, args.yes)
+    fmu_path = fmu_for(sc, args.fmi)
     with staged_output(args.out, args.cmd, args.force) as stage, _dask_for(args) as dask, \
             FigureDrawer(args.workers or _default_workers()) as draw:
-        summary = _run_scenario(sc, stage, args.workers, _fmu_for(sc, args), args.master, draw=draw,
-                                dask=dask)
+        how = RunOptions(args.workers, args.master, draw=draw, dask=dask)
+        summary = _run_scenario(sc, stage, fmu_path, how)
     print(json.dumps({k: summary[k] for k in summary if k in ("scenario", "extremum", "max_deviation_deg",
                                                              "drive_mean_N", "rules", "yaw_deg")}, indent=1))
     print(f"wrote {args.out}/summary.json")
@@ -94,9 +66,10 @@ def cmd_reproduce(args) -> int:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
     scenarios = [load_scenario(f, args.yes) for f in files]  # all validated before anything runs
     from ..reproduction import sensitivity
+    from ..reproduction.kinds import in_report_order
     from ..runs.size import Work, check_work, scenario_work
-    sens_sc = next((sc for sc in scenarios if sc.kind == "sweep" and sc.closed_form == "mat"
-                    and "extremum_phi_deg" in sc.paper), None)   # the rig's hidden assumptions, on it
+    sens_sc = next((sc for sc in scenarios if sensitivity.takes(sc) and "extremum_phi_deg" in sc.paper),
+                   None)   # the rig's hidden assumptions, on it
     planned = sensitivity.plan(sens_sc) if sens_sc is not None else None
     work = sum((scenario_work(sc).named(sc.name) for sc in scenarios), Work())
     if planned is not None:
@@ -109,6 +82,7 @@ def cmd_reproduce(args) -> int:
             raise InputError(f"{sc.path}: name: expected a name of its own, got {sc.name!r}, "
                              f"already {taken[sc.name]} (each scenario is written to --out/<name>/)")
         taken[sc.name] = f"the name of {sc.path}"
+    fmus = {sc.name: fmu_for(sc, args.fmi) for sc in scenarios}   # every FMU found before any run
     t0 = time.time()
     runs, rows = [], []
     with staged_output(args.out, args.cmd, args.force) as stage:
@@ -119,15 +93,12 @@ def cmd_reproduce(args) -> int:
             sens = None
             if sens_sc is not None:
                 (stage / "sensitivity").mkdir()
-                sens = draw.submit(_sensitivity_job, sens_sc, _fmu_for(sens_sc, args), args.master,
+                sens = draw.submit(_sensitivity_job, sens_sc, fmus[sens_sc.name], args.master,
                                    stage / "sensitivity", planned)
-            # The contact patch's scenarios first (the report gives them a
-            # section of their own): their figures are drawn while the sweeps run.
-            from ..experiment.scenario import PATCH_KINDS
-            for sc in sorted(scenarios, key=lambda sc: sc.kind not in PATCH_KINDS):
+            how = RunOptions(args.workers, args.master, draw=draw, dask=dask)
+            for sc in in_report_order(scenarios):
                 (stage / sc.name).mkdir()
-                summary = _run_scenario(sc, stage / sc.name, args.workers, _fmu_for(sc, args),
-                                        args.master, draw=draw, dask=dask)
+                summary = _run_scenario(sc, stage / sc.name, fmus[sc.name], how)
                 runs.append((sc, summary))
                 rows += paper_report.paper_rows(sc, summary)
             sens = sens.result() if sens is not None else None
@@ -183,7 +154,7 @@ def cmd_sensitivity(args) -> int:
                       "run it anyway")
     with staged_output(args.out, args.cmd, args.force) as stage, _dask_for(args) as dask, \
             FigureDrawer(1) as draw:
-        res = sensitivity.run(sc, args.workers or _default_workers(), _fmu_for(sc, args), args.master,
+        res = sensitivity.run(sc, args.workers or _default_workers(), fmu_for(sc, args.fmi), args.master,
                               dask=dask, planned=planned)
         summary = sensitivity.write_outputs(res, sc, stage, draw)
     if res.checks["warning"]:
@@ -202,6 +173,7 @@ def cmd_sensitivity(args) -> int:
 
 def cmd_uq(args) -> int:
     from .. import uq
+    from ..fmu.files import find_fmu
     from ..runs.size import check_uq_size
     from ..uq.source import read_source
     est, source = read_source(args.identification)
@@ -211,8 +183,9 @@ def cmd_uq(args) -> int:
     # every run uq makes: the draws and the step check at the scenario's own step
     check_uq_size(sc, args.yes, args.samples, uq.uq_step(sc, args.step_s), "--samples",
                   "--step-s or rig.travel_m")
+    fmu_path = find_fmu(fmi_version=2, model=kind_of(sc).model)   # the compiled master's: FMI 2.0
     with staged_output(args.out, args.cmd, args.force) as stage:
-        res = uq.propagate(est, sc, args.samples, args.seed, None,
+        res = uq.propagate(est, sc, args.samples, args.seed, fmu_path,
                            scheduler=None if args.scheduler == "none" else args.scheduler,
                            workers=args.workers or _default_workers(), step_s=args.step_s,
                            chunk_runs=args.chunk_runs)
@@ -243,15 +216,14 @@ def _dask_for(args):
 
 
 def _default_workers() -> int:
-    from ..runtime.workers import default_workers
+    from ..runs.pool import default_workers
     return default_workers()
 
 
 def cmd_ssp(args) -> int:
     from ..experiment.ssp import write_ssp
     sc = load_scenario(args.scenario)
-    if sc.kind != "sweep":
-        raise InputError(f"{args.scenario}: kind: expected a sweep scenario for an SSP, got {sc.kind!r}")
+    require_mat_angles(sc, "an SSP", args.scenario)
     from ..rig.checks import system_settling_warning
     line = system_settling_warning(f"{sc.name} at {args.angle:g} deg", sc.params_at(args.angle), sc.rig)
     if line:

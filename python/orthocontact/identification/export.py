@@ -23,6 +23,7 @@ from pathlib import Path
 from .. import closed_forms as cf
 from .. import plausibility
 from ..errors import InputError
+from ..experiment.kinds import require_mat_angles
 from ..experiment.rig_setup import RigSetup, load_rig_toml
 from ..experiment.scenario import Scenario, load
 from ..experiment.ssp import parameter_values_file, write_ssp
@@ -117,8 +118,7 @@ def rig_scenario(cal: Calibration, scenario=None) -> Scenario:
     offsets = dict(geometry=cal.rig.geometry)
     if scenario is not None:
         sc = load(scenario)
-        if sc.kind != "sweep":
-            raise InputError(f"{scenario}: kind: expected a sweep scenario for an SSP, got {sc.kind!r}")
+        require_mat_angles(sc, "an SSP", scenario)
         return dataclasses.replace(sc, name=f"calibrated_{sc.name}", law=law, fmu=None, **offsets)
     return Scenario(path=cal.path, name="calibrated", title=f"Calibrated contact on the rig of {cal.data_folder}",
                     kind="sweep", description="", law=law, closed_form="mat",

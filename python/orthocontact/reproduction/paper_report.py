@@ -1,16 +1,45 @@
 """report.md and report.json: every number the paper prints beside the value
 obtained here, with the kind of evidence each comparison is (closed-form,
 round-trip, prediction), the calibration chain, the sensitivity section and
-the contact patch's section (patch_report: not the paper's, not counted)."""
+a section per group of scenario kinds (Section): the contact patch's
+(patch_report: not the paper's, not counted), then the paper's scenarios.
+
+Each scenario kind's part of the report (experiment.kinds.ReportPart: its
+section, its lines, its entry in report.json, the paper's numbers it
+compares with) is its piece "report", registered where it is written: the
+sweep's and the step study's here, the patch's in patch_report (imported
+here: this module has every part of the report); the report asks each
+scenario's kind."""
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
 
-from ..experiment.scenario import PATCH_KINDS, Scenario
+from ..experiment.kinds import KINDS as SCENARIO_KINDS
+from ..experiment.kinds import ReportPart, Section, kind_of, register
+from ..experiment.scenario import Scenario
 from ..output.tables import write_json
-from .patch_report import patch_json, patch_section
+from . import patch_report  # noqa: F401  (registers the patch's kinds' parts: the report has them all)
+from .sensitivity import report_lines
+
+
+# The paper's scenarios, each with its figures: the report's last section
+# (`orthocontact reproduce` prints the report up to its heading).
+SCENARIOS = Section("Scenarios", always=True)
+
+
+def sections() -> list[Section]:
+    """The report's sections of scenarios, in order: those of the kinds'
+    parts as the kinds come (experiment.kinds.KINDS), SCENARIOS last.
+    (KINDS here are the kinds of evidence of the paper's rows.)"""
+    found = [k.part("report").section for k in SCENARIO_KINDS.values()]
+    return [s for s in dict.fromkeys(found) if s is not SCENARIOS] + [SCENARIOS]
+
+
+def section_index(sc: Scenario) -> int:
+    """The place of the scenario's section among sections()."""
+    return sections().index(kind_of(sc).part("report").section)
 
 # -- the paper reproduction report ---------------------------------------------------
 
@@ -27,7 +56,14 @@ KIND_MEANING = {
 
 
 def paper_rows(sc: Scenario, summary: dict) -> list[dict]:
-    """Each number the paper prints for the scenario beside the value obtained
+    """Each number the paper prints for the scenario beside the value
+    obtained here (its kind's ReportPart.rows; none for most kinds)."""
+    rows = kind_of(sc).part("report").rows
+    return rows(sc, summary) if rows is not None else []
+
+
+def sweep_rows(sc: Scenario, summary: dict) -> list[dict]:
+    """Each number the paper prints for a sweep beside the value obtained
     here, with the kind of evidence the comparison is (KINDS).  Angles are
     signed in the paper's convention (ours negated where it counts phi the
     other way).  Tolerances: the paper's rounding (2 decimals for angles,
@@ -47,31 +83,30 @@ def paper_rows(sc: Scenario, summary: dict) -> list[dict]:
             row["other_rule"] = other
         rows.append(row)
 
-    if sc.kind == "sweep":
-        e = summary["extremum"] or {}
-        o = e.get("other_rule")
-        other = None if o is None else {"rule": o["rule"], "here": flip * o["phi_deg"]}
-        if "extremum_phi_deg" in p:
-            add("extremum_phi_deg", f"extremal φ, {sc.law.rule} rule", p["extremum_phi_deg"],
-                flip * e["phi_deg"], 0.05, "deg", other, convention)
-        if "extremum_angle_deg" in p:
-            add("extremum_angle_deg", "angle of the extremum", p["extremum_angle_deg"], e["angle_deg"],
-                0.05, "deg")
-        if "phi_max_deg" in p:
-            add("phi_max_deg", "max |φ|", p["phi_max_deg"], abs(e["phi_deg"]), 0.05, "deg")
-        if "max_abs_phi_deg" in p:
-            add("max_abs_phi_deg", "max |φ| (isotropy)", p["max_abs_phi_deg"], summary["max_abs_phi_deg"],
-                "≤ paper", "deg", match=summary["max_abs_phi_deg"] <= p["max_abs_phi_deg"] + 1e-9)
-        d = summary.get("drive_mean_N", {})
-        if "drive_0_N" in p and "0" in d:
-            add("drive_0_N", "driving force at 0°", p["drive_0_N"], d["0"], 0.05, "N")
-        if "drive_90_N" in p and "90" in d:
-            add("drive_90_N", "driving force at 90°", p["drive_90_N"], d["90"], 0.05, "N")
-        mu = summary.get("mu_from_drive", {})
-        if "mu1" in p and "mu1" in mu:
-            add("mu1", "μ1 from the forces (eq. 1)", p["mu1"], mu["mu1"], 5e-4)
-        if "mu2" in p and "mu2" in mu:
-            add("mu2", "μ2 from the forces (eq. 1)", p["mu2"], mu["mu2"], 5e-4)
+    e = summary["extremum"] or {}
+    o = e.get("other_rule")
+    other = None if o is None else {"rule": o["rule"], "here": flip * o["phi_deg"]}
+    if "extremum_phi_deg" in p:
+        add("extremum_phi_deg", f"extremal φ, {sc.law.rule} rule", p["extremum_phi_deg"],
+            flip * e["phi_deg"], 0.05, "deg", other, convention)
+    if "extremum_angle_deg" in p:
+        add("extremum_angle_deg", "angle of the extremum", p["extremum_angle_deg"], e["angle_deg"],
+            0.05, "deg")
+    if "phi_max_deg" in p:
+        add("phi_max_deg", "max |φ|", p["phi_max_deg"], abs(e["phi_deg"]), 0.05, "deg")
+    if "max_abs_phi_deg" in p:
+        add("max_abs_phi_deg", "max |φ| (isotropy)", p["max_abs_phi_deg"], summary["max_abs_phi_deg"],
+            "≤ paper", "deg", match=summary["max_abs_phi_deg"] <= p["max_abs_phi_deg"] + 1e-9)
+    d = summary.get("drive_mean_N", {})
+    if "drive_0_N" in p and "0" in d:
+        add("drive_0_N", "driving force at 0°", p["drive_0_N"], d["0"], 0.05, "N")
+    if "drive_90_N" in p and "90" in d:
+        add("drive_90_N", "driving force at 90°", p["drive_90_N"], d["90"], 0.05, "N")
+    mu = summary.get("mu_from_drive", {})
+    if "mu1" in p and "mu1" in mu:
+        add("mu1", "μ1 from the forces (eq. 1)", p["mu1"], mu["mu1"], 5e-4)
+    if "mu2" in p and "mu2" in mu:
+        add("mu2", "μ2 from the forces (eq. 1)", p["mu2"], mu["mu2"], 5e-4)
     return rows
 
 
@@ -148,45 +183,9 @@ def headline(rows: list[dict]) -> str:
     return text
 
 
-def _sensitivity_section(sens: dict) -> list[str]:
-    m = sens["measured_peak_deg"]
-    last_v = max(r["velocity_m_s"] for r in sens["strip"])
-    lines = ["## The rig's assumptions", "",
-             f"The paper assumes a frictionless Teflon strip between carriage and block and measures "
-             f"neither its friction μ_strip nor any viscous resistance c_strip. Peak |φ| of "
-             f"{sens['scenario']} (rig over the 0.5 m travel, {sens['rig_step_s'] * 1e3:g} ms steps; "
-             f"steady closed form beside), and the ε1/ε2 the paper's calibration would return from "
-             f"the measured {m:g}° if the strip had that friction:", "",
-             "| μ_strip | peak \\|φ\\| rig [deg] | closed form [deg] | ε1/ε2 for the measured peak |",
-             "|---|---|---|---|"]
-    for r in sens["strip"]:
-        if r["velocity_m_s"] == last_v:
-            ratio = r["eps_ratio_for_measured_peak"]
-            lines.append(f"| {r['mu_strip']:g} | {abs(r['peak_phi_rig_deg']):.2f} | "
-                         f"{abs(r['peak_phi_closed_deg']):.2f} | "
-                         + ("not reachable" if ratio is None else f"{ratio:.4f}") + " |")
-    lines += ["", "The identified ratio is conditional on the strip: with μ_strip = 0.1 the same "
-              "measurement means ε1/ε2 ≈ "
-              f"{next(r['eps_ratio_for_measured_peak'] for r in sens['strip'] if r['mu_strip'] == 0.1):.3f} "
-              "instead of 1.25. The law is rate-independent, so without a rate-dependent rig term "
-              "the two velocities give the same angle; with a viscous strip (ε1/ε2 calibrated on "
-              f"{m:g}° at {sens['calibration_velocity_m_s']:g} m/s each time):", "",
-              "| c_strip [N s/m] | ε1/ε2 | peak \\|φ\\| at 0.125 m/s | at 0.244 m/s (rig) |", "|---|---|---|---|"]
-    for r in sens["viscous"]:
-        if r["eps_ratio"] is None:
-            continue
-        lines.append(f"| {r['c_strip_N_s_m']:g} | {r['eps_ratio']:.4f} | "
-                     f"{abs(r['peak_phi_rig_deg_at_0.125']):.2f} | {abs(r['peak_phi_rig_deg_at_0.244']):.2f} |")
-    lines += ["", "The paper prints no peak angle at 0.244 m/s (its Fig. 4 is a plot), so it does "
-              "not determine c_strip. Figures: [strip friction](sensitivity/sensitivity_strip.png), "
-              "[velocity](sensitivity/sensitivity_velocity.png); data: "
-              "[sensitivity.json](sensitivity/sensitivity.json).", ""]
-    return lines
-
-
 def _rules_at_experiment(runs) -> dict | None:
     for sc, s in runs:
-        e = s.get("extremum") if sc.kind == "sweep" else None
+        e = s.get("extremum")   # a sweep's (the other kinds' summaries have none)
         if sc.paper.get("extremum_phi_deg") is not None and e and "other_rule" in e \
                 and sc.closed_form == "mat":
             flip = -1.0 if sc.paper.get("phi_sign_differs") else 1.0
@@ -246,7 +245,9 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
                                               for r in rows],
                                      "counts": counts(rows), "kinds": KIND_MEANING,
                                      "calibration_chain": chain, "rules_at_experiment": rules,
-                                     "sensitivity": sensitivity, "contact_patch": patch_json(runs)})
+                                     "sensitivity": sensitivity,
+                                     **{sec.json_key: section_json(sec, runs) for sec in sections()
+                                        if sec.json_key}})
     lines = ["# orthocontact: reproduction of Konyukhov & Schweizerhof (2007)", "",
              f"Every scenario of the paper run through the OrthotropicContact FMU in the rig "
              f"harness ({seconds:.0f} s). Each row says what kind of evidence it is:", ""]
@@ -295,38 +296,72 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
               f"{chain[3]['value']:.4f}; the paper's 1.251 is what its rounded μ give. The "
               "scenarios use the paper's 1.251.", ""]
     if sensitivity:
-        lines += _sensitivity_section(sensitivity)
-    lines += patch_section(runs)
-    lines += ["## Scenarios", ""]
-    for sc, s in runs:
-        if sc.kind in PATCH_KINDS:   # in their own section
-            continue
-        lines.append(f"### {sc.title}")
-        lines.append("")
-        if sc.description:
-            lines += [sc.description, ""]
-        if sc.kind == "sweep":
-            e = s["extremum"]
-            if e is None:  # a flat curve has no extremum
-                shape = (f"flat: |φ| ≤ {s['max_abs_phi_deg']:.1e}° over the sweep (closed form "
-                         f"({s['closed_form']}) likewise)")
-            else:
-                shape = (f"extremum φ = {e['phi_deg']:.3f}° at {e['angle_deg']:.3f}°; closed form "
-                         f"({s['closed_form']}) {s['closed_form_extremum']['phi_deg']:.3f}° at "
-                         f"{s['closed_form_extremum']['angle_deg']:.3f}°")
-            lines.append(f"- mode {s['mode']}, rule {s['rule']}, {s['n_angles']} angles; {shape}; "
-                         f"largest deviation from the closed form {s['max_deviation_deg']:.2e}°.")
-            lines.append(f"- figures: [φ vs angle]({sc.name}/phi_vs_angle.png), "
-                         f"[trajectories]({sc.name}/trajectories.png), "
-                         f"[driving force]({sc.name}/force_vs_travel.png); "
-                         f"data: [{sc.name}/sweep.csv]({sc.name}/sweep.csv)")
-        else:
-            for rule, d in s["rules"].items():
-                lines.append(f"- {rule}: spread over step sizes {d['spread_deg']:.2e}°, largest "
-                             f"deviation from the closed form {d['max_deviation_deg']:.3f}°")
-            lines.append(f"- figure: [step study]({sc.name}/step_study.png); data: "
-                         f"[{sc.name}/step_study.csv]({sc.name}/step_study.csv)")
-        lines.append("")
+        lines += report_lines(sensitivity)
+    for sec in sections():
+        lines += section_lines(sec, runs)
     text = "\n".join(lines) + "\n"
     (out / "report.md").write_text(text)
     return text
+
+
+def section_runs(sec: Section, runs: list[tuple[Scenario, dict]]) -> list[tuple[Scenario, dict]]:
+    """The runs of the kinds whose part is in `sec`, in order."""
+    return [(sc, s) for sc, s in runs if kind_of(sc).part("report").section is sec]
+
+
+def section_json(sec: Section, runs: list[tuple[Scenario, dict]]) -> dict:
+    """report.json's entry of the section: each of its scenarios' entry."""
+    return {sc.name: kind_of(sc).part("report").json(sc, s) for sc, s in section_runs(sec, runs)}
+
+
+def section_lines(sec: Section, runs: list[tuple[Scenario, dict]]) -> list[str]:
+    """report.md's lines of the section: its heading and opening, then its
+    scenarios' lines, the kinds in their table's order; [] without a
+    scenario of its kinds unless it is always written."""
+    mine = section_runs(sec, runs)
+    if not mine and not sec.always:
+        return []
+    order = list(SCENARIO_KINDS)
+    lines = [f"## {sec.title}", "", *sec.intro]
+    for sc, s in sorted(mine, key=lambda r: order.index(kind_of(r[0]).name)):
+        lines += kind_of(sc).part("report").lines(sc, s)
+    return lines
+
+
+def scenario_heading(sc: Scenario) -> list[str]:
+    """A scenario's heading in SCENARIOS: its title and description."""
+    return [f"### {sc.title}", ""] + ([sc.description, ""] if sc.description else [])
+
+
+def sweep_lines(sc: Scenario, s: dict) -> list[str]:
+    """A sweep's lines in SCENARIOS: its extremum against the closed form,
+    its figures and data."""
+    e = s["extremum"]
+    if e is None:  # a flat curve has no extremum
+        shape = (f"flat: |φ| ≤ {s['max_abs_phi_deg']:.1e}° over the sweep (closed form "
+                 f"({s['closed_form']}) likewise)")
+    else:
+        shape = (f"extremum φ = {e['phi_deg']:.3f}° at {e['angle_deg']:.3f}°; closed form "
+                 f"({s['closed_form']}) {s['closed_form_extremum']['phi_deg']:.3f}° at "
+                 f"{s['closed_form_extremum']['angle_deg']:.3f}°")
+    return scenario_heading(sc) + [
+        f"- mode {s['mode']}, rule {s['rule']}, {s['n_angles']} angles; {shape}; "
+        f"largest deviation from the closed form {s['max_deviation_deg']:.2e}°.",
+        f"- figures: [φ vs angle]({sc.name}/phi_vs_angle.png), "
+        f"[trajectories]({sc.name}/trajectories.png), "
+        f"[driving force]({sc.name}/force_vs_travel.png); "
+        f"data: [{sc.name}/sweep.csv]({sc.name}/sweep.csv)", ""]
+
+
+def step_study_lines(sc: Scenario, s: dict) -> list[str]:
+    """A step study's lines in SCENARIOS: each rule's spread over the steps."""
+    lines = scenario_heading(sc)
+    for rule, d in s["rules"].items():
+        lines.append(f"- {rule}: spread over step sizes {d['spread_deg']:.2e}°, largest "
+                     f"deviation from the closed form {d['max_deviation_deg']:.3f}°")
+    return lines + [f"- figure: [step study]({sc.name}/step_study.png); data: "
+                    f"[{sc.name}/step_study.csv]({sc.name}/step_study.csv)", ""]
+
+
+register("sweep", "report", ReportPart(SCENARIOS, sweep_lines, rows=sweep_rows))
+register("step_study", "report", ReportPart(SCENARIOS, step_study_lines))

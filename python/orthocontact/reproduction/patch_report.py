@@ -1,38 +1,34 @@
 """The report's section on the contact patch: the runs of the scenario kinds
-twist and towed_block (reproduction.planar_outputs) against their closed
-forms.  The patch is this project's extension of the paper's law, not a
-number the paper prints: its checks are not rows of the paper's table and
-not in the headline's counts; a failed check is its warning line, as in
-`orthocontact run`."""
+of a body on the patch (reproduction.planar_outputs: twist, towed_block)
+against their closed forms, each kind's part of the report
+(experiment.kinds.ReportPart) registered here.  The patch is this project's
+extension of the paper's law, not a number the paper prints: its checks are
+not rows of the paper's table and not in the headline's counts; a failed
+check is its warning line, as in `orthocontact run`."""
 from __future__ import annotations
 
-from ..experiment.scenario import PATCH_KINDS, Scenario
+from ..experiment.kinds import ReportPart, Section, register
+from ..experiment.scenario import Scenario
 
 INTRO = ("Not the paper's: the law over an area (the ContactPatch FMU, n1 × n2 cells, each the point "
          "law with its own slip) under a block, each run against its own closed forms "
          "(docs/guides/contact-patch.md in the repository). Its checks are not rows of the paper's "
          "table above and not in its counts.")
 
-
-def patch_runs(runs: list[tuple[Scenario, dict]]) -> list[tuple[Scenario, dict]]:
-    """The runs of the kinds of a body on the patch, in order."""
-    return [(sc, s) for sc, s in runs if sc.kind in PATCH_KINDS]
+PATCH = Section("The contact patch", (INTRO, ""), json_key="contact_patch")
 
 
-def patch_json(runs: list[tuple[Scenario, dict]]) -> dict:
-    """report.json's "contact_patch": each patch scenario's checks and the
-    numbers the section shows."""
-    out = {}
-    for sc, s in patch_runs(runs):
-        entry = {"kind": sc.kind, "checks": s["checks"]}
-        if sc.kind == "twist":
-            entry["rules"] = s["rules"]
-            entry["cells"] = s.get("cells")
-        else:
-            entry["tows"] = s["tows"]
-            entry["max_deviation_deg"] = s["max_deviation_deg"]
-        out[sc.name] = entry
-    return out
+def twist_json(sc: Scenario, s: dict) -> dict:
+    """report.json's entry of a twist: its checks and the numbers the
+    section shows."""
+    return {"kind": s["kind"], "checks": s["checks"], "rules": s["rules"], "cells": s.get("cells")}
+
+
+def towed_json(sc: Scenario, s: dict) -> dict:
+    """report.json's entry of a towed block: its checks and the numbers the
+    section shows."""
+    return {"kind": s["kind"], "checks": s["checks"], "tows": s["tows"],
+            "max_deviation_deg": s["max_deviation_deg"]}
 
 
 def _check_line(s: dict) -> str:
@@ -45,7 +41,8 @@ def _patch_size(s: dict) -> str:
     return f"{p['length_m'] * 1e3:g} × {p['width_m'] * 1e3:g} mm"
 
 
-def _twist(sc: Scenario, s: dict) -> list[str]:
+def twist_lines(sc: Scenario, s: dict) -> list[str]:
+    """A twist's lines in the section: its slope and plateau against their closed forms."""
     p = s["patch"]
     lines = [f"### {sc.title}", "",
              f"Turned about the centre of a {_patch_size(s)} patch of "
@@ -78,7 +75,8 @@ def _twist(sc: Scenario, s: dict) -> list[str]:
     return lines + [""]
 
 
-def _towed(sc: Scenario, s: dict) -> list[str]:
+def towed_lines(sc: Scenario, s: dict) -> list[str]:
+    """A towed block's lines in the section: its steady yaw against its closed form."""
     lines = [f"### {sc.title}", "",
              f"A {_patch_size(s)} patch pressed with "
              f"{s['normal_N']:.4g} N, towed along X1 through a pin ahead of its centre. Its steady yaw "
@@ -102,13 +100,5 @@ def _towed(sc: Scenario, s: dict) -> list[str]:
     return lines
 
 
-def patch_section(runs: list[tuple[Scenario, dict]]) -> list[str]:
-    """report.md's lines of the section "The contact patch" ([] without a
-    patch scenario)."""
-    mine = patch_runs(runs)
-    if not mine:
-        return []
-    lines = ["## The contact patch", "", INTRO, ""]
-    for sc, s in sorted(mine, key=lambda r: PATCH_KINDS.index(r[0].kind)):   # the twist first
-        lines += _twist(sc, s) if sc.kind == "twist" else _towed(sc, s)
-    return lines
+register("twist", "report", ReportPart(PATCH, twist_lines, twist_json))
+register("towed_block", "report", ReportPart(PATCH, towed_lines, towed_json))

@@ -14,7 +14,9 @@ The cells' states are an FMI 3.0 array (cellState).  A twist run on an FMI
 2.0 FMU takes them from the same twist on the installed FMI 3.0 ContactPatch
 FMU, and only if that run's torque, slip fraction and state equal its own at
 every step (the two builds compute the same bits); else there is no cells
-figure and summary.json's "cells" says why."""
+figure and summary.json's "cells" says why.  The kinds' runners (their piece
+"run", experiment.kinds) are here; their part of the report is
+patch_report's."""
 from __future__ import annotations
 
 import math
@@ -24,8 +26,9 @@ import numpy as np
 
 from ..closed_forms.paper import of_law, steady_phi_deg
 from ..closed_forms.patch import cell_centres
+from ..experiment.kinds import RunOptions, part
 from ..experiment.scenario import SCHEMA, Scenario, ScenarioError
-from ..fmu.patch import PatchGeometry
+from ..fmu.patch import PATCH_MODEL, PatchGeometry
 from ..output.figures import curve_style, draw_here, finish, pyplot, swept_label
 from ..output.tables import write_csv, write_json
 from ..rig import planar
@@ -64,11 +67,11 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     r_mean = (g.length + g.width) / 4.0
     r_min = innermost_radius(g)
     rows, runs, checks, cells, said = [], {}, [], {}, []
+    version = _version(fmu_path)
     for rule in tw["rules"]:
         p = sc.params_at(0.0, rule)
         res = planar.twist(p, body, math.radians(tw["rate_deg_s"]), math.radians(tw["angle_deg"]),
-                           tw["step_s"], fmu_path=fmu_path, fmi_version=_version(fmu_path),
-                           cells=_version(fmu_path) == 3)
+                           tw["step_s"], fmu_path=fmu_path, fmi_version=version, cells=version == 3)
         states, where = cell_states_of(p, body, tw, res)
         said.append(where)
         if states is not None:
@@ -111,7 +114,7 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     else:
         cells_summary = {"from": None, "why": next(w for r, w in zip(tw["rules"], said) if r not in cells)}
     warning = twist_warning(sc.name, checks)
-    summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "normal_N": body.normal_N,
+    summary = {**sc.head(), "normal_N": body.normal_N,
                "patch": sc.patch, "rules": {c["rule"]: c for c in checks}, "cells": cells_summary,
                "checks": {"ok": warning is None, "warning": warning,
                           "not_checked": [c["rule"] for c in checks if not c["plateau_checked"]]},
@@ -119,6 +122,18 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
                                    "on the body"}
     write_json(out / "summary.json", summary)
     return summary
+
+
+@part("twist", "run")
+def run_twist(sc: Scenario, out: Path, fmu_path, how: RunOptions) -> dict:
+    """The kind's runner: twist_outputs (a run in this process)."""
+    return twist_outputs(sc, out, fmu_path, how.draw)
+
+
+@part("towed_block", "run")
+def run_towed(sc: Scenario, out: Path, fmu_path, how: RunOptions) -> dict:
+    """The kind's runner: towed_outputs (runs in this process)."""
+    return towed_outputs(sc, out, fmu_path, how.draw)
 
 
 def innermost_radius(g: PatchGeometry) -> float:
@@ -169,7 +184,7 @@ def cell_states_of(params, body, tw, res) -> tuple:
         return res.cell_state, "this run (FMI 3.0: cellState)"
     from ..fmu.files import find_fmu
     try:
-        twin = find_fmu(fmi_version=3, model="ContactPatch")
+        twin = find_fmu(fmi_version=3, model=PATCH_MODEL)
     except FileNotFoundError as e:
         return None, f"FMI 2.0 has no arrays, and no FMI 3.0 ContactPatch FMU is installed ({e})"
     again = planar.twist(params, body, math.radians(tw["rate_deg_s"]), math.radians(tw["angle_deg"]),
@@ -224,12 +239,13 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     body, tw = body_of(sc), sc.tow
     rows, time_rows, records = [], [], {}
     worst = worst_phi = 0.0
+    version = _version(fmu_path)
     for rule in tw["rules"]:
         for a in tw["angles_deg"]:
             p = sc.params_at(a, rule)
             try:
                 res = planar.towed_block(p, body, sc.rig.velocity_m_s, tw["pin_m"], tw["duration_s"],
-                                         tw["step_s"], fmu_path=fmu_path, fmi_version=_version(fmu_path))
+                                         tw["step_s"], fmu_path=fmu_path, fmi_version=version)
             except planar.StepNotSolved as e:
                 raise ScenarioError(f"{sc.path}: tow.step_s: the {rule} tow at mat angle {a:g} deg could not "
                                     f"be integrated ({e}); a smaller tow.step_s may help") from None
@@ -258,7 +274,7 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
         warning = (f"{sc.name}: the towed block's yaw is {worst_phi:.3g} deg off -phi with the mat turned "
                    f"back by the yaw (tolerance {YAW_TOL_DEG:g} deg): the steady yaw and the paper's phi "
                    "disagree")
-    summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "normal_N": body.normal_N,
+    summary = {**sc.head(), "normal_N": body.normal_N,
                "patch": sc.patch, "max_deviation_deg": worst,
                "max_deviation_from_minus_phi_turned_deg": worst_phi,
                "yaw_deg": {rule: {f"{a:g}": y for r, a, y, *_ in rows if r == rule} for rule in tw["rules"]},

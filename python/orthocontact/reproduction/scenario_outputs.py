@@ -1,7 +1,9 @@
 """A scenario's results for machines (sweep.csv, trajectories.csv,
 step_study.csv, summary.json with its self-checks) and for people (PNG
 figures).  Every writer takes the folder to write into; the CLI hands it a
-staging folder and moves the files into place only when all are written."""
+staging folder and moves the files into place only when all are written.
+The runners of the kinds sweep and step_study (their piece "run",
+experiment.kinds) are here."""
 from __future__ import annotations
 
 import math
@@ -10,11 +12,13 @@ from pathlib import Path
 import numpy as np
 
 from .. import closed_forms as cf
+from ..experiment.kinds import RunOptions, part
 from ..experiment.scenario import Scenario
 from ..output.figures import curve_style, draw_here, finish, pyplot, swept_label
 from ..output.tables import write_csv, write_json
 from ..rig.checks import SETTLE_TOL_DEG, STEADY_TOL_DEG
-from ..runs.sweep import StepStudyResult, SweepResult, closed_form_phi_deg_array
+from ..runs.sweep import (StepStudyResult, SweepResult, closed_form_phi_deg_array, run_step_study,
+                          run_sweep)
 
 FLAT_DEG = 1e-9  # a closed form below this everywhere is flat: no extremum
 
@@ -54,7 +58,7 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
     draw(_figure_paths, sc, res, out / "force_vs_travel.png", "drive")
 
     summary = {
-        "scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
+        **sc.head(), "mode": sc.rig.mode,
         "rule": sc.law.rule, "n_angles": int(len(res.angles_deg)), "workers": res.workers,
         "seconds": round(res.seconds, 3),
         # a flat curve (the closed form is zero everywhere) has no extremum to report
@@ -169,6 +173,20 @@ def _closed_extremum(sc: Scenario, res: SweepResult) -> dict:
     return {"angle_deg": float(fine[k]), "phi_deg": float(vals[k])}
 
 
+@part("sweep", "run")
+def run_sweep_scenario(sc: Scenario, out: Path, fmu_path, how: RunOptions) -> dict:
+    """The sweep (runs.sweep) and its outputs: the kind's runner."""
+    res = run_sweep(sc, how.workers, how.progress, fmu_path, how.master, how.dask)
+    return sweep_outputs(sc, res, out, how.draw)
+
+
+@part("step_study", "run")
+def run_step_study_scenario(sc: Scenario, out: Path, fmu_path, how: RunOptions) -> dict:
+    """The step study (runs.sweep) and its outputs: the kind's runner."""
+    res = run_step_study(sc, how.workers, how.progress, fmu_path, how.master, how.dask)
+    return step_study_outputs(sc, res, out, how.draw)
+
+
 def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path, draw=None) -> dict:
     write_csv(out / "step_study.csv", ["rule", "step_s", "phi_deg", "phi_closed_deg", "deviation_deg",
                                        "drive_mean_N", "check"],
@@ -183,7 +201,7 @@ def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path, draw=None)
         per_rule[rule] = {"phi_deg": dict((f"{r['step_s']:g}", r["phi_deg"]) for r in rs),
                           "spread_deg": max(phis) - min(phis),
                           "max_deviation_deg": max(abs(r["deviation_deg"]) for r in rs)}
-    summary = {"scenario": sc.name, "title": sc.title, "kind": sc.kind, "mode": sc.rig.mode,
+    summary = {**sc.head(), "mode": sc.rig.mode,
                "angle_deg": res.angle_deg, "rules": per_rule, "seconds": round(res.seconds, 3),
                "checks": checks_summary(res.checks, [res.angle_deg] * len(res.rows),
                                         [r["phi_deg"] for r in res.rows], res.warning(sc))}

@@ -16,7 +16,10 @@ a mat scenario (the aged mat) this module computes
 * for a viscous strip c_strip [N s/m] (force c_strip * lateral velocity): the
   ratio calibrated on 11.5 deg at 0.125 m/s, and the peak that ratio then
   gives at 0.244 m/s, i.e. how far the two velocities drift apart.  The law
-  is rate-independent: only such a rig term makes the angle depend on speed."""
+  is rate-independent: only such a rig term makes the angle depend on speed.
+
+Its files and figures (write_outputs) and its section of the reproduction
+report (report_lines) are here too."""
 from __future__ import annotations
 
 import math
@@ -26,6 +29,7 @@ import numpy as np
 
 from .. import closed_forms as cf
 from ..errors import InputError
+from ..experiment.kinds import kind_of
 from ..experiment.scenario import Scenario
 from ..rig.checks import check_runs, warning_line
 
@@ -144,10 +148,16 @@ class Plan:
     tasks: list
 
 
+def takes(sc: Scenario) -> bool:
+    """Whether the study takes the scenario: a sweep of mat angles on the
+    carriage rig (experiment.kinds) with the experiment's geometry."""
+    return sc.closed_form == "mat" and kind_of(sc).mat_angles
+
+
 def plan(sc: Scenario) -> Plan:
     """What run() will run for a mat scenario (closed forms only, no rig
     run); InputError for another scenario."""
-    if sc.closed_form != "mat" or sc.kind != "sweep":
+    if not takes(sc):
         raise InputError(f"{sc.path}: geometry.closed_form: expected \"mat\" (the experiment's "
                          "geometry) for a sensitivity study")
     measured = abs(sc.paper.get("extremum_phi_deg", sc.paper.get("phi_max_deg", 11.5)))
@@ -295,3 +305,41 @@ def _figures(res: Sensitivity, sc: Scenario, out) -> None:
     ax.set_ylabel("peak |φ| [deg]")
     finish(fig, ax, out / "sensitivity_velocity.png", f"{sc.name}: velocity through a viscous strip",
             outside=True)
+
+
+def report_lines(sens: dict) -> list[str]:
+    """The study's section of the reproduction report (report.md), from
+    its summary (write_outputs)."""
+    m = sens["measured_peak_deg"]
+    last_v = max(r["velocity_m_s"] for r in sens["strip"])
+    lines = ["## The rig's assumptions", "",
+             f"The paper assumes a frictionless Teflon strip between carriage and block and measures "
+             f"neither its friction μ_strip nor any viscous resistance c_strip. Peak |φ| of "
+             f"{sens['scenario']} (rig over the 0.5 m travel, {sens['rig_step_s'] * 1e3:g} ms steps; "
+             f"steady closed form beside), and the ε1/ε2 the paper's calibration would return from "
+             f"the measured {m:g}° if the strip had that friction:", "",
+             "| μ_strip | peak \\|φ\\| rig [deg] | closed form [deg] | ε1/ε2 for the measured peak |",
+             "|---|---|---|---|"]
+    for r in sens["strip"]:
+        if r["velocity_m_s"] == last_v:
+            ratio = r["eps_ratio_for_measured_peak"]
+            lines.append(f"| {r['mu_strip']:g} | {abs(r['peak_phi_rig_deg']):.2f} | "
+                         f"{abs(r['peak_phi_closed_deg']):.2f} | "
+                         + ("not reachable" if ratio is None else f"{ratio:.4f}") + " |")
+    lines += ["", "The identified ratio is conditional on the strip: with μ_strip = 0.1 the same "
+              "measurement means ε1/ε2 ≈ "
+              f"{next(r['eps_ratio_for_measured_peak'] for r in sens['strip'] if r['mu_strip'] == 0.1):.3f} "
+              "instead of 1.25. The law is rate-independent, so without a rate-dependent rig term "
+              "the two velocities give the same angle; with a viscous strip (ε1/ε2 calibrated on "
+              f"{m:g}° at {sens['calibration_velocity_m_s']:g} m/s each time):", "",
+              "| c_strip [N s/m] | ε1/ε2 | peak \\|φ\\| at 0.125 m/s | at 0.244 m/s (rig) |", "|---|---|---|---|"]
+    for r in sens["viscous"]:
+        if r["eps_ratio"] is None:
+            continue
+        lines.append(f"| {r['c_strip_N_s_m']:g} | {r['eps_ratio']:.4f} | "
+                     f"{abs(r['peak_phi_rig_deg_at_0.125']):.2f} | {abs(r['peak_phi_rig_deg_at_0.244']):.2f} |")
+    lines += ["", "The paper prints no peak angle at 0.244 m/s (its Fig. 4 is a plot), so it does "
+              "not determine c_strip. Figures: [strip friction](sensitivity/sensitivity_strip.png), "
+              "[velocity](sensitivity/sensitivity_velocity.png); data: "
+              "[sensitivity.json](sensitivity/sensitivity.json).", ""]
+    return lines

@@ -1,13 +1,16 @@
 """How much work a command is about to do, said before any of it starts: a
 sweep of 90 million angles or a run of 5e8 steps is almost always a typo in a
 scenario file (step_deg = 1e-6, step_s = 1e-9), and would otherwise fill the
-memory or run for days with nothing to show."""
+memory or run for days with nothing to show.  Each scenario kind's estimate
+is written here and registered into its row (experiment.kinds: `estimates`)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..errors import InputError
+from ..experiment.kinds import kind_of, register
 
 # Rig steps a command may take without --yes.  The largest work of the
 # documented commands is uq's benchmark, 10^6 runs of 512 steps (5.1e8 steps,
@@ -24,7 +27,7 @@ MAX_STEPS_PER_RUN = 2.0 ** 53
 
 
 def steps_per_run(travel_m: float, velocity_m_s: float, step_s: float) -> float:
-    """rig_step_count of fmu_src/rig_core.c, as a float that may exceed 2^53."""
+    """rig_step_count of fmu_src/rig/rig_core.c, as a float that may exceed 2^53."""
     return math.ceil(travel_m / (velocity_m_s * step_s) - 1e-9)
 
 
@@ -106,26 +109,33 @@ def check_run_size(what: str, runs: float, steps: float, runs_key: str, steps_ke
     check_work(what, Work().plus("runs", runs, steps), runs_key, steps_key, yes)
 
 
-def scenario_work(sc) -> Work:
-    """Every rig run `orthocontact run` makes for a scenario (runs.sweep):
-    a sweep's angles, its extremum's refinement (at most
+@dataclass(frozen=True)
+class WorkEstimate:
+    """A scenario kind's work estimate (its piece "work", experiment.kinds):
+    work(sc) -> Work, every rig run `orthocontact run` makes for the
+    scenario; runs_key and steps_key: the keys that set the number of runs
+    and the steps per run, named when the size is refused."""
+    work: Callable
+    runs_key: str
+    steps_key: str
+
+
+def estimates(name: str, runs_key: str, steps_key: str):
+    """Decorator: registers work(sc) -> Work as the kind `name`'s estimate."""
+    def put(f):
+        register(name, "work", WorkEstimate(f, runs_key, steps_key))
+        return f
+    return put
+
+
+@estimates("sweep", "sweep.step_deg or sweep.trajectory_angles_deg", "rig.step_s or rig.travel_m")
+def sweep_work(sc) -> Work:
+    """A sweep's angles, its extremum's refinement (at most
     refinement_runs_at_most: the count depends on the angles found), the
     other implicit rule at the extremum and the recorded trajectories, each
-    of the rig's steps; a step study's rules at each of its steps."""
+    of the rig's steps (runs.sweep)."""
     from .sweep import refinement_runs_at_most
     rig = sc.rig
-    if sc.kind == "twist":
-        tw = sc.twist
-        return Work().plus("twists", len(tw["rules"]), tw["angle_deg"] / (tw["rate_deg_s"] * tw["step_s"]))
-    if sc.kind == "towed_block":
-        tw = sc.tow
-        return Work().plus("tows", len(tw["rules"]) * len(tw["angles_deg"]), tw["duration_s"] / tw["step_s"])
-    if sc.kind != "sweep":
-        work = Work()
-        for h in sc.study["steps_s"]:
-            work = work.plus(f"at step {h:g} s", len(sc.study["rules"]),
-                             steps_per_run(rig.travel_m, rig.velocity_m_s, h))
-        return work
     n = sc.angle_count()
     steps = steps_per_run(rig.travel_m, rig.velocity_m_s, rig.step_s)
     refine = refinement_runs_at_most(sc.sweep["step_deg"]) if sc.sweep["refine_extremum"] and n >= 3 else 0
@@ -133,6 +143,37 @@ def scenario_work(sc) -> Work:
     return (Work().plus("at the mat angles", n, steps).plus("refining the extremum, at most", refine, steps)
             .plus("by the other rule", other, steps)
             .plus("recorded trajectories", len(sc.sweep["trajectory_angles_deg"]), steps))
+
+
+@estimates("step_study", "study.rules or study.steps_s", "study.steps_s or rig.travel_m")
+def step_study_work(sc) -> Work:
+    """A step study's rules at each of its steps."""
+    rig = sc.rig
+    work = Work()
+    for h in sc.study["steps_s"]:
+        work = work.plus(f"at step {h:g} s", len(sc.study["rules"]),
+                         steps_per_run(rig.travel_m, rig.velocity_m_s, h))
+    return work
+
+
+@estimates("twist", "twist.rules", "twist.step_s, twist.rate_deg_s or twist.angle_deg")
+def twist_work(sc) -> Work:
+    """A twist under each of its rules, turning at its rate to its angle."""
+    tw = sc.twist
+    return Work().plus("twists", len(tw["rules"]), tw["angle_deg"] / (tw["rate_deg_s"] * tw["step_s"]))
+
+
+@estimates("towed_block", "tow.angles_deg or tow.rules", "tow.step_s or tow.duration_s")
+def towed_work(sc) -> Work:
+    """A tow at each of its mat angles under each of its rules."""
+    tw = sc.tow
+    return Work().plus("tows", len(tw["rules"]) * len(tw["angles_deg"]), tw["duration_s"] / tw["step_s"])
+
+
+def scenario_work(sc) -> Work:
+    """Every rig run `orthocontact run` makes for a scenario: its kind's
+    estimate."""
+    return kind_of(sc).part("work").work(sc)
 
 
 def uq_work(sc, samples: int, step_s: float) -> Work:
@@ -151,18 +192,8 @@ def uq_work(sc, samples: int, step_s: float) -> Work:
 
 def check_scenario_size(sc, yes: bool) -> None:
     """check_work for every run `orthocontact run` makes for the scenario."""
-    if sc.kind == "sweep":
-        check_work(str(sc.path), scenario_work(sc), "sweep.step_deg or sweep.trajectory_angles_deg",
-                   "rig.step_s or rig.travel_m", yes)
-    elif sc.kind == "twist":
-        check_work(str(sc.path), scenario_work(sc), "twist.rules",
-                   "twist.step_s, twist.rate_deg_s or twist.angle_deg", yes)
-    elif sc.kind == "towed_block":
-        check_work(str(sc.path), scenario_work(sc), "tow.angles_deg or tow.rules",
-                   "tow.step_s or tow.duration_s", yes)
-    else:
-        check_work(str(sc.path), scenario_work(sc), "study.rules or study.steps_s",
-                   "study.steps_s or rig.travel_m", yes)
+    est = kind_of(sc).part("work")
+    check_work(str(sc.path), est.work(sc), est.runs_key, est.steps_key, yes)
 
 
 def check_uq_size(sc, yes: bool, samples: int, step_s: float, samples_key: str, step_key: str) -> None:

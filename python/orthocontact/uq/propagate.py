@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import InputError
+from ..experiment.kinds import require_mat_angles
 from ..experiment.scenario import Scenario
 from ..rig.checks import SETTLE_TOL_DEG, RunChecks, angle_list, check_runs, remedy, warning_line
 from ..rig.harness import RunFigures
@@ -183,8 +184,7 @@ def uq_step(sc: Scenario, step_s: float | None = None) -> float:
 
 
 def check_geometry(sc: Scenario, est: Estimates) -> None:
-    if sc.kind != "sweep":
-        raise InputError(f"{sc.path}: kind: expected a sweep scenario for uq, got {sc.kind!r}")
+    require_mat_angles(sc, "uq")
     if sc.law.rule != est.rule:
         raise InputError(f"{sc.path}: law.rule: expected {est.rule!r}, the rule the parameters of "
                          f"{est.path} were identified under, got {sc.law.rule!r}")
@@ -196,7 +196,7 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     """The rig over the scenario's angles for `samples` parameter sets.
     scheduler None runs here, in this process; "local" or an address on Dask."""
     from ..fmu.files import find_fmu
-    from ..runs.progress import Progress
+    from ..runs.pool import Progress
     t0 = time.time()
     check_geometry(sc, est)
     fmu_path = find_fmu(fmu_path)
