@@ -6,7 +6,7 @@
 
 #include "fmi2Functions.h"
 #include "bench_common.h"
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 
 
 static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,

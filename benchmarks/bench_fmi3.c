@@ -6,7 +6,7 @@
 
 #include "fmi3Functions.h"
 #include "bench_common.h"
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 
 
 static void quiet(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {

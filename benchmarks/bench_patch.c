@@ -41,9 +41,9 @@
 #include <string.h>
 
 #include "bench_common.h"
-#include "contact_law.h"
+#include "law/contact_law.h"
 #include "fmi2Functions.h"
-#include "patch_variables.h"
+#include "models/ContactPatch/table.h"
 
 /* bench_patch_point.c: the point FMU's table */
 extern const char *const BENCH_POINT_TOKEN;
@@ -106,7 +106,7 @@ static double theta_of(long k, int slip) {
     return 2e-4 * ((double)(k & 7) - 3.5) / 3.5;
 }
 
-/* A grid's cells as the patch forms them (patch_model.c's frame_of and
+/* A grid's cells as the patch forms them (models/ContactPatch/model.c's frame_of and
  * cell_of, written out again here): for each of the PERIOD turns of the
  * paths, each cell's displacement relative to u, (R(theta) - I) r; its share
  * of N; and its stiffness. */

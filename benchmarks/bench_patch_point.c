@@ -1,7 +1,7 @@
 /* The point FMU's token and value references for bench_patch.c, in a unit of
- * its own: the two models' tables (model_variables.h, patch_variables.h) and
+ * its own: the two models' tables (models/OrthotropicContact/table.h, models/ContactPatch/table.h) and
  * their generated token headers share names, so one unit cannot hold both. */
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 
 const char *const BENCH_POINT_TOKEN = FMU_TOKEN;
 

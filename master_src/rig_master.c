@@ -1,7 +1,7 @@
 /*
  * The compiled master (rig_master.h): loads a contact FMU through its FMI 2.0
  * functions (dlopen of the extracted binary, as any importer does) and runs
- * the rig of fmu_src/rig_core.c on it for a batch of parameter sets per call.
+ * the rig of fmu_src/rig/rig_core.c on it for a batch of parameter sets per call.
  * The rig itself is not here: this file only gives it the contact's FMI 2.0
  * functions and records what a caller asks for.
  */
@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 #include "rig_master.h"
 
 typedef struct {

@@ -1,5 +1,5 @@
 /*
- * The compiled master's interface: runs the rig (fmu_src/rig_core.h) over a
+ * The compiled master's interface: runs the rig (fmu_src/rig/rig_core.h) over a
  * contact FMU's FMI 2.0 functions for batches of parameter sets, called from
  * Python (python/orthocontact/rig/compiled.py, through ctypes).
  *
@@ -13,15 +13,15 @@
 
 #include <stddef.h>
 
-#include "model_variables.h"
-#include "rig_core.h"
+#include "models/OrthotropicContact/table.h"
+#include "rig/rig_core.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* A contact parameter set: the law's parameters as the contact's table
- * names them (its L rows, model_variables.h; mu [-], eps [N/m], angles
+ * names them (its L rows, models/OrthotropicContact/table.h; mu [-], eps [N/m], angles
  * [rad]) and the rule, the value of its slidingRule. */
 #define RM_LAW_FIELD(name, ...) double name;
 typedef struct {

@@ -16,7 +16,7 @@ alpha, beta, each at most GAP lines after the one before, as names with any
 prefix or suffix of other characters than letters and digits (p.mu1,
 OC_VR_mu1, "mu1", alpha_deg).  A place is counted ("code") unless it is in
 one of the categories set aside: the variable tables (their one home:
-fmu_src/<model>_variables.h), the closed forms (formulas of the physics,
+fmu_src/models/<model>/table.h and the law's rows in fmu_src/law/), the closed forms (formulas of the physics,
 closed_forms.paper.of_law the one place that spreads a law over their
 arguments), tests, the independent references (benchmarks/peer/,
 tools/rig_reference.py and tools/make_recordings.py, which import nothing of
@@ -40,7 +40,7 @@ SIX = ("mu1", "mu2", "eps1", "eps2", "alpha", "beta")
 GAP = 3  # lines between two consecutive names of one place
 CODE = re.compile(r"\.(py|c|h|sh|toml|cmake)$|(^|/)(CMakeLists\.txt|Makefile)$")
 ASIDE = (  # (category, path pattern), first match wins; the rest is "code"
-    ("table", r"^fmu_src/\w+_variables\.h$"),
+    ("table", r"^fmu_src/models/\w+/table\.h$|^fmu_src/law/law_variables\.h$"),
     ("closed forms", r"^python/orthocontact/closed_forms/"),
     ("tests", r"^tests/"),
     ("independent references", r"^benchmarks/peer/|^tools/(rig_reference|make_recordings)\.py$"),
@@ -148,11 +148,11 @@ def window_places(lines: list[str], patterns: list[str], span: int) -> list[tupl
 RULES = [r"(?i)associated", r"(?i)coupled", r"(?i)eq20", r"\b[123]\b"]
 RULE_RANGE = [r"rule\s*[<>]=?\s*[13]\b|\b1, 2 or 3\b"]
 MODELS = [r"OrthotropicContact", r"CarriageBlock"]
-SOURCES = ([r"contact_law\.c", r"oc_model\.c"], [r"rig_model\.c", r"rig_core\.c"])
+SOURCES = ([r"contact_law\.c", r"OrthotropicContact/model\.c"], [r"CarriageBlock/model\.c", r"rig_core\.c"])
 FORM_NAMES = ("general", "eq11", "eq25", "eq31", "eq33", "mat")
 GAP_FORMS = 4   # lines between two consecutive names of one place
 FMI_LITERAL = re.compile(r'"fmi[23][A-Z][A-Za-z0-9]*')
-GLUES = ("fmu_src/fmi2_glue.c", "fmu_src/fmi3_glue.c")
+GLUES = ("fmu_src/glue/fmi2_glue.c", "fmu_src/glue/fmi3_glue.c")
 
 
 def form_places(lines: list[str]) -> list[tuple[int, int]]:
@@ -203,7 +203,7 @@ TITLES = {
     "six": "places spelling out mu1, mu2, eps1, eps2, alpha, beta together",
     "rules": "places mapping the sliding rules to their numbers",
     "models": "places listing the models (OrthotropicContact with CarriageBlock)",
-    "sources": "places listing a model's sources (contact_law.c with oc_model.c, rig_model.c with rig_core.c)",
+    "sources": "places listing a model's sources (contact_law.c with the contact's model.c, the rig's model.c with rig_core.c)",
     "forms": "places naming the closed forms' names together (a list or a dispatch)",
     "fmi": "FMI function names typed as string literals in the two glues",
 }

@@ -20,7 +20,7 @@
 #define PEER_H
 
 /* The value references, and nothing else, from the shipped FMU's table. */
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 
 enum { PEER_INSTANTIATED, PEER_INIT, PEER_STEP, PEER_TERMINATED };
 

@@ -1,7 +1,7 @@
 """The static rules of FMI 2.0 and FMI 3.0 that the standards' XML schemas
 cannot hold, written from the standards' text, as an independent reference
 for the tests: it shares no code with the FMUs' generator
-(fmu_src/gen_model_description.c) nor with fmpy, and reads the model
+(fmu_src/glue/gen_model_description.c) nor with fmpy, and reads the model
 description with xml.etree itself, so that it sees what fmpy's reader drops
 (fmpy 0.3.32 keeps no min/max of an FMI 3.0 UInt64, and its validate_fmu
 checks no Dimension, no start against min/max, no dependency against the

@@ -48,7 +48,7 @@ def test_the_counter_sees_a_place_and_not_a_comment():
     dispatch = ['if form == "eq11":', "    pass", 'elif form == "mat":']
     assert facts.form_places(dispatch) == [(1, 3)]
     assert facts.form_places(['if sc.closed_form == "mat":']) == []     # one name: not a list
-    assert facts.category("fmu_src/patch_variables.h") == "table"
+    assert facts.category("fmu_src/models/ContactPatch/table.h") == "table"
     assert facts.category("python/orthocontact/experiment/scenario.py") == "code"
 
 

@@ -74,13 +74,16 @@ def _compiler():
     return [sys.executable, "-m", "ziglang", "cc"]   # the package's build requirement
 
 
+CONTACT_TABLE = "models/OrthotropicContact/table.h"   # under fmu_src/
+
+
 def _token(tmp, fmu_src: Path, table: str, version: str) -> tuple[str, str]:
     """gen_model_description built on `fmu_src` for `table` and `version`:
     (the token it computes, the FMI 2.0 description it writes)."""
     gen = tmp / f"gen{len(list(tmp.glob('gen*')))}"
     subprocess.run(_compiler() + ["-std=c99", "-I", str(fmu_src),
                                   f'-DFMU_TABLE_HEADER="{table}"', f'-DFMU_VERSION="{version}"',
-                                  str(fmu_src / "gen_model_description.c"), "-o", str(gen), "-lm"],
+                                  str(fmu_src / "glue" / "gen_model_description.c"), "-o", str(gen), "-lm"],
                    check=True, capture_output=True, timeout=120)
     header = subprocess.run([str(gen), "token"], check=True, capture_output=True, text=True).stdout
     xml = subprocess.run([str(gen), "fmi2"], check=True, capture_output=True, text=True).stdout
@@ -90,19 +93,19 @@ def _token(tmp, fmu_src: Path, table: str, version: str) -> tuple[str, str]:
 def test_token_is_the_descriptions_and_changes_with_them(tmp_path):
     src = tmp_path / "fmu_src"
     shutil.copytree(ROOT / "fmu_src", src)
-    token, xml = _token(tmp_path, src, "model_variables.h", VERSION)
+    token, xml = _token(tmp_path, src, CONTACT_TABLE, VERSION)
     for v in (2, 3):
         md = zipfile.ZipFile(find_fmu(fmi_version=v)).read("modelDescription.xml").decode()
         assert _attr(md, "guid" if v == 2 else "instantiationToken") == token
     assert xml == zipfile.ZipFile(find_fmu(fmi_version=2)).read("modelDescription.xml").decode()
 
-    rig_token, _ = _token(tmp_path, src, "rig_variables.h", VERSION)
-    other_version, _ = _token(tmp_path, src, "model_variables.h", VERSION + "1")
-    table = (src / "model_variables.h").read_text()
+    rig_token, _ = _token(tmp_path, src, "models/CarriageBlock/table.h", VERSION)
+    other_version, _ = _token(tmp_path, src, CONTACT_TABLE, VERSION + "1")
+    table = (src / CONTACT_TABLE).read_text()
     # One attribute of the description changed by one character: the model's description.
     edited = table.replace("by an implicit", "by an Implicit", 1)
     assert edited != table
-    (src / "model_variables.h").write_text(edited)
-    other_description, other_xml = _token(tmp_path, src, "model_variables.h", VERSION)
+    (src / CONTACT_TABLE).write_text(edited)
+    other_description, other_xml = _token(tmp_path, src, CONTACT_TABLE, VERSION)
     assert other_xml.replace(other_description, token) != xml   # the description did change
     assert len({token, rig_token, other_version, other_description}) == 4

@@ -33,8 +33,8 @@ def test_archive_layout_and_capabilities(fmu_path, fmi_version):
     for platform in PLATFORMS[fmi_version]:
         assert f"binaries/{platform}/OrthotropicContact.{_ext(platform)}" in names
     assert not [n for n in names if n.startswith("binaries/") and n.count("/") != 2 and not n.endswith("/")]
-    for src in ("contact_law.c", "oc_model.c", "fmu_instance.c", f"fmi{fmi_version}_glue.c",
-                "model_variables.h"):
+    for src in ("law/contact_law.c", "models/OrthotropicContact/model.c", "glue/fmu_instance.c",
+                f"glue/fmi{fmi_version}_glue.c", "models/OrthotropicContact/table.h"):
         assert f"sources/{src}" in names
     assert "documentation/index.html" in names
     assert ("documentation/LICENSE.txt" if fmi_version == 2

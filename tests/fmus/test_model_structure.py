@@ -325,14 +325,14 @@ def _compiler():
 def test_the_generator_refuses_a_table_without_exact_dependencies(tmp_path, edit, message):
     src = tmp_path / "fmu_src"
     shutil.copytree(ROOT / "fmu_src", src)
-    table = (src / "model_variables.h").read_text()
+    table = (src / "models" / "OrthotropicContact" / "table.h").read_text()
     row = 'D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE)'
     assert row in table
     edited = table.replace(row, "" if edit == row else edit)
-    (src / "model_variables.h").write_text(edited)
+    (src / "models" / "OrthotropicContact" / "table.h").write_text(edited)
     gen = tmp_path / "gen"
-    subprocess.run(_compiler() + ["-std=c99", "-I", str(src), '-DFMU_TABLE_HEADER="model_variables.h"',
-                                  '-DFMU_VERSION="0"', str(src / "gen_model_description.c"), "-o", str(gen),
+    subprocess.run(_compiler() + ["-std=c99", "-I", str(src), '-DFMU_TABLE_HEADER="models/OrthotropicContact/table.h"',
+                                  '-DFMU_VERSION="0"', str(src / "glue" / "gen_model_description.c"), "-o", str(gen),
                                   "-lm"], check=True, capture_output=True, timeout=120)
     r = subprocess.run([str(gen), "fmi2"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 1 and r.stdout == "" and message in r.stderr, r.stderr

@@ -112,7 +112,7 @@ def cosimulate(version, params, rig: Rig, n_steps):
 @pytest.mark.parametrize("version", [2, 3])
 @pytest.mark.parametrize("mu_strip,c_strip", [(0.0, 0.0), (0.1, 0.0), (0.0, 20.0), (0.05, 20.0)])
 def test_rig_fmu_with_the_contact_fmu_gives_the_harness(version, mu_strip, c_strip):
-    """The rig FMU (the C rig's step, fmu_src/rig_core.c) against the harness's
+    """The rig FMU (the C rig's step, fmu_src/rig/rig_core.c) against the harness's
     Python, the reference, strip terms included."""
     rig = Rig(mode="dynamic", travel_m=0.1, step_s=2e-4, mu_strip=mu_strip, c_strip=c_strip)
     n = int(math.ceil(rig.travel_m / (rig.velocity_m_s * rig.step_s) - 1e-9))

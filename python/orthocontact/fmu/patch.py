@@ -1,6 +1,6 @@
 """Access to the ContactPatch FMU (FMI 2.0 or 3.0 Co-Simulation) through
 fmpy: a rectangle length x width [m] of a rigid body on the textured surface,
-n1 x n2 cells each the law with its own slip (fmu_src/patch_variables.h).
+n1 x n2 cells each the law with its own slip (fmu_src/models/ContactPatch/table.h).
 
 Units: displacement u [m] of the patch centre and rotation theta [rad] of
 the body relative to the surface; normal force N [N]; centre of pressure

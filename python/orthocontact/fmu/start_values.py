@@ -2,7 +2,7 @@
 in both places an importer can find them: the `start` attributes of
 modelDescription.xml (for importers that set every start value) and
 resources/start_values.txt, which the shared C glue reads at instantiation
-(for importers that set nothing: fmu_src/fmu_instance.h gives its format).
+(for importers that set nothing: fmu_src/glue/fmu_instance.h gives its format).
 Everything else of the FMU (binaries of every platform, sources, licenses,
 the rest of the XML byte for byte) is kept; documentation pages can be
 added and a sentence appended to the model description's description."""

@@ -1,5 +1,5 @@
 """The models and their variables as the build generated them from the
-variable tables (fmu_src/*_variables.h): models.json (CMake's list of
+variable tables (fmu_src/models/*/table.h): models.json (CMake's list of
 models, OC_MODELS) and variables/<model>.json (gen_model_description
 manifest), installed with the package.  The package reads names, value
 references, units, ranges, starts, the enumerations and the law's

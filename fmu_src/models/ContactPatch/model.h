@@ -1,8 +1,8 @@
 /*
  * The contact patch as a model of the shared FMI glue (fmu_model.h): the
- * variables of patch_variables.h, n1 x n2 cells each stepped by the point
+ * variables of models/ContactPatch/table.h, n1 x n2 cells each stepped by the point
  * law (contact_law.h, called, not copied) with its own committed state, the
- * pending/committed step logic of the point model (oc_model.h) for all
+ * pending/committed step logic of the point model (models/OrthotropicContact/model.h) for all
  * cells at once, and the serialized state.
  *
  * Step semantics as the point's: setting inputs computes every cell's step
@@ -18,9 +18,9 @@
 #ifndef PATCH_MODEL_H
 #define PATCH_MODEL_H
 
-#include "contact_law.h"
-#include "fmu_model.h"
-#include "patch_variables.h"
+#include "law/contact_law.h"
+#include "glue/fmu_model.h"
+#include "models/ContactPatch/table.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -28,7 +28,7 @@ extern "C" {
 
 enum { PATCH_MAX_CELLS = PATCH_MAX_SIDE * PATCH_MAX_SIDE };
 
-/* The values of the parameter initialSlip (patch_variables.h). */
+/* The values of the parameter initialSlip (models/ContactPatch/table.h). */
 enum { PATCH_INITIAL_AT_INPUTS = 1, PATCH_INITIAL_EXPLICIT = 2 };
 
 /* Everything the cells' kinematics and loads follow from: the geometry,

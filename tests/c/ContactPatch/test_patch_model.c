@@ -1,12 +1,12 @@
 /* The ContactPatch model through its FMI 2.0 functions, linked with its own
- * sources (patch_model.c, the law, the glue):
+ * sources (models/ContactPatch/model.c, the law, the glue):
  *   - the directional derivatives against central differences of the
  *     pending step, over random grids, rules, pressures and paths, column
  *     by column wherever no cell changes between stick and slip within the
  *     difference;
  *   - the step against the plain per-cell step written out here (the
  *     reference: each cell's kinematics from its index, the law's own
- *     oc_law_step, the sums in cell order; patch_model.c's step loop forms
+ *     oc_law_step, the sums in cell order; models/ContactPatch/model.c's step loop forms
  *     the same numbers more cheaply), every output and every committed
  *     state bit for bit, over random grids, parameters, rules, initial
  *     slips, pressures, turns, open cells, pending re-sets and restores;
@@ -23,8 +23,8 @@
 
 #include "check.h"
 #include "fmi2Functions.h"
-#include "patch_model.h"
-#include "patch_variables.h"
+#include "models/ContactPatch/model.h"
+#include "models/ContactPatch/table.h"
 #include "random_values.h"
 
 /* The last message the FMU logged, kept to check what a refusal says. */
@@ -139,14 +139,14 @@ static void ref_set_inputs(ref_setup *g, const double x[6]) {
 }
 
 /* The pressure's slope per unit xi and unit p/side along a side of n cells
- * while the contact is closed: 1/S of patch_variables.h in those units,
+ * while the contact is closed: 1/S of models/ContactPatch/table.h in those units,
  * 12 n^2/(n^2 - 1); 0 for one cell (which carries no p) and for N <= 0. */
 static double ref_slope(int n, double N) {
     return n > 1 && N > 0.0 ? 12.0 * ((double)n * (double)n) / ((double)n * (double)n - 1.0) : 0.0;
 }
 
 /* Cell c's displacement d, share nu of N and moment arm R r, as
- * patch_variables.h defines them, formed cell by cell from the index. */
+ * models/ContactPatch/table.h defines them, formed cell by cell from the index. */
 static void ref_cell(const ref_setup *g, int c, double d[2], double *nu, double Rr[2]) {
     const double h = sin(0.5 * g->theta), cm1 = -2.0 * h * h, sn = sin(g->theta);
     const double w = 1.0 / ((double)g->n1 * (double)g->n2);
@@ -212,7 +212,7 @@ static size_t serialize(fmi2Component c, unsigned char *buf) {
 
 /* 1 if the committed cell states the FMU serialized (the last
  * PATCH_MAX_CELLS x 8 doubles of its state, little-endian, as
- * patch_model.c writes them) are those of `ref`, bit for bit. */
+ * models/ContactPatch/model.c writes them) are those of `ref`, bit for bit. */
 static int states_equal(fmi2Component c, const oc_state *ref, int n) {
     const size_t size = serialize(c, before);
     if (size < (size_t)PATCH_MAX_CELLS * 64) return 0;
@@ -397,7 +397,7 @@ static void step_matches_the_plain_per_cell_step(void) {
 /* The cells' normal forces, read from the committed states the FMU
  * serialized (each cell's N, the third of its 8 doubles): their resultant is
  * N and their first moment about the centre N (p1, p2), to 1e-12, on every
- * grid (patch_variables.h's pressure; the continuum's sampled at the cell
+ * grid (models/ContactPatch/table.h's pressure; the continuum's sampled at the cell
  * centres falls short by 1 - 1/n^2).  Along a side of one cell p must be 0
  * while pressed: refused otherwise, with the reason, and nothing changed;
  * an open contact (N <= 0) takes any p, outside the kern too, and so does

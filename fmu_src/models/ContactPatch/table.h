@@ -2,9 +2,9 @@
  * The one table of the ContactPatch FMU's variables: a rectangle length x
  * width of a rigid body on a flat surface, divided into n1 x n2 equal cells,
  * each cell the law of contact_law.h at its centre with its own slip state.
- * Columns as in model_variables.h; the law's rows are marked L as there.
+ * Columns as in models/OrthotropicContact/table.h; the law's rows are marked L as there.
  *
- * Geometry (patch_model.c says how each number is formed):
+ * Geometry (models/ContactPatch/model.c says how each number is formed):
  *   - a cell centre r = (xi length, eta width) in body coordinates, xi, eta
  *     the midpoints of n1 (n2) equal parts of [-1/2, 1/2];
  *   - its displacement relative to the surface d = u + (R(theta) - I) r;
@@ -27,7 +27,7 @@
 
 #include <math.h>
 
-#include "law_variables.h"
+#include "law/law_variables.h"
 
 #define NO_MIN (-HUGE_VAL)
 #define NO_MAX HUGE_VAL
@@ -42,10 +42,7 @@
     "Rectangular contact patch of a rigid body on a flat textured surface: n1 x n2 cells, each " \
     "the coupled orthotropic adhesion-friction law (Konyukhov and Schweizerhof 2007) at its "  \
     "centre with its own slip; force and torque from the body's displacement and rotation"
-#define FMU_SOURCES(S) S(contact_law.c) S(patch_model.c) S(fmu_instance.c)
-#define FMU_HEADERS(S)                                                                          \
-    S(contact_law.h) S(patch_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h)          \
-    S(patch_variables.h) S(law_variables.h) S(fmu_token.h)
+#define FMU_SOURCES(S) S(law/contact_law.c) S(models/ContactPatch/model.c) S(glue/fmu_instance.c)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 
 /* The largest grid: the model's storage and its serialized state are fixed

@@ -15,7 +15,7 @@
  * energy by k; u, eps -> m u, eps / m scales slip and energy by m).  So
  * every tolerance here is relative, every norm is taken without squaring
  * overflow, and the slip solve works in dimensionless variables. */
-#include "contact_law.h"
+#include "law/contact_law.h"
 
 #include <float.h>
 #include <math.h>

@@ -1,7 +1,7 @@
 /*
  * The one table of the CarriageBlock FMU's variables: the carriage/block rig of
  * the paper's experiment (sec. 2), to be coupled with OrthotropicContact.
- * Columns as in model_variables.h.  A block of mass m on the mat is pushed
+ * Columns as in models/OrthotropicContact/table.h.  A block of mass m on the mat is pushed
  * along X1 at constant velocity by a carriage through a strip; laterally it
  * is free but for the strip's Coulomb friction (muStrip on the push) and
  * viscous term (cStrip).  It takes the mat's force T on the block and gives
@@ -30,11 +30,9 @@
     "Carriage/block rig of Konyukhov and Schweizerhof's experiment: a block pushed along X1 " \
     "at constant velocity, laterally free but for a strip's friction; couple its u1, u2, N " \
     "to OrthotropicContact's inputs and T1, T2 back"
-/* Sources and headers of the binary besides the version's glue (CMake's
- * fmu_add reads both lists from here). */
-#define FMU_SOURCES(S) S(rig_model.c) S(rig_core.c) S(fmu_instance.c)
-#define FMU_HEADERS(S) \
-    S(rig_core.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h) S(rig_variables.h) S(fmu_token.h)
+/* Sources of the binary besides the version's glue (CMake's fmu_add reads
+ * the list from here). */
+#define FMU_SOURCES(S) S(models/CarriageBlock/model.c) S(rig/rig_core.c) S(glue/fmu_instance.c)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"2.05\" stepSize=\"0.0002\""
 #define FMU_PROVIDES_DERIVATIVES 0
 #define FMU_DOC_HTML                                                                           \
@@ -51,7 +49,7 @@
     "defaults (the contact's documentation says why and what to do otherwise).</li>\n</ul>\n"
 
 /* What each output depends on (ModelStructure, both FMI versions; columns
- * as in model_variables.h).  u1, u2, N, x1, x2 follow from the state and the
+ * as in models/OrthotropicContact/table.h).  u1, u2, N, x1, x2 follow from the state and the
  * time, not from an input: no direct feedthrough, so a master needs no
  * iteration; driveForce = fInt - T1 reads the input T1 with the factor -1.
  * In initialization x1 = velocity * startTime, x2 = 0, N = mass g. */

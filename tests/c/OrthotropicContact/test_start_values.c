@@ -13,8 +13,8 @@
 #include "check.h"
 #include "fmi2Functions.h"
 #include "fmi3Functions.h"
-#include "fmu_instance.h"
-#include "model_variables.h"
+#include "glue/fmu_instance.h"
+#include "models/OrthotropicContact/table.h"
 
 static char last_message[1024];
 

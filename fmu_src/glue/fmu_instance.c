@@ -1,4 +1,4 @@
-#include "fmu_instance.h"
+#include "glue/fmu_instance.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fmu_bytes.h"
+#include "glue/fmu_bytes.h"
 
 const char *const FMU_LOG_NAMES[FMU_LOG_N] = {"logStatusError", "logStatusWarning", "logCalls"};
 

@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "fmi3Functions.h"
-#include "fmu_instance.h"
+#include "glue/fmu_instance.h"
 
 #define INST(c) ((fmu_instance *)(c))
 

@@ -10,7 +10,7 @@
 
 #include <stddef.h>
 
-#include "fmu_model.h"
+#include "glue/fmu_model.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -9,8 +9,8 @@
 
 #include "check.h"
 #include "fmi2Functions.h"
-#include "fmu_bytes.h"
-#include "rig_variables.h"
+#include "glue/fmu_bytes.h"
+#include "models/CarriageBlock/table.h"
 
 static char last_message[512];
 

@@ -21,7 +21,7 @@
 
 #include <math.h>
 
-#include "law_variables.h"
+#include "law/law_variables.h"
 
 #define NO_MIN (-HUGE_VAL)
 #define NO_MAX HUGE_VAL
@@ -41,12 +41,10 @@
     "Coupled orthotropic adhesion-friction contact interface (Konyukhov and Schweizerhof "   \
     "2007): tangential force from the displacement of a body on a surface by an implicit " \
     "return mapping"
-/* Sources and headers of the binary besides the version's glue (fmi2_glue.c /
- * fmi3_glue.c); CMake's fmu_add reads both lists from here. */
-#define FMU_SOURCES(S) S(contact_law.c) S(oc_model.c) S(fmu_instance.c)
-#define FMU_HEADERS(S)                                                                         \
-    S(contact_law.h) S(oc_model.h) S(fmu_model.h) S(fmu_instance.h) S(fmu_bytes.h)             \
-    S(model_variables.h) S(law_variables.h) S(fmu_token.h)
+/* Sources of the binary besides the version's glue (glue/fmi2_glue.c,
+ * glue/fmi3_glue.c), under fmu_src/; CMake's fmu_add reads the list from
+ * here and ships the headers of their folders with them. */
+#define FMU_SOURCES(S) S(law/contact_law.c) S(models/OrthotropicContact/model.c) S(glue/fmu_instance.c)
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 
 /* The law in short, for documentation/index.html. */
@@ -124,7 +122,7 @@
     "follows u); give N and a path of u1, u2 as inputs.</p>\n"
 
 /* Enumeration types: T(type name, items), items E(name, value, description);
- * the sliding rules' are law_variables.h's, shared with the patch. */
+ * the sliding rules' are law/law_variables.h's, shared with the patch. */
 #define FMU_ENUM_TYPES(T) T(SlidingRule, OC_SLIDING_RULE_ITEMS) T(InitialSlip, OC_INITIAL_SLIP_ITEMS)
 #define OC_INITIAL_SLIP_ITEMS(E)                                                               \
     E(atInputs, 1, "s = u at the end of initialization: no force until the body moves")        \
@@ -197,7 +195,7 @@
 
 /* The law's rows are marked L in OC_VARIABLES: they are oc_params' fields
  * (contact_law.h), in this order, and their names are the fields' names.
- * oc_model.c stores and serializes them, the compiled master fills them and
+ * models/OrthotropicContact/model.c stores and serializes them, the compiled master fills them and
  * the package's manifest (gen_model_description manifest) lists them as
  * the group "law", all from here. */
 #define FMU_VARIABLES(X) OC_VARIABLES(X, X)

@@ -1,7 +1,7 @@
 /*
  * What the variable tables of the models built on the law (contact_law.h)
  * share: the enumeration of its sliding rules, the type SlidingRule of both
- * the point's (model_variables.h) and the patch's (patch_variables.h)
+ * the point's (models/OrthotropicContact/table.h) and the patch's (models/ContactPatch/table.h)
  * slidingRule, in the tables' E(name, value, description) form.  Its values
  * are oc_rule's.
  */

@@ -1,12 +1,12 @@
-#include "patch_model.h"
+#include "models/ContactPatch/model.h"
 
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
-#include "fmu_bytes.h"
-#include "fmu_instance.h"
+#include "glue/fmu_bytes.h"
+#include "glue/fmu_instance.h"
 
 /* Where each variable of the table lives.  The law's parameters (the
  * table's L rows) live in params under their own names. */
@@ -44,7 +44,7 @@ static fmu_status derivative(const patch_model *m, const unsigned int unknown[],
                              double out[], int adjoint, fmu_msg *msg);
 static fmu_status exit_init(patch_model *m, fmu_msg *msg);
 
-/* ---- FMI 3.0: the cells as arrays (patch_variables.h's FMU_ARRAYS) --------- */
+/* ---- FMI 3.0: the cells as arrays (models/ContactPatch/table.h's FMU_ARRAYS) --------- */
 
 static size_t array_size(const patch_model *m, unsigned int vr, int *type) {
     switch (vr) {
@@ -289,7 +289,7 @@ static OC_ALWAYS_INLINE void put_quick(oc_step *to, const oc_step *from) {
  * ones' solves interleaved, each the cell's own step bit for bit), and
  * summed after.  Whether every number is finite is read off the sums once
  * a step; only a step that fails looks for its first non-finite cell.
- * tests/c/test_patch_model.c holds the result to the plain per-cell step,
+ * tests/c/ContactPatch/test_patch_model.c holds the result to the plain per-cell step,
  * bit for bit. */
 static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell_source *src,
                              oc_step *out, patch_sums *S, fmu_msg *msg) {

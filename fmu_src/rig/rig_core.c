@@ -1,5 +1,5 @@
 /* The carriage/block rig of the paper's experiment (rig_core.h). */
-#include "rig_core.h"
+#include "rig/rig_core.h"
 
 #include <math.h>
 

@@ -390,7 +390,7 @@ static void fmi2(FILE *f, const char *token) {
                "    providesDirectionalDerivative=\"%s\">\n    <SourceFiles>\n",
             FMU_MODEL_IDENTIFIER, TF(FMU_PROVIDES_DERIVATIVES));
     for (int i = 0; i < NSOURCES; ++i) fprintf(f, "      <File name=\"%s\"/>\n", SOURCES[i]);
-    fputs("      <File name=\"fmi2_glue.c\"/>\n    </SourceFiles>\n  </CoSimulation>\n\n", f);
+    fputs("      <File name=\"glue/fmi2_glue.c\"/>\n    </SourceFiles>\n  </CoSimulation>\n\n", f);
     unit_definitions(f);
     log_categories(f);
     fputs("  <ModelVariables>\n", f);
@@ -505,7 +505,7 @@ static void build(FILE *f) {
                "  <BuildConfiguration modelIdentifier=\"%s\">\n"
                "    <SourceFileSet language=\"C99\">\n", FMU_MODEL_IDENTIFIER);
     for (int i = 0; i < NSOURCES; ++i) fprintf(f, "      <SourceFile name=\"%s\"/>\n", SOURCES[i]);
-    fputs("      <SourceFile name=\"fmi3_glue.c\"/>\n    </SourceFileSet>\n"
+    fputs("      <SourceFile name=\"glue/fmi3_glue.c\"/>\n    </SourceFileSet>\n"
           "    <Library name=\"m\" description=\"the C math library (Linux)\"/>\n"
           "  </BuildConfiguration>\n</fmiBuildDescription>\n", f);
 }

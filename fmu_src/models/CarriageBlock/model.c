@@ -1,13 +1,13 @@
 /* The carriage/block rig as a model of the shared FMI glue (fmu_model.h): a
- * second model beside the contact, with its own table (rig_variables.h). */
+ * second model beside the contact, with its own table (models/CarriageBlock/table.h). */
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
-#include "fmu_bytes.h"
-#include "fmu_model.h"
-#include "rig_core.h"
-#include "rig_variables.h"
+#include "glue/fmu_bytes.h"
+#include "glue/fmu_model.h"
+#include "rig/rig_core.h"
+#include "models/CarriageBlock/table.h"
 
 enum { N_PAR = 6 }; /* mass, g, fInt, velocity, muStrip, cStrip: vr 1..6 */
 

@@ -6,7 +6,7 @@
 
 #include "check.h"
 #include "fmi3Functions.h"
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 
 static int n_logged;
 static char last_message[512];

@@ -7,11 +7,11 @@
 
 #include "check.h"
 #include "random_values.h"
-#include "contact_law.h"
-#include "fmu_bytes.h"
-#include "fmu_model.h"
-#include "model_variables.h"
-#include "oc_model.h"
+#include "law/contact_law.h"
+#include "glue/fmu_bytes.h"
+#include "glue/fmu_model.h"
+#include "models/OrthotropicContact/table.h"
+#include "models/OrthotropicContact/model.h"
 
 static const double PI = 3.14159265358979323846;
 

@@ -1,12 +1,12 @@
-#include "oc_model.h"
+#include "models/OrthotropicContact/model.h"
 
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
-#include "fmu_bytes.h"
-#include "fmu_instance.h"
-#include "model_variables.h"
+#include "glue/fmu_bytes.h"
+#include "glue/fmu_instance.h"
+#include "models/OrthotropicContact/table.h"
 
 /* Where each variable of the table lives: the glue reads and writes them
  * there, and the outputs are kept current by evaluate.  The law's
@@ -65,7 +65,7 @@ static FMU_HOT void show(oc_model *m) {
     m->contact = st->contact;
 }
 
-/* The committed state before the first step (see oc_model.h). */
+/* The committed state before the first step (see models/OrthotropicContact/model.h). */
 static oc_state initial_state(const oc_model *m) {
     return m->initial_slip == OC_INITIAL_EXPLICIT ? oc_state_unloaded(m->s_start[0], m->s_start[1], 0.0)
                                                   : oc_state_unloaded(m->u[0], m->u[1], 0.0);

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
-#include "fmu_instance.h"
+#include "glue/fmu_instance.h"
 
 #define INST(c) ((fmu_instance *)(c))
 

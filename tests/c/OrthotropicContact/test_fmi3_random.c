@@ -10,7 +10,7 @@
 
 #include "check.h"
 #include "fmi3Functions.h"
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 #include "random_values.h"
 
 static void quiet(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {

@@ -3,7 +3,7 @@
  * lateral step with the strip's Coulomb and viscous terms, the quasi-static
  * lateral solve, the streaming line fit of the trajectory angle, the step
  * count and the rig's run loop over any contact.  The CarriageBlock FMU
- * (rig_model.c) takes its step from here, the compiled master
+ * (models/CarriageBlock/model.c) takes its step from here, the compiled master
  * (master_src/rig_master.c) its whole loop.  No FMI in it: the contact is
  * reached through rig_contact's functions.
  *

@@ -7,7 +7,7 @@
 
 #include "check.h"
 #include "fmi2Functions.h"
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 
 static int n_logged;
 static char last_category[64], last_message[512];

@@ -9,7 +9,7 @@
 
 #include "check.h"
 #include "fmi2Functions.h"
-#include "model_variables.h"
+#include "models/OrthotropicContact/table.h"
 #include "random_values.h"
 
 static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,

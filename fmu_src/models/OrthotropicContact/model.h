@@ -1,6 +1,6 @@
 /*
  * The contact element as a model of the shared FMI glue (fmu_model.h),
- * independent of the FMI version: the variables of model_variables.h, the
+ * independent of the FMI version: the variables of models/OrthotropicContact/table.h, the
  * pending/committed step logic and the serialized state.
  *
  * Step semantics: setting inputs computes the step from the committed state
@@ -17,8 +17,8 @@
 #ifndef OC_MODEL_H
 #define OC_MODEL_H
 
-#include "contact_law.h"
-#include "fmu_model.h"
+#include "law/contact_law.h"
+#include "glue/fmu_model.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -48,7 +48,7 @@ struct fmu_model {
 };
 typedef struct fmu_model oc_model;
 
-/* The values of the parameter initialSlip (model_variables.h). */
+/* The values of the parameter initialSlip (models/OrthotropicContact/table.h). */
 enum { OC_INITIAL_AT_INPUTS = 1, OC_INITIAL_EXPLICIT = 2 };
 
 #ifdef __cplusplus
