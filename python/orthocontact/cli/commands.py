@@ -216,7 +216,7 @@ def _dask_for(args):
 
 
 def _default_workers() -> int:
-    from ..runs.pool import default_workers
+    from ..runtime.workers import default_workers
     return default_workers()
 
 

@@ -196,7 +196,7 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
     """The rig over the scenario's angles for `samples` parameter sets.
     scheduler None runs here, in this process; "local" or an address on Dask."""
     from ..fmu.files import find_fmu
-    from ..runs.pool import Progress
+    from ..runs.progress import Progress
     t0 = time.time()
     check_geometry(sc, est)
     fmu_path = find_fmu(fmu_path)
