@@ -202,8 +202,8 @@ static run_result run_points(const fmi2_api *a, const grid *G, int slip, long st
     /* the cell's law by the patch table's names, set by the point table's */
 #define CELL_VALUE(name, ...) G->cell.name,
 #define CELL_NAME(name, ...) #name,
-    const double law[] = {PATCH_LAW_PARAMETERS(CELL_VALUE)};
-    const char *order[] = {PATCH_LAW_PARAMETERS(CELL_NAME)};
+    const double law[] = {OC_LAW_PARAMETERS(CELL_VALUE)};
+    const char *order[] = {OC_LAW_PARAMETERS(CELL_NAME)};
 #undef CELL_VALUE
 #undef CELL_NAME
     enum { N_LAW = sizeof law / sizeof law[0] };
@@ -308,7 +308,7 @@ int main(int argc, char **argv) {
     static const double START[PATCH_VR_COUNT_PLUS_ONE] = {PATCH_VARIABLES(START_OF, START_OF)};
 #undef START_OF
 #define START_FIELD(name, vr, ...) .name = START[vr],
-    const oc_params p = {PATCH_LAW_PARAMETERS(START_FIELD).rule = (int)START[PATCH_VR_slidingRule]};
+    const oc_params p = {OC_LAW_PARAMETERS(START_FIELD).rule = (int)START[PATCH_VR_slidingRule]};
 #undef START_FIELD
     const double d[8] = {0, 0, 0, 0, 0, 0, START[PATCH_VR_length], START[PATCH_VR_width]};
 

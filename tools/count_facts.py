@@ -40,7 +40,7 @@ SIX = ("mu1", "mu2", "eps1", "eps2", "alpha", "beta")
 GAP = 3  # lines between two consecutive names of one place
 CODE = re.compile(r"\.(py|c|h|sh|toml|cmake)$|(^|/)(CMakeLists\.txt|Makefile)$")
 ASIDE = (  # (category, path pattern), first match wins; the rest is "code"
-    ("table", r"^fmu_src/models/\w+/table\.h$|^fmu_src/law/law_variables\.h$"),
+    ("table", r"^fmu_src/models/\w+/table\.h$|^fmu_src/law/law_table\.h$"),
     ("closed forms", r"^python/orthocontact/closed_forms/"),
     ("tests", r"^tests/"),
     ("independent references", r"^benchmarks/peer/|^tools/(rig_reference|make_recordings)\.py$"),

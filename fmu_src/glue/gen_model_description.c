@@ -565,9 +565,7 @@ static void html(FILE *f, int v) {
     fprintf(f, ".</p>\n<p>This page describes the FMI %d.0 FMU; the FMI %d.0 one of the same "
                "version is built from the same sources and gives the same outputs bit for bit.</p>\n",
             v, v == 2 ? 3 : 2);
-#ifdef FMU_DOC_HTML
-    doc(f, FMU_DOC_HTML, v);
-#endif
+    doc(f, FMU_DOC_HTML, v); /* the table's text (glue/fmu_table.h) */
     fputs("<h2>Variables</h2>\n<table>\n<tr><th>name</th><th>vr</th><th>causality</th>"
           "<th>variability</th><th>type</th><th>unit</th><th>start</th><th>min</th><th>max</th>"
           "<th>description</th></tr>\n", f);

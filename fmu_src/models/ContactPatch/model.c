@@ -604,7 +604,7 @@ static fmu_status derivative(const patch_model *m, const unsigned int unknown[],
  * inputs (u1, u2, theta, N, p1, p2), commit flag, then PATCH_MAX_CELLS
  * committed cell states (those beyond n1 n2 zero: the size is fixed). */
 #define LAW_COUNT(...) +1
-enum { N_PARAM_F64 = 0 PATCH_LAW_PARAMETERS(LAW_COUNT) };
+enum { N_PARAM_F64 = 0 OC_LAW_PARAMETERS(LAW_COUNT) };
 static size_t head_bytes(void) { return 8 * N_PARAM_F64 + 4 + 4 + 8 * 2 + 8 * 2 + 4 * 2 + 8 * 6 + 4; }
 size_t fmu_model_state_size(void) {
     return head_bytes() + (size_t)PATCH_MAX_CELLS * 8 * N_STATE_F64;
@@ -614,7 +614,7 @@ void fmu_model_state_write(const patch_model *m, unsigned char *p) {
     const oc_params *q = &m->params;
     const patch_setup *g = &m->g;
 #define PUT_LAW(name, ...) p = fmu_put_f64(p, q->name);
-    PATCH_LAW_PARAMETERS(PUT_LAW)
+    OC_LAW_PARAMETERS(PUT_LAW)
 #undef PUT_LAW
     p = fmu_put_u32(p, (uint32_t)q->rule);
     p = fmu_put_u32(p, (uint32_t)g->initial_slip);
@@ -643,7 +643,7 @@ fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg 
     memset(&g, 0, sizeof g);
     uint32_t rule, initial, n1, n2, done;
 #define GET_LAW(name, ...) p = fmu_get_f64(p, &q.name);
-    PATCH_LAW_PARAMETERS(GET_LAW)
+    OC_LAW_PARAMETERS(GET_LAW)
 #undef GET_LAW
     p = fmu_get_u32(p, &rule);
     p = fmu_get_u32(p, &initial);
@@ -660,7 +660,7 @@ fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg 
     const char *ctx = "serialized state";
 #define CHECK_LAW(name, vr, ...) \
     if (fmu_model_check_range(vr, q.name, ctx, msg) != FMU_OK) return FMU_ERR;
-    PATCH_LAW_PARAMETERS(CHECK_LAW)
+    OC_LAW_PARAMETERS(CHECK_LAW)
 #undef CHECK_LAW
     if (rule > (uint32_t)INT32_MAX || initial > (uint32_t)INT32_MAX || n1 > (uint32_t)INT32_MAX ||
         n2 > (uint32_t)INT32_MAX ||
@@ -694,7 +694,7 @@ fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg 
     oc_law law;
     int same = m->params.rule == q.rule && m->g.n[0] == g.n[0] && m->g.n[1] == g.n[1];
 #define SAME_LAW(name, ...) same = same && memcmp(&m->params.name, &q.name, sizeof(double)) == 0;
-    PATCH_LAW_PARAMETERS(SAME_LAW)
+    OC_LAW_PARAMETERS(SAME_LAW)
 #undef SAME_LAW
     fmu_msg why;
     if (same) law = m->law;

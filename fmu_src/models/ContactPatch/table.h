@@ -1,8 +1,9 @@
 /*
- * The one table of the ContactPatch FMU's variables: a rectangle length x
- * width of a rigid body on a flat surface, divided into n1 x n2 equal cells,
- * each cell the law of contact_law.h at its centre with its own slip state.
- * Columns as in models/OrthotropicContact/table.h; the law's rows are marked L as there.
+ * The one table of the ContactPatch FMU (glue/fmu_table.h says what a
+ * table holds): a rectangle length x width of a rigid body on a flat
+ * surface, divided into n1 x n2 equal cells, each cell the law
+ * (law/contact_law.h) at its centre with its own slip state; the law's rows
+ * (law/law_table.h) are the patch's.
  *
  * Geometry (models/ContactPatch/model.c says how each number is formed):
  *   - a cell centre r = (xi length, eta width) in body coordinates, xi, eta
@@ -25,12 +26,8 @@
 #ifndef PATCH_VARIABLES_H
 #define PATCH_VARIABLES_H
 
-#include <math.h>
-
-#include "law/law_variables.h"
-
-#define NO_MIN (-HUGE_VAL)
-#define NO_MAX HUGE_VAL
+#include "glue/fmu_table.h"
+#include "law/law_table.h"
 
 #define FMU_MODEL_NAME "ContactPatch"
 #define FMU_MODEL_IDENTIFIER "ContactPatch"
@@ -49,32 +46,35 @@
  * in size (fmu_model.h), so they hold this many cells whatever n1, n2 are. */
 #define PATCH_MAX_SIDE 32
 
-#define FMU_DOC_HTML                                                                             \
-    "<h2>The patch</h2>\n<ul>\n"                                                                 \
-    "<li>A rigid rectangle length &times; width on a flat surface, n1 &times; n2 equal cells. "  \
-    "Each cell is the point law (the OrthotropicContact FMU's) at its centre r (body "          \
-    "coordinates) with its own slip: displacement d = u + (R(theta) - I) r, normal force "      \
-    "N w (1 + p1 x/S1 + p2 y/S2) with w = 1/(n1 n2) and S1 = length<sup>2</sup> (1 - "         \
-    "1/n1<sup>2</sup>)/12, S2 likewise (the mean of x<sup>2</sup>, y<sup>2</sup> over the "      \
-    "cells), so that the cells' normal forces have resultant N and first moment N (p1, p2) "  \
-    "exactly on every grid; stiffness (eps1, eps2) times the cell's share of the area.  The " \
-    "texture's axes alpha, beta are the surface's.</li>\n"                                     \
-    "<li>T1, T2: the sum of the cells' forces on the body; Mz: their moment about the patch "    \
-    "centre, sum of (R r) &times; T<sub>cell</sub>, counterclockwise; all in the surface "      \
-    "frame.</li>\n"                                                                              \
-    "<li>With N &gt; 0 the centre of pressure must lie in the kern, |p1|/length + |p2|/width " \
-    "&le; 1/6 (no corner in tension), and be 0 along a side of one cell (p1 = 0 if n1 = 1: "   \
-    "its cells cannot carry it); with N &le; 0 the contact is open and p is not looked at.  "  \
-    "The pending step is computed when inputs are set, so the set call that leaves N, p1, p2 " \
-    "otherwise is refused (an error status, the reason logged, nothing changed), as is any "   \
-    "value that would make an output not finite: set N, p1, p2 in one call.</li>\n"            \
-    "<li>Not modelled: rolling, a curved surface, a pressure other than linear, the body's "    \
-    "deformation.</li>\n</ul>\n"                                                                 \
-    "<h2>Step semantics</h2>\n<p>As the point FMU: setting inputs computes every cell's step "    \
-    "from the committed state without committing it; @DOSTEP@ commits all cells at once, or "   \
-    "none.  @DIRDER@ gives the derivatives of T1, T2, Mz, dissipatedEnergy with respect to u1, " \
-    "u2, theta, N, p1, p2: the sum of the cells' consistent tangents through the kinematics."  \
-    "</p>\n"
+#ifdef FMU_GENERATOR
+/* The patch, for documentation/index.html. */
+static const char FMU_DOC_HTML[] =
+    "<h2>The patch</h2>\n<ul>\n"
+    "<li>A rigid rectangle length &times; width on a flat surface, n1 &times; n2 equal cells. "
+    "Each cell is the point law (the OrthotropicContact FMU's) at its centre r (body "
+    "coordinates) with its own slip: displacement d = u + (R(theta) - I) r, normal force "
+    "N w (1 + p1 x/S1 + p2 y/S2) with w = 1/(n1 n2) and S1 = length<sup>2</sup> (1 - "
+    "1/n1<sup>2</sup>)/12, S2 likewise (the mean of x<sup>2</sup>, y<sup>2</sup> over the "
+    "cells), so that the cells' normal forces have resultant N and first moment N (p1, p2) "
+    "exactly on every grid; stiffness (eps1, eps2) times the cell's share of the area.  The "
+    "texture's axes alpha, beta are the surface's.</li>\n"
+    "<li>T1, T2: the sum of the cells' forces on the body; Mz: their moment about the patch "
+    "centre, sum of (R r) &times; T<sub>cell</sub>, counterclockwise; all in the surface "
+    "frame.</li>\n"
+    "<li>With N &gt; 0 the centre of pressure must lie in the kern, |p1|/length + |p2|/width "
+    "&le; 1/6 (no corner in tension), and be 0 along a side of one cell (p1 = 0 if n1 = 1: "
+    "its cells cannot carry it); with N &le; 0 the contact is open and p is not looked at.  "
+    "The pending step is computed when inputs are set, so the set call that leaves N, p1, p2 "
+    "otherwise is refused (an error status, the reason logged, nothing changed), as is any "
+    "value that would make an output not finite: set N, p1, p2 in one call.</li>\n"
+    "<li>Not modelled: rolling, a curved surface, a pressure other than linear, the body's "
+    "deformation.</li>\n</ul>\n"
+    "<h2>Step semantics</h2>\n<p>As the point FMU: setting inputs computes every cell's step "
+    "from the committed state without committing it; @DOSTEP@ commits all cells at once, or "
+    "none.  @DIRDER@ gives the derivatives of T1, T2, Mz, dissipatedEnergy with respect to u1, "
+    "u2, theta, N, p1, p2: the sum of the cells' consistent tangents through the kinematics."
+    "</p>\n";
+#endif
 
 #define FMU_ENUM_TYPES(T) T(SlidingRule, OC_SLIDING_RULE_ITEMS) T(InitialSlip, PATCH_INITIAL_SLIP_ITEMS)
 #define PATCH_INITIAL_SLIP_ITEMS(E)                                                              \
@@ -84,8 +84,7 @@
       "translation at theta = 0")
 
 #define PATCH_KNOWNS_NO_RULE                                                                     \
-    "mu1 mu2 eps1 eps2 alpha beta initialSlip s1Start s2Start length width n1 n2 u1 u2 theta N " \
-    "p1 p2"
+    OC_LAW_NAMES "initialSlip s1Start s2Start length width n1 n2 u1 u2 theta N p1 p2"
 #define PATCH_KNOWNS PATCH_KNOWNS_NO_RULE " slidingRule"
 #define PATCH_INPUTS "u1 u2 theta N p1 p2"
 #define FMU_DEPENDENCIES(D)                                                                      \
@@ -94,33 +93,17 @@
     D(slipFraction, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)                                          \
     D(contactState, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)
 
-#define PATCH_VARIABLES(X, L)                                                                    \
-    X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "", "Simulation time") \
-    L(mu1, 1, Float64, parameter, fixed, exact, 0.408, 1e-150, 1e150, "1", "",                   \
-      "Friction coefficient along friction axis 1 (at angle beta)")                              \
-    L(mu2, 2, Float64, parameter, fixed, exact, 0.625, 1e-150, 1e150, "1", "",                   \
-      "Friction coefficient along friction axis 2 (at angle beta + 90 deg)")                     \
-    L(eps1, 3, Float64, parameter, fixed, exact, 12510.0, 1e-300, 1e300, "N/m", "",              \
-      "Tangential stiffness of the whole patch along adhesion axis 1 (at angle alpha), shared " \
-      "among the cells by area")                                                                 \
-    L(eps2, 4, Float64, parameter, fixed, exact, 10000.0, 1e-300, 1e300, "N/m", "",              \
-      "Tangential stiffness of the whole patch along adhesion axis 2 (at angle alpha + 90 "     \
-      "deg), shared among the cells by area")                                                    \
-    L(alpha, 5, Float64, parameter, fixed, exact, 1.5707963267948966, -12.566370614359172,       \
-      12.566370614359172, "rad", "deg", "Angle of adhesion axis 1, counterclockwise from X1 "    \
-      "(fixed to the surface)")                                                                  \
-    L(beta, 6, Float64, parameter, fixed, exact, 0.0, -12.566370614359172, 12.566370614359172,   \
-      "rad", "deg", "Angle of friction axis 1, counterclockwise from X1 (fixed to the surface)") \
-    X(slidingRule, 7, SlidingRule, parameter, fixed, exact, 2, 1, 3, "", "",                     \
-      "Sliding rule: 1 associated (G = F), 2 coupled (G = (B F B)^-1), "                         \
-      "3 literal eq. (20) of the paper (step-size dependent, for reproduction only)")           \
+/* The variables: time, the law's rows (value references 1 to 7), then: */
+#define PATCH_INITIAL_SLIP_ROWS(X)                                                               \
     X(initialSlip, 8, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                     \
       "Initial slip: 1 atInputs (every cell unloaded where the inputs put it when "              \
       "initialization ends), 2 explicit (every cell's slip (s1Start, s2Start))")                 \
     X(s1Start, 9, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                 \
       "Initial slip of every cell along X1 when initialSlip = explicit")                         \
     X(s2Start, 10, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                \
-      "Initial slip of every cell along X2 when initialSlip = explicit")                         \
+      "Initial slip of every cell along X2 when initialSlip = explicit")
+
+#define PATCH_GEOMETRY_ROWS(X)                                                                   \
     X(length, 11, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                 \
       "Side of the patch along the body's axis 1 (X1 at theta = 0)")                             \
     X(width, 12, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                  \
@@ -128,13 +111,17 @@
     X(n1, 13, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
       "Number of cells along length (at most PATCH_MAX_SIDE = 32)")                              \
     X(n2, 14, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
-      "Number of cells along width (at most PATCH_MAX_SIDE = 32)")                               \
+      "Number of cells along width (at most PATCH_MAX_SIDE = 32)")
+
+#define PATCH_MOTION_ROWS(X)                                                                     \
     X(u1, 15, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
       "Displacement of the patch centre relative to the surface along X1")                       \
     X(u2, 16, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
       "Displacement of the patch centre relative to the surface along X2")                       \
     X(theta, 17, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                \
-      "Rotation of the body relative to the surface, counterclockwise about the normal")         \
+      "Rotation of the body relative to the surface, counterclockwise about the normal")
+
+#define PATCH_LOAD_ROWS(X)                                                                       \
     X(N, 18, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                         \
       "Total normal force pressing the body on the surface (N <= 0: open contact)")              \
     X(p1, 19, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
@@ -142,14 +129,18 @@
       "|p1|/length + |p2|/width <= 1/6 and p1 = 0 if n1 = 1")                                    \
     X(p2, 20, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
       "Centre of pressure along the body's axis 2 (0: uniform pressure); while N > 0, "          \
-      "|p1|/length + |p2|/width <= 1/6 and p2 = 0 if n2 = 1")                                    \
+      "|p1|/length + |p2|/width <= 1/6 and p2 = 0 if n2 = 1")
+
+#define PATCH_RESULTANT_ROWS(X)                                                                  \
     X(T1, 21, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
       "Tangential force of the surface on the body along X1 (sum over the cells)")              \
     X(T2, 22, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
       "Tangential force of the surface on the body along X2 (sum over the cells)")              \
     X(Mz, 23, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
       "Moment of the surface on the body about the normal through the patch centre, "            \
-      "counterclockwise")                                                                        \
+      "counterclockwise")
+
+#define PATCH_STATE_ROWS(X)                                                                      \
     X(dissipatedEnergy, 24, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J",   \
       "", "Frictional energy dissipated by all cells over the committed steps")                 \
     X(slipFraction, 25, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",         \
@@ -157,6 +148,12 @@
     X(contactState, 26, Int32, output, discrete, calculated, 0, 0, 3, "", "",                    \
       "State of the step: 0 open (no cell pressed), 1 every pressed cell sticks, 2 some slip, "  \
       "3 every pressed cell slips")
+
+#define PATCH_VARIABLES(X, L)                                                                    \
+    X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "",                 \
+      "Simulation time")                                                                         \
+    OC_LAW_ROWS(L, X) PATCH_INITIAL_SLIP_ROWS(X) PATCH_GEOMETRY_ROWS(X) PATCH_MOTION_ROWS(X)     \
+    PATCH_LOAD_ROWS(X) PATCH_RESULTANT_ROWS(X) PATCH_STATE_ROWS(X)
 
 /* FMI 3.0 only: the cells' forces and states as arrays of shape (n1, n2),
  * element [i][j] the cell i along length, j along width (row-major, j
@@ -173,8 +170,6 @@
       "State of each cell in this step: 0 open, 1 stick, 2 slip")
 
 #define FMU_VARIABLES(X) PATCH_VARIABLES(X, X)
-#define FMU_NO_ROW(...)
-#define PATCH_LAW_PARAMETERS(L) PATCH_VARIABLES(FMU_NO_ROW, L)
 #define FMU_GROUPED_VARIABLES(X, L) PATCH_VARIABLES(X, L)
 #define FMU_GROUP "law"
 

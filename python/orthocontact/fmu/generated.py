@@ -27,15 +27,17 @@ LAW: tuple[Row, ...] = (
     Row("mu2", type="Float64", unit="", min=1e-150, max=1e+150, start=0.625,
         description="Friction coefficient along friction axis 2 (at angle beta + 90 deg)"),
     Row("eps1", type="Float64", unit="N/m", min=1e-300, max=1e+300, start=12510,
-        description="Tangential (adhesion) stiffness along adhesion axis 1 (at angle alpha)"),
+        description="Tangential (adhesion) stiffness along adhesion axis 1 (at angle alpha); a patch shares"
+                    " it among its cells by area"),
     Row("eps2", type="Float64", unit="N/m", min=1e-300, max=1e+300, start=10000,
-        description="Tangential (adhesion) stiffness along adhesion axis 2 (at angle alpha + 90 deg)"),
+        description="Tangential (adhesion) stiffness along adhesion axis 2 (at angle alpha + 90 deg); a "
+                    "patch shares it among its cells by area"),
     Row("alpha", type="Float64", unit="rad", start=1.5707963267948966,
         min=-12.566370614359172, max=12.566370614359172,   # [-4 pi, 4 pi] rad
-        description="Angle of adhesion axis 1, counterclockwise from X1"),
+        description="Angle of adhesion axis 1, counterclockwise from X1 (fixed to the surface)"),
     Row("beta", type="Float64", unit="rad", start=0,
         min=-12.566370614359172, max=12.566370614359172,   # [-4 pi, 4 pi] rad
-        description="Angle of friction axis 1, counterclockwise from X1"),
+        description="Angle of friction axis 1, counterclockwise from X1 (fixed to the surface)"),
 )
 
 # The sliding rules' names and the numbers the FMU's slidingRule takes (enumeration SlidingRule).
@@ -49,12 +51,14 @@ class ContactParams(LawParameters):
         mu1    Friction coefficient along friction axis 1 (at angle beta) [-], in [1e-150, 1e+150]
         mu2    Friction coefficient along friction axis 2 (at angle beta + 90 deg) [-], in
                [1e-150, 1e+150]
-        eps1   Tangential (adhesion) stiffness along adhesion axis 1 (at angle alpha) [N/m], in
-               [1e-300, 1e+300]
-        eps2   Tangential (adhesion) stiffness along adhesion axis 2 (at angle alpha + 90 deg)
-               [N/m], in [1e-300, 1e+300]
-        alpha  Angle of adhesion axis 1, counterclockwise from X1 [rad], in [-4 pi, 4 pi]
-        beta   Angle of friction axis 1, counterclockwise from X1 [rad], in [-4 pi, 4 pi]
+        eps1   Tangential (adhesion) stiffness along adhesion axis 1 (at angle alpha); a patch
+               shares it among its cells by area [N/m], in [1e-300, 1e+300]
+        eps2   Tangential (adhesion) stiffness along adhesion axis 2 (at angle alpha + 90 deg); a
+               patch shares it among its cells by area [N/m], in [1e-300, 1e+300]
+        alpha  Angle of adhesion axis 1, counterclockwise from X1 (fixed to the surface) [rad], in
+               [-4 pi, 4 pi]
+        beta   Angle of friction axis 1, counterclockwise from X1 (fixed to the surface) [rad], in
+               [-4 pi, 4 pi]
         rule   sliding rule: 'associated', 'coupled', 'eq20' (by default 'coupled', the table's
                start)
 

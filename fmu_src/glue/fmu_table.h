@@ -1,0 +1,49 @@
+/*
+ * What every model's table (fmu_src/models/<Model>/table.h) is made of.
+ * gen_model_description writes both model descriptions (FMI 2.0 and 3.0),
+ * the FMI 3.0 buildDescription.xml, documentation/index.html and the
+ * package's manifest variables/<Model>.json from a table, and the C code
+ * takes value references, types, start values and min/max from it.
+ *
+ * A table defines:
+ *   FMU_MODEL_NAME, FMU_MODEL_IDENTIFIER, FMU_DESCRIPTION, FMU_STATE_TAG
+ *     (the first bytes of its serialized states), FMU_DEFAULT_EXPERIMENT;
+ *   FMU_SOURCES(S): its sources under fmu_src/ besides the version's glue
+ *     (CMake's fmu_add reads the list; the headers of their folders ship
+ *     with them);
+ *   FMU_VARIABLES(X): its variables, one row each, in the order of the
+ *     model descriptions, value reference 0 the independent variable time;
+ *     a row is X(name, vr, type, causality, variability, initial, start,
+ *     min, max, unit, displayUnit, description):
+ *       type: Float64, Int32 or the name of an enumeration type of
+ *             FMU_ENUM_TYPES (an Integer with min/max in FMI 2.0, an
+ *             Enumeration in FMI 3.0);
+ *       initial: exact or calculated ("calculated" entries have no start);
+ *       min, max: numbers (NO_MIN / NO_MAX for none); the model refuses
+ *             values outside them;
+ *     FMU_GROUPED_VARIABLES(X, G) and FMU_GROUP may mark a group of rows
+ *     (the law's parameters, law/law_table.h), which the manifest names;
+ *   FMU_DEPENDENCIES(D): what each output depends on (model_variables'
+ *     comment in gen_model_description.c);
+ *   optionally FMU_ENUM_TYPES(T), FMU_ARRAYS(A) and
+ *     FMU_STRUCTURAL_PARAMETERS (FMI 3.0 arrays), FMU_PROVIDES_DERIVATIVES;
+ *   for the generator only (#ifdef FMU_GENERATOR), FMU_DOC_HTML: the
+ *     model's part of documentation/index.html.
+ * Its rows are grouped in macros of a few rows each (the inputs, the
+ * outputs, ...), FMU_VARIABLES listing the groups in order.
+ */
+#ifndef FMU_TABLE_H
+#define FMU_TABLE_H
+
+#include <math.h>
+
+#define NO_MIN (-HUGE_VAL)
+#define NO_MAX HUGE_VAL
+
+/* A row macro that drops its row: FMU_NO_ROW for the rows a use leaves out. */
+#define FMU_NO_ROW(...)
+
+/* A row's name and a space: "mu1 mu2 ... " from rows, for a list of knowns. */
+#define FMU_NAME_SPACE(name, ...) #name " "
+
+#endif
