@@ -27,7 +27,6 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 
 import rig_reference as ref  # noqa: E402
-
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.estimators import joint_fit, start_values
 from orthocontact.identification.measurements import MeasurementSet

@@ -13,10 +13,16 @@ from orthocontact.fmu.params import ContactParams
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
 
 from cli_run import run_cli  # noqa: E402  (tests/ is on sys.path: the shared helpers)
+
 # The optional parts' summary and the session's failure when a required one is missing.
-from optional_parts import (pytest_addoption, pytest_configure,  # noqa: E402,F401
-                            pytest_runtest_setup, pytest_sessionfinish, pytest_terminal_summary,
-                            pytest_testnodedown)
+from optional_parts import (  # noqa: E402,F401
+    pytest_addoption,
+    pytest_configure,
+    pytest_runtest_setup,
+    pytest_sessionfinish,
+    pytest_terminal_summary,
+    pytest_testnodedown,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -14,7 +14,6 @@ from fmpy.fmi2 import FMU2Slave
 from fmpy.fmi3 import FMU3Slave
 from lxml import etree
 
-
 _UNZIPPED: dict = {}
 
 

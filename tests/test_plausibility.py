@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import CMD
 
+from cli_run import CMD
 from orthocontact import plausibility
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.measurements import write_measurements

@@ -7,8 +7,8 @@ import shutil
 from pathlib import Path
 
 import pytest
-from cli_run import one_error_line, run_cli
 
+from cli_run import one_error_line, run_cli
 from orthocontact.errors import InputError
 from orthocontact.textfiles import files_read, read_rows, read_text, read_toml, sha256_of
 

@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 
 import pytest
+
 from cli_run import CMD, busy_dashboard_port, leftovers
 from procs import alive, children, descendants
 

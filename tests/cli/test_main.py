@@ -8,8 +8,9 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from cli_run import CMD, SCENARIOS, run_cli, timed_run as run
 
+from cli_run import CMD, SCENARIOS, run_cli
+from cli_run import timed_run as run
 from orthocontact.cli.main import OS_ERROR, main
 
 
@@ -120,6 +121,7 @@ def test_python_and_numpy_warnings_are_at_most_one_line_each(capsys):
     import warnings
 
     import numpy as np
+
     from orthocontact.cli.main import show_warning
     from orthocontact.cli.output import forget_warnings, warnings_said
     forget_warnings()

@@ -11,11 +11,18 @@ import time
 from pathlib import Path
 
 import pytest
-from cli_run import CMD, case4_named, leftovers, one_error_line, run_cli as run, timed_run
 
+from cli_run import CMD, case4_named, leftovers, one_error_line, timed_run
+from cli_run import run_cli as run
 from orthocontact.cli.main import main
-from orthocontact.cli.output import (check_output_file, check_output_folder, forget_warnings,
-                                     staged_output, warn, warnings_said)
+from orthocontact.cli.output import (
+    check_output_file,
+    check_output_folder,
+    forget_warnings,
+    staged_output,
+    warn,
+    warnings_said,
+)
 from orthocontact.errors import InputError
 from orthocontact.output.manifest import MANIFEST, file_sha256
 from orthocontact.runtime.folders import LOCK

@@ -5,8 +5,9 @@ import time
 from pathlib import Path
 
 import pytest
-from cli_run import leftovers, one_error_line, run_cli as run, timed_run
 
+from cli_run import leftovers, one_error_line, timed_run
+from cli_run import run_cli as run
 from orthocontact.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -5,8 +5,8 @@ import math
 
 import numpy as np
 import pytest
-import rig_reference
 
+import rig_reference
 from orthocontact import closed_forms as cf
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams

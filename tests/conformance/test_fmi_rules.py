@@ -11,19 +11,19 @@ import copy
 import xml.etree.ElementTree as ET
 import zipfile
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from typing import Callable
 
 import pytest
-from conformance.fmi_rules import RULES, violations
 
+from conformance.fmi_rules import RULES, violations
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import models
 
 VERSIONS = (2, 3)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _xml(model: str, version: int) -> bytes:
     with zipfile.ZipFile(find_fmu(fmi_version=version, model=model)) as z:
         return z.read("modelDescription.xml")

@@ -28,9 +28,9 @@ from importlib.metadata import version as installed_version
 
 import numpy as np
 import pytest
-from conformance.drive import (STEP, clock, input_rows, inputs, outputs, run_fmpy)
-from optional_parts import record
 
+from conformance.drive import STEP, clock, input_rows, inputs, outputs, run_fmpy
+from optional_parts import record
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import models
 

@@ -14,8 +14,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from conformance.drive import Instance, changed_parameters, clock, input_rows
 
+from conformance.drive import Instance, changed_parameters, clock, input_rows
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import models
 

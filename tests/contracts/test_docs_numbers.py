@@ -11,9 +11,9 @@ import sys
 from pathlib import Path
 
 import pytest
+
 from cli_run import CMD
 from optional_parts import record, usable
-
 from orthocontact.cli.parser import build_parser
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -6,7 +6,7 @@ import ast
 import re
 from pathlib import Path
 
-import count_facts as facts   # tools/ is on sys.path (conftest)
+import count_facts as facts  # tools/ is on sys.path (conftest)
 import make_generated
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -1,6 +1,7 @@
 """The one validator of the experiment's files (orthocontact.experiment.keys):
 a scenario's [rig] table and a lab's rig.toml check the same keys the same way."""
 from pathlib import Path
+
 import pytest
 
 from orthocontact.errors import InputError

@@ -6,11 +6,11 @@ from pathlib import Path
 
 import pytest
 
+from cli_run import SCENARIOS, scenario_variant
 from orthocontact.errors import InputError
 from orthocontact.experiment.kinds import KINDS, PARTS, fmu_for, kind_of, register, require_mat_angles
 from orthocontact.experiment.scenario import COMMON, SCHEMA, ScenarioError, load
 from orthocontact.fmu.files import find_fmu
-from cli_run import SCENARIOS, scenario_variant
 
 PKG = Path(__file__).resolve().parents[2] / "python" / "orthocontact"
 

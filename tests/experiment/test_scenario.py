@@ -6,8 +6,9 @@ import os
 from pathlib import Path
 
 import pytest
-from cli_run import SCENARIOS, case4_named, error_lines, one_error_line, run_cli as run, scenario_variant
 
+from cli_run import SCENARIOS, case4_named, error_lines, one_error_line, scenario_variant
+from cli_run import run_cli as run
 from orthocontact.cli.main import main
 from orthocontact.experiment.scenario import ScenarioError, load
 
@@ -394,6 +395,7 @@ def test_every_scenario_the_schema_accepts_ends_in_a_result_or_one_line(tmp_path
     import tempfile
 
     from hypothesis import HealthCheck, given, settings
+
     from orthocontact.experiment.kinds import KINDS
     assert kind in KINDS
 

@@ -18,7 +18,6 @@ import numpy as np
 import pytest
 
 from libcosim_rig import run_rig_ssp
-
 from orthocontact.experiment.scenario import load
 from orthocontact.experiment.ssp import contact_values, rig_values
 from orthocontact.fmu.start_values import start_values_of

@@ -14,11 +14,19 @@ import sys
 import pytest
 from fmpy import read_model_description
 
-import make_generated as mg   # tools/ is on sys.path (conftest)
+import make_generated as mg  # tools/ is on sys.path (conftest)
 from orthocontact.fmu import generated
 from orthocontact.fmu.files import find_fmu
-from orthocontact.fmu.generated import (LAW, PATCH_FLOAT_OUTPUTS, PATCH_GEOMETRY, PATCH_INPUTS,
-                                        PATCH_INTEGER_OUTPUTS, PATCH_MODEL, RULES, ContactParams)
+from orthocontact.fmu.generated import (
+    LAW,
+    PATCH_FLOAT_OUTPUTS,
+    PATCH_GEOMETRY,
+    PATCH_INPUTS,
+    PATCH_INTEGER_OUTPUTS,
+    PATCH_MODEL,
+    RULES,
+    ContactParams,
+)
 from orthocontact.fmu.variables import contact, manifest, models
 
 

@@ -1,6 +1,7 @@
 """The law's parameters (orthocontact.fmu.params): the rules' numbers, degrees
 to radians, the angle range the FMU takes."""
 import math
+
 import pytest
 
 from orthocontact import ContactParams

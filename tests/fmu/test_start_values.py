@@ -7,8 +7,8 @@ import zipfile
 import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
-from fmu_values import schema_errors, values_with_nothing_set
 
+from fmu_values import schema_errors, values_with_nothing_set
 from orthocontact.fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
 from orthocontact.fmu.start_values import StartValueError, start_values_of, write_with_start_values
 

@@ -21,8 +21,8 @@ import zipfile
 import numpy as np
 import pytest
 from fmpy import read_model_description
-from fmu_values import unzipped
 
+from fmu_values import unzipped
 from orthocontact.fmu import find_fmu
 
 M = 0.05                  # the body [kg]

@@ -7,11 +7,11 @@ written out here)."""
 import csv
 from pathlib import Path
 
-import make_crosscheck   # tools/ is on sys.path (conftest)
 import numpy as np
 import pytest
-from conformance.drive import input_rows, inputs, outputs
 
+import make_crosscheck  # tools/ is on sys.path (conftest)
+from conformance.drive import input_rows, inputs, outputs
 from orthocontact import closed_forms as cf
 from orthocontact.closed_forms import patch as cp
 from orthocontact.fmu.files import find_fmu

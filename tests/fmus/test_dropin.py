@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import CASE5, G_N
 
+from conftest import CASE5, G_N
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.params import ContactParams
 from orthocontact.rig.harness import Rig, run

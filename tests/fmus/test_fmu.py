@@ -5,11 +5,11 @@ import zipfile
 
 import numpy as np
 import pytest
-from conftest import CASE1, CASE5, G_N, deg
 from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.validation import validate_fmu
 
+from conftest import CASE1, CASE5, G_N, deg
 from orthocontact import closed_forms as cf
 from orthocontact.fmu.contact import FMUError
 from orthocontact.fmu.params import ContactParams

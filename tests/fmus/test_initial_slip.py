@@ -9,8 +9,8 @@ import math
 
 import pytest
 from fmpy import read_model_description
-from fmu_values import unzipped
 
+from fmu_values import unzipped
 from orthocontact.fmu import RULES, ContactFMU, ContactParams, find_fmu
 
 U = (1.0, 0.5, 18.39)  # an absolute position from t0 and the rig's normal force

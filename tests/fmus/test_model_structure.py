@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
-from fmu_values import schema_errors, unzipped
 
+from fmu_values import schema_errors, unzipped
 from orthocontact import closed_forms as cf
 from orthocontact.fmu import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
 from orthocontact.fmu.slave import integer_call

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 from fmpy import read_model_description
-from fmu_values import unzipped
 
+from fmu_values import unzipped
 from orthocontact.closed_forms import patch as cp
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.slave import integer_call
@@ -63,9 +63,14 @@ class Slave:
         if version == 2:
             import ctypes
 
-            from fmpy.fmi2 import (calloc, fmi2CallbackAllocateMemoryTYPE,
-                                   fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
-                                   fmi2CallbackLoggerTYPE, free)
+            from fmpy.fmi2 import (
+                calloc,
+                fmi2CallbackAllocateMemoryTYPE,
+                fmi2CallbackFreeMemoryTYPE,
+                fmi2CallbackFunctions,
+                fmi2CallbackLoggerTYPE,
+                free,
+            )
             from fmpy.logging import addLoggerProxy
 
             # fmpy's logger proxy calls the last logger registered, for

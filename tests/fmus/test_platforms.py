@@ -9,11 +9,11 @@ import sys
 import zipfile
 from pathlib import Path
 
-import binformat
 import fmpy
 import numpy as np
 import pytest
 
+import binformat
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams

@@ -6,9 +6,9 @@ import math
 
 import pytest
 from fmpy import read_model_description
-from fmu_values import unzipped
 from fmpy.validation import validate_fmu
 
+from fmu_values import unzipped
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams
@@ -37,8 +37,14 @@ def _rig_slave(version, name="rig", messages=None):
     elif version == 2:
         import ctypes
 
-        from fmpy.fmi2 import (calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
+        from fmpy.fmi2 import (
+            calloc,
+            fmi2CallbackAllocateMemoryTYPE,
+            fmi2CallbackFreeMemoryTYPE,
+            fmi2CallbackFunctions,
+            fmi2CallbackLoggerTYPE,
+            free,
+        )
         from fmpy.logging import addLoggerProxy
 
         def log(env, instance, status, category, message):

@@ -23,6 +23,7 @@ different force)."""
 import math
 
 import numpy as np
+
 from optional_parts import need
 
 need("hypothesis", module_level=True)

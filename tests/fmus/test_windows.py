@@ -47,8 +47,8 @@ from pathlib import Path
 import fmpy
 import pytest
 from fmpy import read_model_description
-from optional_parts import wine64
 
+from optional_parts import wine64
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import Manifest, manifest, models
 

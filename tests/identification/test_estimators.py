@@ -3,10 +3,10 @@ recovers the truth from the independent simulator's noise-free data, and
 its intervals cover honestly."""
 from pathlib import Path
 
-import make_recordings as mr
 import numpy as np
 import pytest
 
+import make_recordings as mr
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.estimators import joint_fit, start_values
 from orthocontact.identification.job import load_folder

@@ -7,18 +7,18 @@ import re
 import shutil
 import subprocess
 import sys
-import zipfile
 import xml.etree.ElementTree as ET
+import zipfile
 from datetime import datetime, timezone
 from pathlib import Path
 
 import pytest
 from fmpy.ssp.ssd import read_ssv
 from fmpy.validation import validate_fmu
+
 from cli_run import one_error_line
 from fmu_values import schema_errors, values_with_nothing_set
 from libcosim_rig import run_rig_ssp
-
 from orthocontact import __version__
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.files import find_fmu

@@ -4,9 +4,19 @@ import dataclasses
 import math
 from pathlib import Path
 
-from orthocontact.identification.identified import (REPORTED, SCHEMA_VERSION, Assumptions, Covariance, DataRecord,
-                                                    Estimate, IdentifiedFile, NotIdentified, Points,
-                                                    ReductionSummary, reported_names)
+from orthocontact.identification.identified import (
+    REPORTED,
+    SCHEMA_VERSION,
+    Assumptions,
+    Covariance,
+    DataRecord,
+    Estimate,
+    IdentifiedFile,
+    NotIdentified,
+    Points,
+    ReductionSummary,
+    reported_names,
+)
 from orthocontact.identification.identified_file import from_json
 from orthocontact.identification.measurements import data_digest
 

@@ -11,11 +11,16 @@ from pathlib import Path
 
 import jsonschema
 import pytest
-from cli_run import run_cli
 
+from cli_run import run_cli
 from orthocontact.errors import InputError
-from orthocontact.identification.identified import (SCHEMA_VERSION, DataRecord, Estimate, IdentifiedFile,
-                                                    NotIdentified)
+from orthocontact.identification.identified import (
+    SCHEMA_VERSION,
+    DataRecord,
+    Estimate,
+    IdentifiedFile,
+    NotIdentified,
+)
 from orthocontact.identification.identified_file import SCHEMA, check_data, read_identified, write_identified
 
 ROOT = Path(__file__).resolve().parents[2]

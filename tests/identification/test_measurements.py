@@ -6,11 +6,17 @@ import shutil
 from pathlib import Path
 
 import numpy as np
-from cli_run import one_error_line, run_cli as run
 
+from cli_run import one_error_line
+from cli_run import run_cli as run
 from orthocontact.experiment.rig_setup import RigSetup
-from orthocontact.identification.measurements import (data_digest, data_files, load_data, visible,
-                                                      write_measurements)
+from orthocontact.identification.measurements import (
+    data_digest,
+    data_files,
+    load_data,
+    visible,
+    write_measurements,
+)
 from orthocontact.textfiles import files_read
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -89,6 +95,7 @@ def test_a_ramp_in_mm_is_refused_naming_the_unit(tmp_path):
     assert not (tmp_path / "o").exists()
     # the gate is in the reader: the same refusal for every caller
     import pytest
+
     from orthocontact.errors import InputError
     with pytest.raises(InputError, match="x1_m in mm"):
         load_data(d)

@@ -5,8 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from orthocontact.identification.noise_model import (between_run_tau2, between_run_variance,
-                                                     tau_summary)
+from orthocontact.identification.noise_model import between_run_tau2, between_run_variance, tau_summary
 
 
 def test_equal_within_run_errors_have_the_closed_form_solution():

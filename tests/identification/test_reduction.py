@@ -4,10 +4,10 @@ straight path at a known angle after a curved transient, a known mean force."""
 import math
 from pathlib import Path
 
-import make_recordings as mr
 import numpy as np
 import pytest
 
+import make_recordings as mr
 from orthocontact.errors import InputError
 from orthocontact.identification.recordings import Run
 from orthocontact.identification.reduction import line_fit, reduce_ramp, reduce_slide

@@ -11,12 +11,13 @@ from pathlib import Path
 
 import matplotlib
 import pytest
+
 from procs import alive
 
 matplotlib.use("Agg")
 
-from orthocontact.output import figures  # noqa: E402
 from orthocontact.experiment.scenario import load
+from orthocontact.output import figures  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 

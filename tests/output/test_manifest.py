@@ -8,8 +8,16 @@ import json
 import pytest
 
 from orthocontact.errors import InputError
-from orthocontact.output.manifest import (MANIFEST, listing, new_manifest, one_run, read_manifest,
-                                          remove_earlier, write_manifest, written_by)
+from orthocontact.output.manifest import (
+    MANIFEST,
+    listing,
+    new_manifest,
+    one_run,
+    read_manifest,
+    remove_earlier,
+    write_manifest,
+    written_by,
+)
 
 
 def sha(data: bytes) -> str:

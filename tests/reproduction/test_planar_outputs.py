@@ -9,11 +9,11 @@ import math
 
 import pytest
 
+from cli_run import SCENARIOS, error_lines, one_error_line, run_cli, scenario_variant
 from orthocontact.experiment.scenario import load
 from orthocontact.fmu.params import ContactParams
 from orthocontact.reproduction import planar_outputs
 from orthocontact.rig import planar
-from cli_run import SCENARIOS, error_lines, one_error_line, run_cli, scenario_variant
 
 LAW = """
 [law]

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import CMD
 
+from cli_run import CMD
 from orthocontact import closed_forms as cf
 from orthocontact.experiment.scenario import load
 from orthocontact.fmu.files import find_fmu

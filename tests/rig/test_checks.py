@@ -8,8 +8,8 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from cli_run import CMD
 
+from cli_run import CMD
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams
 from orthocontact.rig.checks import SETTLE_TOL_DEG, check_runs

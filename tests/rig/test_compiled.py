@@ -97,8 +97,8 @@ def test_the_master_describes_its_structs_and_a_drift_is_refused():
     refused before any call."""
     import ctypes
 
-    from orthocontact.rig import compiled as cmaster
     from orthocontact.fmu.contact import FMUError
+    from orthocontact.rig import compiled as cmaster
     cmaster._load()
     size = cmaster._lib.rm_layout(None, 0)
     buf = ctypes.create_string_buffer(size + 1)

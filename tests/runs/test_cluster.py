@@ -10,12 +10,13 @@ import time
 from pathlib import Path
 
 import pytest
-from cli_run import CMD, busy_dashboard_port, run_cli as run, scenario_variant
-from procs import alive, descendants
 
+from cli_run import CMD, busy_dashboard_port, scenario_variant
+from cli_run import run_cli as run
 from orthocontact.errors import InputError
 from orthocontact.runs.cluster import check_address
 from orthocontact.runtime.workers import worker_bound
+from procs import alive, descendants
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"

@@ -7,8 +7,8 @@ import subprocess
 import time
 from pathlib import Path
 
-from cli_run import CMD, run_cli as run, scenario_variant
-
+from cli_run import CMD, scenario_variant
+from cli_run import run_cli as run
 from orthocontact.runs.progress import Heartbeat, Progress
 from orthocontact.runtime.workers import default_workers
 

@@ -6,12 +6,21 @@ import time
 from pathlib import Path
 
 import pytest
-from cli_run import run_cli as run, scenario_variant
 
+from cli_run import run_cli as run
+from cli_run import scenario_variant
 from orthocontact.errors import InputError
 from orthocontact.experiment.scenario import load
-from orthocontact.runs.size import (LIMIT_RUNS, LIMIT_STEPS, check_run_size, check_scenario_size,
-                                    check_uq_size, scenario_work, steps_per_run, uq_work)
+from orthocontact.runs.size import (
+    LIMIT_RUNS,
+    LIMIT_STEPS,
+    check_run_size,
+    check_scenario_size,
+    check_uq_size,
+    scenario_work,
+    steps_per_run,
+    uq_work,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"

@@ -7,8 +7,8 @@ import subprocess
 import sys
 
 import pytest
-from cli_run import CMD
 
+from cli_run import CMD
 from orthocontact.runtime.folders import LOCK, locked_folder, maker_tag, remove_abandoned
 from orthocontact.runtime.temp import TEMP_PREFIX
 

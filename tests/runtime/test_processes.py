@@ -12,11 +12,11 @@ import time
 from pathlib import Path
 
 import pytest
-from cli_run import CMD, scenario_variant
-from procs import alive, children, descendants
 
+from cli_run import CMD, scenario_variant
 from orthocontact.runtime.processes import process_pool, signals_held, stop_pool
 from orthocontact.runtime.workers import worker_bound
+from procs import alive, children, descendants
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"

@@ -7,8 +7,9 @@ import subprocess
 import time
 
 import pytest
-from cli_run import CMD, SCENARIOS as SCEN
 
+from cli_run import CMD
+from cli_run import SCENARIOS as SCEN
 from orthocontact.runtime.temp import TEMP_PREFIX
 
 

@@ -8,12 +8,12 @@ import time
 from pathlib import Path
 
 import pytest
-from cli_run import CMD, leftovers, one_error_line
-from procs import descendants
 
+from cli_run import CMD, leftovers, one_error_line
 from orthocontact.cli.parser import build_parser
 from orthocontact.runtime.processes import process_pool
 from orthocontact.runtime.workers import WORKERS_PER_CORE, worker_bound
+from procs import descendants
 
 ROOT = Path(__file__).resolve().parents[2]
 SCEN = ROOT / "scenarios"

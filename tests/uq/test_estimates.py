@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import CMD, one_error_line, run_cli
 
+from cli_run import CMD, one_error_line, run_cli
 from orthocontact.uq.estimates import Estimates, draw, load_estimates
 
 ROOT = Path(__file__).resolve().parents[2]

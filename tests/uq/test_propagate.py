@@ -13,13 +13,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_run import CMD
-from procs import alive, descendants
 
+from cli_run import CMD
 from orthocontact import closed_forms as cf
 from orthocontact.experiment.scenario import load
 from orthocontact.uq.estimates import load_estimates
 from orthocontact.uq.propagate import propagate
+from procs import alive, descendants
 
 ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent

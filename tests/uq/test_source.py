@@ -9,7 +9,6 @@ import shutil
 from pathlib import Path
 
 from cli_run import run_cli
-
 from orthocontact.uq.source import Source, read_source
 
 ROOT = Path(__file__).resolve().parents[2]

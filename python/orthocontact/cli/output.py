@@ -18,14 +18,21 @@ import zipfile
 from pathlib import Path
 
 from ..errors import InputError
-from ..output.manifest import (MANIFEST, Manifest, new_manifest, outdated, owner_of, read_manifest,
-                               remove_earlier, write_manifest)
+from ..output.manifest import (
+    MANIFEST,
+    Manifest,
+    new_manifest,
+    outdated,
+    owner_of,
+    read_manifest,
+    remove_earlier,
+    write_manifest,
+)
 from ..runtime.folders import locked_folder
 from ..runtime.processes import signals_held
 from ..runtime.swap import UNSUPPORTED, can_exchange, exchange, link_tree, merge_into, prune_empty
 from ..textfiles import paths_being_read
 from .interrupts import hold_interrupts, interrupted, results_written
-
 
 # What the system answers a write it refuses: permission, a read-only file
 # system, a full disk or quota, an I/O error.

@@ -24,7 +24,6 @@ import numpy as np
 from .paper import adhesion_tensor, friction_tensor
 from .rig import slip_force_tensor
 
-
 FULL_SLIP_SQUARE_FACTOR = (math.sqrt(2.0) + math.log(1.0 + math.sqrt(2.0))) / 6.0
 
 

@@ -26,10 +26,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+
 from ..errors import InputError, Problems
 from ..fmu.files import MODEL_IDENTIFIER, find_fmu
-from ..fmu.patch import GEOMETRY, PATCH_MODEL, geometry_problem, geometry_range
 from ..fmu.params import RULES
+from ..fmu.patch import GEOMETRY, PATCH_MODEL, geometry_problem, geometry_range
 from .keys import ANGLE_DEG, POSITIVE, REQUIRED, boolean, choice, list_of, number
 
 # The pieces of a kind written above this layer: what registers each, and

@@ -24,8 +24,20 @@ from ..plausibility import ELASTIC_LENGTHS
 from ..rig.harness import Rig
 from ..textfiles import read_toml
 from .geometry import AxisGeometry
-from .keys import (ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, AnyOf, boolean, choice, file_name,
-                   list_of, read_table, rig_spec, text)
+from .keys import (
+    ANGLE_DEG,
+    NON_NEGATIVE,
+    POSITIVE,
+    REQUIRED,
+    AnyOf,
+    boolean,
+    choice,
+    file_name,
+    list_of,
+    read_table,
+    rig_spec,
+    text,
+)
 from .kinds import KINDS
 
 if sys.version_info >= (3, 11):

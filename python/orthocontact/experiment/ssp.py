@@ -21,8 +21,8 @@ from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
-from ..runtime.folders import locked_folder
 from ..fmu.start_values import write_with_start_values
+from ..runtime.folders import locked_folder
 from .scenario import Scenario
 
 NS = ('xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '

@@ -14,10 +14,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import ClassVar, Mapping, NoReturn
+from collections.abc import Mapping
+from typing import ClassVar, NoReturn
 
 from .param_checks import LawParameters, Row, radians, refuse_misnamed
-
 
 # -- OrthotropicContact: the law's parameters (its table's L rows, in order) ---------------
 

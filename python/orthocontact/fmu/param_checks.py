@@ -10,7 +10,8 @@ from __future__ import annotations
 import dataclasses
 import math
 import numbers
-from typing import ClassVar, Mapping, TypeVar
+from collections.abc import Mapping
+from typing import ClassVar, TypeVar
 
 ANGLE_UNIT = "rad"
 

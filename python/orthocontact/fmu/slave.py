@@ -23,9 +23,15 @@ def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on:
     elsewhere, so the two happen with the signals held."""
     model = md.coSimulation.modelIdentifier
     if md.fmiVersion.startswith("2"):
-        from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE,
-                               fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE,
-                               free)
+        from fmpy.fmi2 import (
+            FMU2Slave,
+            calloc,
+            fmi2CallbackAllocateMemoryTYPE,
+            fmi2CallbackFreeMemoryTYPE,
+            fmi2CallbackFunctions,
+            fmi2CallbackLoggerTYPE,
+            free,
+        )
         from fmpy.logging import addLoggerProxy
 
         def log(env, instance, status, category, message):

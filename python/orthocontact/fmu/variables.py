@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 from .files import installed_file
@@ -92,13 +92,13 @@ def _read(rel: str) -> dict:
     return json.loads(Path(path).read_text())
 
 
-@lru_cache(maxsize=None)
+@cache
 def models() -> dict[str, str]:
     """role ("contact", "rig") -> model identifier, in CMake's order."""
     return {m["role"]: m["modelIdentifier"] for m in _read("models.json")["models"]}
 
 
-@lru_cache(maxsize=None)
+@cache
 def manifest(model: str) -> Manifest:
     """The manifest of `model` (a model identifier of models())."""
     d = _read(f"variables/{model}.json")

@@ -22,6 +22,7 @@ from .noise_model import between_run_tau2, tau_summary, variance_parts
 from .statistics import positive_ci, satterthwaite, t975
 from .strip_model import strip_regimes, strip_steady_state
 
+
 def eq1(data: MeasurementSet) -> dict | None:
     """mu1, mu2 by eq. (1) from the mean forces at the friction axes."""
     if data.forces is None:

@@ -23,8 +23,19 @@ from ..errors import InputError
 from ..fmu.params import RULES
 from ..output.manifest import written_by
 from ..textfiles import read_text
-from .identified import (FITTED_TOO, REPORTED, SCHEMA_VERSION, Assumptions, Covariance, DataRecord, Estimate,
-                         IdentifiedFile, NotIdentified, Points, ReductionSummary)
+from .identified import (
+    FITTED_TOO,
+    REPORTED,
+    SCHEMA_VERSION,
+    Assumptions,
+    Covariance,
+    DataRecord,
+    Estimate,
+    IdentifiedFile,
+    NotIdentified,
+    Points,
+    ReductionSummary,
+)
 from .measurements import changed_files, data_digest
 
 SCHEMA_VERSION = 1

@@ -19,8 +19,17 @@ from .. import plausibility
 from ..experiment.rig_setup import RigSetup
 from ..fmu.params import ContactParams
 from .estimators import JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
-from .identified import (REPORTED, Assumptions, Covariance, DataRecord, Estimate, IdentifiedFile, NotIdentified,
-                         Points, ReductionSummary)
+from .identified import (
+    REPORTED,
+    Assumptions,
+    Covariance,
+    DataRecord,
+    Estimate,
+    IdentifiedFile,
+    NotIdentified,
+    Points,
+    ReductionSummary,
+)
 from .identified_file import write_identified
 from .measurements import MeasurementSet, data_digest, data_files, load_data, write_measurements
 from .statistics import json_dof, res_stats

@@ -13,7 +13,6 @@ from .. import closed_forms as cf
 from ..experiment.rig_setup import RigSetup
 from .identified import UNITS, Estimate, ReductionSummary, reported_names
 
-
 # The one name of the angle the mat (the law's axes) is turned by: every figure, message and help text.
 SWEPT_ANGLE = "mat angle"
 

@@ -23,7 +23,6 @@ from ..output.tables import write_json
 from . import patch_report  # noqa: F401  (registers the patch's kinds' parts: the report has them all)
 from .sensitivity import report_lines
 
-
 # The paper's scenarios, each with its figures: the report's last section
 # (`orthocontact reproduce` prints the report up to its heading).
 SCENARIOS = Section("Scenarios", always=True)

@@ -17,8 +17,7 @@ from ..experiment.scenario import Scenario
 from ..output.figures import curve_style, draw_here, finish, pyplot, swept_label
 from ..output.tables import write_csv, write_json
 from ..rig.checks import SETTLE_TOL_DEG, STEADY_TOL_DEG
-from ..runs.sweep import (StepStudyResult, SweepResult, closed_form_phi_deg_array, run_step_study,
-                          run_sweep)
+from ..runs.sweep import StepStudyResult, SweepResult, closed_form_phi_deg_array, run_step_study, run_sweep
 
 FLAT_DEG = 1e-9  # a closed form below this everywhere is flat: no extremum
 

@@ -19,9 +19,9 @@ import numpy as np
 
 from ..fmu.contact import FMUError
 from ..fmu.files import MODEL_IDENTIFIER, fmi_version_of, installed_file, model_description
-from ..runtime.temp import unzipped
 from ..fmu.params import RULES, ContactParams
 from ..fmu.variables import law_parameters
+from ..runtime.temp import unzipped
 from .harness import Rig, RigResult, RunFigures
 
 _CTYPES = {"double": ctypes.c_double, "int": ctypes.c_int, "long": ctypes.c_long}

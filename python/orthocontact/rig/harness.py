@@ -35,9 +35,9 @@ from typing import NamedTuple
 import numpy as np
 
 from ..closed_forms.paper import G_STANDARD
-from ..plausibility import number_problem
 from ..fmu.contact import ContactFMU
 from ..fmu.params import ContactParams
+from ..plausibility import number_problem
 
 MODES = ("dynamic", "quasistatic")
 

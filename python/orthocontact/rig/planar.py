@@ -97,7 +97,7 @@ class PlanarBody:
                 raise ValueError(f"PlanarBody: {name} must be a finite number > 0, got {v!r}")
 
     @classmethod
-    def uniform(cls, mass_kg: float, patch: PatchGeometry, normal_N: float) -> "PlanarBody":
+    def uniform(cls, mass_kg: float, patch: PatchGeometry, normal_N: float) -> PlanarBody:
         """A uniform block over its patch: I = m (length^2 + width^2) / 12."""
         return cls(mass_kg, mass_kg * (patch.length**2 + patch.width**2) / 12.0, patch, normal_N)
 

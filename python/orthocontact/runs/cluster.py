@@ -34,8 +34,8 @@ def _master_for(fmu):
     unpacked once per worker process."""
     digest, name, blob = fmu
     if digest not in _masters:
-        from ..runtime.temp import temp_folder
         from ..rig.compiled import CMaster
+        from ..runtime.temp import temp_folder
         folder = Path(tempfile.mkdtemp(prefix=f"fmu-{digest[:16]}-{os.getpid()}-", dir=temp_folder()))
         try:
             path = folder / name

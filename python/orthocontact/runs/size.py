@@ -38,16 +38,16 @@ class Work:
     any of them starts."""
     parts: tuple = ()
 
-    def plus(self, what: str, runs: float, steps: float) -> "Work":
+    def plus(self, what: str, runs: float, steps: float) -> Work:
         return Work(self.parts + ((what, runs, steps),)) if runs else self
 
-    def __add__(self, other: "Work") -> "Work":
+    def __add__(self, other: Work) -> Work:
         """The runs of both: a command that makes another layer's runs too
         (identify's validation, reproduce's sensitivity study) adds their
         Work to its own, so one estimate is checked against the limits."""
         return Work(self.parts + other.parts)
 
-    def named(self, what: str) -> "Work":
+    def named(self, what: str) -> Work:
         """The same runs, every part called `what` (a scenario's name in
         reproduce's estimate): describe() counts them together."""
         return Work(tuple((what, r, n) for _, r, n in self.parts))
