@@ -1,8 +1,9 @@
-"""docs/reference/variables.md and docs/reference/cli.md are what
-tools/make_reference.py generates from the variable tables and the parser,
-checked against argparse's own --help, fmpy's reading of the FMUs and the
+"""docs/reference/variables.md, docs/reference/cli.md and the models' block
+of docs/reference/fmus.md are what tools/make_reference.py generates from
+the variable tables, OC_MODELS and the parser, checked against argparse's
+own --help, fmpy's reading of the FMUs, the FMUs `--version` lists and the
 exit status the command really gives; the generator refuses sources that
-contradict each other."""
+contradict each other, and no other page counts the models by hand."""
 import argparse
 import copy
 import dataclasses
@@ -44,15 +45,99 @@ def test_the_cli_page_is_generated_from_the_parser():
     assert not problem, problem
 
 
+def test_the_generated_blocks_of_hand_written_pages_are_what_the_models_give():
+    sources = mr.installed_models()
+    for rel in mr.BLOCK_PAGES:
+        problem = differs(rel, mr.fill_blocks((ROOT / rel).read_text(), rel, sources))
+        assert not problem, problem
+
+
 def test_check_says_which_page_is_stale_and_how_to_refresh(tmp_path):
     done = subprocess.run([sys.executable, str(ROOT / "tools" / "make_reference.py"), "--check"],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     (tmp_path / "docs" / "reference").mkdir(parents=True)
     (tmp_path / mr.PAGES["cli"]).write_text((ROOT / mr.PAGES["cli"]).read_text().replace("--seed", "--sead"))
+    fmus = next(iter(mr.BLOCK_PAGES))
+    (tmp_path / fmus).write_text((ROOT / fmus).read_text().replace("ships six", "ships four"))
     stale = dict(mr.stale(tmp_path))
-    assert set(stale) == set(mr.PAGES.values())            # the variables page is missing there
+    assert set(stale) == {*mr.PAGES.values(), fmus}         # the variables page is missing there
     assert "-| `--sead S`" in stale[mr.PAGES["cli"]] and "+| `--seed S`" in stale[mr.PAGES["cli"]]
+    assert "ships four" in stale[fmus] and "ships six" in stale[fmus]
+    (tmp_path / fmus).unlink()
+    with pytest.raises(FileNotFoundError, match="fmus.md, which holds generated blocks, is not in"):
+        mr.stale(tmp_path)
+
+
+# -- the models, in the FMU reference: from OC_MODELS, as --version lists the FMUs -------
+
+def models_table(page: str) -> dict[str, list[str]]:
+    """model -> the cells of its row in the generated table of models."""
+    block = page.split(mr.BEGIN.format("models"))[1].split(mr.END.format("models"))[0]
+    return {m.group(1): [c.strip() for c in re.split(r"(?<!\\)\|", m.group(0))[1:-1]]
+            for m in re.finditer(r"^\| \[`(\w+)`\].*\|$", block, re.M)}
+
+
+def test_the_fmu_reference_names_every_model_and_counts_what_version_lists(tmp_path):
+    page = (ROOT / "docs" / "reference" / "fmus.md").read_text()
+    found = models_table(page)
+    assert list(found) == list(models().values())
+    listed = run_cli(["--version"], tmp_path)
+    assert listed.returncode == 0, listed.stderr
+    fmus = re.findall(r"^  FMI ([23])\.0 FMU: (\w+) ", listed.stdout, re.M)
+    assert sorted(fmus) == sorted((str(v), m) for v in (2, 3) for m in models().values()), listed.stdout
+    said = re.search(r"The package ships (\w+) Co-Simulation FMUs: the (\w+) models", page)
+    words = "zero one two three four five six seven eight nine ten eleven twelve".split()
+    assert said and (words.index(said.group(1)), words.index(said.group(2))) == (len(fmus), len(found))
+    for role, model in models().items():
+        md = read_model_description(str(find_fmu(fmi_version=3, model=model)))
+        cells = found[model]
+        assert cells[1] == role and cells[2] == mr.md_text(md.description), model
+        assert re.findall(r"`(\w+)`", cells[4]) == [v.name for v in md.modelVariables if v.causality == "input"]
+        arrays = {v.name for v in md.modelVariables if v.dimensions}
+        assert re.findall(r"`(\w+)`", cells[5]) == \
+            [v.name for v in md.modelVariables if v.causality == "output" and v.name not in arrays]
+        assert all(f"`{a}`" in cells[7] for a in arrays), model
+        structural = [v.name for v in md.modelVariables if v.causality == "structuralParameter"]
+        assert all(f"`{n}`" in cells[7] for n in structural) and (not structural or "UInt64" in cells[7])
+
+
+def test_a_new_model_is_a_new_row_and_new_counts():
+    """A model added to OC_MODELS appears with nothing edited by hand."""
+    sources = mr.installed_models()
+    pad = dataclasses.replace(sources[-1], role="pad",
+                              manifest=dataclasses.replace(sources[-1].manifest, model_identifier="ContactPad"))
+    block = "\n".join(mr.models_block([*sources, pad]))
+    assert block.startswith(f"The package ships {mr.count(2 * len(sources) + 2, 'Co-Simulation FMU')}: "
+                            f"the {mr.count(len(sources) + 1, 'model')} of `OC_MODELS`")
+    assert "| [`ContactPad`](variables.md#contactpad) | pad |" in block
+
+
+def test_a_page_without_its_block_or_with_one_left_open_is_refused():
+    rel = next(iter(mr.BLOCK_PAGES))
+    for text in ("# page\n", f"# page\n{mr.BEGIN.format('models')}\nold\n",
+                 f"{mr.END.format('models')}\n{mr.BEGIN.format('models')}\n"):
+        with pytest.raises(ValueError, match="the generated block 'models' needs one line"):
+            mr.fill_blocks(text, rel, [])
+
+
+COUNTED = re.compile(r"\b(two|three|four|five|six|seven|eight|nine|ten|eleven|twelve)\s+"
+                     r"(?:installed\s+)?(?:Co-Simulation\s+)?(FMUs|models)\b", re.I)
+
+
+def test_no_page_counts_the_fmus_or_models_by_hand():
+    """Counts of the models and FMUs are generated (a new model changes them);
+    elsewhere a page says "every model" or links the FMU reference's table."""
+    pages = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+    found = []
+    for page in pages:
+        text = page.read_text()
+        for name in mr.BLOCK_PAGES.get(page.relative_to(ROOT), ()):
+            head, rest = text.split(mr.BEGIN.format(name), 1)
+            text = head + rest.split(mr.END.format(name), 1)[1]
+        found += [f"{page.relative_to(ROOT)}: {m.group(0)}" for m in COUNTED.finditer(" ".join(text.split()))]
+    assert not found, found
+    assert COUNTED.search("ships four Co-Simulation FMUs") and COUNTED.search("the two models")
 
 
 # -- the command line, against argparse's own help and the real command ----------------
