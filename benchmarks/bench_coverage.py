@@ -27,9 +27,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 
 import rig_reference as ref  # noqa: E402
-from orthocontact.experiment.rig_setup import RigSetup
-from orthocontact.identification.estimators import joint_fit, start_values
-from orthocontact.identification.measurements import MeasurementSet
+from orthocontact.experiment.rig_setup import RigSetup  # noqa: E402
+from orthocontact.identification.estimators import joint_fit, start_values  # noqa: E402
+from orthocontact.identification.measurements import MeasurementSet  # noqa: E402
 
 TRUTHS = {
     "aged mat": dict(mu1=0.408, mu2=0.625, eps_ratio=1.251, eps2=1.0e4),

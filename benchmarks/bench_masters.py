@@ -41,12 +41,12 @@ def main():
         tasks = [(sc.params_at(a), sc.rig) for a in (10.0, 39.2, 70.0)]
         steps = int(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) + 0.5)
 
-        def fmpy_runs(n):
+        def fmpy_runs(n, tasks=tasks):   # this scenario's, bound now
             for i in range(n):
                 p, r = tasks[i % len(tasks)]
                 run(p, r, fmu=f, record_every=1 << 30)
 
-        def c_runs(n):
+        def c_runs(n, tasks=tasks):
             cm.run([tasks[i % len(tasks)] for i in range(n)])
         a, b = rate(fmpy_runs, args.runs), rate(c_runs, 10 * args.runs)
         print(f"{name:10s} {steps:9d} {a:12.2f} {b:10.1f} {b / a:9.1f}x   (target >= 20x)")

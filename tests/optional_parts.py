@@ -20,18 +20,18 @@ import subprocess
 import sys
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Callable
 
 import pytest
 
 INSTALLED_BY = "tools/run_tests.sh (pyproject's test extra; apt for the system parts)"
 
 
-def _module(name: str) -> Callable[[], Optional[str]]:
+def _module(name: str) -> Callable[[], str | None]:
     """A probe importing `name` in a child process (libcosim's library and
     fmpy's loaded FMUs in one process have crashed): None if it imports,
     else the error's last line."""
-    def probe() -> Optional[str]:
+    def probe() -> str | None:
         p = subprocess.run([sys.executable, "-c", f"import {name}"], capture_output=True, text=True,
                            timeout=120)
         if p.returncode == 0:
@@ -41,7 +41,7 @@ def _module(name: str) -> Callable[[], Optional[str]]:
     return probe
 
 
-def _qemu() -> Optional[str]:
+def _qemu() -> str | None:
     if not shutil.which("qemu-aarch64"):
         return "qemu-aarch64 is not on PATH (apt: qemu-user)"
     if not Path("/usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1").exists():
@@ -49,7 +49,7 @@ def _qemu() -> Optional[str]:
     return None
 
 
-def wine64() -> Optional[str]:
+def wine64() -> str | None:
     """The loader that runs a 64-bit Windows program: wine64 on PATH,
     Debian's (/usr/lib/wine/wine64, which its `wine` script calls), or a
     `wine` of the new WoW64 mode (wine >= 9, one loader for both); None if
@@ -60,7 +60,7 @@ def wine64() -> Optional[str]:
     return None
 
 
-def _wine() -> Optional[str]:
+def _wine() -> str | None:
     path = wine64()
     if path is None:
         return "no wine64 (apt: wine64)"
@@ -68,7 +68,7 @@ def _wine() -> Optional[str]:
     return None if p.returncode == 0 else f"{path} --version exited {p.returncode}"
 
 
-def _root() -> Optional[str]:
+def _root() -> str | None:
     return None if os.geteuid() == 0 else "mounting a tmpfs needs root"
 
 
@@ -79,9 +79,9 @@ class Part:
     project cannot install alongside its own dependencies)."""
     name: str
     what: str
-    probe: Optional[Callable[[], Optional[str]]]   # None: the test itself decides (record())
+    probe: Callable[[], str | None] | None   # None: the test itself decides (record())
     required: bool = True
-    distribution: Optional[str] = None   # the Python distribution providing it (pyproject's test extra)
+    distribution: str | None = None   # the Python distribution providing it (pyproject's test extra)
 
 
 PARTS = {p.name: p for p in (
@@ -101,11 +101,11 @@ PARTS = {p.name: p for p in (
 )}
 
 # part -> None when it ran, else why not; only parts some test asked for.
-STATUS: dict[str, Optional[str]] = {}
-_PROBED: dict[str, Optional[str]] = {}
+STATUS: dict[str, str | None] = {}
+_PROBED: dict[str, str | None] = {}
 
 
-def usable(name: str) -> Optional[str]:
+def usable(name: str) -> str | None:
     """None if the part is usable here, else why not (probed once a session)."""
     part = PARTS[name]
     if part.probe is None:
@@ -115,7 +115,7 @@ def usable(name: str) -> Optional[str]:
     return _PROBED[name]
 
 
-def record(name: str, why_not: Optional[str]) -> None:
+def record(name: str, why_not: str | None) -> None:
     """Records that the part ran (None) or did not (why); a part some test
     could not run stays not run."""
     if name not in PARTS:

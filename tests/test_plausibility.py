@@ -135,7 +135,9 @@ def test_the_plausibility_table_itself():
 
 def test_the_docs_list_every_range_as_the_code_has_it():
     readme = (ROOT / "docs" / "reference" / "plausible-inputs.md").read_text()
-    fmt = lambda x: f"{x:g}"
+
+    def fmt(x):
+        return f"{x:g}"
     for key, q in plausibility.QUANTITIES.items():
         lo, hi = q.hard
         hard = f"[{fmt(lo)}, {fmt(hi)}]" if (q.zero_allowed or lo != 0) else f"({fmt(lo)}, {fmt(hi)}]"

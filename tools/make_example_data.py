@@ -28,7 +28,9 @@ def main():
     forces = [(a, f + rng.normal(0, NOISE["force_N"])) for a, f in m["forces"] for _ in range(3)]
     angles = [(a, p + rng.normal(0, NOISE["phi_deg"])) for a, p in m["angles"] for _ in range(2)]
     ramp = [(x, f + rng.normal(0, NOISE["ramp_N"])) for x, f in m["ramp"][::8]]
-    r = lambda rows, d: [(round(float(a), 9), round(float(b), d)) for a, b in rows]
+
+    def r(rows, d):
+        return [(round(float(a), 9), round(float(b), d)) for a, b in rows]
     write_measurements(OUT, rig, r(forces, 4), r(angles, 3), r(ramp, 4))
     print(f"wrote {OUT}")
 

@@ -118,7 +118,7 @@ def run_rig(mu1, mu2, eps1, eps2, alpha, beta, rule, N, travel, steps, fit_from=
         else:
             side = -math.copysign(1.0, q_here[1]) if mu_strip > 0 else 0.0
 
-        def r(y):
+        def r(y, x1=x1, s=s, side=side, x2_before=x2_before):   # this step's, bound now
             q = law.force((x1, y), s, N)
             if mu_strip > 0 and side == 0.0:
                 return 0.0

@@ -72,10 +72,10 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
     # the calibration chain from the forces, unrounded (eq. 1, 29, 39 by hand)
     mu1, mu2 = (12.5 - 5.0) / (1.875 * 9.806), (16.5 - 5.0) / (1.875 * 9.806)
     t = math.tan(math.radians(11.5))
-    l = -t + math.sqrt(t * t + 1)  # eq. (29) with the paper's phi_max = +11.5 deg: 0.817
+    ratio = -t + math.sqrt(t * t + 1)  # eq. (29) with the paper's phi_max = +11.5 deg: 0.817
     chain = {c["step"]: c["value"] for c in rep["calibration_chain"]}
-    assert chain["ε1/ε2 by eq. (39)"] == pytest.approx(l * mu2 / mu1, rel=1e-9)
-    assert chain["ε1/ε2 by eq. (39), paper"] == pytest.approx(l * 0.625 / 0.408, rel=1e-9)
+    assert chain["ε1/ε2 by eq. (39)"] == pytest.approx(ratio * mu2 / mu1, rel=1e-9)
+    assert chain["ε1/ε2 by eq. (39), paper"] == pytest.approx(ratio * 0.625 / 0.408, rel=1e-9)
     assert "1.2528" in report
     # the rig's assumptions: the strip's sensitivity, in the report and its JSON
     assert rep["sensitivity"]["scenario"] == "mat_aged" and "## The rig's assumptions" in report

@@ -131,8 +131,8 @@ def test_python_and_numpy_warnings_are_at_most_one_line_each(capsys):
         np.nanmax(np.array([np.nan]))             # All-NaN slice encountered
         np.array([1.0]) / np.array([0.0])          # divide by zero encountered
         np.mean(np.array([]))                      # Mean of empty slice
-        warnings.warn("a library's note\nsecond line", UserWarning)
-        warnings.warn("a library's note\nsecond line", UserWarning)
+        warnings.warn("a library's note\nsecond line", UserWarning, stacklevel=1)
+        warnings.warn("a library's note\nsecond line", UserWarning, stacklevel=1)
     assert capsys.readouterr().err.splitlines() == [
         "orthocontact: warning: a library's note (UserWarning in test_main)"]
     assert warnings_said() == 1   # --strict counts it as it counts every warning line

@@ -230,9 +230,12 @@ def test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_sta
     .out.partial-* folder; the next run into that --out removes it and
     succeeds, while the staging folder of a run still in progress (stopped
     with SIGSTOP, its lock held) is left alone, and that run then completes."""
-    partials = lambda: sorted(tmp_path.glob(".out.partial-*"))
-    start = lambda sc: subprocess.Popen(CMD + ["run", str(sc), "--out", "out", "--workers", "2"], cwd=tmp_path,
-                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    def partials():
+        return sorted(tmp_path.glob(".out.partial-*"))
+
+    def start(sc):
+        return subprocess.Popen(CMD + ["run", str(sc), "--out", "out", "--workers", "2"], cwd=tmp_path,
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     live = start(SCEN / "case1.toml")
     try:
         _until(lambda: len(partials()) == 1)

@@ -89,7 +89,8 @@ RANK = {m: i for i, layer in enumerate(LAYERS) for m in layer}
 
 
 def upward_imports(graph: dict) -> list:
-    top = lambda m: m.split(".")[0]
+    def top(m):
+        return m.split(".")[0]
     return [(m, d) for m, deps in graph.items() for d in deps
             if top(d) != top(m) and RANK[top(d)] >= RANK[top(m)]]
 

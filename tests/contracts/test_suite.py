@@ -135,13 +135,13 @@ def test_a_module_that_needs_a_missing_part_is_skipped_whole_and_reported(tmp_pa
 def test_every_required_python_part_is_in_the_test_extra_the_test_command_installs():
     from optional_parts import PARTS
     from requirements import declared
-    extra = {re.split(r"[<>=!~;\s]", r, 1)[0].lower().replace("_", "-") for r in declared("test")}
+    extra = {re.split(r"[<>=!~;\s]", r, maxsplit=1)[0].lower().replace("_", "-") for r in declared("test")}
     wanted = {p.distribution for p in PARTS.values() if p.required and p.distribution}
     assert wanted == {"libcosimpy", "ecospy", "fmu-manipulation-toolbox", "hypothesis"}
     # besides the optional parts: the runner and its workers for make check,
-    # and what tests import outright (jsonschema validates identified.json
-    # against its schema)
-    assert wanted | {"pytest", "pytest-xdist", "jsonschema"} == extra
+    # what tests import outright (jsonschema validates identified.json
+    # against its schema) and the linter make check runs first (ruff)
+    assert wanted | {"pytest", "pytest-xdist", "jsonschema", "ruff"} == extra
 
 
 def test_the_set_up_scripts_declare_no_requirement_of_their_own():

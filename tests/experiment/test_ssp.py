@@ -214,7 +214,9 @@ def test_a_killed_ssps_scratch_goes_with_the_next_package_written_there(tmp_path
     import time
     cmd = [sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"), "--angle", "10",
            "--out", "rig.ssp"]
-    partials = lambda: list(tmp_path.glob(".rig.ssp.partial-*"))
+
+    def partials():
+        return list(tmp_path.glob(".rig.ssp.partial-*"))
     for _ in range(10):   # until the kill lands while it writes (it writes for a fraction of a second)
         proc = subprocess.Popen(cmd, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         while proc.poll() is None and not partials():

@@ -131,7 +131,7 @@ def newton(version, h, t_end=T_END):
     try:
         for _ in range(round(t_end / h)):
             x = u.copy()   # from where the contact holds: the pending step sticks there
-            for k in range(1, 11):
+            for k in range(1, 11):   # noqa: B007 (k, the iterations taken, is read after the loop)
                 R = x - u - h * v - h * h / 4 * (a + (push + c.force(x)) / M)
                 dx = np.linalg.solve(np.eye(2) - h * h / (4 * M) * c.tangent(), -R)
                 x = x + dx

@@ -177,7 +177,7 @@ N0 = 18.39
 S0 = (4e-4, -3e-4)   # an explicit initial slip [m]
 
 
-def elastic_at(ratio, angle=math.radians(45)):
+def elastic_at(ratio, angle=math.pi / 4):
     """The displacement along `angle` whose trial force is `ratio` times the
     friction limit at N0 (the yield function's sqrt(q.F q) / N)."""
     B = cf.adhesion_tensor(LAW["eps1"], LAW["eps2"], LAW["alpha"])

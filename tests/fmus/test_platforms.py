@@ -77,7 +77,7 @@ def test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one(tmp_path):
     with ContactFMU(fmu, instance_name="x86") as f:
         f.initialize(ContactParams(0.408, 0.625, 12510.0, 1e4, math.pi / 2, 0.0))  # defaults
         ref = []
-        for t, a, b, c in rows[:-1]:
+        for _t, a, b, c in rows[:-1]:
             f.set_inputs(a, b, c)
             f.do_step(h)
             o = f.outputs()

@@ -99,7 +99,7 @@ def cosimulate(version, params, rig: Rig, n_steps):
     fit = LineFit()
     x1_fit = rig.fit_from * rig.velocity_m_s * n_steps * h
     out = ("u1", "u2", "N", "x1", "x2", "driveForce")
-    for k in range(1, n_steps + 1):
+    for _k in range(1, n_steps + 1):
         set_real([vr["T1"], vr["T2"]], [T1, T2])
         s.doStep(t, h)
         t += h

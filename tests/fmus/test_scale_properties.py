@@ -25,13 +25,12 @@ import math
 import numpy as np
 
 from optional_parts import need
+from orthocontact.fmu.contact import ContactFMU
+from orthocontact.fmu.params import ContactParams
 
 need("hypothesis", module_level=True)
 from hypothesis import HealthCheck, assume, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
-
-from orthocontact.fmu.contact import ContactFMU
-from orthocontact.fmu.params import ContactParams
 
 EPS = np.finfo(float).eps
 RULES = ["associated", "coupled", "eq20"]
@@ -152,7 +151,7 @@ def aligned_return_map(rule, mu, eps, th, d, N):
     def phi(x):
         return np.hypot(qt[0] / (mu[0] * (1 + x * k[0])), qt[1] / (mu[1] * (1 + x * k[1])))
 
-    l = LD(0)
+    lam = LD(0)
     if phi(LD(0)) > N:
         # each term alone at most N^2 / 2 above hi; halve down to a lower end
         hi = max(2 * abs(qt[i]) / (mu[i] * N) / k[i] for i in range(2))
@@ -167,12 +166,12 @@ def aligned_return_map(rule, mu, eps, th, d, N):
                 lo = mid
             else:
                 hi = mid
-        l = (lo + hi) / 2
-    q = [qt[i] / (1 + l * k[i]) for i in range(2)]
+        lam = (lo + hi) / 2
+    q = [qt[i] / (1 + lam * k[i]) for i in range(2)]
     c, s = np.cos(LD(th)), np.sin(LD(th))
     T = np.array([-(c * q[0] - s * q[1]), -(s * q[0] + c * q[1])], dtype=LD)
     G = [k[i] / eps[i] for i in range(2)]
-    return T, l * (q[0] * q[0] * G[0] + q[1] * q[1] * G[1])
+    return T, lam * (q[0] * q[0] * G[0] + q[1] * q[1] * G[1])
 
 
 @st.composite

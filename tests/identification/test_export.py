@@ -319,10 +319,10 @@ def recordings_in_kn(folder: Path) -> Path:
     runs = [lines[0]] + [ln for ln in lines[1:] if ln.split(",")[1] != "slide" or
                          re.fullmatch(r"a0(00|45|90)_v244_0[12],.*", ln)]
     (folder / "runs.csv").write_text("\n".join(runs) + "\n")
-    for run in (ln.split(",")[0] for ln in runs[1:]):
-        if (src / "trajectories" / f"{run}.csv").exists():
-            shutil.copy(src / "trajectories" / f"{run}.csv", folder / "trajectories")
-        shutil.copy(src / "forces" / f"{run}.csv", folder / "forces")
+    for name in (ln.split(",")[0] for ln in runs[1:]):
+        if (src / "trajectories" / f"{name}.csv").exists():
+            shutil.copy(src / "trajectories" / f"{name}.csv", folder / "trajectories")
+        shutil.copy(src / "forces" / f"{name}.csv", folder / "forces")
     assert scale_forces(folder, "*.csv", 1e-3) and len(runs) == 15
     return folder
 

@@ -122,7 +122,7 @@ def test_a_bad_patch_scenario_is_a_line_per_problem(tmp_path, old, new, says):
 
 def test_a_patch_scenario_naming_the_point_fmu_is_one_line(tmp_path):
     from orthocontact.fmu.files import find_fmu
-    text = 'fmu = "%s"\n' % find_fmu(fmi_version=2) + TOWED.format(duration=1.0)
+    text = f'fmu = "{find_fmu(fmi_version=2)}"\n' + TOWED.format(duration=1.0)
     (tmp_path / "t.toml").write_text(text)
     p = run_cli(["run", tmp_path / "t.toml", "--out", tmp_path / "out"], cwd=tmp_path)
     one_error_line(p, "fmu: expected a ContactPatch FMU for a scenario of kind 'towed_block'",

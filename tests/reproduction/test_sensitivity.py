@@ -45,7 +45,8 @@ def test_strip_closed_form_is_the_quasistatic_rigs_steady_state(rule, mu_s, c, v
 
 def test_the_strip_and_viscosity_peaks_match_the_independently_measured_figures():
     """Figures measured with an independent simulation (docs/explanation/model-notes.md)."""
-    peak = lambda **kw: abs(S.peak_closed(AGED, **kw)[0])
+    def peak(**kw):
+        return abs(S.peak_closed(AGED, **kw)[0])
     assert peak(mu_strip=0.0) == pytest.approx(11.53, abs=0.01)
     assert peak(mu_strip=0.05) == pytest.approx(8.7, abs=0.05)
     assert peak(mu_strip=0.1) == pytest.approx(5.8, abs=0.05)

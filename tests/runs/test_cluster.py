@@ -75,7 +75,7 @@ def _listening(pid) -> set:
             if target.startswith("socket:["):
                 inodes.add(target[8:-1])
     out = set()
-    for table, width in (("tcp", 8), ("tcp6", 32)):
+    for table in ("tcp", "tcp6"):
         with contextlib.suppress(OSError):
             for line in Path(f"/proc/{pid}/net/{table}").read_text().splitlines()[1:]:
                 f = line.split()

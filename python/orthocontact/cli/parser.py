@@ -7,46 +7,32 @@ from pathlib import Path
 from .commands import cmd_export, cmd_identify, cmd_reproduce, cmd_run, cmd_sensitivity, cmd_ssp, cmd_uq
 
 
-def _positive_int(what):
+def _number(convert, expected, in_range, expected_in_range=None):
+    """An argparse type: `convert` (int or float) the text, then `in_range`
+    its value; either failing is one line, `expected ..., got ...` (a float
+    out of range as typed: 1e400, not inf; a whole number as read)."""
     def parse(text):
         try:
-            n = int(text)
+            x = convert(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"expected a whole number of {what} >= 1, got {text!r}")
-        if n < 1:
-            raise argparse.ArgumentTypeError(f"expected a whole number of {what} >= 1, got {n}")
-        return n
+            raise argparse.ArgumentTypeError(f"expected {expected}, got {text!r}") from None
+        if not in_range(x):
+            shown = x if convert is int else text
+            raise argparse.ArgumentTypeError(f"expected {expected_in_range or expected}, got {shown}")
+        return x
     return parse
 
 
-def _positive_float(text):
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a number > 0, got {text!r}")
-    if not (x > 0 and x < float("inf")):
-        raise argparse.ArgumentTypeError(f"expected a finite number > 0, got {text}")
-    return x
+def _positive_int(what):
+    return _number(int, f"a whole number of {what} >= 1", lambda n: n >= 1)
 
 
-def _angle_deg(text):
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected an angle in degrees, got {text!r}")
-    if not -360.0 <= x <= 360.0:  # nan and inf fail this too
-        raise argparse.ArgumentTypeError(f"expected a finite angle in [-360, 360] degrees, got {text}")
-    return x
-
-
-def _seed(text):
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
-    if n < 0:  # numpy's generators take no negative seed
-        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {n}")
-    return n
+_positive_float = _number(float, "a number > 0", lambda x: 0 < x < float("inf"), "a finite number > 0")
+# nan and inf fail the range too
+_angle_deg = _number(float, "an angle in degrees", lambda x: -360.0 <= x <= 360.0,
+                     "a finite angle in [-360, 360] degrees")
+# numpy's generators take no negative seed
+_seed = _number(int, "a whole number >= 0", lambda n: n >= 0)
 
 
 def _out_path(text):

@@ -80,11 +80,15 @@ def _checked(fmu_name: str, params: dict, values: dict) -> dict:
         else:
             raise StartValueError(f"{fmu_name}: {name} is a {kind}: only numbers can be rewritten")
         if (lo is not None and value < lo) or (hi is not None and value > hi):
-            bound = lambda b, none: none if b is None else f"{b:g}"
-            raise StartValueError(f"{fmu_name}: {name} = {value!r} is outside [{bound(lo, '-inf')}, "
-                                  f"{bound(hi, 'inf')}], the FMU's range")
+            raise StartValueError(f"{fmu_name}: {name} = {value!r} is outside [{_bound(lo, '-inf')}, "
+                                  f"{_bound(hi, 'inf')}], the FMU's range")
         out[name] = value
     return out
+
+
+def _bound(b, none: str) -> str:
+    """A range's end as the message shows it: `none` where it is open."""
+    return none if b is None else f"{b:g}"
 
 
 def _xml_number(value) -> str:
@@ -96,13 +100,13 @@ def _with_start(xml: str, fmi2: bool, name: str, value) -> str:
     place (added if absent): the rest of the text is untouched."""
     variables = xml.find("<ModelVariables")   # not a unit or type of the same name
     if fmi2:
-        head = re.compile(r'<ScalarVariable[^>]*?\sname="%s"[^>]*>' % re.escape(name)).search(
+        head = re.compile(rf'<ScalarVariable[^>]*?\sname="{re.escape(name)}"[^>]*>').search(
             xml, variables)
         if not head:
             raise StartValueError(f"{name}: no ScalarVariable in the model description")
         tag = re.compile(r"<(Real|Integer|Enumeration)\b[^>]*?/?>").search(xml, head.end())
     else:
-        tag = re.compile(r'<(\w+)[^>]*?\sname="%s"[^>]*?/?>' % re.escape(name)).search(
+        tag = re.compile(rf'<(\w+)[^>]*?\sname="{re.escape(name)}"[^>]*?/?>').search(
             xml, variables)
     if not tag:
         raise StartValueError(f"{name}: its type element was not found in the model description")

@@ -106,7 +106,7 @@ def keyword_only(cls):
     """The dataclass `cls` with an __init__ of keywords only (kw_only=True
     needs Python 3.10): a swapped pair is a TypeError, not a wrong result."""
     init = cls.__init__
-    cls.__init__ = functools.wraps(init)(lambda self, **fields: init(self, **fields))   # signature: the fields
+    cls.__init__ = functools.wraps(init)(lambda self, **fields: init(self, **fields))  # signature: the fields
     return cls
 
 
@@ -234,7 +234,7 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     # needs the matrix graph (MX); the scalar graph (SX) is faster otherwise.
     x = (ca.MX if viscous else ca.SX).sym("x", len(free))
     sym = {n: x[i] * scale[n] for i, n in enumerate(free)}
-    val = lambda n: sym[n] if n in sym else start.get(n, 1.0)
+    val = lambda n: sym[n] if n in sym else start.get(n, 1.0)  # noqa: E731 (symbol if fitted, else start)
     f_int = val("f_int") if "f_int" in free else rig.f_int_N
     groups, se2 = {}, {}
     if data.forces is not None and "mu1" in free:
@@ -362,9 +362,9 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     parts = np.split(r, np.cumsum(sizes)[:-1])
     return JointFit(free=free, values=values, cov=cov, stderr=stderr, ci95=ci, dof=dof, sigma=sigma,
                     residuals=dict(zip(names, parts)), not_identifiable=why, stick_points=int(stick.sum()),
-                    sigma_assumed=assumed, param_dof=param_dof, between_runs={
-                        g: tau_summary(tau2[g], components.get(g)) for g in names},
-                    within_run={g: math.sqrt(float(np.mean(se2[g]))) for g in names}, between_runs_dof=group_dof)
+                    sigma_assumed=assumed, param_dof=param_dof, between_runs_dof=group_dof,
+                    between_runs={g: tau_summary(tau2[g], components.get(g)) for g in names},
+                    within_run={g: math.sqrt(float(np.mean(se2[g]))) for g in names})
 
 
 def start_values(data: MeasurementSet) -> dict:

@@ -38,14 +38,8 @@ from .identified import (
 )
 from .measurements import changed_files, data_digest
 
-SCHEMA_VERSION = 1
 SCHEMA = Path(__file__).with_name("identified.schema.json")   # installed with the package
-
-# REPORTED (estimators) are always in the file: a value or the reason why not.
-FITTED_TOO = ("c_strip", "f_int", "l1_l2_ratio")           # in the file when they were fitted
 WRITTEN_BY = "written by `orthocontact identify`"
-SHA256_OF = ("the listing `sha256sum` prints for data.files, in that (sorted) order: "
-             "cd FOLDER && sha256sum FILE... | sha256sum")
 
 
 @dataclass(frozen=True)

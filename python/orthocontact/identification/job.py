@@ -185,7 +185,9 @@ class Identification:
         joint = None if len(law) == len(f.free) else Covariance(
             parameters=tuple(f.free), values=tuple(f.values[n] for n in f.free),
             matrix=tuple(tuple(float(c) for c in row) for row in sym))
-        rows = lambda a: None if a is None else tuple(tuple(float(x) for x in r) for r in a)
+
+        def rows(a):
+            return None if a is None else tuple(tuple(float(x) for x in r) for r in a)
         r = d.rig
         return IdentifiedFile(
             estimates=estimates, max_rule=self.max_rule,

@@ -134,7 +134,9 @@ def load_data(folder) -> MeasurementSet:
     if not folder.is_dir():
         raise InputError(f"{folder}: expected a folder with rig.toml and forces.csv/angles.csv/ramp.csv")
     rig = load_rig_toml(folder / "rig.toml")
-    angle = lambda v: None if -180 <= v <= 180 else "an angle in [-180, 180] deg"
+
+    def angle(v):
+        return None if -180 <= v <= 180 else "an angle in [-180, 180] deg"
     forces = _load_csv(folder / "forces.csv", (ANGLE, "force_N"),
                        {ANGLE: angle, "force_N": lambda v: None if v > 0 else "a force > 0"},
                        2, "two parameters, mu1 and mu2")

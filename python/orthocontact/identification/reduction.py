@@ -295,7 +295,7 @@ def _flag_outliers(runs, value, se, what, unit, warnings):
     for r in runs:
         groups.setdefault((r.mat_angle_deg, r.velocity_m_s), []).append(r)
     dev = {}
-    for k, rs in groups.items():
+    for _k, rs in groups.items():
         if len(rs) >= 3:
             vals = np.array([value(r) for r in rs])
             for i, r in enumerate(rs):

@@ -223,8 +223,9 @@ def reduction_markdown(noise_model: dict, r: ReductionSummary) -> str:
     """identified.md's lines on the runs (raw recordings): the noise model's
     two parts per data group (identified.json's noise_model), and what the
     reduction left out or flagged."""
-    tau = lambda t: (", ".join(f"{t_:.3g} at {v} m/s" for v, t_ in t.items()) if isinstance(t, dict)
-                     else f"{t:.3g}")
+    def tau(t):
+        return (", ".join(f"{t_:.3g} at {v} m/s" for v, t_ in t.items()) if isinstance(t, dict)
+                else f"{t:.3g}")
     return "\n".join([
         "## Runs", "",
         "- run-to-run scatter (between runs) / within-run error (rms): " + "; ".join(

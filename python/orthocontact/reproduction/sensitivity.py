@@ -217,7 +217,7 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
                         checks, [r.phi_deg for r in res], tasks)
     strip_rows = []
     peaks = {}
-    for (kind, mu, v, c, ratio), (start, angles), cl in zip(combos, spans, closed):
+    for (kind, mu, v, c, _ratio), (start, angles), cl in zip(combos, spans, closed):
         phis = np.array([r[0] for r in res[start:start + len(angles)]])
         k = int(np.nanargmax(np.abs(phis)))
         rig_peak = (float(phis[k]), float(angles[k]))

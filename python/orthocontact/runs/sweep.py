@@ -149,14 +149,20 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
         from ..fmu.files import find_fmu
         from ..rig.compiled import CMaster
         engine = CMaster(find_fmu(fmu_path))
-        one = lambda a, rule=None: engine.run([(sc.params_at(a, rule), sc.rig)])[0][0]
-        record = lambda a, every: engine.record(sc.params_at(a), sc.rig, every)
+
+        def one_run(a, rule=None):
+            return engine.run([(sc.params_at(a, rule), sc.rig)])[0][0]
+
+        def record_run(a, every):
+            return engine.record(sc.params_at(a), sc.rig, every)
     else:
         engine = ContactFMU(fmu_path, instance_name="main")
-        one = lambda a, rule=None: run(sc.params_at(a, rule), sc.rig, fmu=engine,
-                                       record_every=1 << 30).phi_deg
-        record = lambda a, every: run(sc.params_at(a), sc.rig, fmu=engine, record_every=every)
-    one_run, record_run = one, record
+
+        def one_run(a, rule=None):
+            return run(sc.params_at(a, rule), sc.rig, fmu=engine, record_every=1 << 30).phi_deg
+
+        def record_run(a, every):
+            return run(sc.params_at(a), sc.rig, fmu=engine, record_every=every)
 
     def one(a, rule=None):
         beat.update()
