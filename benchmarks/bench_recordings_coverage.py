@@ -95,7 +95,8 @@ def main():
     print(f"{n} replicates of raw recordings ({'small' if args.small else 'bundled'} design); a true 95 % "
           f"coverage lands in {95 - 100 * half:.1f}-{95 + 100 * half:.1f} % (binomial 95 %)", flush=True)
     with ProcessPoolExecutor(args.workers) as ex:
-        res = list(ex.map(replicate, [(args.seed + i, args.small, paths, ramp) for i in range(n)], chunksize=2))
+        res = list(ex.map(replicate, [(args.seed + i, args.small, paths, ramp) for i in range(n)],
+                          chunksize=2))
     rows = {}
     for k in PARAMS:
         got = [r[0][k] for r in res if k in r[0]]
@@ -124,8 +125,8 @@ def main():
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
         (args.out / "recordings_coverage.json").write_text(json.dumps(
-            {"replicates": n, "first_seed": args.seed, "design": "small" if args.small else "bundled", "results": rows,
-             "seconds": round(time.time() - t0, 1)}, indent=2) + "\n")
+            {"replicates": n, "first_seed": args.seed, "design": "small" if args.small else "bundled",
+             "results": rows, "seconds": round(time.time() - t0, 1)}, indent=2) + "\n")
 
 
 if __name__ == "__main__":

@@ -278,8 +278,8 @@ def source(contact, patch, tables: dict[str, str]) -> str:
              "",
              'Units as the tables give them ("" for none); angles in rad."""',
              "from __future__ import annotations", "", "import dataclasses", "import math",
-             "from typing import ClassVar, Mapping, NoReturn", "",
-             "from .param_checks import LawParameters, Row, radians, refuse_misnamed", "", "",
+             "from collections.abc import Mapping", "from typing import ClassVar, NoReturn", "",
+             "from .param_checks import LawParameters, Row, radians, refuse_misnamed", "",
              *law_section(contact, ct), "", "", *patch_section(contact, patch, pt)]
     return "\n".join(lines) + "\n"
 

@@ -288,7 +288,8 @@ def elastic_lengths(mu1: float, mu2: float, eps1: float, eps2: float, normal_for
 
 
 def elastic_length_check(mu1: float, mu2: float, eps1: float, eps2: float, normal_force: float,
-                         travel_m: float, where: str = "", slip: str = "eps1, eps2 in N/mm?") -> Finding | None:
+                         travel_m: float, where: str = "",
+                         slip: str = "eps1, eps2 in N/mm?") -> Finding | None:
     """The elastic length mu N / eps against the rig's travel [m]: an error
     if even the shortest reaches the travel (the block would stick over the
     whole of it: no force or angle of sliding could be measured or

@@ -208,5 +208,6 @@ def read_toml(path, what: str) -> dict:
             m = TOML_DECIMAL_COMMA.match(ln)
             if m:
                 raise InputError(f"{Path(path)}: line {n}: {m[1]} = {m[2]}: a decimal comma; TOML "
-                                 f"numbers take a decimal point ({m[1]} = {m[2].replace(',', '.')})") from None
+                                 f"numbers take a decimal point ({m[1]} = {m[2].replace(',', '.')})"
+                                 ) from None
         raise

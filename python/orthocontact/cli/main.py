@@ -114,7 +114,8 @@ def run_command(argv=None) -> int:
             check_address(args.scheduler)
         # What the command reads (the paths its arguments name; every file
         # read through textfiles once it runs) its output may not hold.
-        reads = [Path(v) for v in (getattr(args, name) for name in getattr(args, "reads", ())) if v is not None]
+        reads = [Path(v) for v in (getattr(args, name) for name in getattr(args, "reads", ()))
+                 if v is not None]
         if out is not None and args.cmd == "ssp":
             check_output_file(out, reads=reads, force=args.force)
         elif out is not None:

@@ -253,7 +253,8 @@ def load(path) -> Scenario:
                            if w.startswith(f"{path}: geometry."))
             expected = (f"a closed form that holds for this law and these axes ({geo['closed_form']} needs "
                         f"{refusal}; \"general\" holds for any)")
-            problems.add(str(ScenarioError(path, "geometry.closed_form", expected, geo["closed_form"])) + said)
+            problems.add(str(ScenarioError(path, "geometry.closed_form", expected, geo["closed_form"]))
+                         + said)
     problems.raise_any()
     return Scenario(
         path=path, name=top["name"], title=top["title"] or top["name"], kind=top["kind"],

@@ -65,9 +65,11 @@ def _component(name, source, connectors, reals, integers=()):
               f'              <ssv:ParameterSet version="1.0" name="{PARAMETER_SET}">',
               "                <ssv:Parameters>"]
     for k, v in reals:
-        lines.append(f'                  <ssv:Parameter name="{k}"><ssv:Real value="{_fmt(v)}"/></ssv:Parameter>')
+        lines.append(f'                  <ssv:Parameter name="{k}">'
+                     f'<ssv:Real value="{_fmt(v)}"/></ssv:Parameter>')
     for k, v in integers:
-        lines.append(f'                  <ssv:Parameter name="{k}"><ssv:Integer value="{int(v)}"/></ssv:Parameter>')
+        lines.append(f'                  <ssv:Parameter name="{k}">'
+                     f'<ssv:Integer value="{int(v)}"/></ssv:Parameter>')
     lines += ["                </ssv:Parameters>", "              </ssv:ParameterSet>",
               "            </ssd:ParameterValues>", "          </ssd:ParameterBinding>",
               "        </ssd:ParameterBindings>", "      </ssd:Component>"]
@@ -83,7 +85,8 @@ def parameter_values_file(values: dict, name: str, description: str = "") -> str
              + (f" description={quoteattr(description)}" if description else "") + ">",
              "  <ssv:Parameters>"]
     for k, v in values.items():
-        value = f'<ssv:Real value="{_fmt(v)}"/>' if isinstance(v, float) else f'<ssv:Integer value="{int(v)}"/>'
+        value = (f'<ssv:Real value="{_fmt(v)}"/>' if isinstance(v, float)
+                 else f'<ssv:Integer value="{int(v)}"/>')
         lines.append(f'    <ssv:Parameter name={quoteattr(k)}>{value}</ssv:Parameter>')
     lines += ["  </ssv:Parameters>", "</ssv:ParameterSet>", ""]
     return "\n".join(lines)

@@ -120,7 +120,8 @@ def rig_scenario(cal: Calibration, scenario=None) -> Scenario:
         sc = load(scenario)
         require_mat_angles(sc, "an SSP", scenario)
         return dataclasses.replace(sc, name=f"calibrated_{sc.name}", law=law, fmu=None, **offsets)
-    return Scenario(path=cal.path, name="calibrated", title=f"Calibrated contact on the rig of {cal.data_folder}",
+    return Scenario(path=cal.path, name="calibrated",
+                    title=f"Calibrated contact on the rig of {cal.data_folder}",
                     kind="sweep", description="", law=law, closed_form="mat",
                     rig=cal.rig.harness(c_strip=cal.c_strip), **offsets)
 
@@ -264,7 +265,8 @@ def export(cal: Calibration, out: Path, angle_deg: float, sc: Scenario | None = 
     note += forced_note(forced)
     fmus = {}
     for v in (2, 3):
-        fmus[v] = write_with_start_values(find_fmu(fmi_version=v), out / f"fmi{v}" / f"{MODEL_IDENTIFIER}.fmu",
+        fmus[v] = write_with_start_values(find_fmu(fmi_version=v),
+                                          out / f"fmi{v}" / f"{MODEL_IDENTIFIER}.fmu",
                                           values, documentation={"calibration.html": doc},
                                           description_note=note)
     (out / "calibration.ssv").write_text(parameter_values_file(values, "calibration", note))

@@ -179,8 +179,9 @@ class IdentifiedFile:
                    assumptions=dataclasses.asdict(self.assumptions))
         if self.reduction is not None:
             r = self.reduction
-            out["reduction"] = {"runs": dict(r.runs), "left_out": list(r.left_out), "flagged": dict(r.flagged),
-                                "table": r.table, "figures": list(r.figures), "scenario": r.scenario}
+            out["reduction"] = {"runs": dict(r.runs), "left_out": list(r.left_out),
+                                "flagged": dict(r.flagged), "table": r.table, "figures": list(r.figures),
+                                "scenario": r.scenario}
         return out
 
 

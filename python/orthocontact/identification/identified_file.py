@@ -192,7 +192,8 @@ def _covariance(path, where, d) -> Covariance:
     names = d["parameters"]
     if not (isinstance(names, list) and names and all(isinstance(n, str) for n in names)
             and len(set(names)) == len(names)):
-        raise InputError(f"{path}: {where}.parameters: expected the names of the estimates, got {_short(names)}")
+        raise InputError(f"{path}: {where}.parameters: expected the names of the estimates, "
+                         f"got {_short(names)}")
     k, values, matrix = len(names), d["values"], d["matrix"]
     if not (isinstance(values, list) and len(values) == k and isinstance(matrix, list) and len(matrix) == k
             and all(isinstance(r, list) and len(r) == k for r in matrix)):
@@ -246,8 +247,8 @@ def from_json(path, d: dict) -> IdentifiedFile:
     if not isinstance(folder, str) or not folder:
         raise InputError(f"{path}: data.folder: expected the measurement folder's path")
     record = DataRecord(folder=folder, absolute_folder=data.text("absolute_folder"),
-                        forces=data.integer("forces"), angles=data.integer("angles"), ramp=data.integer("ramp"),
-                        files=dict(files), sha256=stated)
+                        forces=data.integer("forces"), angles=data.integer("angles"),
+                        ramp=data.integer("ramp"), files=dict(files), sha256=stated)
     pts = top.sub("points")
     points = Points(angles=pts.rows("angles", 2, "[[mat angle deg, phi deg], ...]"),
                     angle_velocities=pts.rows("angle_velocities", 1, "a velocity [m/s] per angle"),
@@ -330,7 +331,8 @@ def plausible_identified(f: IdentifiedFile) -> list:
     for name, key in ASSUMED.items():
         v = getattr(a, name)
         if number(v, key):
-            found += plausibility.findings({key: v}, f"{path}: assumptions." + ("" if name == key else f"{name}: "))
+            found += plausibility.findings({key: v}, f"{path}: assumptions."
+                                           + ("" if name == key else f"{name}: "))
     return found
 
 

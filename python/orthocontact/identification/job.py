@@ -78,7 +78,8 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     if line:
         out["warning"] = line
     if data.forces is not None:
-        res = data.forces[:, 1] - np.array([sim[(float(a), float(v))][1] for a, v in zip(data.forces[:, 0], fv)])
+        res = data.forces[:, 1] - np.array([sim[(float(a), float(v))][1]
+                                            for a, v in zip(data.forces[:, 0], fv)])
         out["forces_N"] = res_stats(res)
     if data.angles is not None:
         res = data.angles[:, 1] - np.array([sim[(float(a), float(v))][0] for a, v in
@@ -152,7 +153,8 @@ class Identification:
         def estimate(n, unit=None, note=None):
             dof = f.param_dof.get(n)
             return Estimate(value=f.values[n], stderr=f.stderr[n], ci95=tuple(f.ci95[n]),
-                            dof=None if dof is None else (math.inf if not math.isfinite(dof) else round(float(dof), 2)),
+                            dof=None if dof is None else
+                            (math.inf if not math.isfinite(dof) else round(float(dof), 2)),
                             unit=unit, note=note)
         estimates = {n: estimate(n) if n in f.values else
                      NotIdentified(f.not_identifiable.get(n, "not determined")) for n in REPORTED}
@@ -180,7 +182,8 @@ class Identification:
         # normal); the joint one, with F_int and the strip, beside it.
         law = [i for i, n in enumerate(f.free) if n not in ("f_int", "c_strip")]
         sym = 0.5 * (f.cov + f.cov.T)
-        cov = Covariance(parameters=tuple(f.free[i] for i in law), values=tuple(f.values[f.free[i]] for i in law),
+        cov = Covariance(parameters=tuple(f.free[i] for i in law),
+                         values=tuple(f.values[f.free[i]] for i in law),
                          matrix=tuple(tuple(float(sym[i, j]) for j in law) for i in law))
         joint = None if len(law) == len(f.free) else Covariance(
             parameters=tuple(f.free), values=tuple(f.values[n] for n in f.free),

@@ -141,7 +141,8 @@ def load_data(folder) -> MeasurementSet:
                        {ANGLE: angle, "force_N": lambda v: None if v > 0 else "a force > 0"},
                        2, "two parameters, mu1 and mu2")
     angles = _load_csv(folder / "angles.csv", (ANGLE, "phi_deg"),
-                       {ANGLE: angle, "phi_deg": lambda v: None if -90 < v < 90 else "an angle in (-90, 90) deg",
+                       {ANGLE: angle,
+                        "phi_deg": lambda v: None if -90 < v < 90 else "an angle in (-90, 90) deg",
                         "velocity_m_s": lambda v: None if v > 0 else "a velocity > 0"},
                        1, "the stiffness ratio", optional={"velocity_m_s": rig.velocity_m_s})
     velocities = None
@@ -200,7 +201,8 @@ def changed_files(folder, files: dict) -> list[str]:
 RADIAN_ORIENTATIONS = math.pi / 2 + 1e-9   # |mat angle| [deg] of a sweep typed in rad
 
 
-RADIAN_TRAJECTORY = 0.25                  # |phi| [deg] of angles typed in rad (the aged mat peaks at 0.2007 rad)
+# |phi| [deg] of angles typed in rad (the aged mat peaks at 0.2007 rad)
+RADIAN_TRAJECTORY = 0.25
 
 
 TRAVEL_SAID = " (rig.toml's travel_m; 0.5 m unless given)"

@@ -54,7 +54,8 @@ def to_measurements(rec: Recordings, red: Reduction) -> MeasurementSet:
 def reduction_summary(red: Reduction, figures, scenario: Path | None) -> ReductionSummary:
     """What identified.json says of the reduction: runs of each kind, those
     left out and flagged, and the files written beside it."""
-    return ReductionSummary(runs={k: sum(r.kind == k for r in red.runs) for k in ("slide", "carriage", "ramp")},
+    return ReductionSummary(runs={k: sum(r.kind == k for r in red.runs)
+                                  for k in ("slide", "carriage", "ramp")},
                             left_out=tuple(r.run for r in red.runs if not r.used),
                             flagged={r.run: r.flags for r in red.runs if r.flags},
                             table="reduction.csv", figures=tuple(Path(f).name for f in figures),
@@ -139,8 +140,9 @@ def write_figures(rec: Recordings, red: Reduction, out: Path) -> list:
                 ax.annotate(f"{r.run}: {' '.join(r.flags)}", (x1[-1], 1e3 * x2[-1]), fontsize=7)
         for i, v in enumerate(velocities):
             phis = [r.phi_deg for r in reds if r.velocity_m_s == v]
-            ax.plot([], [], "-", color=f"C{i}", label=f"{v:g} m/s: {len(phis)} runs, φ = "
-                                                          f"{np.mean(phis):.2f} ± {np.std(phis, ddof=1) if len(phis) > 1 else 0:.2f}° (sd)")
+            sd = np.std(phis, ddof=1) if len(phis) > 1 else 0
+            ax.plot([], [], "-", color=f"C{i}",
+                    label=f"{v:g} m/s: {len(phis)} runs, φ = {np.mean(phis):.2f} ± {sd:.2f}° (sd)")
         ax.plot([], [], "--", color="k", label="fitted line over the steady window (bold)")
         ax.set_xlabel("x1 [m]")
         ax.set_ylabel("x2 less the mean fitted line at its velocity [mm]")
@@ -153,6 +155,11 @@ def write_figures(rec: Recordings, red: Reduction, out: Path) -> list:
         plt.close(fig)
         written.append(path)
     return written
+
+
+RIG_SCENARIO_DESCRIPTION = ("Written by orthocontact identify from the recordings' estimates: the law, "
+                            "F_int and the strip's viscosity as identified (identified.json has their "
+                            "intervals).")
 
 
 def write_rig_scenario(data: MeasurementSet, values: dict, out: Path) -> Path | None:
@@ -171,7 +178,7 @@ def write_rig_scenario(data: MeasurementSet, values: dict, out: Path) -> Path | 
     text = f'''name = "{data.folder.name}_identified"
 title = "The identified law on the rig of {data.folder.name} at {velocity:g} m/s"
 kind = "sweep"
-description = "Written by orthocontact identify from the recordings' estimates: the law, F_int and the strip's viscosity as identified (identified.json has their intervals)."
+description = "{RIG_SCENARIO_DESCRIPTION}"
 
 [law]
 rule = "{rig.rule}"

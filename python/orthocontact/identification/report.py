@@ -138,7 +138,8 @@ def fit_figure(res, path: Path):
                 top = cf.steady_drive_force(v["mu1"], v["mu2"], be, 0.0, rig.mass_kg, rig.g) \
                     if "mu1" in v else float(np.max(d.ramp[:, 1]) - model.f_int)
                 xs = np.linspace(0, d.ramp[:, 0].max(), 200)
-                ax.plot(xs * 1e3, model.f_int + np.minimum(k * xs, top), "-", label=f"fitted model: k={k:.4g} N/m")
+                ax.plot(xs * 1e3, model.f_int + np.minimum(k * xs, top), "-",
+                        label=f"fitted model: k={k:.4g} N/m")
             ax.set_xlabel("travel x1 [mm]")
             ax.set_ylabel("driving force [N]")
         if p != "ramp":
@@ -202,7 +203,8 @@ def markdown_text(res) -> str:
                  f"μ2 = {f.eq1['mu2']:.4f} [-]")
     if f.max_rule:
         mr = f.max_rule
-        L.append(f"- maximum rule (eq. 29, 37–39; the paper's approximation): φ_ext = {mr['phi_ext_deg']:.3f}° "
+        L.append("- maximum rule (eq. 29, 37–39; the paper's approximation): "
+                 f"φ_ext = {mr['phi_ext_deg']:.3f}° "
                  f"at {SWEPT_ANGLE} {mr['at_alpha_deg']:g}° → l1/l2 = {mr['l1_l2_ratio']:.4f} [-]"
                  + (f", ε1/ε2 = {mr['eps_ratio']:.4f} [-]" if "eps_ratio" in mr else ""))
     if f.eq40:

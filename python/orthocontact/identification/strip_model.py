@@ -17,7 +17,8 @@ def strip_regimes(data: MeasurementSet, values: dict) -> tuple:
     if rig.mu_strip == 0 and not rig.c_strip and "c_strip" not in values:
         return ()
     N, c = rig.normal_force, values.get("c_strip", rig.c_strip or 0.0)
-    pts = [] if data.forces is None else [(a, v) for (a, _), v in zip(data.forces, data.velocities_of_forces())]
+    pts = [] if data.forces is None else [(a, v) for (a, _), v in
+                                          zip(data.forces, data.velocities_of_forces())]
     if data.angles is not None:
         pts += [(a, v) for (a, _), v in zip(data.angles, data.velocities_of_angles())]
     out = []

@@ -58,14 +58,16 @@ def twist_lines(sc: Scenario, s: dict) -> list[str]:
         plateau = r["plateau_max_relative_error"]
         lines.append(f"| {rule} | {r['slope_N_m_rad']:.6g} | {r['k_N_m_rad']:.6g} | "
                      f"{r['slope_relative_error']:.1e} ({r['slope_tolerance']:.1e}) | "
-                     f"{r['theta_end_deg']:.4g} | {-r['Mz_end_N_m']:.6g} | {-r['Mz_full_slip_end_N_m']:.6g} | "
+                     f"{r['theta_end_deg']:.4g} | {-r['Mz_end_N_m']:.6g} | "
+                     f"{-r['Mz_full_slip_end_N_m']:.6g} | "
                      + ("not checked: the twist stops before it" if plateau is None else f"{plateau:.1e}")
                      + f" ({r['plateau_tolerance']:.1e}, past {r['plateau_from_deg']:.3g}°) |")
     lines += ["", _check_line(s), ""]
     figures = f"[torque against angle]({sc.name}/twist.png)"
     cells = s.get("cells") or {}
     if cells.get("from"):
-        figures += f", [the cells in stick and slip]({sc.name}/twist_cells.png) (their states: {cells['from']})"
+        figures += (f", [the cells in stick and slip]({sc.name}/twist_cells.png) "
+                    f"(their states: {cells['from']})")
     data = f"[{sc.name}/twist.csv]({sc.name}/twist.csv)"
     if cells.get("from"):
         data += f", [{sc.name}/twist_cells.csv]({sc.name}/twist_cells.csv)"
@@ -88,7 +90,8 @@ def towed_lines(sc: Scenario, s: dict) -> list[str]:
              "−φ, mat turned by the yaw [deg] | φ at the mat angle [deg] |",
              "|---|---|---|---|---|---|---|"]
     for t in sorted(s["tows"], key=lambda t: (t["angle_deg"], t["rule"])):
-        lines.append(f"| {t['angle_deg']:g} | {t['rule']} | {t['yaw_deg']:+.4f} | {t['yaw_closed_deg']:+.4f} | "
+        lines.append(f"| {t['angle_deg']:g} | {t['rule']} | {t['yaw_deg']:+.4f} | "
+                     f"{t['yaw_closed_deg']:+.4f} | "
                      f"{t['deviation_deg']:.1e} | {t['minus_phi_turned_by_yaw_deg']:+.4f} | "
                      f"{t['phi_deg']:+.4f} |")
     lines += ["", f"{_check_line(s)} Largest deviation {s['max_deviation_deg']:.1e}° (tolerance "

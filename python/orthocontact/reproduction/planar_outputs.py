@@ -278,8 +278,8 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
                "patch": sc.patch, "max_deviation_deg": worst,
                "max_deviation_from_minus_phi_turned_deg": worst_phi,
                "yaw_deg": {rule: {f"{a:g}": y for r, a, y, *_ in rows if r == rule} for rule in tw["rules"]},
-               "tows": [dict(zip(("rule", "angle_deg", "yaw_deg", "yaw_closed_deg", "deviation_deg", "phi_deg",
-                                  "minus_phi_turned_by_yaw_deg"), r)) for r in rows],
+               "tows": [dict(zip(("rule", "angle_deg", "yaw_deg", "yaw_closed_deg", "deviation_deg",
+                                  "phi_deg", "minus_phi_turned_by_yaw_deg"), r)) for r in rows],
                "checks": {"ok": warning is None, "tolerance_deg": YAW_TOL_DEG, "warning": warning},
                "angle_convention": "yaw of the block's axis (centre to pin) from the motion (X1), "
                                    "counterclockwise; phi the paper's trajectory angle at the same mat "

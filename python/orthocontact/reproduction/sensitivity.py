@@ -332,12 +332,14 @@ def report_lines(sens: dict) -> list[str]:
               "instead of 1.25. The law is rate-independent, so without a rate-dependent rig term "
               "the two velocities give the same angle; with a viscous strip (ε1/ε2 calibrated on "
               f"{m:g}° at {sens['calibration_velocity_m_s']:g} m/s each time):", "",
-              "| c_strip [N s/m] | ε1/ε2 | peak \\|φ\\| at 0.125 m/s | at 0.244 m/s (rig) |", "|---|---|---|---|"]
+              "| c_strip [N s/m] | ε1/ε2 | peak \\|φ\\| at 0.125 m/s | at 0.244 m/s (rig) |",
+              "|---|---|---|---|"]
     for r in sens["viscous"]:
         if r["eps_ratio"] is None:
             continue
         lines.append(f"| {r['c_strip_N_s_m']:g} | {r['eps_ratio']:.4f} | "
-                     f"{abs(r['peak_phi_rig_deg_at_0.125']):.2f} | {abs(r['peak_phi_rig_deg_at_0.244']):.2f} |")
+                     f"{abs(r['peak_phi_rig_deg_at_0.125']):.2f} | "
+                     f"{abs(r['peak_phi_rig_deg_at_0.244']):.2f} |")
     lines += ["", "The paper prints no peak angle at 0.244 m/s (its Fig. 4 is a plot), so it does "
               "not determine c_strip. Figures: [strip friction](sensitivity/sensitivity_strip.png), "
               "[velocity](sensitivity/sensitivity_velocity.png); data: "

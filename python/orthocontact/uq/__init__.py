@@ -4,15 +4,16 @@ draws (estimates), the rig over the draws (propagate), bands and figure
 from .estimates import Estimates, draw, load_estimates
 from .outputs import write_outputs
 from .propagate import (
-                        DEFAULT_STEP_S,
-                        STEP_CHECK_WARN_DEG,
-                        UQResult,
-                        bands,
-                        check_geometry,
-                        propagate,
-                        step_warning,
-                        uq_step,
+    DEFAULT_STEP_S,
+    STEP_CHECK_WARN_DEG,
+    UQResult,
+    bands,
+    check_geometry,
+    propagate,
+    step_warning,
+    uq_step,
 )
 
 __all__ = ["Estimates", "draw", "load_estimates", "write_outputs", "DEFAULT_STEP_S",
-           "STEP_CHECK_WARN_DEG", "UQResult", "bands", "check_geometry", "propagate", "step_warning", "uq_step"]
+           "STEP_CHECK_WARN_DEG", "UQResult", "bands", "check_geometry", "propagate", "step_warning",
+           "uq_step"]

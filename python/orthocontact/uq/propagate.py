@@ -165,7 +165,8 @@ class UQResult:
             bad = self.unsettled
             apart = np.abs(self.halves[bad])
             how = (f"halves of the fitted path up to {np.max(apart[np.isfinite(apart)]):.3g} deg apart"
-                   if np.isfinite(apart).any() else "too few steps in a half of the fitted path to fit an angle")
+                   if np.isfinite(apart).any()
+                   else "too few steps in a half of the fitted path to fit an angle")
             at = bad.any(axis=0)
             parts.append(f"uq {sc.name}: {int(bad.sum())} of {bad.size} runs over the drawn parameter "
                          f"sets did not settle ({how}; angles {angle_list(self.angles_deg[at])} deg): their "
