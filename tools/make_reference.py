@@ -267,7 +267,32 @@ def model_section(src: ModelSources) -> list[str]:
             "dependency in parentheses (constant: linearly, with a constant factor; dependent: "
             "in any other way):", "",
             *table(("output", "depends on"), [(f"`{o}`", depends_cell(d)) for o, d in deps.items()])]
-    return out
+    return out + state_section(m.model_identifier, src.table)
+
+
+def state_section(model: str, table_path: str) -> list[str]:
+    """The layout of the model's serialized state, from the manifest's
+    "state" (gen_model_description writes it from the model's field list)."""
+    from orthocontact.fmu.files import installed_file
+    state = json.loads(installed_file(f"variables/{model}.json").read_text())["state"]
+    parts = [f"the header ({state['headerBytes']} bytes): {md_text(state['header'])}, "
+             f"the tag being `{state['tag']}`"]
+    for part in state["parts"]:
+        runs: list[tuple[str, list[str]]] = []   # consecutive fields of one type
+        for f in part["fields"]:
+            if runs and runs[-1][0] == f["type"]:
+                runs[-1][1].append(f["name"])
+            else:
+                runs.append((f["type"], [f["name"]]))
+        fields = ", ".join(", ".join(f"`{n}`" for n in names) + f" ({kind})" for kind, names in runs)
+        times = f", {part['count']} times" if part["count"] > 1 else ""
+        parts.append(f"{md_text(part['part'])}{times}: {fields}")
+    folder = table_path.rsplit("/", 1)[0]
+    return ["", "### Serialized state", "",
+            f"{state['bytes']} bytes, format {state['format']}, little-endian, field by field with "
+            "no padding (equal states give equal bytes on every platform): " + "; ".join(parts) + ". "
+            f"From the model's field list (`FMU_STATE_FIELDS` in `{folder}/model.h`), as the FMU "
+            "writes and reads it."]
 
 
 

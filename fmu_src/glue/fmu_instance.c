@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "glue/fmu_bytes.h"
+#include "glue/fmu_fields.h"
 
 const char *const FMU_LOG_NAMES[FMU_LOG_N] = {"logStatusError", "logStatusWarning", "logCalls"};
 
@@ -732,11 +733,113 @@ FMU_HOT fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg
     return FMU_OK;
 }
 
-/* Layout: tag[4], format u32, total length u32, phase u32, time f64, model.
- * Format 3 (0.4.0) added the contact's initial slip; a state of another
- * format is refused with a message that says so (its meaning differs: no
- * conversion guesses it). */
-enum { STATE_FORMAT = 3, STATE_HEADER = 4 + 4 + 4 + 4 + 8 };
+/* ---- a model's serialized fields (fmu_fields.h) -------------------------- */
+
+size_t fmu_fields_size(const fmu_fields *list) {
+    size_t n = 0;
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *f = &list->field[i];
+        n += f->type == FMU_FIELD_F64   ? 8
+             : f->type == FMU_FIELD_U32 ? 4
+                                        : f->count * fmu_fields_size(f->record);
+    }
+    return n;
+}
+
+unsigned char *fmu_fields_write(const fmu_fields *list, const void *s, unsigned char *p) {
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *f = &list->field[i];
+        const char *at = (const char *)s + f->offset;
+        if (f->type == FMU_FIELD_F64) {
+            p = fmu_put_f64(p, *(const double *)(const void *)at);
+        } else if (f->type == FMU_FIELD_U32) {
+            p = fmu_put_u32(p, (uint32_t) * (const int *)(const void *)at);
+        } else {
+            for (unsigned int k = 0; k < f->count; ++k)
+                p = fmu_fields_write(f->record, at + k * f->record->stride, p);
+        }
+    }
+    return p;
+}
+
+/* The checks of a number read (a u32's as a double, exactly). */
+static fmu_status check_read(const fmu_field *f, double v, fmu_msg *msg) {
+    switch (f->check) {
+    case FMU_CHECK_FINITE:
+        if (isfinite(v)) return FMU_OK;
+        return fmu_fail(msg, "serialized state: %s = %g is not finite", f->name, v);
+    case FMU_CHECK_RANGE:
+        if (f->type == FMU_FIELD_U32 && v > INT32_MAX)
+            return fmu_fail(msg, "serialized state: %s = %.0f is not an int32", f->name, v);
+        return fmu_model_check_range(f->vr, v, "serialized state", msg);
+    case FMU_CHECK_FLAG:
+        if (v == 0 || v == 1) return FMU_OK;
+        return fmu_fail(msg, "serialized state: %s = %.0f is not 0 or 1", f->name, v);
+    default: return FMU_OK;
+    }
+}
+
+fmu_status fmu_fields_read(const fmu_fields *list, void *s, const unsigned char **p,
+                           fmu_msg *msg) {
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *f = &list->field[i];
+        char *at = (char *)s + f->offset;
+        if (f->type == FMU_FIELD_RECORD) {
+            for (unsigned int k = 0; k < f->count; ++k)
+                if (fmu_fields_read(f->record, at + k * f->record->stride, p, msg) != FMU_OK)
+                    return FMU_ERR;
+            continue;
+        }
+        double v;
+        if (f->type == FMU_FIELD_F64) {
+            *p = fmu_get_f64(*p, &v);
+            *(double *)(void *)at = v;
+        } else {
+            uint32_t u;
+            *p = fmu_get_u32(*p, &u);
+            v = (double)u;
+            *(int *)(void *)at = (int)(u > INT32_MAX ? INT32_MAX : u); /* refused below */
+        }
+        if (check_read(f, v, msg) != FMU_OK) return FMU_ERR;
+    }
+    return FMU_OK;
+}
+
+int fmu_fields_same(const fmu_fields *list, const void *a, const void *b) {
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *f = &list->field[i];
+        const char *x = (const char *)a + f->offset, *y = (const char *)b + f->offset;
+        if (f->type == FMU_FIELD_RECORD) {
+            for (unsigned int k = 0; k < f->count; ++k)
+                if (!fmu_fields_same(f->record, x + k * f->record->stride,
+                                     y + k * f->record->stride))
+                    return 0;
+        } else if (memcmp(x, y, f->type == FMU_FIELD_F64 ? sizeof(double) : sizeof(int)) != 0) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+int fmu_fields_zero(const fmu_fields *list, const void *s) {
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *f = &list->field[i];
+        const char *at = (const char *)s + f->offset;
+        if (f->type == FMU_FIELD_RECORD) {
+            for (unsigned int k = 0; k < f->count; ++k)
+                if (!fmu_fields_zero(f->record, at + k * f->record->stride)) return 0;
+        } else if (f->type == FMU_FIELD_F64 ? *(const double *)(const void *)at != 0.0
+                                            : *(const int *)(const void *)at != 0) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* ---- the serialized state: the glue's header, then the model's fields ---- */
+
+/* Layout: FMU_STATE_HEADER_LAYOUT (fmu_instance.h), the model's fields. */
+enum { STATE_FORMAT = FMU_STATE_FORMAT, STATE_HEADER = FMU_STATE_HEADER_BYTES };
 
 size_t fmu_state_size(void) { return STATE_HEADER + fmu_model_state_size(); }
 

@@ -130,7 +130,14 @@ fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg);
 fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg);
 
 /* Serialized state: tag, format version, length, phase, time, the model's
- * fields.  Reading validates everything and changes I only on success. */
+ * fields (its field list, fmu_fields.h).  Reading validates everything and
+ * changes I only on success.  Format 3 (0.4.0) added the contact's initial
+ * slip; a state of another format is refused with a message that says so
+ * (its meaning differs: no conversion guesses it). */
+enum { FMU_STATE_FORMAT = 3, FMU_STATE_HEADER_BYTES = 4 + 4 + 4 + 4 + 8 };
+#define FMU_STATE_HEADER_LAYOUT                                                                \
+    "the model's tag (4 bytes), the format (u32), the length in bytes (u32), the FMI phase "  \
+    "(u32: 1 instantiated, 2 initialization, 4 step, 8 terminated), the time (f64)"
 size_t fmu_state_size(void);
 void fmu_state_write(const fmu_instance *I, unsigned char *buf);
 fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size, fmu_msg *msg);

@@ -23,8 +23,14 @@
  *             values outside them;
  *     FMU_GROUPED_VARIABLES(X, G) and FMU_GROUP may mark a group of rows
  *     (the law's parameters, law/law_table.h), which the manifest names;
- *   FMU_DEPENDENCIES(D): what each output depends on (model_variables'
- *     comment in gen_model_description.c);
+ *   FMU_DEPENDENCIES(D): what each output depends on, D(output, step
+ *     mode, initialization), each a list of the knowns it is computed from,
+ *     "name" (no particular structure) or "name:kind"; gen_model_description
+ *     refuses an output without its row and a name that is not a known of
+ *     the mode;
+ *   FMU_MODEL_HEADER: the model's header (its struct and FMU_STATE_FIELDS,
+ *     the field list of its serialized state: glue/fmu_fields.h), from
+ *     which the manifest says the state's layout;
  *   optionally FMU_ENUM_TYPES(T), FMU_ARRAYS(A) and
  *     FMU_STRUCTURAL_PARAMETERS (FMI 3.0 arrays), FMU_PROVIDES_DERIVATIVES;
  *   for the generator only (#ifdef FMU_GENERATOR), FMU_DOC_HTML: the

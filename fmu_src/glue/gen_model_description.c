@@ -19,6 +19,10 @@
 
 #define FMU_GENERATOR 1 /* the table header must not include the token this computes */
 #include FMU_TABLE_HEADER
+#ifdef FMU_MODEL_HEADER
+#include FMU_MODEL_HEADER /* the serialized state's field list, FMU_STATE_FIELDS */
+#include "glue/fmu_instance.h" /* its header's */
+#endif
 
 #ifndef FMU_VERSION
 #error "compile with -DFMU_VERSION=\"x.y.z\" (CMake passes the version of the file VERSION)"
@@ -646,6 +650,10 @@ static void json_num(FILE *f, const row *r, double x) {
     }
 }
 
+#ifdef FMU_MODEL_HEADER
+static void state_layout(FILE *f);
+#endif
+
 /* The manifest the Python package reads instead of typing the table's
  * facts: every variable with its columns, the enumerations' items and the
  * table's group (the law's parameters, in the table's order). */
@@ -719,6 +727,9 @@ static void manifest(FILE *f) {
         }
         fputs("  ]},\n", f);
     }
+#ifdef FMU_MODEL_HEADER
+    state_layout(f);
+#endif
     fputs("  \"enumerations\": {", f);
     for (int e = 0; e < NENUMS; ++e) {
         fputs(e ? ",\n    " : "\n    ", f);
@@ -733,6 +744,69 @@ static void manifest(FILE *f) {
     }
     fputs(NENUMS ? "\n  }\n}\n" : "}\n}\n", f);
 }
+
+#ifdef FMU_MODEL_HEADER
+/* Bytes a field list takes (fmu_fields_size's, which the glue has). */
+static size_t fields_bytes(const fmu_fields *list) {
+    size_t n = 0;
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *x = &list->field[i];
+        n += x->type == FMU_FIELD_F64   ? 8
+             : x->type == FMU_FIELD_U32 ? 4
+                                        : x->count * fields_bytes(x->record);
+    }
+    return n;
+}
+
+/* A record's fields as {"name": ..., "type": ...} items, a nested record's
+ * flattened into them. */
+static void field_items(FILE *f, const fmu_fields *list, int *first) {
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *x = &list->field[i];
+        if (x->type == FMU_FIELD_RECORD) {
+            field_items(f, x->record, first);
+            continue;
+        }
+        fputs(*first ? "{\"name\": " : ", {\"name\": ", f);
+        json_str(f, x->name);
+        fprintf(f, ", \"type\": \"%s\"}", x->type == FMU_FIELD_F64 ? "f64" : "u32");
+        *first = 0;
+    }
+}
+
+/* The serialized state's layout, from the model's field list: the glue's
+ * header, then the parts, each a run of fields of one group (a record its
+ * own part, repeated `count` times). */
+static void state_layout(FILE *f) {
+    static const char TAG[4] = FMU_STATE_TAG;
+    fprintf(f, "  \"state\": {\"bytes\": %zu, \"format\": %d, \"tag\": \"%.4s\", \"header\": ",
+            FMU_STATE_HEADER_BYTES + fields_bytes(&FMU_STATE_FIELDS), FMU_STATE_FORMAT, TAG);
+    json_str(f, FMU_STATE_HEADER_LAYOUT);
+    fprintf(f, ", \"headerBytes\": %d, \"parts\": [", FMU_STATE_HEADER_BYTES);
+    const fmu_fields *L = &FMU_STATE_FIELDS;
+    for (unsigned int i = 0; i < L->n;) {
+        const fmu_field *x = &L->field[i];
+        fputs(i ? ",\n    {\"part\": " : "\n    {\"part\": ", f);
+        json_str(f, x->group);
+        int first = 1;
+        if (x->type == FMU_FIELD_RECORD) {
+            fprintf(f, ", \"count\": %u, \"fields\": [", x->count);
+            field_items(f, x->record, &first);
+            ++i;
+        } else {
+            fputs(", \"count\": 1, \"fields\": [", f);
+            unsigned int j = i;
+            while (j < L->n && L->field[j].type != FMU_FIELD_RECORD && is(L->field[j].group, x->group))
+                ++j;
+            const fmu_fields run = {x, j - i, 0};
+            field_items(f, &run, &first);
+            i = j;
+        }
+        fputs("]}", f);
+    }
+    fputs("]},\n", f);
+}
+#endif
 
 /* FNV-1a over everything written to f, in two lanes with different bases. */
 static void hash_file(FILE *f, uint64_t h[2]) {

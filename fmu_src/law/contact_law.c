@@ -1051,22 +1051,11 @@ oc_state oc_state_unloaded(double s1, double s2, double energy) {
     return st;
 }
 
-void oc_state_values(const oc_state *st, double v[OC_STATE_VALUES]) {
-    const double f[OC_STATE_VALUES] = {st->u[0], st->u[1], st->N,    st->a[0],
-                                       st->a[1], st->s[0], st->s[1], st->energy};
-    memcpy(v, f, sizeof f);
-}
-
-oc_state oc_state_of_values(const double f[OC_STATE_VALUES]) {
-    const oc_state st = {{f[0], f[1]}, f[2], {f[3], f[4]}, {f[5], f[6]}, f[7]};
-    return st;
-}
-
 const char *oc_state_check(const oc_law *L, const oc_state *st) {
     (void)L;
-    double v[OC_STATE_VALUES];
-    oc_state_values(st, v);
-    if (!all_finite(v, OC_STATE_VALUES)) return "a committed value is not finite";
+    const double v[] = {st->u[0], st->u[1], st->N,    st->a[0],
+                        st->a[1], st->s[0], st->s[1], st->energy};
+    if (!all_finite(v, sizeof v / sizeof v[0])) return "a committed value is not finite";
     if (!(st->energy >= 0)) return "the dissipated energy is negative";
     if (!(st->N > 0)) {
         if (st->a[0] != 0 || st->a[1] != 0) return "an open contact carries a force";

@@ -77,12 +77,6 @@ typedef struct {
     double energy; /* dissipated energy [J] */
 } oc_state;
 
-/* A committed state as its OC_STATE_VALUES numbers, in the one order a
- * model serializes them: u1, u2, N, a1, a2, s1, s2, energy. */
-enum { OC_STATE_VALUES = 8 };
-void oc_state_values(const oc_state *st, double v[OC_STATE_VALUES]);
-oc_state oc_state_of_values(const double v[OC_STATE_VALUES]);
-
 /* The unloaded state with slip s [m] and dissipated energy [J]. */
 oc_state oc_state_unloaded(double s1, double s2, double energy);
 

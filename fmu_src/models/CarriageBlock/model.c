@@ -1,23 +1,11 @@
-/* The carriage/block rig as a model of the shared FMI glue (fmu_model.h): a
- * second model beside the contact, with its own table (models/CarriageBlock/table.h). */
+/* The carriage/block rig as a model of the shared FMI glue (model.h). */
+#include "models/CarriageBlock/model.h"
+
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
-#include "glue/fmu_bytes.h"
-#include "glue/fmu_model.h"
 #include "rig/rig_core.h"
-#include "models/CarriageBlock/table.h"
-
-enum { N_PAR = 6 }; /* mass, g, fInt, velocity, muStrip, cStrip: vr 1..6 */
-
-struct fmu_model {
-    double par[N_PAR]; /* indexed by value reference - 1 */
-    double T[2];       /* force of the mat on the block [N] */
-    double x2, v2;     /* lateral position [m] and velocity [m/s] */
-    double time;       /* [s]; x1 = velocity time */
-    double x1, N, drive_force; /* outputs that follow from the above (refresh) */
-};
 
 /* Where each variable of the table lives (the glue reads and writes them). */
 #define FMU_SLOT_time offsetof(struct fmu_model, time)
@@ -83,31 +71,17 @@ fmu_status fmu_model_do_step(fmu_model *m, double h, fmu_msg *msg) {
     return FMU_OK;
 }
 
-/* Serialized: the six parameters, T1, T2, x2, v2: little-endian doubles. */
-enum { N_STATE = N_PAR + 4 };
-size_t fmu_model_state_size(void) { return 8 * N_STATE; }
+/* ---- serialized state: the field list of model.h ------------------------ */
+
+size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
 
 void fmu_model_state_write(const fmu_model *m, unsigned char *p) {
-    for (int i = 0; i < N_PAR; ++i) p = fmu_put_f64(p, m->par[i]);
-    p = fmu_put_f64(p, m->T[0]);
-    p = fmu_put_f64(p, m->T[1]);
-    p = fmu_put_f64(p, m->x2);
-    fmu_put_f64(p, m->v2);
+    fmu_fields_write(&FMU_STATE_FIELDS, m, p);
 }
 
 fmu_status fmu_model_state_read(fmu_model *m, const unsigned char *p, fmu_msg *msg) {
     struct fmu_model t = *m;
-    for (int i = 0; i < N_PAR; ++i) {
-        p = fmu_get_f64(p, &t.par[i]);
-        if (fmu_model_check_range((unsigned)i + 1, t.par[i], "serialized state", msg) != FMU_OK)
-            return FMU_ERR;
-    }
-    p = fmu_get_f64(p, &t.T[0]);
-    p = fmu_get_f64(p, &t.T[1]);
-    p = fmu_get_f64(p, &t.x2);
-    fmu_get_f64(p, &t.v2);
-    if (!isfinite(t.T[0]) || !isfinite(t.T[1]) || !isfinite(t.x2) || !isfinite(t.v2))
-        return fmu_fail(msg, "serialized state: a value is not finite");
+    if (fmu_fields_read(&FMU_STATE_FIELDS, &t, &p, msg) != FMU_OK) return FMU_ERR;
     *m = t;
     return FMU_OK;
 }

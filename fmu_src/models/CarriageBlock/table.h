@@ -30,6 +30,8 @@
 /* Sources of the binary besides the version's glue (CMake's fmu_add reads
  * the list from here). */
 #define FMU_SOURCES(S) S(models/CarriageBlock/model.c) S(rig/rig_core.c) S(glue/fmu_instance.c)
+/* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
+#define FMU_MODEL_HEADER "models/CarriageBlock/model.h"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"2.05\" stepSize=\"0.0002\""
 #define FMU_PROVIDES_DERIVATIVES 0
 #ifdef FMU_GENERATOR

@@ -162,33 +162,27 @@ typedef struct {
     const oc_state *array;      /* FROM_ARRAY: cell c's state is array[c] */
     const oc_step *steps;       /* FROM_STEPS: steps[c].next, */
     int buffer;                 /*   steps = the model's steps[buffer] */
-    const unsigned char *bytes; /* FROM_BYTES: serialized, N_STATE_F64 doubles a cell */
+    const unsigned char *bytes; /* FROM_BYTES: serialized, cell_bytes() a cell */
 } cell_source;
 
-enum { N_STATE_F64 = OC_STATE_VALUES };
+/* A serialized cell: its committed state (law/law_fields.h), all f64. */
+static size_t cell_bytes(void) { return fmu_fields_size(&OC_STATE_FIELDS); }
 
-static const unsigned char *get_state(const unsigned char *p, oc_state *s) {
-    double f[N_STATE_F64];
-    for (int i = 0; i < N_STATE_F64; ++i) p = fmu_get_f64(p, &f[i]);
-    *s = oc_state_of_values(f);
-    return p;
-}
-
-static unsigned char *put_state(unsigned char *p, const oc_state *s) {
-    double f[N_STATE_F64];
-    oc_state_values(s, f);
-    for (int i = 0; i < N_STATE_F64; ++i) p = fmu_put_f64(p, f[i]);
-    return p;
+static oc_state cell_of_bytes(const unsigned char *bytes, int c) {
+    oc_state s;
+    const unsigned char *p = bytes + (size_t)c * 8 * OC_STATE_FIELDS.n;
+    for (unsigned int k = 0; k < OC_STATE_FIELDS.n; ++k)
+        p = fmu_get_f64(p, (double *)(void *)((char *)&s + OC_STATE_FIELDS.field[k].offset));
+    return s;
 }
 
 /* Cell c's committed state; x its kinematics (for the initial slip at inputs). */
 static oc_state source_cell(const cell_source *src, const patch_setup *g, const patch_cell *x,
                             int c) {
-    oc_state s;
     switch (src->kind) {
     case FROM_ARRAY: return src->array[c];
     case FROM_STEPS: return src->steps[c].next;
-    case FROM_BYTES: get_state(src->bytes + (size_t)c * 8 * N_STATE_F64, &s); return s;
+    case FROM_BYTES: return cell_of_bytes(src->bytes, c);
     default:
         return g->initial_slip == PATCH_INITIAL_EXPLICIT
                    ? oc_state_unloaded(g->s_start[0], g->s_start[1], 0.0)
@@ -598,137 +592,78 @@ static fmu_status derivative(const patch_model *m, const unsigned int unknown[],
                                    adjoint, msg);
 }
 
-/* ---- serialized state: field by field, little-endian --------------------- */
+/* ---- serialized state: the field list of model.h ------------------------ */
 
-/* parameters, rule, initial slip (kind, s1, s2), length, width, n1, n2,
- * inputs (u1, u2, theta, N, p1, p2), commit flag, then PATCH_MAX_CELLS
- * committed cell states (those beyond n1 n2 zero: the size is fixed). */
-#define LAW_COUNT(...) +1
-enum { N_PARAM_F64 = 0 OC_LAW_PARAMETERS(LAW_COUNT) };
-static size_t head_bytes(void) { return 8 * N_PARAM_F64 + 4 + 4 + 8 * 2 + 8 * 2 + 4 * 2 + 8 * 6 + 4; }
-size_t fmu_model_state_size(void) {
-    return head_bytes() + (size_t)PATCH_MAX_CELLS * 8 * N_STATE_F64;
-}
+size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
 
 void fmu_model_state_write(const patch_model *m, unsigned char *p) {
-    const oc_params *q = &m->params;
-    const patch_setup *g = &m->g;
-#define PUT_LAW(name, ...) p = fmu_put_f64(p, q->name);
-    OC_LAW_PARAMETERS(PUT_LAW)
-#undef PUT_LAW
-    p = fmu_put_u32(p, (uint32_t)q->rule);
-    p = fmu_put_u32(p, (uint32_t)g->initial_slip);
-    p = fmu_put_f64(p, g->s_start[0]);
-    p = fmu_put_f64(p, g->s_start[1]);
-    p = fmu_put_f64(p, g->length);
-    p = fmu_put_f64(p, g->width);
-    p = fmu_put_u32(p, (uint32_t)g->n[0]);
-    p = fmu_put_u32(p, (uint32_t)g->n[1]);
-    const double in[6] = {g->u[0], g->u[1], g->theta, g->N, g->p[0], g->p[1]};
-    for (int k = 0; k < 6; ++k) p = fmu_put_f64(p, in[k]);
-    p = fmu_put_u32(p, (uint32_t)m->result_committed);
-    const int n = n_cells(g);
-    for (int c = 0; c < n; ++c) p = put_state(p, start_of(m, c));
-    memset(p, 0, (size_t)(PATCH_MAX_CELLS - n) * 8 * N_STATE_F64);
+    p = fmu_fields_write(&PATCH_HEAD_FIELDS, m, p);
+    const int n = n_cells(&m->g);
+    for (int c = 0; c < n; ++c) p = fmu_fields_write(&OC_STATE_FIELDS, start_of(m, c), p);
+    memset(p, 0, (size_t)(PATCH_MAX_CELLS - n) * cell_bytes());
 }
 
-/* Reads and checks everything before it changes m: the header into locals,
- * then each cell's state where it lies in the buffer; the shown result is
- * not stored but recomputed (into the free buffer, which nothing reads)
- * from the committed states and the inputs, of which it is a function. */
-fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg *msg) {
-    oc_params q;
+/* What the serialized head reads into m, kept to be put back. */
+typedef struct {
+    oc_params params;
     patch_setup g;
-    memset(&q, 0, sizeof q);
-    memset(&g, 0, sizeof g);
-    uint32_t rule, initial, n1, n2, done;
-#define GET_LAW(name, ...) p = fmu_get_f64(p, &q.name);
-    OC_LAW_PARAMETERS(GET_LAW)
-#undef GET_LAW
-    p = fmu_get_u32(p, &rule);
-    p = fmu_get_u32(p, &initial);
-    p = fmu_get_f64(p, &g.s_start[0]);
-    p = fmu_get_f64(p, &g.s_start[1]);
-    p = fmu_get_f64(p, &g.length);
-    p = fmu_get_f64(p, &g.width);
-    p = fmu_get_u32(p, &n1);
-    p = fmu_get_u32(p, &n2);
-    double in[6];
-    for (int k = 0; k < 6; ++k) p = fmu_get_f64(p, &in[k]);
-    p = fmu_get_u32(p, &done);
-    const unsigned char *cells = p;
-    const char *ctx = "serialized state";
-#define CHECK_LAW(name, vr, ...) \
-    if (fmu_model_check_range(vr, q.name, ctx, msg) != FMU_OK) return FMU_ERR;
-    OC_LAW_PARAMETERS(CHECK_LAW)
-#undef CHECK_LAW
-    if (rule > (uint32_t)INT32_MAX || initial > (uint32_t)INT32_MAX || n1 > (uint32_t)INT32_MAX ||
-        n2 > (uint32_t)INT32_MAX ||
-        fmu_model_check_range(PATCH_VR_slidingRule, (double)rule, ctx, msg) != FMU_OK ||
-        fmu_model_check_range(PATCH_VR_initialSlip, (double)initial, ctx, msg) != FMU_OK ||
-        fmu_model_check_range(PATCH_VR_s1Start, g.s_start[0], ctx, msg) != FMU_OK ||
-        fmu_model_check_range(PATCH_VR_s2Start, g.s_start[1], ctx, msg) != FMU_OK ||
-        fmu_model_check_range(PATCH_VR_length, g.length, ctx, msg) != FMU_OK ||
-        fmu_model_check_range(PATCH_VR_width, g.width, ctx, msg) != FMU_OK ||
-        fmu_model_check_range(PATCH_VR_n1, (double)n1, ctx, msg) != FMU_OK ||
-        fmu_model_check_range(PATCH_VR_n2, (double)n2, ctx, msg) != FMU_OK)
-        return FMU_ERR;
-    q.rule = (int)rule;
-    g.initial_slip = (int)initial;
-    g.n[0] = (int)n1;
-    g.n[1] = (int)n2;
-    for (int k = 0; k < 6; ++k)
-        if (!isfinite(in[k])) return fmu_fail(msg, "serialized state: an input is not finite");
-    g.u[0] = in[0];
-    g.u[1] = in[1];
-    g.theta = in[2];
-    g.N = in[3];
-    g.p[0] = in[4];
-    g.p[1] = in[5];
-    if (check_pressure(&g, msg) != FMU_OK) return FMU_ERR;
-    if (done > 1) return fmu_fail(msg, "serialized state: commit flag %u is not 0 or 1", (unsigned)done);
+    int result_committed;
+} patch_head;
+
+/* fmu_model_state_read once the head is in m: the cells checked where they
+ * lie in the buffer, then the shown result recomputed (into the free
+ * buffer, which nothing reads) from the committed states and the inputs,
+ * of which it is a function.  `was` holds the head before. */
+static fmu_status read_cells(patch_model *m, const patch_head *was, const unsigned char *cells,
+                             fmu_msg *msg) {
+    if (check_pressure(&m->g, msg) != FMU_OK) return FMU_ERR;
     /* A master that saves and restores every step restores the parameters
      * it already has: keep their tensors instead of recomputing them.  Bit
      * patterns, not ==: -0.0 and +0.0 give tensors that differ in the sign
      * of zero entries, and a restored state must continue bit for bit. */
     oc_law law;
-    int same = m->params.rule == q.rule && m->g.n[0] == g.n[0] && m->g.n[1] == g.n[1];
-#define SAME_LAW(name, ...) same = same && memcmp(&m->params.name, &q.name, sizeof(double)) == 0;
-    OC_LAW_PARAMETERS(SAME_LAW)
-#undef SAME_LAW
     fmu_msg why;
-    if (same) law = m->law;
-    else if (cell_law(&q, &g, &law, &why) != FMU_OK)
+    if (fmu_fields_same(&OC_PARAMS_FIELDS, &was->params, &m->params) &&
+        was->g.n[0] == m->g.n[0] && was->g.n[1] == m->g.n[1])
+        law = m->law;
+    else if (cell_law(&m->params, &m->g, &law, &why) != FMU_OK)
         return fmu_fail(msg, "serialized state: %s", why.text);
-    const int n = n_cells(&g);
+    const int n = n_cells(&m->g);
     for (int c = 0; c < PATCH_MAX_CELLS; ++c) {
-        oc_state s;
-        get_state(cells + (size_t)c * 8 * N_STATE_F64, &s);
+        const oc_state s = cell_of_bytes(cells, c);
         if (c >= n) {
-            double v[N_STATE_F64];
-            oc_state_values(&s, v);
-            for (int k = 0; k < N_STATE_F64; ++k)
-                if (v[k] != 0.0)
-                    return fmu_fail(msg, "serialized state: cell %d of a %d x %d patch holds a "
-                                         "state", c + 1, g.n[0], g.n[1]);
+            if (!fmu_fields_zero(&OC_STATE_FIELDS, &s))
+                return fmu_fail(msg, "serialized state: cell %d of a %d x %d patch holds a state",
+                                c + 1, m->g.n[0], m->g.n[1]);
             continue;
         }
-        const char *why = oc_state_check(&law, &s);
-        if (why) return fmu_fail(msg, "serialized state: cell %d: %s", c + 1, why);
+        const char *bad = oc_state_check(&law, &s);
+        if (bad) return fmu_fail(msg, "serialized state: cell %d: %s", c + 1, bad);
     }
     const cell_source src = {FROM_BYTES, NULL, NULL, -1, cells};
     const int into = free_buffer(m);
     patch_sums S;
-    if (step_cells(&law, &g, &src, m->steps[into], &S, &why) != FMU_OK)
+    if (step_cells(&law, &m->g, &src, m->steps[into], &S, &why) != FMU_OK)
         return fmu_fail(msg, "serialized state: %s", why.text);
     /* accepted: nothing below can fail */
-    m->params = q;
     m->law = law;
-    m->g = g;
-    for (int c = 0; c < n; ++c) get_state(cells + (size_t)c * 8 * N_STATE_F64, &m->start[c]);
+    for (int c = 0; c < n; ++c) m->start[c] = cell_of_bytes(cells, c);
     m->from = 0;
     m->shown = into;
     show(m, &S);
-    m->result_committed = (int)done;
     return FMU_OK;
+}
+
+/* Reads the head into m, checked field by field, and the cells; a refused
+ * state puts the head back and changes nothing else. */
+fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg *msg) {
+    const patch_head head = {m->params, m->g, m->result_committed};
+    fmu_status st = fmu_fields_read(&PATCH_HEAD_FIELDS, m, &p, msg);
+    if (st == FMU_OK) st = read_cells(m, &head, p, msg);
+    if (st != FMU_OK) {
+        m->params = head.params;
+        m->g = head.g;
+        m->result_committed = head.result_committed;
+    }
+    return st;
 }

@@ -4,7 +4,6 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "glue/fmu_bytes.h"
 #include "glue/fmu_instance.h"
 #include "models/OrthotropicContact/table.h"
 
@@ -176,95 +175,28 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
                                    adjoint, msg);
 }
 
-/* ---- serialized state: field by field, little-endian --------------------- */
+/* ---- serialized state: the field list of model.h ------------------------ */
 
-#define LAW_COUNT(...) +1
-enum { N_PARAM_F64 = 0 OC_LAW_PARAMETERS(LAW_COUNT), N_STATE_F64 = OC_STATE_VALUES };
-/* parameters, rule, inputs, committed state, initial slip (kind, s1, s2),
- * commit flag */
-static size_t state_bytes(void) {
-    return 8 * N_PARAM_F64 + 4 + 8 * 3 + 8 * N_STATE_F64 + 4 + 8 * 2 + 4;
-}
-size_t fmu_model_state_size(void) { return state_bytes(); }
-
-static unsigned char *put_state(unsigned char *p, const oc_state *s) {
-    double f[N_STATE_F64];
-    oc_state_values(s, f);
-    for (int i = 0; i < N_STATE_F64; ++i) p = fmu_put_f64(p, f[i]);
-    return p;
-}
-
-static const unsigned char *get_state(const unsigned char *p, oc_state *s) {
-    double f[N_STATE_F64];
-    for (int i = 0; i < N_STATE_F64; ++i) p = fmu_get_f64(p, &f[i]);
-    *s = oc_state_of_values(f);
-    return p;
-}
+size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
 
 void fmu_model_state_write(const oc_model *m, unsigned char *p) {
-    const oc_params *q = &m->params;
-#define PUT_LAW(name, ...) p = fmu_put_f64(p, q->name);
-    OC_LAW_PARAMETERS(PUT_LAW)
-#undef PUT_LAW
-    p = fmu_put_u32(p, (uint32_t)q->rule);
-    p = fmu_put_f64(p, m->u[0]);
-    p = fmu_put_f64(p, m->u[1]);
-    p = fmu_put_f64(p, m->N);
-    p = put_state(p, &m->start);
-    p = fmu_put_u32(p, (uint32_t)m->initial_slip);
-    p = fmu_put_f64(p, m->s_start[0]);
-    p = fmu_put_f64(p, m->s_start[1]);
-    fmu_put_u32(p, (uint32_t)m->result_committed);
+    fmu_fields_write(&FMU_STATE_FIELDS, m, p);
 }
 
 fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *msg) {
     oc_model t;
     memset(&t, 0, sizeof t);
-    uint32_t rule, done, initial;
-#define GET_LAW(name, ...) p = fmu_get_f64(p, &t.params.name);
-    OC_LAW_PARAMETERS(GET_LAW)
-#undef GET_LAW
-    p = fmu_get_u32(p, &rule);
-    p = fmu_get_f64(p, &t.u[0]);
-    p = fmu_get_f64(p, &t.u[1]);
-    p = fmu_get_f64(p, &t.N);
-    p = get_state(p, &t.start);
-    p = fmu_get_u32(p, &initial);
-    p = fmu_get_f64(p, &t.s_start[0]);
-    p = fmu_get_f64(p, &t.s_start[1]);
-    fmu_get_u32(p, &done);
-    t.params.rule = (int)rule;
-#define CHECK_LAW(name, vr, ...)                                                          \
-    if (fmu_model_check_range(vr, t.params.name, "serialized state", msg) != FMU_OK) \
-        return FMU_ERR;
-    OC_LAW_PARAMETERS(CHECK_LAW)
-#undef CHECK_LAW
-    /* the rule's range is the table's (its enumeration's values) */
-    if (rule > (uint32_t)INT32_MAX ||
-        fmu_model_check_range(OC_VR_slidingRule, (double)rule, "serialized state", msg) != FMU_OK)
-        return FMU_ERR;
-    if (initial != OC_INITIAL_AT_INPUTS && initial != OC_INITIAL_EXPLICIT)
-        return fmu_fail(msg, "serialized state: initialSlip = %u is not 1 or 2", (unsigned)initial);
-    t.initial_slip = (int)initial;
-    if (fmu_model_check_range(OC_VR_s1Start, t.s_start[0], "serialized state", msg) != FMU_OK ||
-        fmu_model_check_range(OC_VR_s2Start, t.s_start[1], "serialized state", msg) != FMU_OK)
-        return FMU_ERR;
+    if (fmu_fields_read(&FMU_STATE_FIELDS, &t, &p, msg) != FMU_OK) return FMU_ERR;
     /* A master that saves and restores every step restores the parameters
      * it already has: keep their tensors instead of recomputing them. */
     /* Bit patterns, not ==: -0.0 and +0.0 give tensors that differ in the
      * sign of zero entries, and a restored state must continue bit for bit. */
-    int same = m->law.p.rule == t.params.rule;
-#define SAME_LAW(name, ...) same = same && memcmp(&m->law.p.name, &t.params.name, sizeof(double)) == 0;
-    OC_LAW_PARAMETERS(SAME_LAW)
-#undef SAME_LAW
+    const int same = fmu_fields_same(&OC_PARAMS_FIELDS, &m->law.p, &t.params);
     if (same) t.law = m->law;
     else if (oc_law_init(&t.law, &t.params) != 0)
         return fmu_fail(msg, "serialized state: the parameters give non-finite tensors");
-    if (!isfinite(t.u[0]) || !isfinite(t.u[1]) || !isfinite(t.N))
-        return fmu_fail(msg, "serialized state: an input is not finite");
     const char *why = oc_state_check(&t.law, &t.start);
     if (why) return fmu_fail(msg, "serialized state: %s", why);
-    if (done > 1) return fmu_fail(msg, "serialized state: commit flag %u is not 0 or 1", (unsigned)done);
     /* The shown result is not stored but recomputed: the law is a function
      * of the committed state and the inputs, so nothing derived can
      * disagree with what it derives from. */
@@ -272,7 +204,6 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
     oc_law_step(&t.law, &t.start, t.u, t.N, &t.steps[0]);
     if (!oc_step_is_finite(&t.steps[0]))
         return fmu_fail(msg, "serialized state: its inputs overflow the force or slip");
-    t.result_committed = (int)done;
     show(&t);
     t.time = m->time; /* the glue restores the time */
     *m = t;

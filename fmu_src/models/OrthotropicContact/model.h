@@ -17,8 +17,11 @@
 #ifndef OC_MODEL_H
 #define OC_MODEL_H
 
-#include "law/contact_law.h"
+#include "glue/fmu_fields.h"
 #include "glue/fmu_model.h"
+#include "law/contact_law.h"
+#include "law/law_fields.h"
+#include "models/OrthotropicContact/table.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -50,6 +53,22 @@ typedef struct fmu_model oc_model;
 
 /* The values of the parameter initialSlip (models/OrthotropicContact/table.h). */
 enum { OC_INITIAL_AT_INPUTS = 1, OC_INITIAL_EXPLICIT = 2 };
+
+/* The model's part of the serialized state (glue/fmu_fields.h).  The shown
+ * result is not stored but recomputed: the law is a function of the
+ * committed state and the inputs, so nothing derived can disagree with
+ * what it derives from. */
+static const fmu_field OC_MODEL_FIELD_LIST[] = {
+    FMU_RECORD(oc_model, params, &OC_PARAMS_FIELDS, "the law's parameters"),
+    FMU_F64(oc_model, u[0], "u1", "the inputs", FINITE, 0),
+    FMU_F64(oc_model, u[1], "u2", "the inputs", FINITE, 0),
+    FMU_F64(oc_model, N, "N", "the inputs", FINITE, 0),
+    FMU_RECORD(oc_model, start, &OC_STATE_FIELDS, "the committed state"),
+    FMU_U32(oc_model, initial_slip, "initialSlip", "the initial slip", RANGE, OC_VR_initialSlip),
+    FMU_F64(oc_model, s_start[0], "s1Start", "the initial slip", RANGE, OC_VR_s1Start),
+    FMU_F64(oc_model, s_start[1], "s2Start", "the initial slip", RANGE, OC_VR_s2Start),
+    FMU_U32(oc_model, result_committed, "committed", "the commit flag (1: the shown step is committed)", FLAG, 0)};
+static const fmu_fields FMU_STATE_FIELDS = FMU_FIELDS(OC_MODEL_FIELD_LIST, oc_model);
 
 #ifdef __cplusplus
 }

@@ -28,6 +28,8 @@
  * glue/fmi3_glue.c), under fmu_src/; CMake's fmu_add reads the list from
  * here and ships the headers of their folders with them. */
 #define FMU_SOURCES(S) S(law/contact_law.c) S(models/OrthotropicContact/model.c) S(glue/fmu_instance.c)
+/* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
+#define FMU_MODEL_HEADER "models/OrthotropicContact/model.h"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 
 #ifdef FMU_GENERATOR
