@@ -295,7 +295,6 @@ def state_section(model: str, table_path: str) -> list[str]:
             "writes and reads it."]
 
 
-
 def variables_page(sources: list[ModelSources]) -> str:
     """docs/reference/variables.md of the given models."""
     out = ["# The FMUs' variables", "",
@@ -478,7 +477,8 @@ def capabilities(src: ModelSources) -> tuple[str, str, tuple[bool, bool]]:
     and 3.0 disagree."""
     c2, c3 = src.cosim[2], src.cosim[3]
     yes = "true".__eq__
-    directional = {yes(c2.get("providesDirectionalDerivative")), yes(c3.get("providesDirectionalDerivatives"))}
+    directional = {yes(c2.get("providesDirectionalDerivative")),
+                   yes(c3.get("providesDirectionalDerivatives"))}
     state = {(yes(c2.get("canGetAndSetFMUstate")), yes(c2.get("canSerializeFMUstate"))),
              (yes(c3.get("canGetAndSetFMUState")), yes(c3.get("canSerializeFMUState")))}
     if len(directional) > 1 or len(state) > 1:

@@ -272,7 +272,8 @@ def test_the_commands_limits_and_progress_are_the_codes():
     assert f"a progress line within {p.FIRST_S:g} s and then every {p.HEARTBEAT_S:g} s" in commands
     rig = _words((DOCS / "guides" / "scenarios-and-rig.md").read_text())
     per_worker = workers.WORKER_MB * workers.PROCESSES_PER_WORKER
-    assert f"{workers.WORKERS_PER_CORE} per usable core" in rig and f"about {per_worker:g} MB per worker" in rig
+    assert f"{workers.WORKERS_PER_CORE} per usable core" in rig
+    assert f"about {per_worker:g} MB per worker" in rig
 
 
 def test_the_step_limits_example_is_the_closed_form_with_the_defaults():
@@ -285,10 +286,23 @@ def test_the_step_limits_example_is_the_closed_form_with_the_defaults():
     text = _words(SYSTEM_GUIDE)
     m, eps, h = 0.05, 25000.0, 4e-3
     assert f"0.05 kg on ε_max = 25,000 N/m gives h < {2e3 * math.sqrt(m / eps):.2f} ms" in text
-    assert f"at h = 4 ms (hω = {h * math.sqrt(eps / m):.2f}) the first step moves the body by h²F/m = " \
-           f"{h * h * eps / m:g}F/ε" in text
+    assert f"at h = 4 ms (hω = {h * math.sqrt(eps / m):.2f}) the first step moves the body by " \
+           f"h²F/m = {h * h * eps / m:g}F/ε" in text
     assert f"30 % of the friction limit loads the contact with {0.3 * h * h * eps / m:.1f} times" in text
     eps1, eps2 = (contact().variable(n).start for n in ("eps1", "eps2"))
     rig = Rig()
     limit = 2e3 * math.sqrt(rig.mass_kg / max(eps1, eps2))
-    assert f"default ε₁ = {eps1:,.0f} N/m with the rig's {rig.mass_kg:g} kg block: h < {limit:.1f} ms" in text
+    assert f"default ε₁ = {eps1:,.0f} N/m with the rig's {rig.mass_kg:g} kg block: " \
+           f"h < {limit:.1f} ms" in text
+
+
+def test_the_reproducing_guides_calibration_chain_is_the_reports():
+    """reproducing-the-paper.md: eps1/eps2 from the measured forces unrounded,
+    as report.json's chain has it, and the paper's 1.251, the report's row of
+    eq. (39) with the rounded mu (matched within its tolerance)."""
+    from orthocontact.reproduction.paper_report import calibration_chain, calibration_rows
+    unrounded = next(c["value"] for c in calibration_chain() if c["step"] == "ε1/ε2 by eq. (39)")
+    paper = next(r for r in calibration_rows() if r["quantity"].startswith("ε1/ε2 by eq. (39)"))
+    guide = _words((DOCS / "guides" / "reproducing-the-paper.md").read_text())
+    assert paper["match"] and f"(ε1/ε2 = {unrounded:.4f}; the paper's {paper['paper']:g} is what its " \
+        "rounded μ give)" in guide
