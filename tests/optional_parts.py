@@ -169,7 +169,8 @@ def pytest_addoption(parser):
 
 
 def pytest_configure(config):
-    config.addinivalue_line("markers", "needs(*parts): the optional parts the test needs (tests/optional_parts.py)")
+    config.addinivalue_line("markers",
+                            "needs(*parts): the optional parts the test needs (tests/optional_parts.py)")
 
 
 def pytest_runtest_setup(item):

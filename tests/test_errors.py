@@ -27,7 +27,8 @@ def test_the_users_input_errors_are_one_hierarchy():
     from orthocontact.fmu.start_values import StartValueError
     from orthocontact.rig.harness import LateralSolveError
     assert issubclass(ScenarioError, InputError) and issubclass(StartValueError, InputError)
-    assert str(ScenarioError("s.toml", "law.mu1", "a number > 0", -1)) == "s.toml: law.mu1: expected a number > 0, got -1"
+    assert str(ScenarioError("s.toml", "law.mu1", "a number > 0", -1)) == \
+        "s.toml: law.mu1: expected a number > 0, got -1"
     assert issubclass(StartValueError, ValueError)   # its callers' `except ValueError` still hold
     assert not issubclass(FMUError, InputError) and not issubclass(LateralSolveError, InputError)
 

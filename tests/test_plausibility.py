@@ -39,7 +39,8 @@ def run(args, cwd):
 
 
 @pytest.mark.parametrize("table,line,says", [
-    ("rig", "velocity_m_s = 24.4", "rig.velocity_m_s = 24.4 m/s: a lab rig's carriage moves at 0.001-2 m/s; cm/s?"),
+    ("rig", "velocity_m_s = 24.4",
+     "rig.velocity_m_s = 24.4 m/s: a lab rig's carriage moves at 0.001-2 m/s; cm/s?"),
     ("rig", "travel_m = 500", "rig.travel_m = 500 m: a lab rig's travel is 0.005-10 m; mm?"),
     ("rig", "mass_kg = 1875", "rig.mass_kg = 1875 kg: a block on a lab rig weighs 0.01-100 kg; g?"),
     ("rig", "g = 981", "rig.g = 981 m/s^2: gravity on Earth is 9.76-9.84 m/s^2; cm/s^2?"),
@@ -253,8 +254,9 @@ def test_a_list_of_angles_typed_in_radians_is_named_as_a_list_or_by_its_item():
     assert plausibility.check_angles_deg("a_deg", [0.0, 15.0, 90.0]) is None
     assert plausibility.check_angles_deg("a_deg", [0.0]) is None    # one value: no spread to judge
     level, line = plausibility.check_angles_deg("a_deg", [0.5, 1.0])
-    assert level == "warning" and line == ("a_deg = [0.5, 1]: all within +-pi/2, they look like radians; "
-                                           "this key is in degrees ([28.65, 57.3] deg if they were meant in rad)")
+    assert level == "warning"
+    assert line == ("a_deg = [0.5, 1]: all within +-pi/2, they look like radians; "
+                    "this key is in degrees ([28.65, 57.3] deg if they were meant in rad)")
     item = plausibility.check_angles_deg("a_deg", [45.0, 1.5708])[1]
     assert item.startswith("a_deg[1] = 1.5708: looks like pi/2 in radians")
     # the patch's lengths: mm typed as m is an error naming mm

@@ -69,8 +69,10 @@ def test_a_semicolon_file_with_decimal_commas_is_read_as_with_points(tmp_path):
 
 
 @pytest.mark.parametrize("blob,says", [
-    (b"x,y\n0,5,1\n", "line 2: 3 cells (0,5,1) where the header names 2 columns: decimal commas such as 0,5?"),
-    (b'x,y\n"0,5",1\n', "line 2: '0,5': a decimal comma (or a thousands separator) in a comma-separated file"),
+    (b"x,y\n0,5,1\n",
+     "line 2: 3 cells (0,5,1) where the header names 2 columns: decimal commas such as 0,5?"),
+    (b'x,y\n"0,5",1\n',
+     "line 2: '0,5': a decimal comma (or a thousands separator) in a comma-separated file"),
     (b"x;y\n1.234,5;2\n", "line 2: '1.234,5': a number with a thousands separator"),
     (b"x;y\n0,5;1\n1.234;2\n", "line 3: '1.234' beside decimal commas such as '0,5' (line 2) in a file "
                                "separated by semicolons"),
@@ -170,7 +172,8 @@ def test_raw_recordings_every_file_altered_read_as_the_original(tmp_path, record
     # rig.toml, runs.csv and every trajectory and force log, in one identification
     data = tmp_path / "data"
     shutil.copytree(ROOT / "scenarios" / "example_recordings", data)
-    files = [f for f in data.rglob("*") if f.suffix == ".csv" or (f.suffix == ".toml" and case != "semicolons")]
+    files = [f for f in data.rglob("*")
+             if f.suffix == ".csv" or (f.suffix == ".toml" and case != "semicolons")]
     assert len(files) > 100
     for f in files:
         f.write_bytes(altered(f.read_bytes(), case, f.name))

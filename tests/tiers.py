@@ -52,7 +52,8 @@ SLOW = {
                              "test_sweeps_on_dask_give_the_local_results",
                              "test_a_local_cluster_listens_on_the_loopback_interface_only",
                              "test_no_dask_process_outlives_the_command"},   # Dask clusters
-    "runtime/test_processes.py": {"test_no_worker_outlives_the_main_process_at_the_most_workers"},  # 4 per core
+    "runtime/test_processes.py": {   # 4 workers per core
+        "test_no_worker_outlives_the_main_process_at_the_most_workers"},
     "runs/test_progress.py": {   # runs long enough for their progress lines
         "test_the_sweeps_refinement_and_recordings_say_they_are_running",
         "test_a_long_run_says_how_far_it_is_within_2_s_and_stops_on_ctrl_c"},

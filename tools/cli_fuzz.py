@@ -156,7 +156,8 @@ def toml_value_case(ws: Workspace, rng: random.Random) -> Case:
     f = ws.root / f"mut{ws.n}.toml"
     f.write_text("\n".join(lines) + "\n")
     command = "ssp" if src == ws.case4 and rng.random() < 0.2 else "run"
-    argv = [str(f), "--angle", "40", "--out", ws.out() + ".ssp"] if command == "ssp" else [str(f), "--out", ws.out()]
+    argv = ([str(f), "--angle", "40", "--out", ws.out() + ".ssp"] if command == "ssp"
+            else [str(f), "--out", ws.out()])
     return Case(command, f"{src.name}: {key} = {value[:40]}", [command] + argv)
 
 

@@ -203,7 +203,8 @@ TITLES = {
     "six": "places spelling out mu1, mu2, eps1, eps2, alpha, beta together",
     "rules": "places mapping the sliding rules to their numbers",
     "models": "places listing the models (OrthotropicContact with CarriageBlock)",
-    "sources": "places listing a model's sources (contact_law.c with the contact's model.c, the rig's model.c with rig_core.c)",
+    "sources": "places listing a model's sources (contact_law.c with the contact's model.c, "
+               "the rig's model.c with rig_core.c)",
     "forms": "places naming the closed forms' names together (a list or a dispatch)",
     "fmi": "FMI function names typed as string literals in the two glues",
 }

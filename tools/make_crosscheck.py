@@ -239,7 +239,8 @@ def folder(model: str, version: int) -> Path:
 def simulate(path: CrossCheck, fmu: Path, inputs: np.ndarray) -> np.ndarray:
     """fmpy's co-simulation of the FMU on the input table, as an importer would."""
     from fmpy import simulate_fmu
-    signals = np.array([tuple(r) for r in inputs], dtype=[("time", float)] + [(n, float) for n in path.inputs])
+    signals = np.array([tuple(r) for r in inputs],
+                       dtype=[("time", float)] + [(n, float) for n in path.inputs])
     return simulate_fmu(str(fmu), start_time=START, stop_time=path.stop, step_size=STEP,
                         output_interval=STEP, input=signals, output=list(path.outputs),
                         fmi_type="CoSimulation")

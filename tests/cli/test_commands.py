@@ -39,8 +39,10 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
     folder.mkdir()
     for f in SCEN.glob("*.toml"):
         text = f.read_text().replace("step_deg = 1.0", "step_deg = 10.0")
-        text = text.replace("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]", "steps_s = [1.0e-3, 5.0e-4]")
-        text = text.replace("angles_deg = [15.0, 39.2, 60.0, 75.0]", "angles_deg = [39.2]")   # the towed block
+        text = text.replace("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]",
+                            "steps_s = [1.0e-3, 5.0e-4]")
+        # the towed block
+        text = text.replace("angles_deg = [15.0, 39.2, 60.0, 75.0]", "angles_deg = [39.2]")
         (folder / f.name).write_text(text)
     out = tmp_path / "results"
     assert main(["reproduce", "--out", str(out), "--scenarios", str(folder), "--workers", "2"]) == 0

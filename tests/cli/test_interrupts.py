@@ -157,7 +157,8 @@ def test_a_dask_run_signalled_after_writing_everything_reports_success(tmp_path)
     stdout, err = proc.communicate(timeout=60)
     lines = [x for x in err.splitlines() if not x.startswith("case4: ")]
     assert proc.returncode == 0, err
-    assert lines in ([], [f"orthocontact: interrupted after writing {out}; the results there are complete"]), err
+    said = f"orthocontact: interrupted after writing {out}; the results there are complete"
+    assert lines in ([], [said]), err
     assert f"wrote {out}/summary.json" in stdout
     assert {"summary.json", "sweep.csv", "phi_vs_angle.png"} <= set(os.listdir(out))
     assert leftovers(tmp_path) == ["out"]  # no .out.partial-*

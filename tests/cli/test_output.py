@@ -76,8 +76,8 @@ def test_reproduce_replaces_only_the_files_it_writes(tmp_path):
     (out / "case4" / "summary.json").write_text("old")
     (out / "mine.txt").write_text("keep me too")
     p = run(["reproduce", "--scenarios", folder, "--out", out], tmp_path)
-    one_error_line(p, f"--out {out}: holds 2 file(s) or folder(s) no orthocontact run wrote (case4, mine.txt)",
-                   "--force")
+    one_error_line(p, f"--out {out}: holds 2 file(s) or folder(s) no orthocontact run wrote "
+                      "(case4, mine.txt)", "--force")
     assert (out / "case4" / "summary.json").read_text() == "old" and files_under(out) == [
         "case4/my_notes.txt", "case4/summary.json", "mine.txt"]
     p = run(["reproduce", "--scenarios", folder, "--out", out, "--force"], tmp_path)
@@ -250,12 +250,14 @@ def test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_sta
         _until(lambda: _lock_free(left[0]), timeout=10)   # its workers end with it
         p = run(["run", SCEN / "case4.toml", "--out", "out", "--workers", "2"], tmp_path)
         assert p.returncode == 0, p.stderr
-        assert partials() == theirs and any(theirs[0].iterdir())   # the killed run's gone, the live one's kept
+        # the killed run's gone, the live one's kept
+        assert partials() == theirs and any(theirs[0].iterdir())
         assert json.loads((tmp_path / "out" / "summary.json").read_text())["scenario"] == "case4"
     finally:
         os.kill(live.pid, signal.SIGCONT)
     assert live.wait(timeout=120) == 0
-    assert partials() == [] and json.loads((tmp_path / "out" / "summary.json").read_text())["scenario"] == "case1"
+    assert partials() == []
+    assert json.loads((tmp_path / "out" / "summary.json").read_text())["scenario"] == "case1"
 
 
 # -- an output folder has one owner -------------------------------------------------
@@ -310,8 +312,8 @@ def test_export_then_uq_into_the_export_folder_is_refused_naming_export(tmp_path
     before = snapshot(exported)
     p = run(["uq", identified / "identified.json", "--scenario", SCEN / "mat_aged.toml", "--samples", "4",
              "--scheduler", "none", "--out", exported], tmp_path)
-    one_error_line(p, f"--out {exported}: holds the outputs of `orthocontact export` run", "--force to replace "
-                      "them (4 file(s))")
+    one_error_line(p, f"--out {exported}: holds the outputs of `orthocontact export` run",
+                   "--force to replace them (4 file(s))")
     assert snapshot(exported) == before
 
 
@@ -339,8 +341,9 @@ def test_force_replaces_another_runs_files_but_never_what_the_command_reads(tmp_
     assert file_sha256(identified / "identified.json") == said["files"]["identified.json"]
     now = json.loads((identified / MANIFEST).read_text())
     assert now["command"] == "export" and "identified.json" not in now["files"]
-    assert (f"orthocontact: --force: {identified}: replaced `orthocontact identify` run {said['run_id'][:12]} of "
-            f"{said['date']} (3 file(s); kept identified.json, read by this command)") in p.stderr.splitlines()
+    assert (f"orthocontact: --force: {identified}: replaced `orthocontact identify` run "
+            f"{said['run_id'][:12]} of {said['date']} (3 file(s); kept identified.json, read by this "
+            "command)") in p.stderr.splitlines()
 
 
 def test_the_same_command_replaces_its_earlier_run_and_says_so_in_one_line(tmp_path):

@@ -180,7 +180,8 @@ class Instance:
         (self.slave.freeFMUstate if self.version == 2 else self.slave.freeFMUState)(state)
 
     def serialize(self, state) -> bytes:
-        return bytes((self.slave.serializeFMUstate if self.version == 2 else self.slave.serializeFMUState)(state))
+        serialize = self.slave.serializeFMUstate if self.version == 2 else self.slave.serializeFMUState
+        return bytes(serialize(state))
 
     def deserialize(self, data: bytes):
         return (self.slave.deSerializeFMUstate if self.version == 2 else self.slave.deserializeFMUState)(data)

@@ -121,7 +121,8 @@ path = str(work / "container.fmu")
 md = read_model_description(path)
 vr = {v.name: v.valueReference for v in md.modelVariables}
 s = (FMU3Slave if v3 else FMU2Slave)(guid=md.guid, unzipDirectory=extract(path, unzipdir=str(work / "x")),
-                                     modelIdentifier=md.coSimulation.modelIdentifier, instanceName="container")
+                                     modelIdentifier=md.coSimulation.modelIdentifier,
+                                     instanceName="container")
 s.instantiate()
 if v3:
     s.enterInitializationMode(startTime=0.0)

@@ -102,7 +102,8 @@ def parse(text: str, page: str) -> tuple[list[Block], list[str]]:
             if not blocks or any(x.strip() for x in between) or blocks[-1].output is not None:
                 errors.append(f"{block.where()}: an output block must follow the block it belongs to")
             elif blocks[-1].kind not in ("python", "sh"):
-                errors.append(f"{block.where()}: a {blocks[-1].kind or 'plain'} block has no output to compare")
+                errors.append(f"{block.where()}: a {blocks[-1].kind or 'plain'} block "
+                              "has no output to compare")
             else:
                 blocks[-1].output = code
         else:
@@ -346,7 +347,8 @@ def test_every_relative_link_and_anchor_resolves():
 def test_the_link_checker_sees_a_missing_file_and_a_missing_anchor(tmp_path, monkeypatch):
     assert slug("4. Eq. (41) is not the least-squares solution of eq. (40)") == \
         "4-eq-41-is-not-the-least-squares-solution-of-eq-40"
-    assert slug("`make reproduce` (`benchmarks/bench_reproduce.py`)") == "make-reproduce-benchmarksbench_reproducepy"
+    assert slug("`make reproduce` (`benchmarks/bench_reproduce.py`)") == \
+        "make-reproduce-benchmarksbench_reproducepy"
     (tmp_path / "a.md").write_text("# Top\n\n[x](b.md) [y](a.md#top) [z](a.md#bottom) [w](#top)\n"
                                    "```sh\n[not a link](nowhere.md)\n```\n")
     monkeypatch.setattr(sys.modules[__name__], "ROOT", tmp_path)
@@ -375,7 +377,8 @@ def expand(pattern: str) -> list[str]:
     """{a,b} alternatives and <placeholder> parts as globs."""
     m = re.search(r"\{([^{}]*)\}", pattern)
     if m:
-        return [q for alt in m.group(1).split(",") for q in expand(pattern[:m.start()] + alt + pattern[m.end():])]
+        return [q for alt in m.group(1).split(",")
+                for q in expand(pattern[:m.start()] + alt + pattern[m.end():])]
     return [re.sub(r"<[^>]*>", "*", pattern)]
 
 

@@ -46,7 +46,8 @@ def test_missing_fmu_is_one_line_not_a_traceback(tmp_path):
                         "--out", str(tmp_path / "out")], capture_output=True, text=True, env=env,
                        timeout=120)
     assert p.returncode == 2
-    assert p.stderr.strip() == f"orthocontact: error: FMU not found: {tmp_path / 'nowhere.fmu'} ($ORTHOCONTACT_FMU)"
+    assert p.stderr.strip() == \
+        f"orthocontact: error: FMU not found: {tmp_path / 'nowhere.fmu'} ($ORTHOCONTACT_FMU)"
     assert not (tmp_path / "out").exists()
 
 

@@ -74,7 +74,8 @@ def named_paths(comment: str) -> list[str]:
 def scanned(tree: list[str]) -> dict[str, str]:
     """{path: text} of the files whose comments are checked."""
     return {f: (ROOT / f).read_text(errors="replace") for f in tree
-            if (f.startswith(SCOPE) and f.endswith((".py", ".c", ".h", ".sh", ".cmake", ".toml"))) or f in TOP}
+            if (f.startswith(SCOPE) and f.endswith((".py", ".c", ".h", ".sh", ".cmake", ".toml")))
+            or f in TOP}
 
 
 def unresolved(texts: dict[str, str], tree: list[str]) -> list[str]:

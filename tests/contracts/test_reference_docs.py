@@ -93,7 +93,8 @@ def test_the_fmu_reference_names_every_model_and_counts_what_version_lists(tmp_p
         md = read_model_description(str(find_fmu(fmi_version=3, model=model)))
         cells = found[model]
         assert cells[1] == role and cells[2] == mr.md_text(md.description), model
-        assert re.findall(r"`(\w+)`", cells[4]) == [v.name for v in md.modelVariables if v.causality == "input"]
+        assert re.findall(r"`(\w+)`", cells[4]) == [v.name for v in md.modelVariables
+                                                    if v.causality == "input"]
         arrays = {v.name for v in md.modelVariables if v.dimensions}
         assert re.findall(r"`(\w+)`", cells[5]) == \
             [v.name for v in md.modelVariables if v.causality == "output" and v.name not in arrays]
@@ -105,8 +106,8 @@ def test_the_fmu_reference_names_every_model_and_counts_what_version_lists(tmp_p
 def test_a_new_model_is_a_new_row_and_new_counts():
     """A model added to OC_MODELS appears with nothing edited by hand."""
     sources = mr.installed_models()
-    pad = dataclasses.replace(sources[-1], role="pad",
-                              manifest=dataclasses.replace(sources[-1].manifest, model_identifier="ContactPad"))
+    pad = dataclasses.replace(sources[-1], role="pad", manifest=dataclasses.replace(
+        sources[-1].manifest, model_identifier="ContactPad"))
     block = "\n".join(mr.models_block([*sources, pad]))
     assert block.startswith(f"The package ships {mr.count(2 * len(sources) + 2, 'Co-Simulation FMU')}: "
                             f"the {mr.count(len(sources) + 1, 'model')} of `OC_MODELS`")
@@ -167,7 +168,8 @@ def test_every_command_and_option_of_the_help_is_on_the_page(tmp_path):
 
 def test_the_exit_status_table_has_what_the_command_returns(tmp_path):
     page = (ROOT / mr.PAGES["cli"]).read_text()
-    table = dict(re.findall(r"^\| (\d+) \| (.*) \|$", page.split("## Exit status")[1].split("\n## ")[0], re.M))
+    section = page.split("## Exit status")[1].split("\n## ")[0]
+    table = dict(re.findall(r"^\| (\d+) \| (.*) \|$", section, re.M))
     bad = run_cli(["run", "--no-such-option"], tmp_path)
     assert bad.returncode == 2 and "bad input" in table["2"]
     assert str(OS_ERROR) in table and "refused" in table[str(OS_ERROR)]
@@ -258,9 +260,9 @@ def test_a_manifest_its_model_description_contradicts_is_refused():
     m = contact.manifest
     moved = dataclasses.replace(m.variables[3], unit="N/mm")
     stale = dataclasses.replace(m, variables=(*m.variables[:3], moved, *m.variables[4:]))
-    with pytest.raises(ValueError, match=rf"^OrthotropicContact: the installed FMI 2.0 model description and "
-                                         rf"variables/OrthotropicContact.json disagree on {moved.name}'s unit "
-                                         r".*reinstall the package"):
+    with pytest.raises(ValueError, match=r"^OrthotropicContact: the installed FMI 2.0 model description and "
+                                         r"variables/OrthotropicContact.json disagree on "
+                                         rf"{moved.name}'s unit .*reinstall the package"):
         mr.variables_page([dataclasses.replace(contact, manifest=stale), *others])
 
 
@@ -270,4 +272,5 @@ def test_outputs_whose_dependencies_differ_between_fmi_versions_are_refused():
     fmi3 = copy.deepcopy(rig.fmi3)
     fmi3.outputs[-1].dependencies = []
     with pytest.raises(ValueError, match=r"^CarriageBlock: the outputs' dependencies differ between FMI 2.0"):
-        mr.variables_page([*(m for m in models.values() if m is not rig), dataclasses.replace(rig, fmi3=fmi3)])
+        mr.variables_page([*(m for m in models.values() if m is not rig),
+                           dataclasses.replace(rig, fmi3=fmi3)])

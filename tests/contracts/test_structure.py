@@ -222,8 +222,9 @@ def test_the_import_check_sees_the_module_an_object_of_it_or_neither():
                    "from orthocontact import closed_forms as cf\ncf.eq25_tan_phi(1, 2, 0.3)",
                    "import orthocontact.closed_forms as cf\nx = cf.G_STANDARD"):
         assert imports_module(source, "closed_forms.paper", defined), source
-    for source in ("from orthocontact.closed_forms import rig", "from orthocontact import closed_forms as cf\n"
-                   "cf.settling_length_array()", "from orthocontact.closed_forms import settling_length_array",
+    for source in ("from orthocontact.closed_forms import rig",
+                   "from orthocontact import closed_forms as cf\ncf.settling_length_array()",
+                   "from orthocontact.closed_forms import settling_length_array",
                    "# orthocontact.closed_forms.paper", "from orthocontact.fmu import eq25_tan_phi"):
         assert not imports_module(source, "closed_forms.paper", defined), source
 

@@ -158,8 +158,8 @@ def test_a_closed_form_refused_at_axes_given_in_radians_names_the_slip(tmp_path)
     assert "alpha_offset_deg = 90.0" in text
     (tmp_path / "s.toml").write_text(text.replace("alpha_offset_deg = 90.0", "alpha_offset_deg = 1.5708"))
     one_error_line(run(["run", "s.toml", "--out", "o"], tmp_path), "s.toml: geometry.closed_form: expected",
-                   "mat needs beta_offset_deg - alpha_offset_deg = 90", "got 'mat'; geometry.alpha_offset_deg "
-                   "= 1.5708: looks like pi/2 in radians")
+                   "mat needs beta_offset_deg - alpha_offset_deg = 90",
+                   "got 'mat'; geometry.alpha_offset_deg = 1.5708: looks like pi/2 in radians")
     assert not (tmp_path / "o").exists()
 
 

@@ -212,8 +212,8 @@ def test_a_killed_ssps_scratch_goes_with_the_next_package_written_there(tmp_path
     import os
     import signal
     import time
-    cmd = [sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"), "--angle", "10",
-           "--out", "rig.ssp"]
+    cmd = [sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"),
+           "--angle", "10", "--out", "rig.ssp"]
 
     def partials():
         return list(tmp_path.glob(".rig.ssp.partial-*"))

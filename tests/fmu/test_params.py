@@ -34,7 +34,8 @@ def test_fmu_values_are_the_contact_fmus_parameters_by_the_model_descriptions_na
     assert values["eps1"] == 12510.0 and type(values["eps1"]) is float
     assert values["alpha"] == pytest.approx(math.pi / 2) and values["beta"] == 0.0
     rule = next(v for v in md.iter("ScalarVariable") if v.get("name") == "slidingRule")
-    assert rule.find("Integer") is not None and f"{values['slidingRule']} associated (" in rule.get("description")
+    assert rule.find("Integer") is not None
+    assert f"{values['slidingRule']} associated (" in rule.get("description")
 
 
 def test_contact_params_refuse_what_the_fmu_refuses_at_its_own_ranges():

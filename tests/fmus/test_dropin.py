@@ -40,7 +40,8 @@ def test_both_fmi_versions_give_identical_outputs_on_the_rig(params, rig):
 
 def _drive(f, ks, sign=1.0):
     for k in ks:
-        f.set_inputs(3e-4 * k, sign * 1e-4 * math.sin(k), G_N * (1 + 0.2 * math.sin(0.3 * k)) if k % 31 else 0.0)
+        f.set_inputs(3e-4 * k, sign * 1e-4 * math.sin(k),
+                     G_N * (1 + 0.2 * math.sin(0.3 * k)) if k % 31 else 0.0)
         f.do_step(1e-3)
 
 
@@ -111,7 +112,8 @@ def test_cli_runs_the_harness_on_either_fmi_version(tmp_path):
     for v in (2, 3):
         out = tmp_path / f"out{v}"
         proc = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(sc), "--out", str(out),
-                               "--fmi", str(v), "--workers", "1"], capture_output=True, text=True, timeout=300)
+                               "--fmi", str(v), "--workers", "1"],
+                              capture_output=True, text=True, timeout=300)
         assert proc.returncode == 0, proc.stderr
         summaries[v] = json.loads((out / "summary.json").read_text())
         assert summaries[v].pop("fmi_version") == v

@@ -119,7 +119,9 @@ def perturbations(model, var, value):
     if var.type not in ("Real", "Float64"):
         row = manifest(model).variable(var.name)
         return [k for k in range(int(row.min), int(row.max) + 1) if k != value]
-    return [value * 1.1, value * 0.9] if value != 0 else [0.1, -0.1] if var.min is None or float(var.min) < 0 else [0.1]
+    if value != 0:
+        return [value * 1.1, value * 0.9]
+    return [0.1, -0.1] if var.min is None or float(var.min) < 0 else [0.1]
 
 
 def admissible(model, values):
@@ -317,8 +319,8 @@ def _compiler():
 
 @pytest.mark.parametrize("edit, message", [
     ('D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE)', "output contactState has no FMU_DEPENDENCIES row"),
-    ('D(contactState, "u1 u2 N mu1", OC_INIT_KNOWNS_NO_RULE)', "contactState depends on mu1:dependent in step "
-                                                               "mode: not a known of this mode"),
+    ('D(contactState, "u1 u2 N mu1", OC_INIT_KNOWNS_NO_RULE)',
+     "contactState depends on mu1:dependent in step mode: not a known of this mode"),
     ('D(contactState, "u1 u2 N:constant", OC_INIT_KNOWNS_NO_RULE)', "a kind not allowed here"),
     ('D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE " u1")', "named twice"),
 ])
@@ -331,8 +333,9 @@ def test_the_generator_refuses_a_table_without_exact_dependencies(tmp_path, edit
     edited = table.replace(row, "" if edit == row else edit)
     (src / "models" / "OrthotropicContact" / "table.h").write_text(edited)
     gen = tmp_path / "gen"
-    subprocess.run(_compiler() + ["-std=c99", "-I", str(src), '-DFMU_TABLE_HEADER="models/OrthotropicContact/table.h"',
-                                  '-DFMU_VERSION="0"', str(src / "glue" / "gen_model_description.c"), "-o", str(gen),
-                                  "-lm"], check=True, capture_output=True, timeout=120)
+    subprocess.run(_compiler() + ["-std=c99", "-I", str(src),
+                                  '-DFMU_TABLE_HEADER="models/OrthotropicContact/table.h"',
+                                  '-DFMU_VERSION="0"', str(src / "glue" / "gen_model_description.c"),
+                                  "-o", str(gen), "-lm"], check=True, capture_output=True, timeout=120)
     r = subprocess.run([str(gen), "fmi2"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 1 and r.stdout == "" and message in r.stderr, r.stderr

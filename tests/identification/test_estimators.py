@@ -53,10 +53,10 @@ def test_intervals_are_honest_coverage_over_200_replicates(reference_data):
     n = 200
     for i in range(n):
         rng = np.random.default_rng(1000 + i)
-        noisy = MeasurementSet(Path("mc"), RIG,
-                               d["forces"] + np.c_[np.zeros(len(d["forces"])), rng.normal(0, 0.05, len(d["forces"]))],
-                               d["angles"] + np.c_[np.zeros(len(d["angles"])), rng.normal(0, 0.3, len(d["angles"]))],
-                               d["ramp"] + np.c_[np.zeros(len(d["ramp"])), rng.normal(0, 0.02, len(d["ramp"]))])
+        # noise on the second column of each, in this order
+        noisy = MeasurementSet(Path("mc"), RIG, *(
+            rows + np.c_[np.zeros(len(rows)), rng.normal(0, sd, len(rows))]
+            for rows, sd in ((d["forces"], 0.05), (d["angles"], 0.3), (d["ramp"], 0.02))))
         fit = joint_fit(noisy, start_values(noisy))
         for k in truth:
             lo, hi = fit.ci95[k]

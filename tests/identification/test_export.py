@@ -157,7 +157,8 @@ def test_eps2_not_identified_takes_the_nominal_and_says_so(identified, tmp_path)
     (lambda d: d.pop("mu1"), "mu1: expected an object"),
     (lambda d: d["mu2"].update(value=-1), "mu2.value: expected a finite number > 0"),
     (lambda d: d["assumptions"].update(rule="sticky"), "assumptions.rule: expected one of"),
-    (lambda d: d["data"].update(folder="nowhere", absolute_folder="/nowhere"), "data.folder: nowhere not found"),
+    (lambda d: d["data"].update(folder="nowhere", absolute_folder="/nowhere"),
+     "data.folder: nowhere not found"),
     (lambda d: d["data"].update(sha256="0" * 64), "data.sha256: expected the digest of data.files"),
     (lambda d: d["data"].pop("files"), "data.files: expected the SHA-256 of every file"),
 ])

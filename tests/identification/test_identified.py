@@ -27,11 +27,12 @@ def made_by_hand(**changes) -> IdentifiedFile:
     """Angles alone at two velocities: l1/l2 fitted, the rest not identified."""
     f = IdentifiedFile(
         estimates={**{n: NotIdentified("needs forces.csv") for n in REPORTED},
-                   "l1_l2_ratio": Estimate(0.82, 0.01, (0.8, 0.84), math.inf, note="what angles alone determine")},
+                   "l1_l2_ratio": Estimate(0.82, 0.01, (0.8, 0.84), math.inf,
+                                           note="what angles alone determine")},
         max_rule=None, eq40=None, eq41=None, eq1=None,
         noise_estimate={"angles_deg": 0.3, "angles_deg_by_velocity": {"0.125": 0.35, "0.244": 0.25}},
-        noise_model={"angles_deg": {"between_runs": 0.3}}, intervals="log scale", noise_assumed=("angles_deg",),
-        fit_residuals={"angles": {"rms": 0.3}}, dof=3,
+        noise_model={"angles_deg": {"between_runs": 0.3}}, intervals="log scale",
+        noise_assumed=("angles_deg",), fit_residuals={"angles": {"rms": 0.3}}, dof=3,
         covariance=Covariance(("l1_l2_ratio",), (0.82,), ((1e-4,),)), covariance_joint=None,
         points=Points(angles=((30.0, -10.0), (60.0, -9.0), (30.0, -10.5), (60.0, -8.5)),
                       angle_velocities=(0.125, 0.125, 0.244, 0.244), forces=None),
@@ -49,7 +50,8 @@ def made_by_hand(**changes) -> IdentifiedFile:
 def test_the_json_object_reads_back_as_the_object():
     f = made_by_hand()
     d = f.as_json()
-    assert d["schema_version"] == SCHEMA_VERSION and list(d)[:7] == ["schema_version", *REPORTED, "l1_l2_ratio"]
+    assert d["schema_version"] == SCHEMA_VERSION
+    assert list(d)[:7] == ["schema_version", *REPORTED, "l1_l2_ratio"]
     assert d["eps2"] == {"identifiable": False, "reason": "needs forces.csv"}
     assert d["l1_l2_ratio"]["dof"] == "inf"       # JSON has no infinity: the text "inf"
     assert "covariance_joint" not in d and d["noise_assumed"] == ["angles_deg"]

@@ -67,7 +67,8 @@ def test_raw_recordings_validated_and_with_the_fmu_hold_to_the_schema_too(tmp_pa
     d["eps2"] = {"identifiable": False}
     assert schema_errors(d)
     (tmp_path / "bad.json").write_text(json.dumps(d))
-    with pytest.raises(InputError, match=re.escape(f"{tmp_path / 'bad.json'}: eps2.reason: expected a string")):
+    says = f"{tmp_path / 'bad.json'}: eps2.reason: expected a string"
+    with pytest.raises(InputError, match=re.escape(says)):
         read_identified(tmp_path / "bad.json")
 
 
@@ -106,7 +107,8 @@ def test_what_is_not_identifys_output_names_the_file(tmp_path, content, says):
     (lambda d: d.pop("mu2"), "mu2: expected an object written by `orthocontact identify`, got None"),
     (lambda d: d["eps1"].update(value="12.6e3"), "eps1.value: expected a finite number > 0, got '12.6e3'"),
     (lambda d: d["eps1"].update(ci95=[2, 1]), "eps1.ci95: expected [low, high], low <= high, got [2, 1]"),
-    (lambda d: d["assumptions"].update(mass_kg=0), "assumptions.mass_kg: expected a finite number > 0, got 0"),
+    (lambda d: d["assumptions"].update(mass_kg=0),
+     "assumptions.mass_kg: expected a finite number > 0, got 0"),
     (lambda d: d["assumptions"].pop("rule"), "assumptions.rule: expected one of associated, coupled, eq20"),
     (lambda d: d["assumptions"].update(f_int_N="fitted"),
      "assumptions.f_int_N: expected a number >= 0 or \"estimated\", got 'fitted'"),
@@ -114,7 +116,8 @@ def test_what_is_not_identifys_output_names_the_file(tmp_path, content, says):
      "c_strip: expected its estimate (assumptions.c_strip_N_s_m is \"estimated\"), got None"),
     (lambda d: d["points"].update(angle_velocities=[0.244]),
      "points.angle_velocities: expected one velocity [m/s] per angle (34), got 1"),
-    (lambda d: d["noise_estimate"].update(angles_deg=-0.1), "noise_estimate.angles_deg: expected a number >= 0"),
+    (lambda d: d["noise_estimate"].update(angles_deg=-0.1),
+     "noise_estimate.angles_deg: expected a number >= 0"),
     (lambda d: d["covariance"]["values"].__setitem__(0, 0.0), "covariance.values: expected estimates > 0"),
     (lambda d: d["data"].update(forces="21"), "data.forces: expected an integer >= 0, got '21'"),
     (lambda d: d.update(validation_fmu=[]), "validation_fmu: expected an object or null, got []"),

@@ -81,7 +81,8 @@ def test_bundled_recordings_identify_and_uq_by_the_guides_commands(tmp_path):
     uq = json.loads((tmp_path / "uq" / "uq.json").read_text())
     band = uq["data_inside_measurement_band"]
     assert band["points"] == 42          # the runs at the scenario's velocity, 0.244 m/s
-    assert band["inside"] >= 36, band    # ~95 % of them: a true 95 % gives under 36 of 42 with probability 0.45 %
+    # ~95 % of them: a true 95 % gives under 36 of 42 with probability 0.45 %
+    assert band["inside"] >= 36, band
 
 
 def test_the_noise_model_separates_run_to_run_scatter(tmp_path, small_physics):
@@ -162,7 +163,8 @@ def test_bad_recordings_get_one_line_and_exit_2(tmp_path, small_physics, case, e
         (d / "forces" / "ramp_02.csv").unlink()
     elif case == "kN":
         _edit(d / "forces" / "a090_v244_04.csv",
-              lambda ls: [ls[0]] + [f"{ln.split(',')[0]},{float(ln.split(',')[1]) / 1000:.7f}" for ln in ls[1:]])
+              lambda ls: [ls[0]] + [f"{ln.split(',')[0]},{float(ln.split(',')[1]) / 1000:.7f}"
+                                    for ln in ls[1:]])
     r = cli("identify", d, "--out", tmp_path / "out", "--no-validate")
     assert r.returncode == 2, r.stderr
     lines = r.stderr.strip().splitlines()

@@ -97,6 +97,7 @@ def test_for_a_small_relative_stderr_the_interval_is_the_linear_one_to_first_ord
 
 
 def test_an_interval_of_no_positive_value_is_refused():
-    for bad in ((0.0, 1.0, 2.0), (-1.0, 1.0, 2.0), (1.0, -1.0, 2.0), (math.nan, 1.0, 2.0), (1.0, math.nan, 2.0)):
+    for bad in ((0.0, 1.0, 2.0), (-1.0, 1.0, 2.0), (1.0, -1.0, 2.0), (math.nan, 1.0, 2.0),
+                (1.0, math.nan, 2.0)):
         with pytest.raises(ValueError, match="positive_ci"):
             positive_ci(*bad)

@@ -45,7 +45,8 @@ def test_the_manifest_lists_every_file_written_with_its_digest(tmp_path):
 
 
 @pytest.mark.parametrize("files,says", [
-    ('{"written_by": "orthocontact", "run_id": "r", "files": {"../outside.txt": "0"}}', "files: expected paths"),
+    ('{"written_by": "orthocontact", "run_id": "r", "files": {"../outside.txt": "0"}}',
+     "files: expected paths"),
     ('{"written_by": "orthocontact", "run_id": "r", "files": {"/etc/passwd": "0"}}', "files: expected paths"),
     ('{"written_by": "someone", "run_id": "r", "files": {}}', "expected the manifest an orthocontact"),
     ("not json", "expected the manifest an orthocontact"),

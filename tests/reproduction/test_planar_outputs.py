@@ -84,7 +84,8 @@ def test_towed_block_run_gives_the_closed_form_yaw_at_every_mat_angle(tmp_path):
     # the paper's phi read from the motion's side, checked by the run too
     assert s["max_deviation_from_minus_phi_turned_deg"] < 1e-6
     for t in s["tows"]:
-        assert abs(t["minus_phi_turned_by_yaw_deg"] - t["yaw_deg"]) <= s["max_deviation_from_minus_phi_turned_deg"]
+        assert (abs(t["minus_phi_turned_by_yaw_deg"] - t["yaw_deg"])
+                <= s["max_deviation_from_minus_phi_turned_deg"])
     for rule in ("associated", "coupled"):
         for a in (20.0, 39.2, 60.0):
             law = ContactParams.from_degrees(0.408, 0.625, 1.251e4, 1e4, a + 90.0, a, rule)

@@ -231,7 +231,8 @@ def test_the_remedy_names_the_step_when_the_step_is_the_cause():
     # a rig that settles has no cause: the remedy says so instead of guessing
     fine = Rig(travel_m=0.5, step_s=1e-3)
     assert run_cause(law, fine, float("nan")) is None
-    assert "neither the elastic length, the settling length nor the step" in remedy([(law, fine)], [float("nan")])
+    assert "neither the elastic length, the settling length nor the step" in \
+        remedy([(law, fine)], [float("nan")])
 
 
 def test_a_rig_that_fits_from_the_start_of_its_path_is_told_to_fit_later(tmp_path):

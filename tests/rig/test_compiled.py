@@ -17,7 +17,8 @@ from orthocontact.runs.batch import run_many
 
 ROOT = Path(__file__).resolve().parents[2]
 # every scenario the rig runs (the kinds of a body on the contact patch run on rig.planar)
-SCENARIOS = sorted(p.stem for p in (ROOT / "scenarios").glob("*.toml") if load(p).kind in ("sweep", "step_study"))
+SCENARIOS = sorted(p.stem for p in (ROOT / "scenarios").glob("*.toml")
+                   if load(p).kind in ("sweep", "step_study"))
 
 
 def same_figures(a, b) -> bool:
@@ -137,7 +138,8 @@ def test_c_master_record_refuses_a_bad_interval():
     cm = CMaster(find_fmu())
     try:
         with pytest.raises(ValueError, match="whole number >= 1"):
-            cm.record(load(ROOT / "scenarios/case5.toml").params_at(0.0), load(ROOT / "scenarios/case5.toml").rig, 0)
+            sc = load(ROOT / "scenarios/case5.toml")
+            cm.record(sc.params_at(0.0), sc.rig, 0)
     finally:
         cm.close()
 

@@ -29,8 +29,8 @@ def test_harness_steady_angles_match_the_paper_equations(name, eq):
     assert sc.closed_form == eq
     res = run_sweep(sc, workers=1, progress=False)
     # the named equation and the general tensor form agree ...
-    general = [cf.steady_phi_deg(*(lambda p: (p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, p.rule))(sc.params_at(a)))
-               for a in res.angles_deg]
+    general = [cf.steady_phi_deg(p.mu1, p.mu2, p.eps1, p.eps2, p.alpha, p.beta, p.rule)
+               for p in (sc.params_at(a) for a in res.angles_deg)]
     np.testing.assert_allclose(res.phi_closed_deg, general, atol=1e-9)
     # ... and the rig reproduces them
     assert res.max_deviation_deg < 1e-6

@@ -93,7 +93,8 @@ def _dask_run(tmp_path, workers):
     tmp = tmp_path / "tmp"
     tmp.mkdir()
     proc = subprocess.Popen(CMD + ["run", str(sc), "--out", "out", "--yes", "--workers", str(workers),
-                                   "--scheduler", "local"], cwd=tmp_path, env=dict(os.environ, TMPDIR=str(tmp)),
+                                   "--scheduler", "local"], cwd=tmp_path,
+                            env=dict(os.environ, TMPDIR=str(tmp)),
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     line = ""
     t0 = time.monotonic()

@@ -192,7 +192,8 @@ def test_work_the_old_estimate_let_through_is_refused_with_every_run_named(tmp_p
     p = run(["run", big, "--out", tmp_path / "out"], tmp_path)
     lines = [x for x in p.stderr.strip().splitlines() if ": warning: " not in x]
     assert p.returncode == 2 and len(lines) == 1, p.stderr
-    assert "9 rig runs (1 at the mat angles, 1 by the other rule, 7 recorded trajectories) x 300," in lines[0], lines[0]
+    assert "9 rig runs (1 at the mat angles, 1 by the other rule, 7 recorded trajectories) x 300," \
+        in lines[0], lines[0]
     assert "--yes" in lines[0] and not (tmp_path / "out").exists()
 
 

@@ -40,14 +40,15 @@ def test_a_killed_commands_folder_goes_with_the_next_command(tmp_path):
     tmp.mkdir()
     env = dict(os.environ, TMPDIR=str(tmp))
     proc = subprocess.Popen(CMD + ["run", str(SCEN / "mat_aged.toml"), "--out", "out", "--workers", "2"],
-                            cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+                            cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
     assert proc.stderr.readline().startswith("mat_aged:")   # its sweep runs
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait(timeout=30)
     left = [p for p in tmp.iterdir() if p.name.startswith(TEMP_PREFIX)]
     assert len(left) == 1 and any(left[0].rglob("*.so")), left
     time.sleep(1.0)  # its workers end with it
-    p = subprocess.run(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out2", "--workers", "2"], cwd=tmp_path,
-                       env=env, capture_output=True, text=True, timeout=120)
+    p = subprocess.run(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out2", "--workers", "2"],
+                       cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     assert p.returncode == 0, p.stderr
     assert os.listdir(tmp) == []

@@ -73,8 +73,8 @@ def test_the_bound_follows_the_cores_this_process_may_use(tmp_path):
     """On one core (taskset -c 0), --workers 5 is above 4 per core."""
     def one_core():
         os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
-    p = subprocess.run(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out", "--workers", "5"], cwd=tmp_path,
-                       capture_output=True, text=True, timeout=60, preexec_fn=one_core)
+    p = subprocess.run(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out", "--workers", "5"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=60, preexec_fn=one_core)
     one_error_line(p, "at most 4 worker processes", "on its 1 core", "got 5")
     with pytest.raises(ValueError, match="at most"):
         process_pool(worker_bound().most + 1)  # the Python API's pools pass the same check
