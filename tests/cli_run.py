@@ -7,8 +7,9 @@ import sys
 import time
 from pathlib import Path
 
+from paths import SCENARIOS
+
 CMD = [sys.executable, "-m", "orthocontact"]
-SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
 
 # PYTHONPATH=python (the source tree shadowing the installed package) must
 # hold in a command started in another folder (cwd=tmp_path) too.

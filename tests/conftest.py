@@ -1,16 +1,16 @@
 import math
 import sys
-from pathlib import Path
 
 import pytest
 
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams
+from paths import ROOT, SCENARIOS, TOOLS
 
 # The independent reference simulator and the recordings generator live in
 # tools/ (free of package code), shared with the benchmarks.
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
+sys.path.insert(0, str(TOOLS))
 
 from cli_run import run_cli  # noqa: E402  (tests/ is on sys.path: the shared helpers)
 
@@ -23,8 +23,6 @@ from optional_parts import (  # noqa: E402,F401
     pytest_terminal_summary,
     pytest_testnodedown,
 )
-
-ROOT = Path(__file__).resolve().parents[1]
 
 CASE1 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e4, rule="associated")
 CASE5 = ContactParams(mu1=0.1, mu2=0.5, eps1=1e4, eps2=1e3, rule="coupled")
@@ -88,7 +86,7 @@ def identified(tmp_path_factory):
     --no-validate`), for the tests of what takes an identified.json (uq,
     export, the CLI's edges)."""
     out = tmp_path_factory.mktemp("id") / "id"
-    p = run_cli(["identify", ROOT / "scenarios" / "example_identification", "--out", out,
+    p = run_cli(["identify", SCENARIOS / "example_identification", "--out", out,
                  "--no-validate"], cwd=ROOT)
     assert p.returncode == 0, p.stderr
     return out / "identified.json"

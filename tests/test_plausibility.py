@@ -4,7 +4,6 @@ merely unusual, each naming the likely unit slip."""
 import math
 import shutil
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,9 +12,9 @@ from cli_run import CMD
 from orthocontact import plausibility
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.measurements import write_measurements
+from paths import DOCS, SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[1]
-EXAMPLE = ROOT / "scenarios" / "example_identification"
+EXAMPLE = SCENARIOS / "example_identification"
 
 MAT = """name = "mat"
 kind = "sweep"
@@ -135,7 +134,7 @@ def test_the_plausibility_table_itself():
 
 
 def test_the_docs_list_every_range_as_the_code_has_it():
-    readme = (ROOT / "docs" / "reference" / "plausible-inputs.md").read_text()
+    readme = (DOCS / "reference" / "plausible-inputs.md").read_text()
 
     def fmt(x):
         return f"{x:g}"

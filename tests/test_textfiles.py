@@ -11,6 +11,7 @@ import pytest
 from cli_run import one_error_line, run_cli
 from orthocontact.errors import InputError
 from orthocontact.textfiles import files_read, read_rows, read_text, read_toml, sha256_of
+from paths import ROOT, SCENARIOS
 
 
 def test_bom_and_line_ends_are_read_as_plain_text(tmp_path):
@@ -104,7 +105,6 @@ def test_toml_with_a_decimal_comma_names_the_line_and_the_fix(tmp_path):
 # estimates bit for bit; refused (a decimal comma in a comma-separated file or
 # in TOML) it is one line saying so.
 
-ROOT = Path(__file__).resolve().parents[1]
 ESTIMATES = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
 
 
@@ -135,7 +135,7 @@ def estimates(out: Path) -> dict:
 @pytest.fixture(scope="module")
 def reduced_truth(tmp_path_factory):
     out = tmp_path_factory.mktemp("truth") / "out"
-    p = identify(ROOT / "scenarios" / "example_identification", out)
+    p = identify(SCENARIOS / "example_identification", out)
     assert p.returncode == 0, p.stderr
     return estimates(out)
 
@@ -146,7 +146,7 @@ def reduced_truth(tmp_path_factory):
     if not (name == "rig.toml" and case == "semicolons")])    # TOML has no separator
 def test_reduced_data_every_file_every_case(tmp_path, reduced_truth, name, case):
     data = tmp_path / "data"
-    shutil.copytree(ROOT / "scenarios" / "example_identification", data)
+    shutil.copytree(SCENARIOS / "example_identification", data)
     (data / name).write_bytes(altered((data / name).read_bytes(), case, name))
     p = identify(data, tmp_path / "out")
     if case == "decimal_comma":
@@ -162,7 +162,7 @@ def test_reduced_data_every_file_every_case(tmp_path, reduced_truth, name, case)
 @pytest.fixture(scope="module")
 def recordings_truth(tmp_path_factory):
     out = tmp_path_factory.mktemp("truth") / "out"
-    p = identify(ROOT / "scenarios" / "example_recordings", out)
+    p = identify(SCENARIOS / "example_recordings", out)
     assert p.returncode == 0, p.stderr
     return estimates(out)
 
@@ -171,7 +171,7 @@ def recordings_truth(tmp_path_factory):
 def test_raw_recordings_every_file_altered_read_as_the_original(tmp_path, recordings_truth, case):
     # rig.toml, runs.csv and every trajectory and force log, in one identification
     data = tmp_path / "data"
-    shutil.copytree(ROOT / "scenarios" / "example_recordings", data)
+    shutil.copytree(SCENARIOS / "example_recordings", data)
     files = [f for f in data.rglob("*")
              if f.suffix == ".csv" or (f.suffix == ".toml" and case != "semicolons")]
     assert len(files) > 100
@@ -191,7 +191,7 @@ def test_raw_recordings_every_file_altered_read_as_the_original(tmp_path, record
 ])
 def test_raw_recordings_with_decimal_commas_in_a_comma_file_are_one_line(tmp_path, name, says):
     data = tmp_path / "data"
-    shutil.copytree(ROOT / "scenarios" / "example_recordings", data)
+    shutil.copytree(SCENARIOS / "example_recordings", data)
     (data / name).write_bytes(altered((data / name).read_bytes(), "decimal_comma", name))
     p = identify(data, tmp_path / "out")
     one_error_line(p, f"{data / name}: {says}")
@@ -199,7 +199,7 @@ def test_raw_recordings_with_decimal_commas_in_a_comma_file_are_one_line(tmp_pat
 
 @pytest.mark.parametrize("case", ["bom", "crlf", "decimal_comma"])
 def test_a_scenario_file_every_case(tmp_path, case):
-    text = (ROOT / "scenarios" / "case4.toml").read_text().replace("step_deg = 1.0", "step_deg = 45.0")
+    text = (SCENARIOS / "case4.toml").read_text().replace("step_deg = 1.0", "step_deg = 45.0")
     (tmp_path / "plain.toml").write_text(text)
     (tmp_path / "s.toml").write_bytes(altered(text.encode(), case, "s.toml"))
     p = run_cli(["run", tmp_path / "s.toml", "--out", tmp_path / "out", "--workers", "1"], cwd=ROOT)
@@ -219,7 +219,7 @@ def test_identified_json_with_a_bom_or_crlf_is_read(tmp_path, identified, case):
     # output folder, so that the folder's manifest does not speak for it
     copy = tmp_path / "identified.json"
     copy.write_bytes(altered(identified.read_bytes(), case, copy.name))
-    args = ["--scenario", ROOT / "scenarios" / "mat_aged.toml", "--samples", "2", "--scheduler", "none"]
+    args = ["--scenario", SCENARIOS / "mat_aged.toml", "--samples", "2", "--scheduler", "none"]
     p = run_cli(["uq", copy, *args, "--out", tmp_path / "a"], cwd=ROOT)
     q = run_cli(["uq", identified, *args, "--out", tmp_path / "b"], cwd=ROOT)
     assert p.returncode == 0 and q.returncode == 0, p.stderr + q.stderr

@@ -2,20 +2,17 @@
 summary, tables and figures; reproduce matches every number of the paper."""
 import json
 import math
-from pathlib import Path
 
 import pytest
 
 from orthocontact.cli.commands import load_scenario, packaged_scenarios
 from orthocontact.cli.main import main
-
-SCEN = Path(__file__).resolve().parents[2] / "scenarios"
-
+from paths import SCENARIOS
 
 # -- the CLI ------------------------------------------------------------------------
 
 def test_cli_run_writes_summary_tables_and_figures(tmp_path, capsys):
-    sc = (SCEN / "case5.toml").read_text().replace("step_deg = 1.0", "step_deg = 5.0")
+    sc = (SCENARIOS / "case5.toml").read_text().replace("step_deg = 1.0", "step_deg = 5.0")
     f = tmp_path / "c5.toml"
     f.write_text(sc)
     out = tmp_path / "out"
@@ -37,7 +34,7 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
     (the extremum search refines it), the report and its table."""
     folder = tmp_path / "scen"
     folder.mkdir()
-    for f in SCEN.glob("*.toml"):
+    for f in SCENARIOS.glob("*.toml"):
         text = f.read_text().replace("step_deg = 1.0", "step_deg = 10.0")
         text = text.replace("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]",
                             "steps_s = [1.0e-3, 5.0e-4]")
@@ -94,8 +91,8 @@ def test_reproduce_on_coarse_grids_matches_every_number(tmp_path, capsys):
 
 def test_the_packaged_scenarios_are_the_repositorys(capsys):
     folder = packaged_scenarios()
-    assert sorted(p.name for p in folder.glob("*.toml")) == sorted(p.name for p in SCEN.glob("*.toml"))
-    for f in SCEN.glob("*.toml"):
+    assert sorted(p.name for p in folder.glob("*.toml")) == sorted(p.name for p in SCENARIOS.glob("*.toml"))
+    for f in SCENARIOS.glob("*.toml"):
         assert (folder / f.name).read_text() == f.read_text()
-    sc = load_scenario(SCEN / "case5.toml", yes=False)    # size checked, within the limits
+    sc = load_scenario(SCENARIOS / "case5.toml", yes=False)    # size checked, within the limits
     assert sc.name == "case5" and capsys.readouterr().err == ""

@@ -6,16 +6,14 @@ import os
 import signal
 import subprocess
 import time
-from pathlib import Path
 
 import pytest
 
 from cli_run import CMD, busy_dashboard_port, leftovers
+from paths import SCENARIOS
 from procs import alive, children, descendants
 
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
-DATA = SCEN / "example_identification"
+DATA = SCENARIOS / "example_identification"
 
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
@@ -87,7 +85,7 @@ def test_ctrl_c_on_uq_is_one_line_and_leaves_nothing(tmp_path, identified, after
     env = dict(os.environ, TMPDIR=str(tmp))
     port = busy_dashboard_port()
     try:
-        proc = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(SCEN / "mat_aged.toml"),
+        proc = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(SCENARIOS / "mat_aged.toml"),
                                        "--samples", "3000", "--out", "out", "--workers", "2"],
                                 cwd=tmp_path, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                 text=True, start_new_session=True)
@@ -146,7 +144,7 @@ def test_a_dask_run_signalled_after_writing_everything_reports_success(tmp_path)
     """SIGTERM the moment the output folder is there: exit 0, complete files,
     and a note (not "interrupted; nothing written", exit 130, as before)."""
     out = tmp_path / "out"
-    proc = subprocess.Popen(CMD + ["run", str(SCEN / "case4.toml"), "--out", str(out), "--workers", "2",
+    proc = subprocess.Popen(CMD + ["run", str(SCENARIOS / "case4.toml"), "--out", str(out), "--workers", "2",
                                    "--scheduler", "local"], cwd=tmp_path,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     t0 = time.monotonic()

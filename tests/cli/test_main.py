@@ -9,9 +9,10 @@ from pathlib import Path
 
 import pytest
 
-from cli_run import CMD, SCENARIOS, run_cli
+from cli_run import CMD, run_cli
 from cli_run import timed_run as run
 from orthocontact.cli.main import OS_ERROR, main
+from paths import SCENARIOS
 
 
 def test_version_names_the_package_and_both_fmus(tmp_path):

@@ -26,9 +26,7 @@ from orthocontact.cli.output import (
 from orthocontact.errors import InputError
 from orthocontact.output.manifest import MANIFEST, file_sha256
 from orthocontact.runtime.folders import LOCK
-
-SCEN = Path(__file__).resolve().parents[2] / "scenarios"
-ROOT = Path(__file__).resolve().parents[2]
+from paths import SCENARIOS
 
 
 @pytest.mark.parametrize("out,says", [
@@ -57,7 +55,7 @@ def test_failed_run_leaves_the_output_folder_untouched(tmp_path, monkeypatch):
     def boom(*a, **k):
         raise RuntimeError("disk full")
     monkeypatch.setattr(report, "sweep_outputs", boom)
-    sc = (SCEN / "case4.toml").read_text().replace("step_deg = 1.0", "step_deg = 45.0")
+    sc = (SCENARIOS / "case4.toml").read_text().replace("step_deg = 1.0", "step_deg = 45.0")
     f = tmp_path / "c4.toml"
     f.write_text(sc)
     with pytest.raises(RuntimeError):
@@ -182,12 +180,12 @@ def test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs(tmp_
     into out/identify; before, the first run's reduction and rig scenario
     stayed beside the second run's identified.json (and uq took that rig)."""
     out = tmp_path / "out" / "identify"
-    p = run(["identify", SCEN / "example_recordings", "--out", out, "--no-validate"], tmp_path)
+    p = run(["identify", SCENARIOS / "example_recordings", "--out", out, "--no-validate"], tmp_path)
     assert p.returncode == 0, p.stderr
     (out / "my_notes.txt").write_text("mine")   # in identify's folder: the user's, kept
     first = files_under(out)
     assert {"rig_scenario.toml", "reduction.csv", "reduction.json", "reduction_45deg.png"} <= set(first)
-    p = run(["identify", SCEN / "example_identification", "--out", out, "--no-validate"], tmp_path)
+    p = run(["identify", SCENARIOS / "example_identification", "--out", out, "--no-validate"], tmp_path)
     assert p.returncode == 0, p.stderr
     assert files_under(out) == [MANIFEST, "fit.png", "identified.json", "identified.md", "my_notes.txt"]
     assert (out / "my_notes.txt").read_text() == "mine"
@@ -236,19 +234,19 @@ def test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_sta
     def start(sc):
         return subprocess.Popen(CMD + ["run", str(sc), "--out", "out", "--workers", "2"], cwd=tmp_path,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    live = start(SCEN / "case1.toml")
+    live = start(SCENARIOS / "case1.toml")
     try:
         _until(lambda: len(partials()) == 1)
         os.kill(live.pid, signal.SIGSTOP)   # in progress, its lock held
         theirs = partials()
-        killed = start(SCEN / "mat_aged.toml")
+        killed = start(SCENARIOS / "mat_aged.toml")
         _until(lambda: len(partials()) == 2)
         os.kill(killed.pid, signal.SIGKILL)
         killed.wait(timeout=30)
         left = [p for p in partials() if p not in theirs]
         assert len(left) == 1 and not (tmp_path / "out").exists()
         _until(lambda: _lock_free(left[0]), timeout=10)   # its workers end with it
-        p = run(["run", SCEN / "case4.toml", "--out", "out", "--workers", "2"], tmp_path)
+        p = run(["run", SCENARIOS / "case4.toml", "--out", "out", "--workers", "2"], tmp_path)
         assert p.returncode == 0, p.stderr
         # the killed run's gone, the live one's kept
         assert partials() == theirs and any(theirs[0].iterdir())
@@ -271,7 +269,7 @@ def snapshot(folder: Path) -> dict:
 def identified_once(tmp_path_factory):
     """An identify run's folder (the reduced example set, no validation runs)."""
     base = tmp_path_factory.mktemp("identified")
-    p = run(["identify", SCEN / "example_identification", "--out", base / "id", "--no-validate"], base)
+    p = run(["identify", SCENARIOS / "example_identification", "--out", base / "id", "--no-validate"], base)
     assert p.returncode == 0, p.stderr
     return base / "id"
 
@@ -287,7 +285,8 @@ def coarse_case4(folder: Path) -> Path:
     """Case 4 at 45 deg steps (3 angles): a run or reproduce of a second."""
     folder.mkdir(exist_ok=True)
     from cli_run import scenario_variant
-    return scenario_variant(SCEN / "case4.toml", "step_deg = 1.0", "step_deg = 45.0", folder / "case4.toml")
+    return scenario_variant(SCENARIOS / "case4.toml", "step_deg = 1.0", "step_deg = 45.0",
+                            folder / "case4.toml")
 
 
 @pytest.mark.parametrize("second", ["export", "uq"])
@@ -297,7 +296,7 @@ def test_a_command_into_identifys_folder_is_refused_and_loses_nothing(tmp_path, 
     (its own input), identified.md and fit.png, with exit 0."""
     before = snapshot(identified)
     args = {"export": ["export", identified / "identified.json", "--angle", "40"],
-            "uq": ["uq", identified / "identified.json", "--scenario", SCEN / "mat_aged.toml",
+            "uq": ["uq", identified / "identified.json", "--scenario", SCENARIOS / "mat_aged.toml",
                    "--samples", "4", "--scheduler", "none"]}[second]
     p = run(args + ["--out", identified], tmp_path)
     one_error_line(p, f"--out {identified}: holds {identified / 'identified.json'}, which "
@@ -310,8 +309,8 @@ def test_export_then_uq_into_the_export_folder_is_refused_naming_export(tmp_path
     p = run(["export", identified / "identified.json", "--angle", "40", "--out", exported], tmp_path)
     assert p.returncode == 0, p.stderr
     before = snapshot(exported)
-    p = run(["uq", identified / "identified.json", "--scenario", SCEN / "mat_aged.toml", "--samples", "4",
-             "--scheduler", "none", "--out", exported], tmp_path)
+    p = run(["uq", identified / "identified.json", "--scenario", SCENARIOS / "mat_aged.toml",
+             "--samples", "4", "--scheduler", "none", "--out", exported], tmp_path)
     one_error_line(p, f"--out {exported}: holds the outputs of `orthocontact export` run",
                    "--force to replace them (4 file(s))")
     assert snapshot(exported) == before
@@ -365,7 +364,7 @@ def test_a_commands_own_input_is_never_its_output(tmp_path, case):
     --force a folder is written, the input kept (ssp's file: never)."""
     if case == "identify":
         import shutil
-        folder = Path(shutil.copytree(SCEN / "example_identification", tmp_path / "data"))
+        folder = Path(shutil.copytree(SCENARIOS / "example_identification", tmp_path / "data"))
         args, read = ["identify", folder, "--no-validate", "--out", folder], folder
     elif case == "run":
         read = coarse_case4(tmp_path / "scen")

@@ -9,11 +9,10 @@ import pytest
 from cli_run import leftovers, one_error_line, timed_run
 from cli_run import run_cli as run
 from orthocontact.cli.parser import build_parser
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
-CASE4 = str(ROOT / "scenarios" / "case4.toml")
-SCEN = ROOT / "scenarios"
-DATA = SCEN / "example_identification"
+CASE4 = str(SCENARIOS / "case4.toml")
+DATA = SCENARIOS / "example_identification"
 
 
 @pytest.mark.parametrize("value", ["0", "-3", "two"])
@@ -38,7 +37,7 @@ def test_every_command_and_argument_has_help():
 
 
 def bad_arguments(identified):
-    aged = SCEN / "mat_aged.toml"
+    aged = SCENARIOS / "mat_aged.toml"
     uq = ["uq", identified, "--scenario", aged, "--samples", "2", "--out", "o"]
     return {
         "ssp --angle nan": (["ssp", aged, "--angle", "nan", "--out", "a.ssp"], "--angle"),

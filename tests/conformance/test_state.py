@@ -11,16 +11,15 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
 from conformance.drive import Instance, changed_parameters, clock, input_rows
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import models
+from paths import TESTS
 
 VERSIONS = (2, 3)
-TESTS = Path(__file__).resolve().parents[1]
 
 
 def _continue(f: Instance, rows, t, steps) -> list[list[float]]:

@@ -3,19 +3,18 @@ degrees; the data files' column mat_angle_deg).  It had three (mat angle,
 orientation angle, swept angle a) across the help texts, figures, messages
 and documents; the others must not come back."""
 import re
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+from paths import DOCS, PKG, ROOT, SCENARIOS
 
 OTHER_NAMES = re.compile(r"orientation angle|swept angles?|\borientations?\b", re.IGNORECASE)
 
 
 def user_facing_files():
-    yield from (ROOT / "python" / "orthocontact").rglob("*.py")
+    yield from PKG.rglob("*.py")
     yield ROOT / "README.md"
-    yield from (ROOT / "docs").rglob("*.md")
-    yield from (ROOT / "scenarios").rglob("*.md")
-    yield from (ROOT / "scenarios").rglob("*.toml")   # a scenario's title and description
+    yield from DOCS.rglob("*.md")
+    yield from SCENARIOS.rglob("*.md")
+    yield from SCENARIOS.rglob("*.toml")   # a scenario's title and description
 
 
 # Lines being rewritten by the plausibility gate's work when

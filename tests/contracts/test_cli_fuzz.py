@@ -3,16 +3,14 @@
 traceback or a hang; and its judge does fail such a run."""
 import subprocess
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-import cli_fuzz  # noqa: E402
+import cli_fuzz  # tools/ is on sys.path (conftest)
+from paths import TOOLS
 
 
 def test_hostile_runs_of_every_command_end_without_a_traceback():
     """A fixed seed and budget: 40 cases over every command the parser has."""
-    p = subprocess.run([sys.executable, str(ROOT / "tools" / "cli_fuzz.py"), "--seed", "1", "--cases", "40",
+    p = subprocess.run([sys.executable, str(TOOLS / "cli_fuzz.py"), "--seed", "1", "--cases", "40",
                         "--timeout", "90"], capture_output=True, text=True, timeout=1800)
     summary = [line for line in p.stdout.splitlines() if line.startswith("cli_fuzz: ")]
     assert p.returncode == 0 and summary and summary[0].endswith(", 0 failed"), p.stdout[-3000:] + p.stderr

@@ -42,7 +42,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+from paths import DOCS, ROOT, SCENARIOS
 
 RUN_KINDS = {"python", "pycon", "sh", "toml"}
 MARKER = re.compile(r"<!--\s*(not run|slow)\s*:\s*(.*?)\s*-->")
@@ -71,7 +71,7 @@ class Block:
 
 def pages() -> list[str]:
     found = [ROOT / "README.md", ROOT / "CONTRIBUTING.md", ROOT / "CHANGELOG.md",
-             *sorted((ROOT / "docs").rglob("*.md")), *sorted((ROOT / "scenarios").rglob("*.md"))]
+             *sorted(DOCS.rglob("*.md")), *sorted(SCENARIOS.rglob("*.md"))]
     return [str(p.relative_to(ROOT)) for p in found if p.is_file()]
 
 

@@ -4,21 +4,21 @@ the commands give."""
 import re
 import subprocess
 import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-NOTES = ROOT / "docs" / "explanation" / "model-notes.md"
+from paths import DOCS, ROOT, SCENARIOS
+
+NOTES = DOCS / "explanation" / "model-notes.md"
 
 
 def test_readme_report_and_scenarios_link_the_model_notes(tmp_path):
     from orthocontact.reproduction import paper_report as report
     where = "docs/explanation/model-notes.md"
     assert where in (ROOT / "README.md").read_text()
-    assert "explanation/model-notes.md" in (ROOT / "docs" / "index.md").read_text()
-    assert where in (ROOT / "scenarios" / "README.md").read_text()
+    assert "explanation/model-notes.md" in (DOCS / "index.md").read_text()
+    assert where in (SCENARIOS / "README.md").read_text()
     assert where in report.reproduction_report(tmp_path, [], [], 0.0)
     # the path a scenario's description names leads to the notes
-    named = re.search(r"docs/[\w/-]+\.md", (ROOT / "scenarios" / "mat_new.toml").read_text()).group(0)
+    named = re.search(r"docs/[\w/-]+\.md", (SCENARIOS / "mat_new.toml").read_text()).group(0)
     assert (ROOT / named).is_file() and "model-notes.md" in (ROOT / named).read_text() + named
     text = NOTES.read_text()
     for topic in ("counterclockwise", "eq. (20)", "eq. (41)", "μ₂/μ₁", "Teflon strip"):

@@ -12,17 +12,15 @@ import json
 import re
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
 from cli_run import CMD
 from optional_parts import record, usable
 from orthocontact.cli.parser import build_parser
+from paths import DOCS, ROOT, SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
 README = (ROOT / "README.md").read_text()
-DOCS = ROOT / "docs"
 NOTES = (DOCS / "explanation" / "model-notes.md").read_text()
 UQ_GUIDE = (DOCS / "guides" / "uncertainty.md").read_text()
 SYSTEM_GUIDE = (DOCS / "guides" / "system-simulator.md").read_text()
@@ -40,7 +38,7 @@ def test_the_uq_guides_example_prints_what_the_guide_says(tmp_path):
     assert [ln.split()[1] for ln in block.splitlines()] == ["identify", "uq"]
     assert "--samples 2000" in block and "scenarios/mat_aged.toml" in block
     ident = tmp_path / "identify"
-    p = subprocess.run(CMD + ["identify", str(ROOT / "scenarios/example_identification"), "--out",
+    p = subprocess.run(CMD + ["identify", str(SCENARIOS / "example_identification"), "--out",
                               str(ident)], capture_output=True, text=True, timeout=300, cwd=ROOT)
     assert p.returncode == 0, p.stderr
     p = subprocess.run(CMD + ["uq", str(ident / "identified.json"), "--scenario", "scenarios/mat_aged.toml",
@@ -61,7 +59,7 @@ def test_the_compiled_masters_speed_up_is_one_range_everywhere():
     """docs/benchmarks.md holds the measured table (benchmarks/bench_masters.py);
     the README, the rig's guide, the benchmarks' summary and --help state its
     range, rounded outwards to whole numbers."""
-    bench = (ROOT / "docs" / "benchmarks.md").read_text()
+    bench = (DOCS / "benchmarks.md").read_text()
     table = bench.split("## The compiled master")[1].split("##")[0]
     ratios = [float(x) for row in re.findall(r"\| ([\d.]+–[\d.]+)× \|", table) for x in row.split("–")]
     assert len(ratios) == 4, table
@@ -83,7 +81,7 @@ def test_identify_help_names_every_column():
 
 def test_no_documentation_names_an_issue_the_reader_cannot_see():
     files = [ROOT / "README.md", ROOT / "CITATION.cff", ROOT / "CONTRIBUTING.md", ROOT / "CHANGELOG.md",
-             ROOT / "benchmarks" / "bench_coverage.py", *sorted((ROOT / "scenarios").rglob("*.md")),
+             ROOT / "benchmarks" / "bench_coverage.py", *sorted(SCENARIOS.rglob("*.md")),
              *sorted(DOCS.rglob("*.md")), DOCS / "coverage.json"]
     assert len(files) > 20
     texts = {str(f.relative_to(ROOT)): f.read_text() for f in files}
@@ -121,7 +119,7 @@ def test_the_guides_libcosim_example_runs_as_written_and_prints_the_harness_angl
     lines = block.splitlines()
     ssp_line = next(x for x in lines if " ssp " in x)
     # the guide's paths are relative to the repository root
-    p = subprocess.run(CMD + [a.replace("scenarios/", str(ROOT / "scenarios") + "/")
+    p = subprocess.run(CMD + [a.replace("scenarios/", str(SCENARIOS) + "/")
                               for a in ssp_line.split()[1:]], capture_output=True, text=True, timeout=120,
                        cwd=tmp_path)
     assert p.returncode == 0, p.stderr
@@ -135,7 +133,7 @@ def test_the_guides_libcosim_example_runs_as_written_and_prints_the_harness_angl
     assert printed == said
     from orthocontact.experiment.scenario import load
     from orthocontact.rig.harness import run
-    sc = load(ROOT / "scenarios" / "mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     assert abs(float(printed.split()[2]) - run(sc.params_at(39.2), sc.rig).phi_deg) < 5e-3
 
 

@@ -4,12 +4,11 @@ counts honestly (it sees a place, skips comments, and sets aside as
 independent references only files that import nothing of the package)."""
 import ast
 import re
-from pathlib import Path
 
 import count_facts as facts  # tools/ is on sys.path (conftest)
 import make_generated
+from paths import ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 ROWS = ("six", "rules", "models", "sources", "forms", "fmi")   # the table's rows, in order
 
 

@@ -6,7 +6,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+from paths import PKG, ROOT, SCENARIOS
 
 
 def _sh(cmd, **kw):
@@ -29,10 +29,10 @@ def test_editable_install_finds_its_fmus_and_runs(tmp_path):
     probe = _sh([str(py), "-c", "import orthocontact, orthocontact.fmu as f; "
                  "print(orthocontact.__file__); print(f.find_fmu()); print(f.find_fmu(fmi_version=3))"],
                 cwd=tmp_path).stdout.splitlines()
-    assert probe[0] == str(ROOT / "python" / "orthocontact" / "__init__.py")  # editable: the source
+    assert probe[0] == str(PKG / "__init__.py")  # editable: the source
     assert all(Path(x).is_file() for x in probe[1:3])
     sc = tmp_path / "quick.toml"
-    sc.write_text((ROOT / "scenarios" / "case4.toml").read_text()
+    sc.write_text((SCENARIOS / "case4.toml").read_text()
                   .replace("step_deg = 1.0", "step_deg = 30.0").replace("travel_m = 0.2", "travel_m = 0.02"))
     for fmi in ("2", "3"):
         _sh([str(venv / "bin" / "orthocontact"), "run", str(sc), "--out", str(tmp_path / f"out{fmi}"),
@@ -42,7 +42,7 @@ def test_editable_install_finds_its_fmus_and_runs(tmp_path):
 
 def test_missing_fmu_is_one_line_not_a_traceback(tmp_path):
     env = dict(os.environ, ORTHOCONTACT_FMU=str(tmp_path / "nowhere.fmu"))
-    p = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(ROOT / "scenarios/case4.toml"),
+    p = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(SCENARIOS / "case4.toml"),
                         "--out", str(tmp_path / "out")], capture_output=True, text=True, env=env,
                        timeout=120)
     assert p.returncode == 2

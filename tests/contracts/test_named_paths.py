@@ -15,7 +15,8 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+from paths import PKG, ROOT
+
 SCOPE = ("python/", "tools/", "tests/", "benchmarks/", "fmu_src/", "master_src/")
 TOP = ("CMakeLists.txt", "Makefile")
 
@@ -86,7 +87,7 @@ def unresolved(texts: dict[str, str], tree: list[str]) -> list[str]:
     code = "\n".join(c for c, _ in parts.values())
     bad = []
     for f, (_, notes) in parts.items():
-        bases = [ROOT, *(ROOT / f).parents, ROOT / "python" / "orthocontact"]
+        bases = [ROOT, *(ROOT / f).parents, PKG]
         for line, note in notes:
             for token in named_paths(note):
                 bare = token.strip("/")

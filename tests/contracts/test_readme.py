@@ -3,9 +3,9 @@
 keep); three first paths, each ending in a link into docs/; citing and the
 license.  Its code blocks run in test_doc_blocks.py like every page's."""
 import re
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+from paths import ROOT
+
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 
 

@@ -22,8 +22,7 @@ from orthocontact.cli.main import OS_ERROR
 from orthocontact.cli.parser import build_parser
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import models
-
-ROOT = mr.ROOT
+from paths import DOCS, ROOT, TOOLS
 
 
 def differs(rel, generated) -> str:
@@ -53,7 +52,7 @@ def test_the_generated_blocks_of_hand_written_pages_are_what_the_models_give():
 
 
 def test_check_says_which_page_is_stale_and_how_to_refresh(tmp_path):
-    done = subprocess.run([sys.executable, str(ROOT / "tools" / "make_reference.py"), "--check"],
+    done = subprocess.run([sys.executable, str(TOOLS / "make_reference.py"), "--check"],
                           capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
     (tmp_path / "docs" / "reference").mkdir(parents=True)
@@ -79,7 +78,7 @@ def models_table(page: str) -> dict[str, list[str]]:
 
 
 def test_the_fmu_reference_names_every_model_and_counts_what_version_lists(tmp_path):
-    page = (ROOT / "docs" / "reference" / "fmus.md").read_text()
+    page = (DOCS / "reference" / "fmus.md").read_text()
     found = models_table(page)
     assert list(found) == list(models().values())
     listed = run_cli(["--version"], tmp_path)
@@ -129,7 +128,7 @@ COUNTED = re.compile(r"\b(two|three|four|five|six|seven|eight|nine|ten|eleven|tw
 def test_no_page_counts_the_fmus_or_models_by_hand():
     """Counts of the models and FMUs are generated (a new model changes them);
     elsewhere a page says "every model" or links the FMU reference's table."""
-    pages = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+    pages = [ROOT / "README.md", *sorted(DOCS.rglob("*.md"))]
     found = []
     for page in pages:
         text = page.read_text()

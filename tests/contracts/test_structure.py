@@ -3,7 +3,7 @@ going down, no cycle between modules, no private name used across modules."""
 import ast
 from pathlib import Path
 
-PKG = Path(__file__).resolve().parents[2] / "python" / "orthocontact"
+from paths import PKG, TESTS
 
 
 def module_name(path: Path, pkg: Path = PKG) -> str:
@@ -129,7 +129,6 @@ def test_modules_are_small():
 # tests/<sub>/test_<mod>.py (a top-level module: tests/test_<mod>.py;
 # __main__ shares cli/test_main.py), and that file imports the module.  Tests
 # of no single module live in folders no subpackage is named like.
-TESTS = Path(__file__).resolve().parents[1]
 NOT_A_MODULE = {"fmus", "contracts", "conformance"}   # FMU binaries; the repository's contracts; FMI rules
 SHARED_BY = {"__main__": "cli.main"}            # tested in that module's file
 

@@ -8,8 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-TESTS = ROOT / "tests"
+from paths import ROOT, TESTS
 
 # -- the optional parts' summary, on a tiny generated suite --------------------------
 

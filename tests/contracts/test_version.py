@@ -14,8 +14,8 @@ from xml.etree import ElementTree
 
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import models
+from paths import PKG, ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 VERSION = (ROOT / "VERSION").read_text().strip()
 MODELS = tuple(models().values())
 
@@ -33,7 +33,7 @@ def test_version_file_holds_one_version_and_nothing_else_states_one():
     assert re.search(r'^input = "VERSION"', pyproject, re.M)
     cmake = (ROOT / "CMakeLists.txt").read_text()
     assert "project(orthocontact VERSION ${OC_VERSION}" in cmake
-    init = (ROOT / "python" / "orthocontact" / "__init__.py").read_text()
+    init = (PKG / "__init__.py").read_text()
     assert not re.search(r'__version__\s*=\s*["\']', init)
 
 

@@ -2,17 +2,15 @@
 row has every piece once the modules that write them are imported, the
 schema and the commands ask the row, and no module compares a kind's name."""
 import re
-from pathlib import Path
 
 import pytest
 
-from cli_run import SCENARIOS, scenario_variant
+from cli_run import scenario_variant
 from orthocontact.errors import InputError
 from orthocontact.experiment.kinds import KINDS, PARTS, fmu_for, kind_of, register, require_mat_angles
 from orthocontact.experiment.scenario import COMMON, SCHEMA, ScenarioError, load
 from orthocontact.fmu.files import find_fmu
-
-PKG = Path(__file__).resolve().parents[2] / "python" / "orthocontact"
+from paths import PKG, SCENARIOS
 
 
 def test_every_kind_has_every_piece_once_the_commands_modules_are_imported():

@@ -7,13 +7,12 @@ from pathlib import Path
 
 import pytest
 
-from cli_run import SCENARIOS, case4_named, error_lines, one_error_line, scenario_variant
+from cli_run import case4_named, error_lines, one_error_line, scenario_variant
 from cli_run import run_cli as run
 from orthocontact.cli.main import main
 from orthocontact.experiment.scenario import ScenarioError, load
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
 BAD = [
     ("unknown key", "mu3 = 0.2\n", "[law]", "law.mu3"),
     ("wrong type", 'mu1 = "high"\n', "[law]", "law.mu1"),
@@ -29,7 +28,7 @@ BAD = [
 
 @pytest.mark.parametrize("what,line,table,key", BAD, ids=[b[0] for b in BAD])
 def test_bad_scenario_one_line_exit_2_nothing_written(tmp_path, capsys, what, line, table, key):
-    text = (SCEN / "case1.toml").read_text()
+    text = (SCENARIOS / "case1.toml").read_text()
     if table:
         # replace an existing key of the table, or add the new one to it
         k = line.split("=")[0].strip()
@@ -62,7 +61,8 @@ def test_every_problem_of_a_file_is_a_line_of_one_run(tmp_path):
     """The twist with a negative patch length, a negative mu1 and no cells
     along its length: three lines in one run, each naming the file and its
     key, exit 2, nothing written; the three fixed, it loads."""
-    bad = scenario_variant(SCEN / "twist.toml", "length_m = 0.05", "length_m = -0.05", tmp_path / "t.toml")
+    bad = scenario_variant(SCENARIOS / "twist.toml", "length_m = 0.05", "length_m = -0.05",
+                           tmp_path / "t.toml")
     scenario_variant(bad, "\nmu1 = 0.408\n", "\nmu1 = -0.408\n", bad)   # the key, not the description
     scenario_variant(bad, "n1 = 12", "n1 = 0", bad)
     p = run(["run", bad, "--out", "out"], tmp_path)
@@ -80,7 +80,7 @@ def test_a_problem_across_keys_is_said_beside_the_keys_own(tmp_path):
     """A check across keys (a sweep's stop before its start; eps1 and
     eps_ratio both given) joins the keys' own problems; one whose keys are
     wrong themselves is left out (it would say nothing more)."""
-    text = (SCEN / "case1.toml").read_text()
+    text = (SCENARIOS / "case1.toml").read_text()
     f = tmp_path / "s.toml"
     for old, new in (("start_deg = 0.0", "start_deg = 80.0"), ("stop_deg = 90.0", "stop_deg = 10.0"),
                      ('mode = "quasistatic"', 'mode = "fast"'),
@@ -119,16 +119,16 @@ def test_a_scenario_named_like_the_reports_own_files_is_refused(tmp_path, name):
 
 def test_a_scenario_saved_with_a_byte_order_mark_is_read(tmp_path):
     sc = tmp_path / "bom.toml"
-    sc.write_bytes(b"\xef\xbb\xbf" + (SCEN / "case4.toml").read_bytes())
+    sc.write_bytes(b"\xef\xbb\xbf" + (SCENARIOS / "case4.toml").read_bytes())
     p = run(["run", sc, "--out", tmp_path / "out", "--workers", "1"], tmp_path)
     assert p.returncode == 0, p.stderr
 
 
 def test_load_in_process_names_the_file_and_key(tmp_path):
-    sc = load(SCEN / "case5.toml")
+    sc = load(SCENARIOS / "case5.toml")
     assert sc.name == "case5" and sc.kind == "sweep" and sc.closed_form == "eq25"
     f = tmp_path / "bad.toml"
-    f.write_text((SCEN / "case5.toml").read_text().replace("[law]\n", "[law]\nmu3 = 0.2\n", 1))
+    f.write_text((SCENARIOS / "case5.toml").read_text().replace("[law]\n", "[law]\nmu3 = 0.2\n", 1))
     with pytest.raises(ScenarioError) as e:
         load(f)
     assert str(e.value).startswith(f"{f}: law.mu3: expected ") and "\n" not in str(e.value)
@@ -143,7 +143,7 @@ def test_load_in_process_names_the_file_and_key(tmp_path):
 def test_a_closed_form_is_one_the_table_holds_for_the_law_and_axes(tmp_path, form, edit, says):
     """geometry.closed_form names a form of closed_forms.FORMS that holds
     for the scenario's law and axes, refused at load (before any run)."""
-    text = (SCEN / "case4.toml").read_text().replace('closed_form = "eq25"', f'closed_form = "{form}"')
+    text = (SCENARIOS / "case4.toml").read_text().replace('closed_form = "eq25"', f'closed_form = "{form}"')
     if edit:
         text = text.replace(*edit)
     f = tmp_path / "c.toml"
@@ -154,7 +154,7 @@ def test_a_closed_form_is_one_the_table_holds_for_the_law_and_axes(tmp_path, for
 
 
 def test_a_closed_form_refused_at_axes_given_in_radians_names_the_slip(tmp_path):
-    text = (SCEN / "mat_aged.toml").read_text()
+    text = (SCENARIOS / "mat_aged.toml").read_text()
     assert "alpha_offset_deg = 90.0" in text
     (tmp_path / "s.toml").write_text(text.replace("alpha_offset_deg = 90.0", "alpha_offset_deg = 1.5708"))
     one_error_line(run(["run", "s.toml", "--out", "o"], tmp_path), "s.toml: geometry.closed_form: expected",
@@ -170,7 +170,7 @@ def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
     from orthocontact.experiment.kinds import KINDS
     from orthocontact.runs.size import check_scenario_size
     kinds = set()
-    for f in sorted(SCEN.glob("*.toml")):
+    for f in sorted(SCENARIOS.glob("*.toml")):
         sc = load(f)
         assert sc.name == f.stem and sc.warnings == [], (f.name, sc.warnings)
         check_scenario_size(sc, yes=False)

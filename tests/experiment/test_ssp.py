@@ -12,7 +12,6 @@ import json
 import subprocess
 import sys
 import zipfile
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,15 +21,15 @@ from orthocontact.experiment.scenario import load
 from orthocontact.experiment.ssp import contact_values, rig_values
 from orthocontact.fmu.start_values import start_values_of
 from orthocontact.rig.harness import LineFit, run
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
 ANGLE = 39.2          # the aged mat's extremum
 TOLERANCE_DEG = 1e-6  # see the module's docstring
 
 
 @pytest.fixture(scope="module")
 def aged():
-    return load(ROOT / "scenarios/mat_aged.toml")
+    return load(SCENARIOS / "mat_aged.toml")
 
 
 @pytest.fixture(scope="module")
@@ -43,7 +42,7 @@ def harness(aged):
 @pytest.fixture(scope="module")
 def package(tmp_path_factory):
     ssp = tmp_path_factory.mktemp("ssp") / "aged.ssp"
-    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"),
+    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(SCENARIOS / "mat_aged.toml"),
                         "--angle", str(ANGLE), "--out", str(ssp)], capture_output=True, text=True,
                        timeout=120)
     assert p.returncode == 0, p.stderr
@@ -66,13 +65,13 @@ def steps(sc) -> int:
 @pytest.mark.needs("libcosimpy")
 def test_ssp_runs_in_libcosim_with_the_harness_angle(tmp_path):
     ssp = tmp_path / "aged.ssp"
-    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"),
+    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(SCENARIOS / "mat_aged.toml"),
                         "--angle", "39.2", "--out", str(ssp)], capture_output=True, text=True, timeout=120)
     assert p.returncode == 0, p.stderr
     names = set(zipfile.ZipFile(ssp).namelist())
     assert names == {"SystemStructure.ssd", "resources/OrthotropicContact.fmu",
                      "resources/CarriageBlock.fmu"}
-    sc = load(ROOT / "scenarios/mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     n = int(np.ceil(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) - 1e-9))
     rows = np.array(run_rig_ssp(ssp, n))
     fit = LineFit()
@@ -86,10 +85,10 @@ def test_ssp_runs_in_libcosim_with_the_harness_angle(tmp_path):
 
 
 def test_ssp_refuses_a_bad_output_and_a_step_study(tmp_path):
-    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"),
+    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(SCENARIOS / "mat_aged.toml"),
                         "--angle", "10", "--out", str(tmp_path)], capture_output=True, text=True, timeout=60)
     assert p.returncode == 2 and "is a folder" in p.stderr
-    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/step_study.toml"),
+    p = subprocess.run([sys.executable, "-m", "orthocontact", "ssp", str(SCENARIOS / "step_study.toml"),
                         "--angle", "10", "--out", str(tmp_path / "x.ssp")], capture_output=True, text=True,
                        timeout=60)
     assert p.returncode == 2 and "expected a sweep scenario" in p.stderr
@@ -191,14 +190,13 @@ def test_the_ssp_command_says_when_its_dynamic_rig_would_not_settle(tmp_path):
     """The SSP's CarriageBlock integrates the block's lateral inertia whatever
     the scenario's mode: Case 2 at its extremum settles over 0.40 m (the
     model notes' figure), far beyond its 0.2 m travel."""
-    root = Path(__file__).resolve().parents[2]
     cmd = [sys.executable, "-m", "orthocontact", "ssp"]
-    p = subprocess.run(cmd + [str(root / "scenarios/case2.toml"), "--angle", "11.31", "--out", "c2.ssp"],
+    p = subprocess.run(cmd + [str(SCENARIOS / "case2.toml"), "--angle", "11.31", "--out", "c2.ssp"],
                        cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert p.returncode == 0 and (tmp_path / "c2.ssp").is_file()
     assert p.stderr.startswith("orthocontact: warning: case2 at 11.31 deg: the system's dynamic rig settles "
                                "over 0.403 m") and "rig.travel_m >=" in p.stderr
-    p = subprocess.run(cmd + [str(root / "scenarios/mat_aged.toml"), "--angle", "39.2", "--out", "a.ssp"],
+    p = subprocess.run(cmd + [str(SCENARIOS / "mat_aged.toml"), "--angle", "39.2", "--out", "a.ssp"],
                        cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert p.returncode == 0 and p.stderr == ""
 
@@ -212,7 +210,7 @@ def test_a_killed_ssps_scratch_goes_with_the_next_package_written_there(tmp_path
     import os
     import signal
     import time
-    cmd = [sys.executable, "-m", "orthocontact", "ssp", str(ROOT / "scenarios/mat_aged.toml"),
+    cmd = [sys.executable, "-m", "orthocontact", "ssp", str(SCENARIOS / "mat_aged.toml"),
            "--angle", "10", "--out", "rig.ssp"]
 
     def partials():

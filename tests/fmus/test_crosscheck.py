@@ -5,7 +5,6 @@ designed path's phases obey independent truths (the law's tensors over the
 FMU's default parameters, the cells' sums and the rig's lateral steps
 written out here)."""
 import csv
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,8 +15,8 @@ from orthocontact import closed_forms as cf
 from orthocontact.closed_forms import patch as cp
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import law_parameters, models
+from paths import ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 CONTACT, PATCH, RIG = models()["contact"], models()["patch"], models()["rig"]
 
 

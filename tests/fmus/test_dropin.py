@@ -8,7 +8,6 @@ import math
 import struct
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,8 +16,8 @@ from conftest import CASE5, G_N
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.params import ContactParams
 from orthocontact.rig.harness import Rig, run
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
 AGED = ContactParams(0.408, 0.625, 1.251e4, 1e4, math.radians(90 + 30), math.radians(30), "coupled")
 
 
@@ -106,7 +105,7 @@ def test_cli_runs_the_harness_on_either_fmi_version(tmp_path):
     """The real command, in a subprocess: --fmi 3 gives the FMI 2.0 results bit for bit."""
     import json
     sc = tmp_path / "quick.toml"
-    sc.write_text((ROOT / "scenarios" / "case5.toml").read_text()
+    sc.write_text((SCENARIOS / "case5.toml").read_text()
                   .replace("step_deg = 1.0", "step_deg = 15.0").replace("travel_m = 0.2", "travel_m = 0.03"))
     summaries = {}
     for v in (2, 3):

@@ -14,6 +14,7 @@ from orthocontact import closed_forms as cf
 from orthocontact.fmu.contact import FMUError
 from orthocontact.fmu.params import ContactParams
 from orthocontact.rig.harness import solve_lateral
+from paths import ROOT
 
 
 def test_fmpy_validate_is_clean(fmu_path):
@@ -101,11 +102,9 @@ def test_every_fmi_function_is_exported(fmu_path, fmi_version, tmp_path):
 
 
 def test_model_description_at_repo_root_is_the_packaged_one(fmu_path, fmi_version):
-    import pathlib
     name = "modelDescription.xml" if fmi_version == 2 else "modelDescription-fmi3.xml"
-    root = pathlib.Path(__file__).resolve().parents[2] / name
     packaged = zipfile.ZipFile(fmu_path).read("modelDescription.xml").decode()
-    assert root.read_text() == packaged
+    assert (ROOT / name).read_text() == packaged
 
 
 def _B(p):

@@ -11,7 +11,6 @@ import math
 import shutil
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -23,8 +22,7 @@ from orthocontact import closed_forms as cf
 from orthocontact.fmu import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
 from orthocontact.fmu.slave import integer_call
 from orthocontact.fmu.variables import manifest, models
-
-ROOT = Path(__file__).resolve().parents[2]
+from paths import ROOT
 
 
 class Instance:

@@ -17,8 +17,8 @@ import binformat
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams
+from paths import C_FIXTURES, ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 HEADERS = Path(fmpy.__file__).parent / "c-code"
 PLATFORMS = {
     2: {"linux64": ("ELF", "x86_64", "so"), "win64": ("PE", "x86_64", "dll"),
@@ -59,7 +59,7 @@ def test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one(tmp_path):
     so.write_bytes(z.read("binaries/aarch64-linux/OrthotropicContact.so"))
     driver = tmp_path / "fmu_run"
     subprocess.run([sys.executable, "-m", "ziglang", "cc", "-target", "aarch64-linux-gnu.2.17",
-                    "-O1", "-I", str(HEADERS), str(ROOT / "tests/c/fmu_run.c"), "-ldl", "-o",
+                    "-O1", "-I", str(HEADERS), str(C_FIXTURES / "fmu_run.c"), "-ldl", "-o",
                     str(driver)], check=True, capture_output=True, timeout=300)
     from fmpy import read_model_description
     token = read_model_description(str(fmu)).guid

@@ -51,9 +51,9 @@ from fmpy import read_model_description
 from optional_parts import wine64
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.variables import Manifest, manifest, models
+from paths import C_FIXTURES
 
-ROOT = Path(__file__).resolve().parents[2]
-HOST = ROOT / "tests/c/fmi_script_host.c"
+HOST = C_FIXTURES / "fmi_script_host.c"
 HEADERS = Path(fmpy.__file__).parent / "c-code"
 # The binaries compared: FMI version -> (Linux folder, Windows folder).
 FOLDERS = {2: ("linux64", "win64"), 3: ("x86_64-linux", "x86_64-windows")}

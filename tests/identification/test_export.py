@@ -25,9 +25,9 @@ from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.start_values import start_values_of
 from orthocontact.identification.export import load_calibration, predicted_phi_deg
 from orthocontact.rig.harness import LineFit, run
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
-DATA = ROOT / "scenarios/example_identification"
+DATA = SCENARIOS / "example_identification"
 ANGLE = 40.0   # near the example mat's extremum
 
 
@@ -191,7 +191,7 @@ def test_force_logs_changed_after_identify_are_refused_by_export_and_uq_naming_t
     only, and export took the changed data with the original's digest."""
     import hashlib
     data = tmp_path / "recordings"
-    shutil.copytree(ROOT / "scenarios/example_recordings", data)
+    shutil.copytree(SCENARIOS / "example_recordings", data)
     first = tmp_path / "id"
     p = cli("identify", data, "--out", first, "--no-validate")
     assert p.returncode == 0, p.stderr
@@ -312,7 +312,7 @@ def recordings_in_kn(folder: Path) -> Path:
     """A part of the bundled recordings (every carriage and ramp run, the
     slides at 0, 45 and 90 deg at 0.244 m/s, two each: 5 s to identify
     instead of 77 s) with every force log in kN: each ratio stays sane."""
-    src = ROOT / "scenarios/example_recordings"
+    src = SCENARIOS / "example_recordings"
     (folder / "forces").mkdir(parents=True)
     (folder / "trajectories").mkdir()
     shutil.copy(src / "rig.toml", folder)

@@ -22,8 +22,7 @@ from orthocontact.identification.identified import (
     NotIdentified,
 )
 from orthocontact.identification.identified_file import SCHEMA, check_data, read_identified, write_identified
-
-ROOT = Path(__file__).resolve().parents[2]
+from paths import ROOT, SCENARIOS
 
 
 def schema_errors(d: dict) -> list:
@@ -46,7 +45,7 @@ def test_identifys_output_holds_to_the_schema_and_reads_back_as_written(identifi
     assert isinstance(f, IdentifiedFile) and f.as_json() == d            # one writer, one reader
     assert isinstance(f.estimates["mu1"], Estimate) and f.value("mu1") == d["mu1"]["value"]
     assert f.covariance.parameters == ("mu1", "mu2", "eps_ratio", "eps2")
-    assert f.provenance.folder.resolve() == (ROOT / "scenarios/example_identification").resolve()
+    assert f.provenance.folder.resolve() == (SCENARIOS / "example_identification").resolve()
     copy = identified.parent.parent / "rewritten.json"
     write_identified(copy, f)
     assert json.loads(copy.read_text()) == d
@@ -55,7 +54,7 @@ def test_identifys_output_holds_to_the_schema_and_reads_back_as_written(identifi
 def test_raw_recordings_validated_and_with_the_fmu_hold_to_the_schema_too(tmp_path):
     """The optional parts: the reduction, F_int and the strip estimated, the
     joint covariance, the FMU's validation."""
-    p = run_cli(["identify", ROOT / "scenarios/example_recordings", "--out", tmp_path / "id"], cwd=ROOT)
+    p = run_cli(["identify", SCENARIOS / "example_recordings", "--out", tmp_path / "id"], cwd=ROOT)
     assert p.returncode == 0, p.stderr
     d = json.loads((tmp_path / "id/identified.json").read_text())
     assert {"reduction", "covariance_joint", "c_strip", "f_int"} <= set(d) and d["validation_fmu"]
@@ -124,7 +123,7 @@ def test_what_is_not_identifys_output_names_the_file(tmp_path, content, says):
 ])
 def test_each_field_is_checked_with_one_line_naming_the_file_and_field(identified, tmp_path, edit, says):
     d = json.loads(identified.read_text())
-    d["data"]["folder"] = str(ROOT / "scenarios/example_identification")
+    d["data"]["folder"] = str(SCENARIOS / "example_identification")
     edit(d)
     path = tmp_path / "identified.json"
     path.write_text(json.dumps(d))
@@ -158,7 +157,7 @@ def test_a_value_that_cannot_be_right_is_refused_by_the_one_reader(identified, t
     gate: a hand-edited eps1 above the hard limit is refused, naming the
     override the caller gives; forced, it is read as it is."""
     d = json.loads(identified.read_text())
-    d["data"]["folder"] = str(ROOT / "scenarios/example_identification")
+    d["data"]["folder"] = str(SCENARIOS / "example_identification")
     d["eps1"]["value"] = 1e13
     path = tmp_path / "identified.json"
     path.write_text(json.dumps(d))
@@ -185,7 +184,7 @@ def test_a_parameter_not_identified_is_typed_with_its_reason(identified, tmp_pat
     d = json.loads(identified.read_text())
     d["eps2"] = {"identifiable": False, "reason": "no ramp.csv"}
     folder = tmp_path / "id"
-    shutil.copytree(ROOT / "scenarios/example_identification", folder / "data")
+    shutil.copytree(SCENARIOS / "example_identification", folder / "data")
     d["data"].update(folder="data", absolute_folder="")
     (folder / "identified.json").write_text(json.dumps(d))
     f = read_identified(folder / "identified.json")

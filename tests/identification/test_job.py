@@ -17,8 +17,9 @@ from orthocontact.fmu.params import ContactParams
 from orthocontact.identification.estimators import eq40_fit
 from orthocontact.identification.job import identify, simulate_measurements
 from orthocontact.identification.measurements import MeasurementSet, load_data, write_measurements
+from paths import SCENARIOS
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "scenarios" / "example_identification"
+EXAMPLE = SCENARIOS / "example_identification"
 TRUTH = ContactParams(0.408, 0.625, 12510.0, 10000.0)
 TV = {"mu1": 0.408, "mu2": 0.625, "eps_ratio": 1.251, "eps2": 1e4, "eps1": 12510.0}
 RIG = RigSetup(mass_kg=1.875, f_int_N=5.0)

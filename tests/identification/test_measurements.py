@@ -3,7 +3,6 @@ Excel's CSV UTF-8 is read, an invisible character in a header is shown,
 written data read back, the digest follows the files."""
 import json
 import shutil
-from pathlib import Path
 
 import numpy as np
 
@@ -18,10 +17,9 @@ from orthocontact.identification.measurements import (
     write_measurements,
 )
 from orthocontact.textfiles import files_read
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
-DATA = SCEN / "example_identification"
+DATA = SCENARIOS / "example_identification"
 
 
 def test_excel_csv_utf8_with_a_byte_order_mark_is_read(tmp_path):

@@ -21,8 +21,8 @@ from orthocontact.identification.estimators import joint_fit, start_values
 from orthocontact.identification.job import load_folder
 from orthocontact.identification.measurements import load_data
 from orthocontact.identification.recordings import is_recordings, parse_number
+from paths import DOCS, ROOT, SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
 EXE = [sys.executable, "-m", "orthocontact"]
 SMALL_TRUTH = mr.Truth(c_strip=0.0)
 SMALL = mr.Design(angles_deg=[0, 30, 60, 90], velocities={0.244: 5}, carriage_runs=3, ramp_runs=2)
@@ -47,7 +47,7 @@ def small_set(folder: Path, seed: int, physics) -> Path:
 def test_bundled_recordings_identify_and_uq_by_the_guides_commands(tmp_path):
     """The recordings guide's commands, as written, on the bundled set (uq
     with fewer samples): every step runs, and what they write holds up."""
-    text = (ROOT / "docs" / "guides" / "recordings-to-fmu.md").read_text()
+    text = (DOCS / "guides" / "recordings-to-fmu.md").read_text()
     section = text.split("## The three commands")[1].split("\n## ")[0]
     block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
     lines = [ln for ln in block.replace("\\\n", " ").splitlines() if ln.startswith(".venv/bin/orthocontact")]
@@ -212,7 +212,7 @@ def test_unusual_runs_are_warned_by_name_and_kept_or_left_out(tmp_path, small_ph
 
 
 def test_reduced_format_reads_both_names_of_the_mat_angle(tmp_path):
-    example = ROOT / "scenarios" / "example_identification"
+    example = SCENARIOS / "example_identification"
     new, old = tmp_path / "new", tmp_path / "old"
     shutil.copytree(example, new)
     shutil.copytree(example, old)

@@ -1,21 +1,20 @@
 """What identification writes for people (orthocontact.identification.report):
 the fit figure draws the model that was fitted, its legends sit below the
 data and its title clear of the labels; identified.md's runs section."""
-from pathlib import Path
 
 import matplotlib
 import numpy as np
+
+from paths import ROOT, SCENARIOS
 
 matplotlib.use("Agg")
 
 from orthocontact.identification.report import reduction_markdown  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
-
 
 def test_the_fits_legends_do_not_cover_the_data(tmp_path, last_figure):
     from orthocontact.identification.job import load_data, run
-    data = load_data(ROOT / "scenarios" / "example_identification")
+    data = load_data(SCENARIOS / "example_identification")
     run(data, tmp_path, validate=False, workers=1)
     panels = last_figure[-1]
     assert len(panels) == 3
@@ -37,7 +36,7 @@ def test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs(tmp_p
     of their mean, at least 0.5 deg / 0.1 N), the maximum rule is named as
     the paper's approximation, and the title clears every axis label."""
     from orthocontact.identification.job import load_folder, run
-    data, recordings = load_folder(ROOT / "scenarios" / "example_recordings")
+    data, recordings = load_folder(SCENARIOS / "example_recordings")
     run(data, tmp_path, validate=False, workers=1, recordings=recordings)
     panels = last_figure[-1]
     by_label = {ax.get_ylabel().split(" [")[0]: (ax, legend) for ax, _, _, _, legend in panels}
@@ -94,7 +93,7 @@ def test_identify_prints_every_estimate_with_its_unit_and_positive_intervals(tmp
     from orthocontact.identification.identified import UNITS
     from orthocontact.identification.report import unit_of
     out = tmp_path / "id"
-    p = run_cli(["identify", ROOT / "scenarios" / "example_recordings", "--out", out, "--no-validate"],
+    p = run_cli(["identify", SCENARIOS / "example_recordings", "--out", out, "--no-validate"],
                 cwd=ROOT)
     assert p.returncode == 0, p.stderr
     want = {"mu1": "[-]", "mu2": "[-]", "eps_ratio": "[-]", "eps1": "[N/m]", "eps2": "[N/m]",

@@ -7,19 +7,17 @@ import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
 
 import matplotlib
 import pytest
 
+from paths import SCENARIOS
 from procs import alive
 
 matplotlib.use("Agg")
 
 from orthocontact.experiment.scenario import load
 from orthocontact.output import figures  # noqa: E402
-
-ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_overlapping_curves_get_distinct_markers_dashes_and_staggered_marks():
@@ -29,9 +27,9 @@ def test_overlapping_curves_get_distinct_markers_dashes_and_staggered_marks():
 
 
 def test_legend_names_the_mat_angle():
-    assert figures.swept_label(load(ROOT / "scenarios/mat_aged.toml")) == \
+    assert figures.swept_label(load(SCENARIOS / "mat_aged.toml")) == \
         "mat angle a: α = a +90°, β = a"
-    assert figures.swept_label(load(ROOT / "scenarios/case5.toml")) == \
+    assert figures.swept_label(load(SCENARIOS / "case5.toml")) == \
         "mat angle a: α = a, β = a +90°"
 
 

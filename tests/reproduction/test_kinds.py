@@ -2,10 +2,11 @@
 a scenario runs by its kind's runner, the report orders scenarios by its sections."""
 import json
 
-from cli_run import SCENARIOS, scenario_variant
+from cli_run import scenario_variant
 from orthocontact.experiment.kinds import KINDS, RunOptions, fmu_for
 from orthocontact.experiment.scenario import load
 from orthocontact.reproduction import kinds, paper_report, patch_report
+from paths import SCENARIOS
 
 
 def test_every_kind_runs_by_its_runner_and_reports_in_its_section():

@@ -7,11 +7,12 @@ import json
 import math
 import re
 
-from cli_run import SCENARIOS, run_cli
+from cli_run import run_cli
 from orthocontact.experiment.scenario import load
 from orthocontact.reproduction import patch_report
 from orthocontact.reproduction.planar_outputs import YAW_TOL_DEG
 from orthocontact.rig import planar
+from paths import SCENARIOS
 
 
 def test_reproduce_writes_the_patch_section_apart_from_the_papers_rows(tmp_path):

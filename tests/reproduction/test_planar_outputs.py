@@ -9,11 +9,12 @@ import math
 
 import pytest
 
-from cli_run import SCENARIOS, error_lines, one_error_line, run_cli, scenario_variant
+from cli_run import error_lines, one_error_line, run_cli, scenario_variant
 from orthocontact.experiment.scenario import load
 from orthocontact.fmu.params import ContactParams
 from orthocontact.reproduction import planar_outputs
 from orthocontact.rig import planar
+from paths import SCENARIOS
 
 LAW = """
 [law]

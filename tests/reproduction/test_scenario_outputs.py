@@ -6,23 +6,22 @@ closed (the last_figure fixture, conftest.py)."""
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import matplotlib
+
+from paths import SCENARIOS
 
 matplotlib.use("Agg")
 
 from orthocontact.experiment.scenario import load  # noqa: E402
 from orthocontact.reproduction import paper_report  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
-
 
 def test_a_flat_sweep_is_drawn_on_a_degree_scale(tmp_path, last_figure):
     from orthocontact.reproduction.scenario_outputs import _figure_phi
     from orthocontact.runs.sweep import run_sweep
     sc = tmp_path / "flat.toml"
-    sc.write_text((ROOT / "scenarios/mat_new.toml").read_text().replace("step_deg = 1.0", "step_deg = 15.0"))
+    sc.write_text((SCENARIOS / "mat_new.toml").read_text().replace("step_deg = 1.0", "step_deg = 15.0"))
     sc = load(sc)
     res = run_sweep(sc, workers=1, progress=False)
     assert max(abs(res.phi_deg)) < 1e-6  # rounding, not a curve
@@ -35,7 +34,7 @@ def test_rules_that_share_a_closed_form_share_its_line(tmp_path, last_figure):
     from orthocontact.reproduction.scenario_outputs import _figure_step_study
     from orthocontact.runs.sweep import run_step_study
     sc = tmp_path / "study.toml"
-    sc.write_text((ROOT / "scenarios/step_study.toml").read_text()
+    sc.write_text((SCENARIOS / "step_study.toml").read_text()
                   .replace("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]", "steps_s = [2.0e-3, 1.0e-3]")
                   .replace("travel_m = 1.0", "travel_m = 0.2"))
     res = run_step_study(load(sc), workers=1, progress=False)
@@ -47,7 +46,7 @@ def test_rules_that_share_a_closed_form_share_its_line(tmp_path, last_figure):
 
 def test_flat_sweep_has_no_extremum_and_titles_have_no_doubled_parentheses(tmp_path):
     sc = tmp_path / "flat.toml"
-    sc.write_text((ROOT / "scenarios/mat_new.toml").read_text()
+    sc.write_text((SCENARIOS / "mat_new.toml").read_text()
                   .replace("step_deg = 1.0", "step_deg = 30.0").replace("travel_m = 0.5", "travel_m = 0.05"))
     out = tmp_path / "out"
     p = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(sc), "--out", str(out),
@@ -58,7 +57,7 @@ def test_flat_sweep_has_no_extremum_and_titles_have_no_doubled_parentheses(tmp_p
     assert s["max_abs_phi_deg"] < 0.5  # 5 cm of travel has not settled; still no "extremum"
     text = paper_report.reproduction_report(tmp_path, [(load(sc), s)], [], 1.0)
     assert "flat: |φ|" in text and "extremum φ" not in text
-    step = load(ROOT / "scenarios/step_study.toml")
+    step = load(SCENARIOS / "step_study.toml")
     assert ") (" not in step.title + " " and "((" not in step.title
 
 

@@ -6,7 +6,6 @@ import json
 import math
 import subprocess
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,9 +16,9 @@ from orthocontact.experiment.scenario import load
 from orthocontact.fmu.files import find_fmu
 from orthocontact.reproduction import sensitivity as S
 from orthocontact.rig.compiled import CMaster
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
-AGED = load(ROOT / "scenarios/mat_aged.toml")
+AGED = load(SCENARIOS / "mat_aged.toml")
 
 
 @pytest.mark.parametrize("rule", ["coupled", "associated"])
@@ -66,7 +65,7 @@ def test_calibration_without_strip_is_eq_29_and_39():
 
 
 def test_sensitivity_command(tmp_path):
-    p = subprocess.run(CMD + ["sensitivity", str(ROOT / "scenarios/mat_aged.toml"), "--out",
+    p = subprocess.run(CMD + ["sensitivity", str(SCENARIOS / "mat_aged.toml"), "--out",
                               str(tmp_path / "s")], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     d = json.loads((tmp_path / "s/sensitivity.json").read_text())
@@ -81,7 +80,7 @@ def test_sensitivity_command(tmp_path):
     for name in ("sensitivity_strip.png", "sensitivity_velocity.png", "sensitivity_strip.csv",
                  "sensitivity_velocity.csv"):
         assert (tmp_path / "s" / name).stat().st_size > 0
-    bad = subprocess.run(CMD + ["sensitivity", str(ROOT / "scenarios/case1.toml"), "--out",
+    bad = subprocess.run(CMD + ["sensitivity", str(SCENARIOS / "case1.toml"), "--out",
                                 str(tmp_path / "b")], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 2 and "closed_form: expected \"mat\"" in bad.stderr
     assert len(bad.stderr.strip().splitlines()) == 1 and not (tmp_path / "b").exists()

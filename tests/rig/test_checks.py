@@ -5,7 +5,6 @@ identification's validation with its strip terms."""
 import json
 import math
 import subprocess
-from pathlib import Path
 
 import pytest
 
@@ -15,6 +14,7 @@ from orthocontact.fmu.params import ContactParams
 from orthocontact.rig.checks import SETTLE_TOL_DEG, check_runs
 from orthocontact.rig.compiled import CMaster
 from orthocontact.rig.harness import Rig
+from paths import DOCS, SCENARIOS
 
 CASE2_LAW = """
 [law]
@@ -59,7 +59,7 @@ def test_a_dynamic_rig_that_never_settled_is_flagged_everywhere(tmp_path):
     assert "departs from the steady closed form by up to 36.2 deg" in line
     assert 'rig.mode = "quasistatic"' in line and "rig.travel_m >=" in line
     # the rig's guide shows this very line
-    guide = Path(__file__).resolve().parents[2] / "docs" / "guides" / "scenarios-and-rig.md"
+    guide = DOCS / "guides" / "scenarios-and-rig.md"
     assert line in guide.read_text()
     summary = json.loads((tmp_path / "o" / "summary.json").read_text())
     checks = summary["checks"]
@@ -127,8 +127,7 @@ def test_checks_separate_settled_from_unsettled_runs_on_the_rig_itself():
 
 def test_eq20_runs_are_marked_but_not_warned_about(tmp_path):
     """The step study shows the literal rule's step dependence on purpose."""
-    root = Path(__file__).resolve().parents[2]
-    p = run(["run", str(root / "scenarios" / "step_study.toml"), "--out", "o", "--strict"], tmp_path)
+    p = run(["run", str(SCENARIOS / "step_study.toml"), "--out", "o", "--strict"], tmp_path)
     assert p.returncode == 0 and warnings_of(p) == [], p.stderr
     rows = (tmp_path / "o" / "step_study.csv").read_text().splitlines()
     eq20 = [r for r in rows[1:] if r.startswith("eq20")]
@@ -200,8 +199,7 @@ def test_a_stiffness_in_n_per_mm_is_named_as_the_cause_not_the_travel(tmp_path):
     """eps2 = 10 (N/mm typed as N/m) in the aged mat's 0.5 m dynamic rig: it
     was told "rig.travel_m >= 0.357 m", a travel it has; the cause is the
     elastic length mu N / eps = 1.15 m."""
-    root = Path(__file__).resolve().parents[2]
-    text = (root / "scenarios" / "mat_aged.toml").read_text()
+    text = (SCENARIOS / "mat_aged.toml").read_text()
     assert "eps2 = 1.0e4" in text and 'mode = "dynamic"' in text and "travel_m = 0.5" in text
     sc = tmp_path / "aged.toml"
     sc.write_text(text.replace("eps2 = 1.0e4", "eps2 = 10.0"))

@@ -4,7 +4,6 @@ import math
 import subprocess
 import sys
 from dataclasses import replace
-from pathlib import Path
 
 import pytest
 
@@ -14,10 +13,10 @@ from orthocontact.fmu.files import find_fmu
 from orthocontact.rig.compiled import CMaster
 from orthocontact.rig.harness import Rig, run
 from orthocontact.runs.batch import run_many
+from paths import SCENARIOS
 
-ROOT = Path(__file__).resolve().parents[2]
 # every scenario the rig runs (the kinds of a body on the contact patch run on rig.planar)
-SCENARIOS = sorted(p.stem for p in (ROOT / "scenarios").glob("*.toml")
+RIG_SCENARIOS = sorted(p.stem for p in SCENARIOS.glob("*.toml")
                    if load(p).kind in ("sweep", "step_study"))
 
 
@@ -26,9 +25,9 @@ def same_figures(a, b) -> bool:
     return all((math.isnan(x) and math.isnan(y)) or x == y for x, y in zip(a, b, strict=True))
 
 
-@pytest.mark.parametrize("name", SCENARIOS)
+@pytest.mark.parametrize("name", RIG_SCENARIOS)
 def test_c_master_gives_the_fmpy_masters_angles(name):
-    sc = load(ROOT / "scenarios" / f"{name}.toml")
+    sc = load(SCENARIOS / f"{name}.toml")
     rig = replace(sc.rig, travel_m=min(sc.rig.travel_m, 0.08))
     if sc.kind == "sweep":
         tasks = [(sc.params_at(a), rig) for a in (0.0, 11.3, 26.6, 39.2, 78.7, 90.0)]
@@ -49,7 +48,7 @@ def test_c_master_gives_the_fmpy_masters_angles(name):
     ("dynamic", 0.0, 0.0), ("dynamic", 0.1, 0.0), ("dynamic", 0.05, 20.0),
     ("quasistatic", 0.0, 0.0), ("quasistatic", 0.1, 0.0), ("quasistatic", 0.05, 20.0)])
 def test_c_master_records_the_fmpy_masters_trajectory_bit_for_bit(mode, mu_strip, c_strip):
-    sc = load(ROOT / "scenarios/case5.toml")
+    sc = load(SCENARIOS / "case5.toml")
     rig = replace(sc.rig, travel_m=0.05, mode=mode, mu_strip=mu_strip, c_strip=c_strip)
     p = sc.params_at(26.565)
     cm = CMaster(find_fmu())
@@ -73,7 +72,7 @@ def test_the_halves_of_the_fit_range_tell_a_settled_run_from_an_unsettled_one():
     range (halves within 1e-8 deg, measured 3e-9); Case 2's law in the
     dynamic rig with the default 0.5 m travel is still turning there (halves
     8.0 deg apart at its extremum, beta = 11.31 deg)."""
-    aged, case2 = load(ROOT / "scenarios/mat_aged.toml"), load(ROOT / "scenarios/case2.toml")
+    aged, case2 = load(SCENARIOS / "mat_aged.toml"), load(SCENARIOS / "case2.toml")
     tasks = [(aged.params_at(39.2), aged.rig), (case2.params_at(11.31), Rig(mode="dynamic"))]
     assert Rig().travel_m == 0.5
     cm = CMaster(find_fmu())
@@ -120,7 +119,7 @@ def test_the_master_describes_its_structs_and_a_drift_is_refused():
 @pytest.mark.parametrize("name", ["mat_aged", "case5"])
 def test_run_grid_gives_runs_figures_bit_for_bit(name):
     """The uq path (numpy-filled structs) against run() (one struct per task)."""
-    sc = load(ROOT / "scenarios" / f"{name}.toml")
+    sc = load(SCENARIOS / f"{name}.toml")
     rig = replace(sc.rig, travel_m=min(sc.rig.travel_m, 0.05))
     laws = [sc.law, sc.law.replace(mu1=0.35, eps1=sc.law.eps1 * 1.1), sc.law.replace(rule="associated")]
     angles = (0.0, 26.6, 39.2, 90.0)
@@ -138,7 +137,7 @@ def test_c_master_record_refuses_a_bad_interval():
     cm = CMaster(find_fmu())
     try:
         with pytest.raises(ValueError, match="whole number >= 1"):
-            sc = load(ROOT / "scenarios/case5.toml")
+            sc = load(SCENARIOS / "case5.toml")
             cm.record(sc.params_at(0.0), sc.rig, 0)
     finally:
         cm.close()
@@ -147,7 +146,7 @@ def test_c_master_record_refuses_a_bad_interval():
 def test_c_master_refuses_an_fmi3_fmu_clearly(tmp_path):
     with pytest.raises(ValueError, match="FMI 2.0"):
         CMaster(find_fmu(fmi_version=3))
-    p = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(ROOT / "scenarios/case4.toml"),
+    p = subprocess.run([sys.executable, "-m", "orthocontact", "run", str(SCENARIOS / "case4.toml"),
                         "--out", str(tmp_path / "o"), "--fmi", "3", "--master", "c"],
                        capture_output=True, text=True, timeout=120)
     assert p.returncode == 2 and "--master c runs FMI 2.0 FMUs" in p.stderr
@@ -166,7 +165,7 @@ def master():
 
 
 def test_a_batch_gives_each_runs_figures_as_alone(master):
-    sc = load(ROOT / "scenarios/mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     short, long_ = replace(sc.rig, travel_m=0.03), replace(sc.rig, travel_m=0.07)
     quasi = replace(short, mode="quasistatic", step_s=1e-3)
     # lengths and modes differ, so the two lanes finish runs at different
@@ -184,7 +183,7 @@ def test_a_batch_gives_each_runs_figures_as_alone(master):
 
 
 def test_a_failing_run_stops_the_batch_with_its_message(master):
-    sc = load(ROOT / "scenarios/mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     ok = replace(sc.rig, travel_m=0.03)
     endless = replace(ok, travel_m=1e10, velocity_m_s=1e-10, step_s=1e-10)  # 1e30 steps
     tasks = [(sc.params_at(0.0), ok), (sc.params_at(10.0), ok), (sc.params_at(20.0), endless),

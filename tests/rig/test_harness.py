@@ -2,7 +2,6 @@
 forms and published numbers, the strip's closed form and the energy balance."""
 import math
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,12 +11,11 @@ from orthocontact.experiment.scenario import load
 from orthocontact.fmu.params import ContactParams
 from orthocontact.rig.harness import Rig, run
 from orthocontact.runs.sweep import closed_form_phi_deg, run_sweep
-
-SCEN = Path(__file__).resolve().parents[2] / "scenarios"
+from paths import SCENARIOS
 
 
 def _coarse(name, **sweep):
-    sc = load(SCEN / f"{name}.toml")
+    sc = load(SCENARIOS / f"{name}.toml")
     sc.sweep = dict(sc.sweep, **sweep)
     return sc
 
@@ -63,7 +61,7 @@ def test_dynamic_and_quasistatic_modes_agree(case, angle, travel):
     """Same steady angle.  At case 2's extremum the block must build up a
     lateral speed 2.4 times the push, so its inertia needs metres, not the
     rig's 0.5 m, to settle: fit over the last 20%."""
-    sc = load(SCEN / f"{case}.toml")
+    sc = load(SCENARIOS / f"{case}.toml")
     p = sc.params_at(angle)
     dyn = run(p, Rig(mode="dynamic", step_s=5e-4, travel_m=travel, fit_from=0.8), record_every=1000)
     qs = run(p, Rig(mode="quasistatic", step_s=1e-3, travel_m=0.5))
@@ -73,7 +71,7 @@ def test_dynamic_and_quasistatic_modes_agree(case, angle, travel):
 
 
 def test_experiment_driving_forces():
-    sc = load(SCEN / "mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     f0 = run(sc.params_at(0.0), sc.rig).drive_mean_N
     f90 = run(sc.params_at(90.0), sc.rig).drive_mean_N
     assert f0 == pytest.approx(12.50, abs=0.05)
@@ -106,7 +104,7 @@ def test_energy_balance_of_a_rig_run():
     """Work of the push minus the kinetic energy left in the block equals the
     dissipated energy plus what is stored in the interface (quasistatic: no
     kinetic energy) -- to the backward-Euler algorithmic term, small here."""
-    sc = load(SCEN / "case5.toml")
+    sc = load(SCENARIOS / "case5.toml")
     p = sc.params_at(30.0)
     r = run(p, Rig(mode="quasistatic", step_s=1e-4, travel_m=0.1))
     work = np.sum(-r.T1[1:] * np.diff(r.x1)) + np.sum(-r.T2[1:] * np.diff(r.x2))

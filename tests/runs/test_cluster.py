@@ -16,11 +16,8 @@ from cli_run import run_cli as run
 from orthocontact.errors import InputError
 from orthocontact.runs.cluster import check_address
 from orthocontact.runtime.workers import worker_bound
+from paths import SCENARIOS
 from procs import alive, descendants
-
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
-
 
 # -- Ctrl-C on a Dask command -------------------------------------------------------
 
@@ -30,7 +27,7 @@ def test_a_dask_run_leaves_nothing_in_the_temp_folder(tmp_path):
     env = dict(os.environ, TMPDIR=str(tmp))
     port = busy_dashboard_port()
     try:
-        p = run(["run", SCEN / "case4.toml", "--out", tmp_path / "out", "--scheduler", "local",
+        p = run(["run", SCENARIOS / "case4.toml", "--out", tmp_path / "out", "--scheduler", "local",
                  "--workers", "2"], tmp_path, env=env)
     finally:
         if port is not None:
@@ -38,14 +35,14 @@ def test_a_dask_run_leaves_nothing_in_the_temp_folder(tmp_path):
     assert p.returncode == 0, p.stderr
     assert "Warning" not in p.stderr and "Traceback" not in p.stderr, p.stderr
     assert sorted(os.listdir(tmp)) == []
-    p = run(["run", SCEN / "case4.toml", "--out", tmp_path / "out2"], tmp_path, env=env)
+    p = run(["run", SCENARIOS / "case4.toml", "--out", tmp_path / "out2"], tmp_path, env=env)
     assert p.returncode == 0 and sorted(os.listdir(tmp)) == []
 
 
 def test_sweeps_on_dask_give_the_local_results(tmp_path):
-    a = subprocess.run(CMD + ["run", str(ROOT / "scenarios/case5.toml"), "--out", str(tmp_path / "a")],
+    a = subprocess.run(CMD + ["run", str(SCENARIOS / "case5.toml"), "--out", str(tmp_path / "a")],
                        capture_output=True, text=True, timeout=300)
-    b = subprocess.run(CMD + ["run", str(ROOT / "scenarios/case5.toml"), "--out", str(tmp_path / "b"),
+    b = subprocess.run(CMD + ["run", str(SCENARIOS / "case5.toml"), "--out", str(tmp_path / "b"),
                               "--scheduler", "local", "--workers", "2"],
                        capture_output=True, text=True, timeout=300)
     assert a.returncode == 0 and b.returncode == 0, b.stderr
@@ -89,7 +86,8 @@ def _listening(pid) -> set:
 
 
 def _dask_run(tmp_path, workers):
-    sc = scenario_variant(SCEN / "mat_aged.toml", "step_s = 2.0e-4", "step_s = 2.0e-5", tmp_path / "big.toml")
+    sc = scenario_variant(SCENARIOS / "mat_aged.toml", "step_s = 2.0e-4", "step_s = 2.0e-5",
+                          tmp_path / "big.toml")
     tmp = tmp_path / "tmp"
     tmp.mkdir()
     proc = subprocess.Popen(CMD + ["run", str(sc), "--out", "out", "--yes", "--workers", str(workers),

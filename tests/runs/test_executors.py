@@ -2,20 +2,18 @@
 each executor (here, a local pool; Dask in test_cluster.py) with each master
 (the compiled one, the harness on fmpy) gives the same figures."""
 from dataclasses import replace
-from pathlib import Path
 
 import pytest
 
 from orthocontact.experiment.scenario import load
 from orthocontact.fmu.files import find_fmu
 from orthocontact.runs.executors import OnDask, Pool, Serial, executor, local_chunk_size, resolve_master
-
-ROOT = Path(__file__).resolve().parents[2]
+from paths import SCENARIOS
 
 
 @pytest.fixture(scope="module")
 def tasks():
-    sc = load(ROOT / "scenarios/mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     return [(sc.params_at(a), replace(sc.rig, travel_m=0.05)) for a in (0, 30, 45, 60, 90)]
 
 

@@ -11,13 +11,11 @@ from cli_run import CMD, scenario_variant
 from cli_run import run_cli as run
 from orthocontact.runs.progress import Heartbeat, Progress
 from orthocontact.runtime.workers import default_workers
-
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
+from paths import SCENARIOS
 
 
 def _aged_with(tmp_path, old, new) -> Path:
-    return scenario_variant(SCEN / "mat_aged.toml", old, new, tmp_path / "big.toml")
+    return scenario_variant(SCENARIOS / "mat_aged.toml", old, new, tmp_path / "big.toml")
 
 
 # -- huge work: said before it starts, and progress while it runs ---------------------

@@ -21,14 +21,11 @@ from orthocontact.runs.size import (
     steps_per_run,
     uq_work,
 )
-
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
-
+from paths import SCENARIOS
 
 
 def _aged_with(tmp_path, old, new) -> Path:
-    return scenario_variant(SCEN / "mat_aged.toml", old, new, tmp_path / "big.toml")
+    return scenario_variant(SCENARIOS / "mat_aged.toml", old, new, tmp_path / "big.toml")
 
 
 # -- huge work: said before it starts, and progress while it runs ---------------------
@@ -72,7 +69,7 @@ def test_the_limits_and_the_message_that_names_the_keys():
 
 
 def test_a_scenarios_size_is_its_angles_times_its_runs_steps():
-    sc = load(SCEN / "mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     runs = sc.angle_count()
     steps = steps_per_run(sc.rig.travel_m, sc.rig.velocity_m_s, sc.rig.step_s)
     assert runs == 91   # 0 to 90 deg in steps of 1 deg
@@ -137,7 +134,7 @@ def test_a_one_angle_sweeps_estimate_is_the_runs_it_makes(tmp_path, counted):
     """A 1-angle sweep's estimate once said 1 run and the sweep
     made 9 (the other rule at the extremum, 7 recorded trajectories)."""
     from orthocontact.runs.sweep import run_sweep
-    sc = load(_variant(tmp_path, SCEN / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 45.0"),
+    sc = load(_variant(tmp_path, SCENARIOS / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 45.0"),
                        ("stop_deg = 90.0", "stop_deg = 45.0")))
     work = scenario_work(sc)
     run_sweep(sc, workers=1, progress=False, master="c")
@@ -149,7 +146,7 @@ def test_a_refined_sweeps_estimate_bounds_the_refinement_and_counts_the_rest(tmp
     """The refinement's count depends on the angles found: the estimate takes
     its most; every other run is counted exactly."""
     from orthocontact.runs.sweep import refinement_runs_at_most, run_sweep
-    sc = load(_variant(tmp_path, SCEN / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 36.0"),
+    sc = load(_variant(tmp_path, SCENARIOS / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 36.0"),
                        ("stop_deg = 90.0", "stop_deg = 44.0"), ("step_deg = 1.0", "step_deg = 2.0")))
     work = scenario_work(sc)
     res = run_sweep(sc, workers=1, progress=False, master="c")
@@ -163,7 +160,7 @@ def test_a_refined_sweeps_estimate_bounds_the_refinement_and_counts_the_rest(tmp
 
 def test_a_step_studys_estimate_is_the_runs_it_makes(tmp_path, counted):
     from orthocontact.runs.sweep import run_step_study
-    sc = load(_variant(tmp_path, SCEN / "step_study.toml", ("travel_m = 1.0", "travel_m = 0.02"),
+    sc = load(_variant(tmp_path, SCENARIOS / "step_study.toml", ("travel_m = 1.0", "travel_m = 0.02"),
                        ("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]", "steps_s = [2.0e-3, 1.0e-3]")))
     work = scenario_work(sc)
     run_step_study(sc, workers=1, progress=False, master="c")
@@ -176,7 +173,7 @@ def test_uqs_estimate_is_the_runs_it_makes(tmp_path, counted, identified):
     """uq's draws at each angle and its step check (the estimates at the
     scenario's step and at the uq step)."""
     from orthocontact import uq
-    sc = load(_variant(tmp_path, SCEN / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 30.0"),
+    sc = load(_variant(tmp_path, SCENARIOS / "mat_aged.toml", SHORT, ("start_deg = 0.0", "start_deg = 30.0"),
                        ("stop_deg = 90.0", "stop_deg = 50.0"), ("step_deg = 1.0", "step_deg = 10.0")))
     est = uq.load_estimates(identified)
     work = uq_work(sc, 4, uq.uq_step(sc))
@@ -187,7 +184,7 @@ def test_uqs_estimate_is_the_runs_it_makes(tmp_path, counted, identified):
 def test_work_the_old_estimate_let_through_is_refused_with_every_run_named(tmp_path):
     """A 1-angle sweep of 3e8 steps a run: 1 run was under the limit, the 9
     runs it makes are 2.7e9 steps."""
-    big = _variant(tmp_path, SCEN / "mat_aged.toml", ("start_deg = 0.0", "start_deg = 45.0"),
+    big = _variant(tmp_path, SCENARIOS / "mat_aged.toml", ("start_deg = 0.0", "start_deg = 45.0"),
                    ("stop_deg = 90.0", "stop_deg = 45.0"), ("step_s = 2.0e-4", "step_s = 6.83e-9"))
     p = run(["run", big, "--out", tmp_path / "out"], tmp_path)
     lines = [x for x in p.stderr.strip().splitlines() if ": warning: " not in x]
@@ -199,7 +196,7 @@ def test_work_the_old_estimate_let_through_is_refused_with_every_run_named(tmp_p
 
 # -- the runs other layers add: identify's validation, the sensitivity study ---------
 
-DATA = SCEN / "example_identification"
+DATA = SCENARIOS / "example_identification"
 
 
 @pytest.mark.parametrize("data", ["example_identification", "example_recordings"])
@@ -209,7 +206,7 @@ def test_identifys_estimate_is_its_validations_runs(data, counted):
     estimate counted none of them."""
     from orthocontact.fmu.files import find_fmu
     from orthocontact.identification import job
-    d, _ = job.load_folder(SCEN / data)
+    d, _ = job.load_folder(SCENARIOS / data)
     work = job.validation_work(d)
     job.identify(d, validate=True, workers=1, fmu_path=str(find_fmu()))
     assert counted[0] == work.runs and counted[1] == work.steps, work.parts
@@ -234,7 +231,7 @@ def test_identify_without_forces_validates_nothing_and_estimates_nothing(tmp_pat
 
 def test_the_sensitivity_studys_estimate_is_the_runs_it_makes(counted):
     from orthocontact.reproduction import sensitivity
-    sc = load(SCEN / "mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     planned = sensitivity.plan(sc)
     work = sensitivity.work(planned)
     res = sensitivity.run(sc, 1, master="c", progress=False, planned=planned)
@@ -270,11 +267,11 @@ def test_reproduce_counts_its_scenarios_together(tmp_path):
     naming each part."""
     folder = tmp_path / "scenarios"
     folder.mkdir()
-    sc = load(SCEN / "mat_aged.toml")
+    sc = load(SCENARIOS / "mat_aged.toml")
     steps = LIMIT_STEPS * 0.6 / scenario_work(sc).runs     # each 60 % of the limit
     h = sc.rig.travel_m / sc.rig.velocity_m_s / steps
     for name in ("one", "two"):
-        _variant(tmp_path, SCEN / "mat_aged.toml", ('name = "mat_aged"', f'name = "{name}"'),
+        _variant(tmp_path, SCENARIOS / "mat_aged.toml", ('name = "mat_aged"', f'name = "{name}"'),
                  ("step_s = 2.0e-4", f"step_s = {h:.6g}")).rename(folder / f"{name}.toml")
     for f in folder.glob("*.toml"):
         check_scenario_size(load(f), yes=False)     # each alone passes

@@ -1,18 +1,16 @@
 """Sweeps (orthocontact.runs.sweep): the same results with any number of
 workers, and the closed forms' array form equal to the scalar one."""
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 
 from orthocontact.experiment.scenario import load
 from orthocontact.runs.sweep import run_sweep
-
-SCEN = Path(__file__).resolve().parents[2] / "scenarios"
+from paths import SCENARIOS
 
 
 def _coarse(name, **sweep):
-    sc = load(SCEN / f"{name}.toml")
+    sc = load(SCENARIOS / f"{name}.toml")
     sc.sweep = dict(sc.sweep, **sweep)
     return sc
 
@@ -28,13 +26,12 @@ def test_sweep_does_not_depend_on_the_number_of_workers():
 
 def test_vectorized_closed_forms_equal_the_scalar_ones():
     """The report's 90,001-point scans use the array form: same numbers."""
-    from pathlib import Path as _P
 
     import numpy as np
 
     from orthocontact.runs.sweep import closed_form_phi_deg, closed_form_phi_deg_array
     a = np.linspace(-30, 120, 301)
-    for f in sorted((_P(__file__).resolve().parents[2] / "scenarios").glob("*.toml")):
+    for f in sorted(SCENARIOS.glob("*.toml")):
         sc = load(f)
         for rule in (None, "associated", "coupled", "eq20"):
             v = closed_form_phi_deg_array(sc, a, rule)

@@ -16,14 +16,12 @@ import pytest
 from cli_run import CMD, scenario_variant
 from orthocontact.runtime.processes import process_pool, signals_held, stop_pool
 from orthocontact.runtime.workers import worker_bound
+from paths import SCENARIOS
 from procs import alive, children, descendants
-
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
 
 
 def _aged_with(tmp_path, old, new) -> Path:
-    return scenario_variant(SCEN / "mat_aged.toml", old, new, tmp_path / "big.toml")
+    return scenario_variant(SCENARIOS / "mat_aged.toml", old, new, tmp_path / "big.toml")
 
 
 # -- workers end with the main process, whatever ends it ------------------------------

@@ -9,8 +9,8 @@ import time
 import pytest
 
 from cli_run import CMD
-from cli_run import SCENARIOS as SCEN
 from orthocontact.runtime.temp import TEMP_PREFIX
+from paths import SCENARIOS
 
 
 @pytest.mark.parametrize("at", ["case3", "mat_aged", "mat_new", "step_study"])
@@ -39,7 +39,7 @@ def test_a_killed_commands_folder_goes_with_the_next_command(tmp_path):
     tmp = tmp_path / "tmp"
     tmp.mkdir()
     env = dict(os.environ, TMPDIR=str(tmp))
-    proc = subprocess.Popen(CMD + ["run", str(SCEN / "mat_aged.toml"), "--out", "out", "--workers", "2"],
+    proc = subprocess.Popen(CMD + ["run", str(SCENARIOS / "mat_aged.toml"), "--out", "out", "--workers", "2"],
                             cwd=tmp_path, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             text=True)
     assert proc.stderr.readline().startswith("mat_aged:")   # its sweep runs
@@ -48,7 +48,7 @@ def test_a_killed_commands_folder_goes_with_the_next_command(tmp_path):
     left = [p for p in tmp.iterdir() if p.name.startswith(TEMP_PREFIX)]
     assert len(left) == 1 and any(left[0].rglob("*.so")), left
     time.sleep(1.0)  # its workers end with it
-    p = subprocess.run(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out2", "--workers", "2"],
+    p = subprocess.run(CMD + ["run", str(SCENARIOS / "case4.toml"), "--out", "out2", "--workers", "2"],
                        cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     assert p.returncode == 0, p.stderr
     assert os.listdir(tmp) == []

@@ -5,7 +5,6 @@ import os
 import signal
 import subprocess
 import time
-from pathlib import Path
 
 import pytest
 
@@ -13,10 +12,8 @@ from cli_run import CMD, leftovers, one_error_line
 from orthocontact.cli.parser import build_parser
 from orthocontact.runtime.processes import process_pool
 from orthocontact.runtime.workers import WORKERS_PER_CORE, worker_bound
+from paths import SCENARIOS
 from procs import descendants
-
-ROOT = Path(__file__).resolve().parents[2]
-SCEN = ROOT / "scenarios"
 
 
 def _kill_all(pids):
@@ -50,7 +47,7 @@ def test_workers_above_the_machines_bound_are_one_line_at_once_and_start_nothing
     assert bound.cores == len(os.sched_getaffinity(0))  # independent: this process's cores
     assert bound.by_cores == WORKERS_PER_CORE * bound.cores and bound.most <= bound.by_cores
     t0 = time.monotonic()
-    proc = subprocess.Popen(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out", "--workers", "1000"],
+    proc = subprocess.Popen(CMD + ["run", str(SCENARIOS / "case4.toml"), "--out", "out", "--workers", "1000"],
                             cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     # No worker: at most the one short-lived `ldconfig -p` that fmpy's import
     # runs (ctypes.util.find_library), where a pool forks all its workers at once.
@@ -73,7 +70,7 @@ def test_the_bound_follows_the_cores_this_process_may_use(tmp_path):
     """On one core (taskset -c 0), --workers 5 is above 4 per core."""
     def one_core():
         os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
-    p = subprocess.run(CMD + ["run", str(SCEN / "case4.toml"), "--out", "out", "--workers", "5"],
+    p = subprocess.run(CMD + ["run", str(SCENARIOS / "case4.toml"), "--out", "out", "--workers", "5"],
                        cwd=tmp_path, capture_output=True, text=True, timeout=60, preexec_fn=one_core)
     one_error_line(p, "at most 4 worker processes", "on its 1 core", "got 5")
     with pytest.raises(ValueError, match="at most"):

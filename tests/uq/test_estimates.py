@@ -11,8 +11,7 @@ import pytest
 
 from cli_run import CMD, one_error_line, run_cli
 from orthocontact.uq.estimates import Estimates, draw, load_estimates
-
-ROOT = Path(__file__).resolve().parents[2]
+from paths import SCENARIOS
 
 
 def test_draws_are_physical_seeded_and_follow_the_covariance(identified):
@@ -52,7 +51,7 @@ def test_bad_identification_file_one_line_and_nothing_written(identified, tmp_pa
     change(d)
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps(d))
-    p = _uq(bad, ROOT / "scenarios/mat_aged.toml", tmp_path / "o", "--samples", "10")
+    p = _uq(bad, SCENARIOS / "mat_aged.toml", tmp_path / "o", "--samples", "10")
     assert p.returncode == 2
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and says in lines[0] and "Traceback" not in p.stderr, p.stderr
@@ -65,7 +64,7 @@ def test_hand_mixed_outputs_of_two_identify_runs_are_refused(identified, tmp_pat
     mine = tmp_path / "mine"
     shutil.copytree(identified.parent, mine)          # a run's folder, its manifest included
     data = tmp_path / "data"
-    shutil.copytree(ROOT / "scenarios/example_identification", data)
+    shutil.copytree(SCENARIOS / "example_identification", data)
     forces = data / "forces.csv"
     forces.write_text("".join(forces.read_text().splitlines(keepends=True)[:-1]))   # one run fewer
     other = tmp_path / "other"
@@ -73,7 +72,7 @@ def test_hand_mixed_outputs_of_two_identify_runs_are_refused(identified, tmp_pat
     assert p.returncode == 0, p.stderr
     assert load_estimates(mine / "identified.json").names    # the run's own files: read
     shutil.copy(other / "identified.json", mine / "identified.json")
-    for args in (["uq", mine / "identified.json", "--scenario", ROOT / "scenarios/mat_aged.toml",
+    for args in (["uq", mine / "identified.json", "--scenario", SCENARIOS / "mat_aged.toml",
                   "--samples", 10, "--out", tmp_path / "o"],
                  ["export", mine / "identified.json", "--out", tmp_path / "o"]):
         p = run_cli(args, tmp_path)

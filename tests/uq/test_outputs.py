@@ -7,8 +7,7 @@ import numpy as np
 from orthocontact.experiment.scenario import load
 from orthocontact.uq.estimates import Estimates
 from orthocontact.uq.outputs import _inside, _widest
-
-ROOT = Path(__file__).resolve().parents[2]
+from paths import SCENARIOS
 
 
 def estimates(points, alpha_offset_deg=90.0):
@@ -17,7 +16,7 @@ def estimates(points, alpha_offset_deg=90.0):
 
 
 def test_measured_angles_inside_the_band_by_hand():
-    sc = load(ROOT / "scenarios" / "mat_aged.toml")       # alpha = a + 90 deg, beta = a
+    sc = load(SCENARIOS / "mat_aged.toml")       # alpha = a + 90 deg, beta = a
     angles = np.array([0.0, 45.0])
     band = {"lo": np.array([0.0, -9.0]), "hi": np.array([4.0, 0.0])}
     # at 10 deg: lo -2, hi 3.111; at 30 deg: lo -6, hi 1.333; 60 deg lies outside the swept range

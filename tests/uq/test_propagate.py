@@ -19,14 +19,14 @@ from orthocontact import closed_forms as cf
 from orthocontact.experiment.scenario import load
 from orthocontact.uq.estimates import load_estimates
 from orthocontact.uq.propagate import propagate
+from paths import SCENARIOS
 from procs import alive, descendants
 
-ROOT = Path(__file__).resolve().parents[2]
 BIN = Path(sys.executable).parent
 
 
 def _small_scenario(tmp_path, start=10.0, stop=70.0, step=30.0) -> Path:
-    text = (ROOT / "scenarios/mat_aged.toml").read_text()
+    text = (SCENARIOS / "mat_aged.toml").read_text()
     text = text.replace("start_deg = 0.0", f"start_deg = {start}").replace(
         "stop_deg = 90.0", f"stop_deg = {stop}").replace("step_deg = 1.0", f"step_deg = {step}")
     path = tmp_path / "small.toml"
@@ -93,12 +93,12 @@ def test_cli_serial_and_local_cluster_give_the_same_files(identified, tmp_path):
 
 
 def test_bad_scheduler_and_samples_are_refused_before_any_work(identified, tmp_path):
-    p = _uq(identified, ROOT / "scenarios/mat_aged.toml", tmp_path / "o", "--samples", "10",
+    p = _uq(identified, SCENARIOS / "mat_aged.toml", tmp_path / "o", "--samples", "10",
             "--scheduler", "127.0.0.1:1")
     assert p.returncode == 2 and "--scheduler 127.0.0.1:1: expected" in p.stderr
-    p = _uq(identified, ROOT / "scenarios/mat_aged.toml", tmp_path / "o", "--samples", "0")
+    p = _uq(identified, SCENARIOS / "mat_aged.toml", tmp_path / "o", "--samples", "0")
     assert p.returncode == 2 and "--samples" in p.stderr
-    p = _uq(identified, ROOT / "scenarios/step_study.toml", tmp_path / "o", "--samples", "3")
+    p = _uq(identified, SCENARIOS / "step_study.toml", tmp_path / "o", "--samples", "3")
     assert p.returncode == 2 and "expected a sweep scenario" in p.stderr
     assert not (tmp_path / "o").exists()
 
@@ -148,7 +148,7 @@ def test_on_a_real_scheduler_with_a_worker_killed_mid_run(identified, tmp_path):
         with Client(address, timeout=30) as c:
             c.wait_for_workers(2, timeout=60)
 
-        sc = ROOT / "scenarios/mat_aged.toml"
+        sc = SCENARIOS / "mat_aged.toml"
         args = ["--samples", "160", "--seed", "11", "--chunk-runs", "273"]  # 54 chunks of 3 sets
         run = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(sc), "--out",
                                       str(tmp_path / "cluster"), "--scheduler", address, *args],
@@ -184,7 +184,7 @@ def test_on_a_real_scheduler_with_a_worker_killed_mid_run(identified, tmp_path):
 
 
 def test_ctrl_c_stops_the_local_cluster_and_writes_nothing(identified, tmp_path):
-    run = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(ROOT / "scenarios/mat_aged.toml"),
+    run = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(SCENARIOS / "mat_aged.toml"),
                                   "--samples", "3000", "--out", str(tmp_path / "o")],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     for line in run.stderr:

@@ -10,8 +10,7 @@ from pathlib import Path
 
 from cli_run import run_cli
 from orthocontact.uq.source import Source, read_source
-
-ROOT = Path(__file__).resolve().parents[2]
+from paths import SCENARIOS
 
 
 def _sha256(path: Path) -> str:
@@ -28,7 +27,7 @@ def _data_digest(identified: Path) -> str:
 
 def _uq(tmp_path, identified, out):
     scenario = tmp_path / "short.toml"   # 3 angles over 0.05 m: quick
-    text = (ROOT / "scenarios" / "mat_aged.toml").read_text()
+    text = (SCENARIOS / "mat_aged.toml").read_text()
     for old, new in (("travel_m = 0.5", "travel_m = 0.05"), ("start_deg = 0.0", "start_deg = 30.0"),
                      ("stop_deg = 90.0", "stop_deg = 50.0"), ("step_deg = 1.0", "step_deg = 10.0")):
         text = text.replace(old, new, 1)
