@@ -95,25 +95,20 @@ def test_the_master_describes_its_structs_and_a_drift_is_refused():
     """The structs' layout comes from the library (rm_layout); a description
     ctypes would lay out otherwise, or a field the package does not fill, is
     refused before any call."""
-    import ctypes
-
     from orthocontact.fmu.contact import FMUError
-    from orthocontact.rig import compiled as cmaster
-    cmaster._load()
-    size = cmaster._lib.rm_layout(None, 0)
-    buf = ctypes.create_string_buffer(size + 1)
-    assert cmaster._lib.rm_layout(buf, size + 1) == size
-    text = buf.value.decode()
+    from orthocontact.rig.compiled import filled, layout_text, structs_from_layout
+    text = layout_text()
     assert "struct rig_figures" in text and "phi_tail_deg" in text
-    assert set(cmaster._structs_from_layout(text)) == {"rm_contact", "rig_setup", "rig_figures"}
+    structs = structs_from_layout(text)
+    assert set(structs) == {"rm_contact", "rig_setup", "rig_figures"}
     shifted = text.replace("mu2 8 double", "mu2 12 double")
     assert shifted != text
     with pytest.raises(FMUError, match="rm_contact"):
-        cmaster._structs_from_layout(shifted)
+        structs_from_layout(shifted)
     with pytest.raises(FMUError, match="does not read"):
-        cmaster._structs_from_layout(text.replace("rule 48 int", "rule 48 float"))
+        structs_from_layout(text.replace("rule 48 int", "rule 48 float"))
     with pytest.raises(FMUError, match="fields"):
-        cmaster._filled(cmaster._Rig, mass=1.0)
+        filled(structs["rig_setup"], mass=1.0)
 
 
 @pytest.mark.parametrize("name", ["mat_aged", "case5"])

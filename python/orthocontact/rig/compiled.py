@@ -27,7 +27,7 @@ from .harness import Rig, RigResult, RunFigures
 _CTYPES = {"double": ctypes.c_double, "int": ctypes.c_int, "long": ctypes.c_long}
 
 
-def _structs_from_layout(text: str) -> dict[str, type]:
+def structs_from_layout(text: str) -> dict[str, type]:
     """ctypes structures from rm_layout's description ("struct <name> <size>",
     then "<field> <offset> <type>" lines), each checked field by field against
     the offsets and size the C compiler gave them."""
@@ -69,16 +69,30 @@ _lib = None
 _Contact = _Rig = _Figures = None
 
 
+def _layout_of(lib) -> str:
+    """rm_layout's text: its length asked first, then the text, which must be that long."""
+    lib.rm_layout.restype = ctypes.c_int
+    lib.rm_layout.argtypes = [ctypes.c_char_p, ctypes.c_size_t]
+    size = lib.rm_layout(None, 0)
+    buf = ctypes.create_string_buffer(size + 1)
+    wrote = lib.rm_layout(buf, size + 1)
+    if wrote != size or len(buf.value) != size:
+        raise FMUError(f"the compiled master's rm_layout said {size} characters, then wrote {wrote} "
+                       f"({len(buf.value)} before its end)")
+    return buf.value.decode()
+
+
+def layout_text() -> str:
+    """The installed compiled master's description of the structs it takes
+    (rm_layout, master_src/rig_master.h), which structs_from_layout reads."""
+    return _layout_of(_load())
+
+
 def _load():
     global _lib, _Contact, _Rig, _Figures
     if _lib is None:
         lib = ctypes.CDLL(str(_library_path()))
-        lib.rm_layout.restype = ctypes.c_int
-        lib.rm_layout.argtypes = [ctypes.c_char_p, ctypes.c_size_t]
-        size = lib.rm_layout(None, 0)
-        buf = ctypes.create_string_buffer(size + 1)
-        lib.rm_layout(buf, size + 1)
-        structs = _structs_from_layout(buf.value.decode())
+        structs = structs_from_layout(_layout_of(lib))
         missing = {"rm_contact", "rig_setup", "rig_figures"} - structs.keys()
         if missing:
             raise FMUError(f"the compiled master does not describe {sorted(missing)}")
@@ -103,7 +117,7 @@ def _load():
     return _lib
 
 
-def _filled(cls, **values):
+def filled(cls, **values):
     """cls with every field given, by name: ctypes would leave a field the
     caller does not name at 0 and keep a name it does not know as a Python
     attribute, both silently."""
@@ -116,8 +130,8 @@ def _filled(cls, **values):
 
 def _structs(p: ContactParams, r: Rig):
     law = {name: getattr(p, name) for name in law_parameters()}
-    return (_filled(_Contact, **law, rule=RULES[p.rule]),
-            _filled(_Rig, mass=r.mass_kg, g=r.g, f_int=r.f_int_N, velocity=r.velocity_m_s,
+    return (filled(_Contact, **law, rule=RULES[p.rule]),
+            filled(_Rig, mass=r.mass_kg, g=r.g, f_int=r.f_int_N, velocity=r.velocity_m_s,
                     travel=r.travel_m, mu_strip=r.mu_strip, step=r.step_s, fit_from=r.fit_from,
                     c_strip=r.c_strip, quasistatic=1 if r.mode == "quasistatic" else 0))
 
@@ -186,7 +200,7 @@ class CMaster:
         columns["alpha"] = np.tile(np.array([a for a, _ in axes], dtype=float), nl)
         columns["beta"] = np.tile(np.array([b for _, b in axes], dtype=float), nl)
         columns["rule"] = np.repeat(np.array([RULES[p.rule] for p in laws]), na)
-        if sorted(columns) != sorted(cdt.names):  # as _filled: no field left at 0
+        if sorted(columns) != sorted(cdt.names):  # as filled(): no field left at 0
             raise FMUError(f"struct {_Contact.__name__} of the compiled master has the fields "
                            f"{list(cdt.names)}, this package fills {sorted(columns)}")
         cs = np.zeros(n, dtype=cdt)
