@@ -119,6 +119,58 @@ def test_no_private_name_is_imported_across_modules():
     assert crossing == []
 
 
+def private(name: str) -> bool:
+    return name.startswith("_") and not (name.startswith("__") and name.endswith("__"))
+
+
+def private_uses(source: str) -> list:
+    """The package's private names a test reaches (sorted): imported (`from
+    orthocontact.x import _y`) or read off a name imported from the package
+    (`m._y`, `m.C._y`, `monkeypatch.setattr(m, "_y", ...)`)."""
+    tree = ast.parse(source)
+    bound, found = set(), []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            bound |= {a.asname or "orthocontact" for a in node.names
+                      if a.name.split(".")[0] == "orthocontact"}
+        elif isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "orthocontact":
+            found += [a.name for a in node.names if private(a.name)]
+            bound |= {a.asname or a.name for a in node.names}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and private(node.attr):
+            root = node.value
+            while isinstance(root, ast.Attribute):
+                root = root.value
+            if isinstance(root, ast.Name) and root.id in bound:
+                found.append(node.attr)
+        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+              and node.func.attr == "setattr" and len(node.args) >= 2
+              and isinstance(node.args[0], ast.Name) and node.args[0].id in bound
+              and isinstance(node.args[1], ast.Constant) and private(str(node.args[1].value))):
+            found.append(node.args[1].value)
+    return sorted(set(found))
+
+
+def test_no_test_reaches_a_private_name_of_the_package():
+    """Tests go through the package's public names, as its other modules
+    must (above): a private one may change without notice."""
+    found = {str(p.relative_to(TESTS)): private_uses(p.read_text()) for p in TESTS.rglob("*.py")}
+    assert {f: names for f, names in found.items() if names} == {}
+
+
+def test_the_private_name_check_sees_imports_attributes_and_monkeypatches():
+    assert private_uses("from orthocontact.uq.outputs import _inside, widest") == ["_inside"]
+    assert private_uses("from orthocontact.rig import compiled as cm\ncm._load()\ncm.CMaster._lib") == \
+        ["_lib", "_load"]
+    assert private_uses("import orthocontact.rig.harness as h\nmonkeypatch.setattr(h, '_simulate', f)") == \
+        ["_simulate"]
+    assert private_uses("import orthocontact\northocontact.rig._x") == ["_x"]
+    # the package's dunders, and private names of what is not the package's, are not its private names
+    assert private_uses("from orthocontact import __version__\nimport argparse\np._actions\n"
+                        "from orthocontact.fmu.slave import FreedOnClose\nx = FreedOnClose()\n"
+                        "x.__class__") == []
+
+
 def test_modules_are_small():
     sizes = {module_name(p): len(p.read_text().splitlines()) for p in PKG.rglob("*.py")}
     assert max(sizes.values()) < 400, sorted(sizes.items(), key=lambda kv: -kv[1])[:3]

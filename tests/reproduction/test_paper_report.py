@@ -21,7 +21,7 @@ def _errata_numbers():
 def test_the_report_says_which_sign_reading_it_uses_and_its_sign_free_figures(tmp_path):
     from orthocontact.experiment.scenario import load
     from orthocontact.reproduction import paper_report
-    free = paper_report._sign_free_peaks(load(SCENARIOS / "mat_aged.toml"))
+    free = paper_report.sign_free_peaks(load(SCENARIOS / "mat_aged.toml"))
     got = _errata_numbers()
     assert f"{free['associated']['peak_abs_phi_deg']:.2f}" == got["associated"][1]
     assert f"{free['associated']['angle_deg']:.2f}" == got["associated"][3]

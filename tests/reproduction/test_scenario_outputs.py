@@ -18,27 +18,27 @@ from orthocontact.reproduction import paper_report  # noqa: E402
 
 
 def test_a_flat_sweep_is_drawn_on_a_degree_scale(tmp_path, last_figure):
-    from orthocontact.reproduction.scenario_outputs import _figure_phi
+    from orthocontact.reproduction.scenario_outputs import figure_phi
     from orthocontact.runs.sweep import run_sweep
     sc = tmp_path / "flat.toml"
     sc.write_text((SCENARIOS / "mat_new.toml").read_text().replace("step_deg = 1.0", "step_deg = 15.0"))
     sc = load(sc)
     res = run_sweep(sc, workers=1, progress=False)
     assert max(abs(res.phi_deg)) < 1e-6  # rounding, not a curve
-    _figure_phi(sc, res, tmp_path / "phi.png", flat=True)
+    figure_phi(sc, res, tmp_path / "phi.png", flat=True)
     (_, (lo, hi), _, _, _), = last_figure[-1]
     assert hi - lo >= 2.0
 
 
 def test_rules_that_share_a_closed_form_share_its_line(tmp_path, last_figure):
-    from orthocontact.reproduction.scenario_outputs import _figure_step_study
+    from orthocontact.reproduction.scenario_outputs import figure_step_study
     from orthocontact.runs.sweep import run_step_study
     sc = tmp_path / "study.toml"
     sc.write_text((SCENARIOS / "step_study.toml").read_text()
                   .replace("steps_s = [2.0e-3, 1.0e-3, 5.0e-4, 2.0e-4, 1.0e-4]", "steps_s = [2.0e-3, 1.0e-3]")
                   .replace("travel_m = 1.0", "travel_m = 0.2"))
     res = run_step_study(load(sc), workers=1, progress=False)
-    _figure_step_study(load(sc), res, tmp_path / "s.png")
+    figure_step_study(load(sc), res, tmp_path / "s.png")
     (_, _, _, _, labels), = last_figure[-1]
     closed = [t for t in labels if "closed form" in t]
     assert closed == ["associated: closed form", "coupled+eq20: closed form"], labels

@@ -86,12 +86,12 @@ def test_a_scenarios_size_is_its_angles_times_its_runs_steps():
 def counted(monkeypatch):
     """The rig runs made in this process, counted where they are made: the
     compiled master's (CMaster.run, record, run_grid) and the Python
-    harness's (its loop, harness._simulate); each still runs.  made[0]: the
+    harness's (its loop, harness.simulate); each still runs.  made[0]: the
     runs, made[1]: the steps of CMaster.run's and the harness's runs."""
     from orthocontact.rig import harness
     from orthocontact.rig.compiled import CMaster
     made = [0, 0]
-    run_, record_, grid_, simulate_ = CMaster.run, CMaster.record, CMaster.run_grid, harness._simulate
+    run_, record_, grid_, simulate_ = CMaster.run, CMaster.record, CMaster.run_grid, harness.simulate
 
     def run(self, tasks):
         made[0] += len(tasks)
@@ -102,7 +102,7 @@ def counted(monkeypatch):
         made[0] += 1
         made[1] += steps_per_run(rig.travel_m, rig.velocity_m_s, rig.step_s)
         return simulate_(fmu, params, rig, *a, **k)
-    monkeypatch.setattr(harness, "_simulate", simulate)
+    monkeypatch.setattr(harness, "simulate", simulate)
 
     def record(self, *a, **k):
         made[0] += 1

@@ -192,11 +192,11 @@ def _rules_at_experiment(runs) -> dict | None:
                     "measured_phi_deg": sc.paper["extremum_phi_deg"],
                     "rules": {sc.law.rule: flip * e["phi_deg"],
                               e["other_rule"]["rule"]: flip * e["other_rule"]["phi_deg"]},
-                    "convention": "paper's: φ clockwise", "sign_free": _sign_free_peaks(sc)}
+                    "convention": "paper's: φ clockwise", "sign_free": sign_free_peaks(sc)}
     return None
 
 
-def _sign_free_peaks(sc: Scenario) -> dict:
+def sign_free_peaks(sc: Scenario) -> dict:
     """Each implicit rule's largest |phi| over the scenario's range and its
     angle, from the steady closed form on a 0.01 deg grid: a comparison with
     the measured peak that does not depend on how the paper's sign is read."""

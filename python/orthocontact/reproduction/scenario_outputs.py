@@ -52,7 +52,7 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
     # however far a short dynamic run has settled.
     flat = abs(closed_ext["phi_deg"]) < FLAT_DEG
     draw = draw or draw_here
-    draw(_figure_phi, sc, res, out / "phi_vs_angle.png", flat)
+    draw(figure_phi, sc, res, out / "phi_vs_angle.png", flat)
     draw(_figure_paths, sc, res, out / "trajectories.png", "x2")
     draw(_figure_paths, sc, res, out / "force_vs_travel.png", "drive")
 
@@ -117,7 +117,10 @@ def checks_summary(checks, angles_deg, phi_deg, warning: str | None) -> dict:
     }
 
 
-def _figure_phi(sc: Scenario, res: SweepResult, path: Path, flat: bool) -> None:
+def figure_phi(sc: Scenario, res: SweepResult, path: Path, flat: bool) -> None:
+    """phi_vs_angle.png: the rig's steady angles [deg] over the mat angle
+    [deg] with the closed form; `flat` (a flat closed form) shows them on a
+    scale of degrees, not of their rounding, and no extremum."""
     plt = pyplot()
     fine = np.linspace(res.angles_deg[0], res.angles_deg[-1], 721)
     fig, ax = plt.subplots(figsize=(7, 4.5))
@@ -191,7 +194,7 @@ def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path, draw=None)
                                        "drive_mean_N", "check"],
               [(r["rule"], r["step_s"], r["phi_deg"], r["phi_closed_deg"], r["deviation_deg"],
                 r["drive_mean_N"], r["check"]) for r in res.rows])
-    (draw or draw_here)(_figure_step_study, sc, res, out / "step_study.png")
+    (draw or draw_here)(figure_step_study, sc, res, out / "step_study.png")
     rules = list(dict.fromkeys(r["rule"] for r in res.rows))
     per_rule = {}
     for rule in rules:
@@ -208,7 +211,9 @@ def step_study_outputs(sc: Scenario, res: StepStudyResult, out: Path, draw=None)
     return summary
 
 
-def _figure_step_study(sc: Scenario, res: StepStudyResult, path: Path) -> None:
+def figure_step_study(sc: Scenario, res: StepStudyResult, path: Path) -> None:
+    """step_study.png: each rule's angle [deg] over the step [s], with its
+    closed form (one line for rules that share it)."""
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(7, 4.5))
     rules = list(dict.fromkeys(r["rule"] for r in res.rows))

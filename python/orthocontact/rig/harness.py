@@ -221,13 +221,16 @@ def run(params: ContactParams, rig: Rig, fmu: ContactFMU | None = None,
         fmu.reset()
     try:
         fmu.initialize(params)
-        return _simulate(fmu, params, rig, record_every)
+        return simulate(fmu, params, rig, record_every)
     finally:
         if own:
             fmu.close()
 
 
-def _simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: int) -> RigResult:
+def simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: int) -> RigResult:
+    """The rig's loop over rig.travel_m on `fmu`, initialized with `params`
+    (run() resets and initializes it): every run of the Python harness passes
+    here.  Keeps every `record_every`-th step."""
     h, v, m, N = rig.step_s, rig.velocity_m_s, rig.mass_kg, rig.normal_force
     n_steps = int(math.ceil(rig.travel_m / (v * h) - 1e-9))
     n_rec = n_steps // record_every + 1

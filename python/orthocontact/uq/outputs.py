@@ -47,9 +47,9 @@ def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: P
                    "at_estimates": [{"angle_deg": float(a), "check": st} for a, st in
                                     zip(res.angles_deg, res.nominal_checks.status())],
                    "warning": res.warning(sc)},
-        "widest_band": _widest(res.angles_deg, bp),
+        "widest_band": widest_band(res.angles_deg, bp),
         "measurement_noise_deg": noise,
-        "data_inside_measurement_band": _inside(res.angles_deg, bm, est, sc),
+        "data_inside_measurement_band": inside_measurement_band(res.angles_deg, bm, est, sc),
         "bands": [dict(zip(header, r)) for r in rows],
         "band_meaning": {"phi": "2.5-97.5 % of the rig's phi over the drawn parameter sets: the "
                                 "parameters' uncertainty alone",
@@ -68,7 +68,7 @@ def _same_geometry(sc: Scenario, est: Estimates) -> bool:
             and math.isclose(sc.geometry.beta_offset_deg, est.beta_offset_deg, abs_tol=1e-9))
 
 
-def _inside(angles, bm, est: Estimates, sc: Scenario) -> dict | None:
+def inside_measurement_band(angles, bm, est: Estimates, sc: Scenario) -> dict | None:
     """How many of the identification's measured angles lie in the
     measurement band (interpolated at their angles): about 95 % if the
     model and its uncertainty hold."""
@@ -82,7 +82,9 @@ def _inside(angles, bm, est: Estimates, sc: Scenario) -> dict | None:
     return {"inside": inside, "points": int(ok.sum()), "fraction": inside / max(int(ok.sum()), 1)}
 
 
-def _widest(angles, bp) -> dict:
+def widest_band(angles, bp) -> dict:
+    """Where the parameters' band (bp's lo and hi [deg] at each of `angles`
+    [deg]) is widest: that angle and the width, in degrees."""
     w = bp["hi"] - bp["lo"]
     k = int(np.nanargmax(w))
     return {"angle_deg": float(angles[k]), "width_deg": float(w[k])}
