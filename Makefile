@@ -3,7 +3,7 @@
 #   make test        set up and run every test (CTest, sanitizers, pytest): what CI runs
 # and the fast tier for every change:
 #   make check       set up and run the law, the FMUs, the rig and the CLI's core
-#                    (release C tests, pytest -m "not slow"): under 2 minutes
+#                    (ruff check, release C tests, pytest -m "not slow"): under 2 minutes
 .PHONY: setup reproduce test check bench fmus crosscheck docs generated clean
 
 setup:

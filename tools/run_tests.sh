@@ -2,6 +2,7 @@
 # The whole test suite (`make test`, what CI runs): C unit tests under CTest
 # (plain and with AddressSanitizer + UBSan), then pytest on the installed
 # package and FMUs.
+# Both begin with `ruff check` (pyproject's [tool.ruff]).
 # --fast (`make check`): the release C tests and the tests not marked slow
 # (tests/tiers.py): the law, the FMUs, the rig and the CLI's core, under
 # 2 minutes after setup.  The set-up installs only what is missing or changed.
@@ -34,6 +35,10 @@ if [ ${#test_reqs[@]} -gt 0 ]; then
     done
   fi
 fi
+# The linter and import order (pyproject's [tool.ruff]; in the test extra):
+# a finding fails the run before anything is built.
+echo "== ruff check =="
+.venv/bin/python -m ruff check .
 # apt for what pip cannot install.  `make check` tries once per .venv (a
 # failed attempt is remembered in .venv/apt-failed-*); `make test` each time.
 apt_install() {

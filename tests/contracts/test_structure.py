@@ -1,9 +1,12 @@
 """The package's layers read one way: subpackages by layer, every import
-going down, no cycle between modules, no private name used across modules."""
+going down, no cycle between modules, no private name used across modules
+(nor by the tests); and ruff finds nothing in the repository's Python."""
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
-from paths import PKG, TESTS
+from paths import PKG, ROOT, TESTS
 
 
 def module_name(path: Path, pkg: Path = PKG) -> str:
@@ -169,6 +172,15 @@ def test_the_private_name_check_sees_imports_attributes_and_monkeypatches():
     assert private_uses("from orthocontact import __version__\nimport argparse\np._actions\n"
                         "from orthocontact.fmu.slave import FreedOnClose\nx = FreedOnClose()\n"
                         "x.__class__") == []
+
+
+def test_ruff_finds_nothing():
+    """pyproject's [tool.ruff] (lines <= 110 characters, pycodestyle,
+    pyflakes, import order, bugbear, pyupgrade) over every Python file:
+    what `make check` runs first (tools/run_tests.sh)."""
+    p = subprocess.run([sys.executable, "-m", "ruff", "check", "."], cwd=ROOT,
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-1000:]
 
 
 def test_modules_are_small():
