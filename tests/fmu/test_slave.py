@@ -140,3 +140,22 @@ def test_every_integer_parameter_round_trips_through_its_types_call(model, versi
         free(s, initialized=True)
     with pytest.raises(ValueError, match="no FMI 3.0 integer function"):
         integer_call(s, 3, "Float64")
+
+
+@pytest.mark.parametrize("version", [2, 3])
+def test_each_instance_hears_only_its_own_messages(version):
+    """fmpy's FMI 2.0 logger proxy calls one logger for the whole process,
+    the last registered: two live instances, the first refusing a call, and
+    the refusal is logged to the first only (its FMUError's reason)."""
+    path = find_fmu(fmi_version=version)
+    md = model_description(path)
+    said = {"first": [], "second": []}
+    made = [instantiate(path, md, name, lambda status, category, text, name=name: said[name].append(text))
+            for name in said]
+    first = made[0][0]
+    time_vr = next(v.valueReference for v in md.modelVariables if v.name == "time")
+    with pytest.raises(FMICallException):
+        (first.setReal if version == 2 else first.setFloat64)([time_vr], [1.0])
+    assert said["first"] and said["second"] == [], said
+    for s, _ in made:
+        free(s, initialized=False)

@@ -19,10 +19,9 @@ import pytest
 from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
 
-from fmu_values import unzipped
 from orthocontact.closed_forms import patch as cp
 from orthocontact.fmu.files import find_fmu
-from orthocontact.fmu.slave import integer_call
+from orthocontact.fmu.slave import instantiate, integer_call
 
 PATCH_ENV = {2: "ORTHOCONTACT_PATCH_FMU", 3: "ORTHOCONTACT_PATCH_FMU3"}
 INTEGERS = ("n1", "n2", "slidingRule", "initialSlip")
@@ -41,9 +40,6 @@ def point_fmu(version):
     return beside if beside.is_file() else find_fmu(fmi_version=version)
 
 
-_FMI2_LOGS = {}
-
-
 class Slave:
     """One instance of a contact FMU (the patch or the point) through fmpy:
     parameters set before initialization, inputs by name, outputs by name."""
@@ -55,43 +51,9 @@ class Slave:
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.types = {v.name: v.type for v in md.modelVariables}
         self.messages = []
-        if version == 2:
-            from fmpy.fmi2 import FMU2Slave as S
-        else:
-            from fmpy.fmi3 import FMU3Slave as S
-        self.s = S(guid=md.guid, unzipDirectory=unzipped(path),
-                   modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
-        if version == 2:
-            import ctypes
-
-            from fmpy.fmi2 import (
-                calloc,
-                fmi2CallbackAllocateMemoryTYPE,
-                fmi2CallbackFreeMemoryTYPE,
-                fmi2CallbackFunctions,
-                fmi2CallbackLoggerTYPE,
-                free,
-            )
-            from fmpy.logging import addLoggerProxy
-
-            # fmpy's logger proxy calls the last logger registered, for
-            # every instance: route by the instance's name
-            _FMI2_LOGS[name] = self.messages
-
-            def log(env, instance, status, category, message):
-                _FMI2_LOGS.setdefault(instance.decode(), []).append(message.decode(errors="replace"))
-            cb = fmi2CallbackFunctions()
-            cb.logger = fmi2CallbackLoggerTYPE(log)
-            cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-            cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-            addLoggerProxy(ctypes.byref(cb))
-            self._keep = (cb, log)
-            self.s.instantiate(callbacks=cb)
-        else:
-            def log(env, status, category, message):
-                self.messages.append(message.decode(errors="replace"))
-            self._keep = log
-            self.s.instantiate(logMessage=log)
+        # as the package instantiates an FMU: each instance's log lines its own
+        self.s, self.callbacks = instantiate(path, md, name,
+                                             lambda status, category, text: self.messages.append(text))
         self.t = 0.0
         self.initialized = False
         self.set(**params)
@@ -646,21 +608,26 @@ def test_fmi3_uniform_translation_loads_every_cell_alike():
         patch.close()
 
 
+def _fmi3_patch(name):
+    """The FMI 3.0 patch FMU instantiated as the package does it (fmu.slave),
+    not initialized: (fmpy's instance, model description, value references
+    by name, the log lines it writes)."""
+    path = patch_fmu(3)
+    md = read_model_description(str(path))
+    messages = []
+    s, keep = instantiate(path, md, name, lambda status, category, text: messages.append(text))
+    _KEPT.append(keep)   # the log callback lives as long as the instance may call it
+    return s, md, {v.name: v.valueReference for v in md.modelVariables}, messages
+
+
+_KEPT = []
+
+
 def test_fmi3_structural_parameters_resize_the_arrays_in_configuration_mode():
     """n1, n2 set in configuration mode size the arrays; there nothing else
     may be set; a get whose nValues is not the arrays' size is refused with
     the count, and configuration mode is refused after initialization."""
-    from fmpy.fmi3 import FMU3Slave
-
-    md = read_model_description(str(patch_fmu(3)))
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    messages = []
-
-    def log(env, status, category, message):
-        messages.append(message.decode(errors="replace"))
-    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(str(patch_fmu(3))),
-                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="config")
-    s.instantiate(logMessage=log)
+    s, md, vr, messages = _fmi3_patch("config")
     try:
         s.enterConfigurationMode()
         s.setUInt64([vr["n1"], vr["n2"]], [3, 7])
@@ -695,19 +662,9 @@ def test_fmi3_n1_n2_are_uint64_and_only_uint64():
     the Int32 ones refuse them by name, as does a value outside [1, 32]
     (2^64 - 1 as itself, not as -1), each with an error status and a log
     line, the values as they were."""
-    from fmpy.fmi3 import FMU3Slave
-
-    md = read_model_description(str(patch_fmu(3)))
-    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s, md, vr, messages = _fmi3_patch("uint64")
     assert {v.name: v.type for v in md.modelVariables if v.name in ("n1", "n2")} == \
         {"n1": "UInt64", "n2": "UInt64"}
-    messages = []
-
-    def log(env, status, category, message):
-        messages.append(message.decode(errors="replace"))
-    s = FMU3Slave(guid=md.guid, unzipDirectory=unzipped(str(patch_fmu(3))),
-                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="uint64")
-    s.instantiate(logMessage=log)
     try:
         s.setUInt64([vr["n1"], vr["n2"]], [3, 7])
         for call, why in [(lambda: s.setInt32([vr["n1"]], [4]),

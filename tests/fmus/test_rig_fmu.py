@@ -8,10 +8,10 @@ import pytest
 from fmpy import read_model_description
 from fmpy.validation import validate_fmu
 
-from fmu_values import unzipped
 from orthocontact.fmu.contact import ContactFMU
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import ContactParams
+from orthocontact.fmu.slave import instantiate
 from orthocontact.rig.harness import LineFit, Rig, run
 
 AGED = ContactParams.from_degrees(0.408, 0.625, 1.251e4, 1e4, 90 + 39.2, 39.2)
@@ -21,46 +21,18 @@ _KEEP = []  # the loggers' ctypes callbacks must outlive the instances
 
 
 def _rig_slave(version, name="rig", messages=None):
-    """An instantiated CarriageBlock; what it logs is appended to `messages`
-    as (status, text) if given."""
-    path = str(find_fmu(fmi_version=version, model="CarriageBlock"))
-    md = read_model_description(path)
+    """A CarriageBlock instantiated as the package instantiates an FMU
+    (orthocontact.fmu.slave); what it logs is appended to `messages` as
+    (status, text) if given."""
+    path = find_fmu(fmi_version=version, model="CarriageBlock")
+    md = read_model_description(str(path))
     vr = {v.name: v.valueReference for v in md.modelVariables}
-    if version == 2:
-        from fmpy.fmi2 import FMU2Slave as Slave
-    else:
-        from fmpy.fmi3 import FMU3Slave as Slave
-    s = Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier="CarriageBlock",
-              instanceName=name)
-    if messages is None:
-        s.instantiate()
-    elif version == 2:
-        import ctypes
 
-        from fmpy.fmi2 import (
-            calloc,
-            fmi2CallbackAllocateMemoryTYPE,
-            fmi2CallbackFreeMemoryTYPE,
-            fmi2CallbackFunctions,
-            fmi2CallbackLoggerTYPE,
-            free,
-        )
-        from fmpy.logging import addLoggerProxy
-
-        def log(env, instance, status, category, message):
-            messages.append((status, message.decode(errors="replace")))
-        cb = fmi2CallbackFunctions()
-        cb.logger = fmi2CallbackLoggerTYPE(log)
-        cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-        cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-        addLoggerProxy(ctypes.byref(cb))
-        _KEEP.append((cb, log))
-        s.instantiate(callbacks=cb)
-    else:
-        def log(env, status, category, message):
-            messages.append((status, message.decode(errors="replace")))
-        _KEEP.append(log)
-        s.instantiate(logMessage=log)
+    def log(status, category, text):
+        if messages is not None:
+            messages.append((status, text))
+    s, keep = instantiate(path, md, name, log)
+    _KEEP.append(keep)
     set_real = s.setReal if version == 2 else s.setFloat64
     get_real = s.getReal if version == 2 else s.getFloat64
     return s, vr, md, set_real, get_real

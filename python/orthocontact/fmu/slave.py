@@ -4,6 +4,7 @@ theirs here)."""
 from __future__ import annotations
 
 import ctypes
+import weakref
 from typing import Callable
 
 from ..runtime.processes import signals_held
@@ -12,11 +13,27 @@ from ..runtime.temp import unzipped
 # on_message(status, category, message): an FMI log call, its texts decoded
 OnMessage = Callable[[int, str, str], None]
 
+# fmpy's logger proxy (fmpy.logging.addLoggerProxy: it formats the message in
+# C) calls one Python logger for the whole process, the one registered last:
+# each FMI 2.0 message goes to its own instance's on_message by the instance
+# name it carries (a later instance of the same name takes the name over).
+_FMI2_INSTANCES: weakref.WeakValueDictionary = weakref.WeakValueDictionary()
+_fmi2_logger = None   # the one ctypes logger, kept for the process's life
+
+
+def _fmi2_log(env, instance, status, category, message):
+    s = _FMI2_INSTANCES.get(instance.decode(errors="replace") if instance else "")
+    if s is not None:
+        s.orthocontact_on_message(status, category.decode(errors="replace"),
+                                  message.decode(errors="replace"))
+
 
 def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on: bool = False):
     """(fmpy's FMU2Slave or FMU3Slave, instantiated; the callbacks, which the
     caller keeps alive as long as the instance) of the Co-Simulation FMU at
-    `path` whose model description fmpy read as `md`.  fmpy changes the
+    `path` whose model description fmpy read as `md`; its log messages go to
+    `on_message`, and only its own, however many instances the process holds.
+    fmpy changes the
     working folder to the FMU's binaries while it loads them and back after:
     an interrupt in between left the command in that folder, and its
     relative paths (the staging folder of a relative --out) pointing
@@ -34,10 +51,11 @@ def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on:
         )
         from fmpy.logging import addLoggerProxy
 
-        def log(env, instance, status, category, message):
-            on_message(status, category.decode(errors="replace"), message.decode(errors="replace"))
+        global _fmi2_logger
+        if _fmi2_logger is None:
+            _fmi2_logger = fmi2CallbackLoggerTYPE(_fmi2_log)
         cb = fmi2CallbackFunctions()
-        cb.logger = fmi2CallbackLoggerTYPE(log)
+        cb.logger = _fmi2_logger
         cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         addLoggerProxy(ctypes.byref(cb))  # formats the printf-style message in C
@@ -45,8 +63,10 @@ def instantiate(path, md, instance_name: str, on_message: OnMessage, logging_on:
         with signals_held():   # the working folder changes and comes back in here
             s = FMU2Slave(guid=md.guid, unzipDirectory=folder, modelIdentifier=model,
                           instanceName=instance_name)
+        s.orthocontact_on_message = on_message
+        _FMI2_INSTANCES[instance_name] = s
         s.instantiate(callbacks=cb, loggingOn=logging_on)
-        return s, (cb, log)
+        return s, (cb,)
     from fmpy.fmi3 import FMU3Slave
 
     def log3(env, status, category, message):
