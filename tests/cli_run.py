@@ -11,6 +11,16 @@ from paths import SCENARIOS
 
 CMD = [sys.executable, "-m", "orthocontact"]
 
+# The aged mat's law (scenarios/mat_aged.toml) as a scenario's [law] table,
+# and the smallest sweep on it: the tests' own scenario files start from these.
+AGED_LAW = """[law]
+mu1 = 0.408
+mu2 = 0.625
+eps2 = 1.0e4
+eps_ratio = 1.251
+"""
+MAT_SWEEP = 'name = "m"\nkind = "sweep"\n' + AGED_LAW + "[sweep]\nstep_deg = 45.0\n"
+
 # PYTHONPATH=python (the source tree shadowing the installed package) must
 # hold in a command started in another folder (cwd=tmp_path) too.
 if os.environ.get("PYTHONPATH"):

@@ -8,7 +8,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from cli_run import CMD
+from cli_run import AGED_LAW, CMD
 from orthocontact import plausibility
 from orthocontact.experiment.rig_setup import RigSetup
 from orthocontact.identification.measurements import write_measurements
@@ -16,14 +16,7 @@ from paths import DOCS, SCENARIOS
 
 EXAMPLE = SCENARIOS / "example_identification"
 
-MAT = """name = "mat"
-kind = "sweep"
-[law]
-mu1 = 0.408
-mu2 = 0.625
-eps2 = 1.0e4
-eps_ratio = 1.251
-[geometry]
+MAT = 'name = "mat"\nkind = "sweep"\n' + AGED_LAW + """[geometry]
 alpha_offset_deg = 90.0
 closed_form = "mat"
 [sweep]

@@ -132,12 +132,17 @@ def estimates(out: Path) -> dict:
     return {k: d[k]["value"] for k in ESTIMATES}
 
 
-@pytest.fixture(scope="module")
-def reduced_truth(tmp_path_factory):
+def truth(tmp_path_factory, data: str) -> dict:
+    """The estimates identify gives from the bundled data set `data`, unaltered."""
     out = tmp_path_factory.mktemp("truth") / "out"
-    p = identify(SCENARIOS / "example_identification", out)
+    p = identify(SCENARIOS / data, out)
     assert p.returncode == 0, p.stderr
     return estimates(out)
+
+
+@pytest.fixture(scope="module")
+def reduced_truth(tmp_path_factory):
+    return truth(tmp_path_factory, "example_identification")
 
 
 @pytest.mark.parametrize("name,case", [
@@ -161,10 +166,7 @@ def test_reduced_data_every_file_every_case(tmp_path, reduced_truth, name, case)
 
 @pytest.fixture(scope="module")
 def recordings_truth(tmp_path_factory):
-    out = tmp_path_factory.mktemp("truth") / "out"
-    p = identify(SCENARIOS / "example_recordings", out)
-    assert p.returncode == 0, p.stderr
-    return estimates(out)
+    return truth(tmp_path_factory, "example_recordings")
 
 
 @pytest.mark.parametrize("case", ["bom", "crlf", "semicolons"])

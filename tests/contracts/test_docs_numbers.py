@@ -16,12 +16,12 @@ import sys
 import pytest
 
 from cli_run import CMD
+from model_notes import NOTES, errata_numbers
 from optional_parts import record, usable
 from orthocontact.cli.parser import build_parser
 from paths import DOCS, ROOT, SCENARIOS
 
 README = (ROOT / "README.md").read_text()
-NOTES = (DOCS / "explanation" / "model-notes.md").read_text()
 UQ_GUIDE = (DOCS / "guides" / "uncertainty.md").read_text()
 SYSTEM_GUIDE = (DOCS / "guides" / "system-simulator.md").read_text()
 
@@ -90,16 +90,8 @@ def test_no_documentation_names_an_issue_the_reader_cannot_see():
         assert not re.search(r"\bissue(?:'s|s)?\b", text, re.I), name
 
 
-def _errata_numbers():
-    block = next(b for b in re.findall(r"```sh\n\.venv/bin/python -c \"\n(.*?)\"\n```", NOTES, re.S)
-                 if "case5_eq28_deg" in b)
-    out = subprocess.run([sys.executable, "-c", block], capture_output=True, text=True, check=True,
-                         timeout=60).stdout
-    return {line.split()[0]: line.split()[1:] for line in out.splitlines()}
-
-
 def test_the_sign_errata_say_what_the_closed_forms_give():
-    got = _errata_numbers()
+    got = errata_numbers()
     assert got["case5_eq28_deg"] == ["-36.87"] and "give **−36.87°**" in NOTES
     assert got["case5_eq27_deg"] == ["26.565"] and "α = 26.565°" in NOTES
     assert got["mat_ratio"][0] == "0.817" and "λ₁/λ₂ = 0.817" in NOTES

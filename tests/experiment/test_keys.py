@@ -4,21 +4,11 @@ from pathlib import Path
 
 import pytest
 
+from cli_run import MAT_SWEEP
 from orthocontact.errors import InputError
 from orthocontact.experiment.keys import RIG_KEYS, read_table, rig_spec
 from orthocontact.experiment.rig_setup import RIG_TOML, load_rig_toml
 from orthocontact.experiment.scenario import SCHEMA, ScenarioError, load
-
-MAT = '''name = "m"
-kind = "sweep"
-[law]
-mu1 = 0.408
-mu2 = 0.625
-eps2 = 1.0e4
-eps_ratio = 1.251
-[sweep]
-step_deg = 45.0
-'''
 
 
 def test_both_files_check_the_rigs_keys_with_the_same_checkers():
@@ -58,7 +48,7 @@ def test_the_rigs_keys_their_defaults_and_ranges_are_the_rigs_fields():
 ])
 def test_a_bad_rig_value_reads_the_same_in_both_files(tmp_path, key, value, says):
     text = f'"{value}"' if isinstance(value, str) else repr(value)
-    (tmp_path / "s.toml").write_text(MAT + f"[rig]\n{key} = {text}\n")
+    (tmp_path / "s.toml").write_text(MAT_SWEEP + f"[rig]\n{key} = {text}\n")
     with pytest.raises(ScenarioError) as scen:
         load(tmp_path / "s.toml")
     (tmp_path / "rig.toml").write_text(f"mass_kg = 1.875\n{key} = {text}\n")

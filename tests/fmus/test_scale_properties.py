@@ -36,26 +36,38 @@ EPS = np.finfo(float).eps
 RULES = ["associated", "coupled", "eq20"]
 
 
-@st.composite
-def setups(draw):
+def coefficients(draw):
+    """mu1 in [0.05, 1], mu2 up to 1e10 times larger or smaller; eps1 in
+    [1e2, 1e6] N/m, eps2 likewise within 1e10 of it."""
     mu1 = 10 ** draw(st.floats(-1.3, 0.0))
     mu2 = mu1 * 10 ** draw(st.floats(-10, 10))
     eps1 = 10 ** draw(st.floats(2, 6))
     eps2 = eps1 * 10 ** draw(st.floats(-10, 10))
+    return mu1, mu2, eps1, eps2
+
+
+def scale_exponents(draw, mus, epss):
+    """a, b of the scales k = 2^a (force), m = 2^b (length) under which the
+    scaled law stays representable: its tensors reach eps / mu^2 and
+    mu^2 / eps, and forces, slips and energies stay normal numbers
+    (subnormals lose bits)."""
+    a, b = draw(st.integers(-498, 498)), draw(st.integers(-498, 498))
+    lg = [math.log10(x) for x in mus]
+    for e in epss:
+        assume(abs(math.log10(e) + (a - b) * math.log10(2)) + 2 * max(abs(x) for x in lg) < 290)
+    assume(abs(a + b) <= 400)
+    return a, b
+
+
+@st.composite
+def setups(draw):
+    mu1, mu2, eps1, eps2 = coefficients(draw)
     # Angles are 0 or at least 1e-3 rad: a subnormal sin() would put subnormal
     # numbers (which lose bits) into the tensors, where exact scaling cannot hold.
     angle = st.floats(-math.pi, math.pi).filter(lambda x: x == 0 or abs(x) >= 1e-3)
     params = ContactParams(mu1, mu2, eps1, eps2, draw(angle), draw(angle),
                            draw(st.sampled_from(RULES)))
-    a, b = draw(st.integers(-498, 498)), draw(st.integers(-498, 498))  # k = 2^a, m = 2^b
-    # The scaled law must be representable: its tensors reach eps / mu^2 and mu^2 / eps.
-    lg2 = math.log10(2)
-    lg = [math.log10(x) for x in (mu1, mu2)]
-    for e in (eps1, eps2):
-        le = math.log10(e) + (a - b) * lg2
-        assume(abs(le) + 2 * max(abs(x) for x in lg) < 290)
-    # forces, slips and energies stay normal numbers (subnormals lose bits)
-    assume(abs(a + b) <= 400)
+    a, b = scale_exponents(draw, (mu1, mu2), (eps1, eps2))
     # A path in units of the largest elastic length: sticks, slides, holds, opens.
     N0 = 10.0
     L = max(mu1, mu2) * N0 / min(eps1, eps2)
@@ -176,21 +188,14 @@ def aligned_return_map(rule, mu, eps, th, d, N):
 
 @st.composite
 def aligned_slides(draw):
-    mu1 = 10 ** draw(st.floats(-1.3, 0.0))
-    mu2 = mu1 * 10 ** draw(st.floats(-10, 10))
-    eps1 = 10 ** draw(st.floats(2, 6))
-    eps2 = eps1 * 10 ** draw(st.floats(-10, 10))
+    mu1, mu2, eps1, eps2 = coefficients(draw)
     th = draw(st.one_of(st.just(0.0), st.floats(-math.pi, math.pi).filter(lambda x: abs(x) >= 1e-3)))
     # slide directions include the axes themselves
     phi = draw(st.one_of(st.floats(-math.pi, math.pi),
                          st.sampled_from([0, 1, 2, 3]).map(lambda j: th + j * math.pi / 2)))
     N = draw(st.floats(1.0, 20.0))
     size = max(mu1, mu2) * N / min(eps1, eps2) * 10 ** draw(st.floats(-3, 4))
-    a, b = draw(st.integers(-498, 498)), draw(st.integers(-498, 498))
-    lg = [math.log10(x) for x in (mu1, mu2)]
-    for e in (eps1, eps2):
-        assume(abs(math.log10(e) + (a - b) * math.log10(2)) + 2 * max(abs(x) for x in lg) < 290)
-    assume(abs(a + b) <= 400)
+    a, b = scale_exponents(draw, (mu1, mu2), (eps1, eps2))
     rule = draw(st.sampled_from(["associated", "coupled"]))
     return (rule, (mu1, mu2), (eps1, eps2), th, (size * math.cos(phi), size * math.sin(phi)), N,
             math.ldexp(1.0, a), math.ldexp(1.0, b), draw(st.sampled_from([2, 3])))
