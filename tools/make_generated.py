@@ -26,13 +26,14 @@ Int32, a sliding rule's start that is no item of its enumeration."""
 from __future__ import annotations
 
 import argparse
-import difflib
 import json
 import keyword
 import math
 import sys
 import textwrap
 from pathlib import Path
+
+from generated_files import differs, write
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGET = Path("python/orthocontact/fmu/generated.py")
@@ -303,13 +304,8 @@ def generated() -> str:
 def stale(root: Path = ROOT, text_now: str | None = None) -> str:
     """A short diff if the file under `root` is not what the tables give, else ""."""
     new = generated() if text_now is None else text_now
-    path = root / TARGET
-    old = path.read_text() if path.is_file() else ""
-    if old == new:
-        return ""
-    diff = difflib.unified_diff(old.splitlines(), new.splitlines(), f"{TARGET} (committed)",
-                                f"{TARGET} (generated)", lineterm="", n=0)
-    return f"{TARGET} is not what the variable tables give: run {REFRESH}\n" + "\n".join(list(diff)[:30])
+    diff = differs(root, TARGET, new, 30)
+    return f"{TARGET} is not what the variable tables give: run {REFRESH}\n{diff}" if diff else ""
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -326,11 +322,7 @@ def main(argv: list[str] | None = None) -> int:
         if problem:
             print(problem, file=sys.stderr)
         return 1 if problem else 0
-    path = ROOT / TARGET
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(new)
-    tmp.replace(path)
-    print(f"wrote {TARGET}")
+    write(ROOT, TARGET, new)
     return 0
 
 

@@ -28,12 +28,13 @@ status.  Units are the tables' (variables) and the help texts' (options)."""
 from __future__ import annotations
 
 import argparse
-import difflib
 import json
 import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+
+from generated_files import differs, write
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = {"variables": Path("docs/reference/variables.md"), "cli": Path("docs/reference/cli.md")}
@@ -560,15 +561,8 @@ def pages(root: Path = ROOT) -> dict[Path, str]:
 
 def stale(root: Path = ROOT) -> list[tuple[Path, str]]:
     """(page, a short diff) of each page under `root` that differs from what it generates."""
-    out = []
-    for rel, text in pages(root).items():
-        path = root / rel
-        old = path.read_text() if path.is_file() else ""
-        if old != text:
-            diff = difflib.unified_diff(old.splitlines(), text.splitlines(), f"{rel} (committed)",
-                                        f"{rel} (generated)", lineterm="", n=0)
-            out.append((rel, "\n".join(list(diff)[:24])))
-    return out
+    diffs = [(rel, differs(root, rel, text, 24)) for rel, text in pages(root).items()]
+    return [(rel, diff) for rel, diff in diffs if diff]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -585,12 +579,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{rel} is out of date: run {REFRESH}\n{diff}", file=sys.stderr)
         return 1 if generated else 0
     for rel, text in generated.items():
-        path = ROOT / rel
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(path.name + ".tmp")
-        tmp.write_text(text)
-        tmp.replace(path)
-        print(f"wrote {rel}")
+        write(ROOT, rel, text)
     return 0
 
 
