@@ -254,33 +254,41 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
 }
 
 /* Int32 variables through the Int32 functions, Enumerations through Int64,
- * structural parameters through UInt64 (each refused by the others). */
+ * structural parameters through UInt64 (each refused by the others): a
+ * get and a set of integers of `width` bytes, the kinds its type may touch. */
+static fmi3Status get_ints(fmi3Instance c, const char *fn, const fmi3ValueReference vr[],
+                           size_t nvr, void *values, size_t nValues, int kinds, size_t width) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, fn, FMU_READABLE)) return fmi3Error;
+    if (FMU_MODEL_INFO.arrays)
+        return status3(get_values(I, fn, vr, nvr, values, nValues, kinds, width));
+    if (!arrays_ok(I, fn, nvr, vr, values, nValues)) return fmi3Error;
+    fmu_msg msg;
+    return status3(
+        fmu_result(I, fmu_model_get_int(I->model, vr, nvr, values, width, kinds, &msg), &msg, fn));
+}
+
+static fmi3Status set_ints(fmi3Instance c, const char *fn, const fmi3ValueReference vr[],
+                           size_t nvr, const void *values, size_t nValues, int kinds,
+                           size_t width) {
+    fmu_instance *I = INST(c);
+    if (!fmu_allowed(I, fn, SETTABLE) || !arrays_ok(I, fn, nvr, vr, values, nValues) ||
+        !config_ok(I, fn, vr, nvr))
+        return fmi3Error;
+    fmu_msg msg;
+    return status3(fmu_result(
+        I, fmu_model_set_int(I->model, vr, nvr, values, width, kinds, fmu_settable(I), &msg),
+        &msg, fn));
+}
+
 #define INT_ACCESS(TYPE, CTYPE, KIND)                                                          \
     fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
-                             CTYPE values[], size_t nValues) {                                   \
-        fmu_instance *I = INST(c);                                                               \
-        if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi3Error;                          \
-        if (FMU_MODEL_INFO.arrays)                                                               \
-            return status3(                                                                      \
-                get_values(I, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE)));         \
-        if (!arrays_ok(I, __func__, nvr, vr, values, nValues)) return fmi3Error;                 \
-        fmu_msg msg;                                                                             \
-        return status3(fmu_result(                                                               \
-            I, fmu_model_get_int(I->model, vr, nvr, values, sizeof(CTYPE), KIND, &msg), &msg,   \
-            __func__));                                                                   \
-    }                                                                                            \
+                             CTYPE values[], size_t nValues) {                                 \
+        return get_ints(c, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE));           \
+    }                                                                                          \
     fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
-                             const CTYPE values[], size_t nValues) {                             \
-        fmu_instance *I = INST(c);                                                               \
-        if (!fmu_allowed(I, __func__, SETTABLE) ||                                               \
-            !arrays_ok(I, __func__, nvr, vr, values, nValues) ||                                 \
-            !config_ok(I, __func__, vr, nvr))                                                    \
-            return fmi3Error;                                                                    \
-        fmu_msg msg;                                                                             \
-        return status3(fmu_result(I,                                                             \
-                                  fmu_model_set_int(I->model, vr, nvr, values, sizeof(CTYPE),   \
-                                                    KIND, fmu_settable(I), &msg),                \
-                                  &msg, __func__));                                       \
+                             const CTYPE values[], size_t nValues) {                           \
+        return set_ints(c, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE));           \
     }
 INT_ACCESS(Int32, fmi3Int32, FMU_INT32 | FMU_AS_FMI3)
 INT_ACCESS(Int64, fmi3Int64, FMU_ENUM | FMU_AS_FMI3)

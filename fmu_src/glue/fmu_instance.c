@@ -124,54 +124,71 @@ fmu_status fmu_model_check_range(unsigned int vr, double value, const char *cont
  * a message. */
 enum { SAVED_ON_STACK = 16 };
 
-#define SET_BATCH(CTYPE, KIND, TYPE_OK, VALUE, SLOT)                                                \
-    const fmu_var *const vars = INFO.vars;                                                      \
-    const unsigned int nv = INFO.n_vars;                                                        \
-    CTYPE stack[SAVED_ON_STACK], *saved = stack;                                                \
-    if (n > SAVED_ON_STACK && !(saved = malloc(n * sizeof *saved)))                             \
-        return fmu_fail(msg, "out of memory");                                                  \
-    int changed = 0;                                                                            \
-    fmu_status st = FMU_OK;                                                                     \
-    size_t i = 0;                                                                               \
-    for (; i < n; ++i) {                                                                        \
-        /* a row without a variable has settable 0: no name test on the way */                \
-        const fmu_var *x = vr[i] < nv ? &vars[vr[i]] : NULL;                                    \
-        const double d = (double)(VALUE);                                                       \
-        if (!x || !(x->settable & allow) || !(TYPE_OK) || !in_range(x, d)) {                    \
-            if (x && !x->name) x = NULL;                                                        \
-            st = why_not_settable(x, vr[i], x ? (KIND) : 0, x && (TYPE_OK), d, allow, msg);    \
-            break;                                                                              \
-        }                                                                                       \
-        CTYPE *slot = SLOT(m, x);                                                               \
-        saved[i] = *slot;                                                                       \
-        *slot = (CTYPE)d; /* in [min, max]: exact for both slot types */                      \
-        changed |= x->settable;                                                                 \
-    }                                                                                           \
-    int refreshed = 0;                                                                          \
-    if (st == FMU_OK && n > 0 && (st = model_refresh(m, msg)) == FMU_OK) {                            \
-        refreshed = 1;                                                                          \
-        st = fmu_model_update(m, changed, allow, msg);                                          \
-    }                                                                                           \
-    if (st != FMU_OK) {                                                                         \
-        while (i-- > 0) *SLOT(m, &vars[vr[i]]) = saved[i];                                      \
-        if (refreshed) (void)model_refresh(m, NULL);                                                  \
-    }                                                                                           \
-    if (saved != stack) free(saved);                                                            \
+/* The batch of fmu_model_set_float64 (ints = 0: v a double[]) and
+ * fmu_model_set_int (ints = 1: v integers as it takes them), written once;
+ * inlined into each, where `ints` is a constant. */
+static OC_ALWAYS_INLINE fmu_status set_batch(fmu_model *m, const unsigned int vr[], size_t n,
+                                             const void *v, size_t width, int kinds, int allow,
+                                             int ints, fmu_msg *msg) {
+    const fmu_var *const vars = INFO.vars;
+    const unsigned int nv = INFO.n_vars;
+    double stack[SAVED_ON_STACK], *saved = stack; /* an int slot's value exactly too */
+    if (n > SAVED_ON_STACK && !(saved = malloc(n * sizeof *saved)))
+        return fmu_fail(msg, "out of memory");
+    int changed = 0;
+    fmu_status st = FMU_OK;
+    size_t i = 0;
+    for (; i < n; ++i) {
+        /* a row without a variable has settable 0: no name test on the way */
+        const fmu_var *x = vr[i] < nv ? &vars[vr[i]] : NULL;
+        /* a UInt64 is read unsigned, so that 2^64 - 1 is refused as itself */
+        const double d = !ints                 ? ((const double *)v)[i]
+                         : (kinds & FMU_UINT64) ? (double)((const uint64_t *)v)[i]
+                                                : (double)fmu_int_at(v, width, i);
+        if (!x || !(x->settable & allow) ||
+            !(ints ? kind_of(x, vr[i], kinds) & kinds : x->type == FMU_T_Float64) ||
+            !in_range(x, d)) {
+            if (x && !x->name) x = NULL;
+            const int kind = !x ? 0 : ints ? kind_of(x, vr[i], kinds) : x->type;
+            const int type_ok =
+                x && (ints ? kind_of(x, vr[i], kinds) & kinds : x->type == FMU_T_Float64);
+            st = why_not_settable(x, vr[i], kind, type_ok, d, allow, msg);
+            break;
+        }
+        /* in [min, max] (checked before the write): exact for both slot types */
+        if (ints) {
+            saved[i] = *SLOT_I(m, x);
+            *SLOT_I(m, x) = (int)d;
+        } else {
+            saved[i] = *SLOT_D(m, x);
+            *SLOT_D(m, x) = d;
+        }
+        changed |= x->settable;
+    }
+    int refreshed = 0;
+    if (st == FMU_OK && n > 0 && (st = model_refresh(m, msg)) == FMU_OK) {
+        refreshed = 1;
+        st = fmu_model_update(m, changed, allow, msg);
+    }
+    if (st != FMU_OK) {
+        while (i-- > 0) {
+            if (ints) *SLOT_I(m, &vars[vr[i]]) = (int)saved[i];
+            else *SLOT_D(m, &vars[vr[i]]) = saved[i];
+        }
+        if (refreshed) (void)model_refresh(m, NULL);
+    }
+    if (saved != stack) free(saved);
     return st;
+}
 
-FMU_HOT fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
-                                 int allow, fmu_msg *msg) {
-    SET_BATCH(double, x->type, x->type == FMU_T_Float64, v[i], SLOT_D)
+OC_HOT fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n,
+                                        const double v[], int allow, fmu_msg *msg) {
+    return set_batch(m, vr, n, v, sizeof(double), 0, allow, 0, msg);
 }
 
 fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, const void *v,
                              size_t width, int kinds, int allow, fmu_msg *msg) {
-    /* In [min, max] (checked before the write): the int slot holds it.  A
-     * UInt64 is read unsigned, so that 2^64 - 1 is refused as itself. */
-    SET_BATCH(int, kind_of(x, vr[i], kinds), kind_of(x, vr[i], kinds) & kinds,
-              (kinds & FMU_UINT64) ? (double)((const uint64_t *)v)[i]
-                                   : (double)fmu_int_at(v, width, i),
-              SLOT_I)
+    return set_batch(m, vr, n, v, width, kinds, allow, 1, msg);
 }
 
 static fmu_status not_of_type(unsigned int vr, int kinds, fmu_msg *msg) {
@@ -184,7 +201,7 @@ static fmu_status not_of_type(unsigned int vr, int kinds, fmu_msg *msg) {
     return fmu_fail(msg, "unknown value reference %u", vr);
 }
 
-FMU_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
+OC_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
                                  fmu_msg *msg) {
     const fmu_var *const vars = INFO.vars;
     const unsigned int nv = INFO.n_vars;
@@ -706,7 +723,7 @@ fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg) {
     return FMU_OK;
 }
 
-FMU_HOT fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
+OC_HOT fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
     if (!isfinite(t) || !isfinite(h) || !(h > 0) || !isfinite(t + h))
         return fmu_fail(msg, "currentCommunicationPoint=%g, communicationStepSize=%g: the step "

@@ -22,26 +22,17 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "compiler.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 typedef enum { FMU_OK = 0, FMU_ERR = 1 } fmu_status;
 
-/* On the definitions of the functions a step passes through (set inputs,
- * the model's update and do_step, get outputs): inlined into the FMI entry
- * points.  Each FMU binary is compiled as one unit (CMake's fmu_add), so the
- * compiler sees their bodies there; elsewhere (the tests' libraries) they
- * are ordinary calls.  A chain of five calls per entry point showed in the
- * time of a stick step (docs/benchmarks.md).  Declarations stay plain, so that
- * a unit without the body calls it as usual. */
-#if defined(__clang__)
-#define FMU_HOT __attribute__((always_inline))
-#elif defined(__GNUC__)
-#define FMU_HOT __attribute__((always_inline)) inline /* without inline, GCC warns */
-#else
-#define FMU_HOT
-#endif
+/* The functions a step passes through (set inputs, the model's update and
+ * do_step, get outputs) are defined OC_HOT (compiler.h): inlined into the
+ * FMI entry points of each FMU binary, an ordinary call elsewhere. */
 
 /* Why a call failed; on FMU_ERR nothing in the model has changed.  Written
  * only when a call fails: a successful call never formats anything. */

@@ -4,8 +4,10 @@
  * say why the code takes its shape.
  *
  *   1. Arithmetic: 2x2 products, norms without overflow, power-of-two scales
+ *      (law/arith.h)
  *   2. The parameters and the tensors they fix (B, F, the yield coordinates)
  *   3. Slip by the implicit rules: the plastic multiplier on the yield surface
+ *      (its solve: law/slip_solve.h, over the lanes of law/lanes.h)
  *   4. Slip by the paper's explicit eq. (20)
  *   5. One step: trial, stick test, return map, commit; many steps at once
  *   6. The consistent tangent
@@ -23,119 +25,11 @@
 #include <stdint.h>
 #include <string.h>
 
-/* ==== 1. Arithmetic: 2x2 products, norms without overflow, power-of-two scales ==== */
+#include "compiler.h"
+#include "law/arith.h"
+#include "law/lanes.h"
 
-/* OC_ALWAYS_INLINE (contact_law.h): inlined even where the compiler would
- * make a call: the slip solve and the parts of a step (sections 3 to 5) are
- * pieces of the step's one body, and as calls they would spill the
- * registers the step keeps live.  gcc inlines them on its own; clang, which
- * builds the shipped binaries, leaves the slip solve a call
- * (docs/benchmarks.md). */
-
-/* Q(t) diag(d1, d2) Q(t)^T */
-static void rotated_diag(double t, double d1, double d2, double R[2][2]) {
-    const double c = cos(t), s = sin(t);
-    R[0][0] = d1 * c * c + d2 * s * s;
-    R[1][1] = d1 * s * s + d2 * c * c;
-    R[0][1] = R[1][0] = (d1 - d2) * s * c;
-}
-
-static void matmul(const double A[2][2], const double B[2][2], double C[2][2]) {
-    double T[2][2];
-    for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-            T[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j];
-    for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) C[i][j] = T[i][j];
-}
-
-static void matvec(const double A[2][2], const double x[2], double y[2]) {
-    const double y0 = A[0][0] * x[0] + A[0][1] * x[1];
-    const double y1 = A[1][0] * x[0] + A[1][1] * x[1];
-    y[0] = y0;
-    y[1] = y1;
-}
-
-/* fmax, NaN handling included (the other argument), without the libm call
- * it compiles to on x86-64 (a call in the middle of the slip solve's
- * arithmetic).  Zeros of both signs tie differently, which no caller meets
- * (they compare positive numbers). */
-static inline double max2(double a, double b) { return a > b || b != b ? a : b; }
-
-static int all_finite(const double *v, size_t n) {
-    for (size_t i = 0; i < n; ++i)
-        if (!isfinite(v[i])) return 0;
-    return 1;
-}
-
-/* 2^-e and 2^e for the binary exponent e of |x| (x finite, normal and
- * nonzero), from the bits.  Scaling by them is exact, and exact power-of-two
- * scaling commutes with rounding: whatever is computed on scaled values is
- * the same, bit for bit, in any power-of-two units. */
-static double pow2_of(double x, double *inverse) {
-    uint64_t b;
-    memcpy(&b, &x, 8);
-    const uint64_t e = (b >> 52) & 0x7ff; /* biased exponent, 1..2046 */
-    const uint64_t p = e << 52, r = (2046 - e) << 52;
-    double out, inv;
-    memcpy(&out, &p, 8);
-    memcpy(&inv, &r, 8);
-    /* At the top exponent the inverse 2^-1023 is subnormal (biased exponent
-     * 0, which the bits above would read as +0.0); it is still exact. */
-    *inverse = e == 2046 ? 0x1p-1023 : inv;
-    return out;
-}
-
-/* 2^-floor(e / 2) for the binary exponent e of x (x normal and positive):
- * for x = |a|^2 it scales |a| to [1, 2) as pow2_of(|a|) does, up to a factor
- * 2 where the square's rounding crosses a power of four.  Where nothing
- * under- or overflows, results computed on a trial scaled either way are
- * the same bit for bit (the scale is exact), and it needs no square root.
- * floor, not truncation: it moves with x's exponent, so that results stay
- * the same in any power-of-two units. */
-static inline double pow2_root_inverse(double x) {
-    uint64_t b;
-    memcpy(&b, &x, 8);
-    const int e = (int)((b >> 52) & 0x7ff) - 1023;
-    const int k = e >= 0 ? e / 2 : -((1 - e) / 2);
-    const uint64_t r = (uint64_t)(1023 - k) << 52;
-    double out;
-    memcpy(&out, &r, 8);
-    return out;
-}
-
-/* The power of two that scales a trial of norm n_tr = sqrt(sq) to about
- * [1, 2): from sq's exponent where sq is normal (the slip's work that needs
- * only the scaled trial then starts while the square root is under way),
- * else from n_tr itself. */
-static inline double trial_scale(double sq, double n_tr) {
-    if (sq >= 0x1p-900 && sq <= 0x1p1000) return pow2_root_inverse(sq);
-    double sc;
-    pow2_of(n_tr, &sc);
-    return sc;
-}
-
-/* The general case of oc_norm2: no square may under- or overflow. */
-static double norm2_scaled(double x, double y) {
-    const double ax = fabs(x), ay = fabs(y);
-    const double big = ax > ay ? ax : ay;
-    if (!(big >= DBL_MIN) || !isfinite(big)) {
-        /* 0, subnormal, inf or NaN */
-        if (!(big > 0) || !isfinite(big)) return big + (ax > ay ? ay : ax);
-        const double r = (ax > ay ? ay : ax) / big;
-        return big * sqrt(1.0 + r * r);
-    }
-    double inv;
-    const double p = pow2_of(big, &inv), xs = x * inv, ys = y * inv;
-    return sqrt(xs * xs + ys * ys) * p;
-}
-
-/* No square under- or overflows in the first branch, so it gives what the
- * scaled form gives, bit for bit (a square too small to matter is absorbed). */
-static inline double norm2(double x, double y) {
-    const double sq = x * x + y * y;
-    return sq >= 0x1p-900 && sq <= 0x1p1000 ? sqrt(sq) : norm2_scaled(x, y);
-}
+/* ==== 1. Arithmetic: law/arith.h ==== */
 
 double oc_norm2(double x, double y) { return norm2(x, y); }
 
@@ -288,208 +182,25 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     return 0;
 }
 
-/* q = Minv a: oc_force_of (contact_law.h). */
-
 /* ==== 3. Slip by the implicit rules: the plastic multiplier on the yield surface ==== */
 
-/* Solves sum_i a_i^2 / (1 + y s_i)^2 = rho^2 for y > 0, given |a| = 1 > rho
- * and s_i = sigma_i / sigma_ref in (0, 1] (so y = dgamma sigma_ref is
- * dimensionless).  k(y) = rho / |p(y)| - 1 is a power mean of exponent -2
- * of the affine 1 + y s_i, hence concave and increasing: Newton from the
- * left of the root climbs monotonically to it, and from the right it lands
- * on the left in one step.  The start is the root's series to third order
- * about y = 0 (exact when s_1 = s_2); left of the root the iteration goes on with
- * Halley steps, whose error is the cube of the step, so that a step below
- * 5e-6 y is the last: it is taken to second order in p (remainder below
- * (dy/y)^3 ~ 1e-16).  Typically that is one evaluation after the start.
- * a_raw is the trial (|a_raw|^2 = sq, |a_raw| = n_tr > N).  Returns y and
- * the p (and 1 / |p|) after the last step, p for a_raw / n_tr.
- *
- * The iteration works on g_i = W p_i with W = w_0 w_1, w_i = 1 + y s_i, so
- * that an evaluation costs one square root and one division; its products
- * (up to W^7) stay finite while W < 1e40, which the caller guarantees
- * (W <= kappa / rho^2 at the root); solve_dgamma_far covers the rest.
- *
- * The solve is written once, below, over a lane type T holding one cell's
- * numbers (double, the functions dgamma1_*) or two cells' (v2d, GCC/Clang
- * vector extensions: SSE2 on x86-64, NEON on aarch64; dgamma2_*), so that a
- * batch of cells (oc_law_step_batch) steps two cells by one vector
- * instruction, each lane its cell's own arithmetic bit for bit: a lane
- * operation acts on each lane as the scalar operation does.  Where the
- * iteration branches, both sides are formed and each lane takes its own by
- * a select of one comparison's mask (gcc makes a select by a combined mask,
- * without SSE4.1's blend, lane by lane in integer registers).  The lane
- * helpers: sel (m ? a : b, lane by lane); sel_usual, the same where m is
- * nearly always true (for a double a branch the processor predicts, so that
- * the iteration need not wait for the test: clang, which builds the shipped
- * binaries, otherwise makes the start's test a select); abs, sqrt, max
- * (max2's); not, of a mask (0 or 1 a double's, all ones or zero a vector
- * lane's); splat, a number into every lane. */
-#if defined(__GNUC__) || defined(__clang__)
-#define OC_USUALLY(c) __builtin_expect(!!(c), 1)
-#else
-#define OC_USUALLY(c) (c)
-#endif
-static OC_ALWAYS_INLINE double lane1_sel(int m, double a, double b) { return m ? a : b; }
-static OC_ALWAYS_INLINE double lane1_sel_usual(int m, double a, double b) {
-    if (OC_USUALLY(m)) return a;
-    return b;
-}
-static OC_ALWAYS_INLINE double lane1_abs(double a) { return fabs(a); }
-static OC_ALWAYS_INLINE double lane1_sqrt(double a) { return sqrt(a); }
-static OC_ALWAYS_INLINE double lane1_max(double a, double b) { return max2(a, b); }
-static OC_ALWAYS_INLINE int lane1_not(int m) { return !m; }
-static OC_ALWAYS_INLINE double lane1_splat(double a) { return a; }
-
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(OC_SCALAR_LANES)
-#define OC_VECTOR_LANES 1
-typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2m __attribute__((vector_size(16))); /* a lane all ones or zero */
-static OC_ALWAYS_INLINE v2d lane2_sel(v2m m, v2d a, v2d b) {
-    return (v2d)(((v2m)a & m) | ((v2m)b & ~m));
-}
-static OC_ALWAYS_INLINE v2d lane2_abs(v2d a) {
-    const v2m mag = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
-    return (v2d)((v2m)a & mag);
-}
-static OC_ALWAYS_INLINE v2d lane2_sqrt(v2d a) {
-    const v2d r = {sqrt(a[0]), sqrt(a[1])};
-    return r;
-}
-static OC_ALWAYS_INLINE v2d lane2_max(v2d a, v2d b) { /* max2's: a > b || b != b ? a : b */
-    return lane2_sel((v2m)(b != b), a, lane2_sel((v2m)(a > b), a, b));
-}
-static OC_ALWAYS_INLINE v2d lane2_sel_usual(v2m m, v2d a, v2d b) { return lane2_sel(m, a, b); }
-static OC_ALWAYS_INLINE v2m lane2_not(v2m m) { return ~m; }
-static OC_ALWAYS_INLINE v2d lane2_splat(double a) {
-    const v2d r = {a, a};
-    return r;
-}
-#endif
-
-/* The solve of N lanes of type T with masks of type M:
- *
- * dgammaN_start (no square root, so that it runs beside the caller's):
- * from the trial a_raw = (ar0, ar1), |a_raw|^2 = sq, |a_raw| = n_tr, and
- * N (N_: N names the lanes), the direction a = a_raw / n_tr,
- * rho = N / n_tr and the start x.  Its
- * divisions depend only on the trial, not on its square root: they run
- * beside it.  Moments are taken over a_i^2 / |a|^2.  The start is the
- * root's series in the Newton step h from y = 0, to third order (error
- * O(h^4)), from the moments M_j = sum_i a_i^2 s_i^j: k(0) = rho - 1,
- * k' = rho M1, k''/(2 k') = A2 = 3 (M1^2 - M2) / (2 M1),
- * k'''/(6 k') = A3 = (15 M1^3 - 27 M1 M2 + 12 M3) / (6 M1).  Far from the
- * root the series need not converge: Newton's step then (x > 0 && x < 4 h
- * ? x : h).
- *
- * dgammaN_step: one evaluation at the iterate x, into *E; moves the iterate
- * and returns the mask of the lanes where it was the last (a lane whose
- * evaluation ends it unmoved has dx = 0).  In u_i = W s_i / w_i,
- * k' = rho C / m^3 with C = sum g_i^2 u_i and
- * k'' / k' = -3 (m^2 D2 - C^2) / (W m^2 C), D2 = sum g_i^2 u_i^2.  Left of
- * the root (res > 0): Halley in one division, dx = -(k / k') /
- * (1 - k k'' / (2 k'^2)): k < 0 and k'' <= 0 make the bracket < 1, a step
- * longer than Newton's.  Where the bracket falls below 1/2 (far from the
- * root) the step is held at twice Newton's: overshooting the root is
- * harmless (Newton from the right lands left of it).  Right of it: Newton.
- *
- * dgammaN_root: the root y = x + dx of the evaluation *E, and p there:
- * p_i(x + dx) = p_i / (1 + t_i) with t_i = s_i dx / w_i = u_i dx / W.
- * |p| = rho to rounding then, so 1 / |p| is one Newton step of the inverse
- * square root from 1 / rho: no square root, no division.
- *
- * dgammaN_weights: what the tangent needs of the root y (oc_step.w,
- * inv_wmax): w_i = 1 + y s_i as w_i / max w, and 1 / max w. */
-#define OC_DGAMMA_SOLVE(N, T, M)                                                           \
-    typedef struct {                                                                       \
-        T a0, a1;       /* the trial's direction a_raw / n_tr */                           \
-        T rho, inv_rho; /* N / n_tr and its inverse */                                     \
-        T x;            /* the iterate y */                                                \
-        T it;           /* evaluations made */                                             \
-    } dgamma##N##_solve;                                                                   \
-    typedef struct {                                                                       \
-        T x, dx, W, g0, g1, u0, u1;                                                        \
-    } dgamma##N##_eval;                                                                    \
-                                                                                           \
-    static OC_ALWAYS_INLINE void dgamma##N##_start(T ar0, T ar1, T sq, T n_tr, T N_,       \
-                                                   const double sh[2],                     \
-                                                   dgamma##N##_solve *S) {                 \
-        const T A0 = ar0 * ar0, A1 = ar1 * ar1;                                            \
-        const double s0 = sh[0], s1 = sh[1];                                               \
-        const T R1 = A0 * s0 + A1 * s1;                                                    \
-        const T inv_sq = 1.0 / sq, inv_R1 = 1.0 / R1, inv_N = 1.0 / N_;                    \
-        const T inv_ntr = n_tr * inv_sq, rho = N_ * inv_ntr, inv_rho = n_tr * inv_N;       \
-        S->a0 = ar0 * inv_ntr;                                                             \
-        S->a1 = ar1 * inv_ntr;                                                             \
-        S->rho = rho;                                                                      \
-        S->inv_rho = inv_rho;                                                              \
-        const T M1 = R1 * inv_sq, M2 = (A0 * s0 * s0 + A1 * s1 * s1) * inv_sq;             \
-        const T M3 = (A0 * s0 * s0 * s0 + A1 * s1 * s1 * s1) * inv_sq;                     \
-        const T inv_M1 = sq * inv_R1;                                                      \
-        const T h = (1.0 - rho) * inv_rho * inv_M1;                                        \
-        const T A2 = 1.5 * (M1 * M1 - M2) * inv_M1;                                        \
-        const T A3 =                                                                       \
-            (15.0 * M1 * M1 * M1 - 27.0 * M1 * M2 + 12.0 * M3) * inv_M1 * (1.0 / 6.0);     \
-        const T x = h * (1.0 - A2 * h + (2.0 * A2 * A2 - A3) * h * h);                     \
-        S->x = lane##N##_sel_usual((M)(x < 4.0 * h),                                       \
-                                   lane##N##_sel_usual((M)(x > 0.0), x, h), h);            \
-        S->it = lane##N##_splat(0.0);                                                      \
-    }                                                                                      \
-                                                                                           \
-    static OC_ALWAYS_INLINE M dgamma##N##_step(dgamma##N##_solve *S, const double sh[2],   \
-                                               dgamma##N##_eval *E) {                      \
-        const T x = S->x, rho = S->rho, inv_rho = S->inv_rho;                              \
-        const T w0x = 1.0 + x * sh[0], w1x = 1.0 + x * sh[1], W = w0x * w1x;               \
-        const T g0 = S->a0 * w1x, g1 = S->a1 * w0x;                                        \
-        const T G0 = g0 * g0, G1 = g1 * g1, m2 = G0 + G1, m = lane##N##_sqrt(m2);          \
-        const T res = m - rho * W;                                                         \
-        const T u0 = sh[0] * w1x, u1 = sh[1] * w0x;                                        \
-        const M far = (M)(lane##N##_abs(res) > 2 * DBL_EPSILON * rho * W);                 \
-        const M more = (M)(S->it < 100.0);                                                 \
-        const M left = (M)(res > 0.0);                                                     \
-        const T C = G0 * u0 + G1 * u1;                                                     \
-        const T D2 = G0 * u0 * u0 + G1 * u1 * u1, nC2 = rho * W * C * C;                   \
-        const T num = lane##N##_sel(left, res * m2 * W * C, res * m2 * inv_rho);           \
-        const T den = lane##N##_sel(                                                       \
-            left, lane##N##_max(nC2 - 1.5 * res * (m2 * D2 - C * C), 0.5 * nC2), C);       \
-        const T zero = lane##N##_splat(0.0);                                               \
-        const T dx = lane##N##_sel(more, lane##N##_sel(far, num / den, zero), zero);       \
-        const M small = (M)(lane##N##_abs(dx) <= lane##N##_sel(left, 5e-6 * x, 1e-8 * x)); \
-        E->x = x;                                                                          \
-        E->dx = dx;                                                                        \
-        E->W = W;                                                                          \
-        E->g0 = g0;                                                                        \
-        E->g1 = g1;                                                                        \
-        E->u0 = u0;                                                                        \
-        E->u1 = u1;                                                                        \
-        S->x = lane##N##_max(x + dx, zero);                                                \
-        S->it = S->it + 1.0;                                                               \
-        return lane##N##_not(far & more) | small;                                          \
-    }                                                                                      \
-                                                                                           \
-    static OC_ALWAYS_INLINE void dgamma##N##_root(const dgamma##N##_solve *S,              \
-                                                  const dgamma##N##_eval *E, T *p0, T *p1, \
-                                                  T *inv_norm, T *root) {                  \
-        const T invW = 1.0 / E->W, inv_rho = S->inv_rho;                                   \
-        const T t0 = E->u0 * E->dx * invW, t1 = E->u1 * E->dx * invW;                      \
-        *p0 = E->g0 * invW * (1.0 - t0 + t0 * t0);                                         \
-        *p1 = E->g1 * invW * (1.0 - t1 + t1 * t1);                                         \
-        const T pp = *p0 * *p0 + *p1 * *p1;                                                \
-        *inv_norm = inv_rho * (1.5 - 0.5 * pp * inv_rho * inv_rho);                        \
-        *root = E->x + E->dx;                                                              \
-    }                                                                                      \
-                                                                                           \
-    static OC_ALWAYS_INLINE void dgamma##N##_weights(T y, const double sh[2], T *w0, T *w1, \
-                                                     T *inv_wmax) {                        \
-        const T v0 = 1.0 + y * sh[0], v1 = 1.0 + y * sh[1], wmax = lane##N##_max(v0, v1);  \
-        *w0 = v0 / wmax;                                                                   \
-        *w1 = v1 / wmax;                                                                   \
-        *inv_wmax = 1.0 / wmax;                                                            \
-    }
-
-OC_DGAMMA_SOLVE(1, double, int)
+/* The slip solve (law/slip_solve.h: what it solves and how), over the lanes
+ * of law/lanes.h: for one cell (dgamma1_*, oc_law_step's) and, where the
+ * batch's cells go two to a vector, for two (dgamma2_*).  Its second
+ * inclusion also gives the batch's lanes (slip_lanes), which solve and
+ * finish the slipping cells of section 5b: */
+typedef struct {
+    const oc_unfinished *r;
+    double n_tr, sc; /* the trial's norm and its power-of-two scale */
+} slip_cell;
+static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *c, double y,
+                                              const double p[2], double inv_np, double w0,
+                                              double w1, double inv_wmax);
+#define OC_SLIP_LANES 1
+#include "law/slip_solve.h"
 #ifdef OC_VECTOR_LANES
-OC_DGAMMA_SOLVE(2, v2d, v2m)
+#define OC_SLIP_LANES 2
+#include "law/slip_solve.h"
 #endif
 
 /* One cell's solve (dgamma1_*, section 3's opening comment): y, and p (and
@@ -539,6 +250,34 @@ static double solve_dgamma_far(const double a[2], const double sh[2], double rho
     return v;
 }
 
+/* The fast solve's gate, once: it needs W <= kappa / rho^2 < 1e40 at the
+ * root (law/slip_solve.h), which the law's part (fast_law, the same for
+ * every cell) and the trial's part (fast_trial: not far outside the yield
+ * surface, and of normal size to scale) guarantee.  Otherwise the far
+ * solve. */
+static OC_ALWAYS_INLINE int fast_law(const oc_law *L) { return L->kappa <= 1e20; }
+static OC_ALWAYS_INLINE int fast_trial(double n_tr, double N) {
+    return (n_tr <= 1e10 * N) & (n_tr >= DBL_MIN); /* one branch, not two */
+}
+
+/* The fast solve's slip from its root, once (a cell of oc_law_step and a
+ * lane of the batch): from y = dgamma sigma_ref, p and 1 / |p|, and the
+ * weights w_i / max w, 1 / max w (w_i = 1 + y sig_hat_i), the scale that
+ * puts p on the yield surface, yp = y a as the energy needs it (a = p
+ * scale), and what the tangent needs (oc_step.dgamma, w, inv_wmax). */
+static OC_ALWAYS_INLINE void slip_of_root(const oc_law *L, double y, const double p[2],
+                                          double inv_np, double N, double w0, double w1,
+                                          double inv_wmax, double *scale, double yp[2],
+                                          oc_step *out) {
+    out->w[0] = w0;
+    out->w[1] = w1;
+    out->inv_wmax = inv_wmax;
+    *scale = N * inv_np;
+    yp[0] = y * (p[0] * *scale);
+    yp[1] = y * (p[1] * *scale);
+    out->dgamma = y * L->inv_sigma_ref;
+}
+
 /* The return map of the implicit rules (associated, coupled): the slipped
  * force a = a_tr / (1 + dgamma sigma) on the yield surface |a| = N, as the
  * direction p and the radial scale with a = p scale; yp = y a as the
@@ -548,23 +287,19 @@ static double solve_dgamma_far(const double a[2], const double sh[2], double rho
 static OC_ALWAYS_INLINE void return_map_implicit(const oc_law *L, const double a[2], double sq,
                                                  double n_tr, double N, double p[2],
                                                  double *scale_out, double yp[2], oc_step *out) {
-    /* The fast solve needs W <= kappa / rho^2 < 1e40.  It runs on the
-     * trial scaled by the power of two that brings |a| to [1, 2): the
-     * same numbers in any units, down to which squares of a small
-     * component underflow (scaled only where |a|^2 left a range, the
-     * units decided whether a_i^2 was subnormal). */
+    /* The fast solve runs on the trial scaled by the power of two that
+     * brings |a| to [1, 2): the same numbers in any units, down to which
+     * squares of a small component underflow (scaled only where |a|^2 left
+     * a range, the units decided whether a_i^2 was subnormal). */
     double inv_np, scale;
-    if (L->kappa <= 1e20 && n_tr <= 1e10 * N && n_tr >= DBL_MIN) {
+    if (fast_law(L) && fast_trial(n_tr, N)) {
         const double sc = trial_scale(sq, n_tr);
         const double as[2] = {a[0] * sc, a[1] * sc};
         const double y = solve_dgamma(as, as[0] * as[0] + as[1] * as[1], n_tr * sc, N * sc,
                                       L->sig_hat, p, &inv_np);
-        dgamma1_weights(y, L->sig_hat, &out->w[0], &out->w[1], &out->inv_wmax);
-        scale = N * inv_np;
-        /* y a_i with a = p scale, as the energy needs it */
-        yp[0] = y * (p[0] * scale);
-        yp[1] = y * (p[1] * scale);
-        out->dgamma = y * L->inv_sigma_ref;
+        double w0, w1, inv_wmax;
+        dgamma1_weights(y, L->sig_hat, &w0, &w1, &inv_wmax);
+        slip_of_root(L, y, p, inv_np, N, w0, w1, inv_wmax, &scale, yp, out);
     } else {
         const double an[2] = {a[0] / n_tr, a[1] / n_tr}, rho = N / n_tr;
         const double v = solve_dgamma_far(an, L->sig_hat, rho, p, &inv_np);
@@ -636,8 +371,9 @@ static OC_ALWAYS_INLINE double dissipation_eq20(const oc_law *L, const double a[
 
 /* ==== 5. One step: trial, stick test, return map, commit ==== */
 
-/* Open, the trial and stick: oc_step_open, oc_trial, oc_step_stick
- * (contact_law.h), inline there for oc_law_step_quick. */
+/* Open, the trial, the stick test and the stick step: oc_step_open,
+ * oc_trial, oc_sticks_surely and oc_sticks_by_root, oc_step_stick
+ * (contact_law.h), inline there for oc_law_step_begin. */
 
 /* The slipped force in yield coordinates, p scale, inside the stick test:
  * near the subnormal range it is rounded to a multiple of 2^-1074, which can
@@ -700,23 +436,11 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
     double a[2];
     oc_trial(L, start, u, a);
 
-    /* The stick test |a_tr| <= N, i.e. Phi(q_tr, N) <= 0.  A committed force
-     * lies on or inside the yield surface to a few rounding errors of N;
-     * such a trial sticks, so held inputs stick: n_tr <= lim.  Most steps
-     * stick well inside, which the squares tell without the square root:
-     * sq <= lim^2 exactly implies sqrt(sq) <= lim after rounding, and the
-     * factor (1 - 4 eps) covers the two roundings of lim2c, which is normal
-     * wherever sq >= 2^-900 passes.  Within it the decision is the square
-     * root's, bit for bit (sq is what norm2 takes the root of in this
-     * range), and is taken by it everywhere else.  (Written out here, not
-     * as a function of its own: so gcc keeps the trial in registers on the
-     * way to a stick.) */
-    const double lim = N * (1.0 + 8 * DBL_EPSILON);
+    /* The stick test (contact_law.h): the squares', else the root's. */
     const double sq = a[0] * a[0] + a[1] * a[1];
-    const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
-    const int surely_inside = sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000;
-    const double n_tr = surely_inside ? 0.0 : norm2(a[0], a[1]);
-    if (surely_inside || n_tr <= lim) {
+    const int surely = oc_sticks_surely(sq, N);
+    const double n_tr = surely ? 0.0 : norm2(a[0], a[1]);
+    if (surely || oc_sticks_by_root(n_tr, N)) {
         oc_step_stick(L, start, a, out);
         return;
     }
@@ -735,173 +459,59 @@ void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], d
 
 /* ==== 5b. Many steps with one law: the slipping cells' solves interleaved ==== */
 
-/* The implicit rules' slip from the trial a, given the solve's root y, p,
- * 1 / |p| and w_i / max w, 1 / max w (w_i = 1 + y sig_hat_i):
- * return_map_implicit's first branch after its solve, on_yield_surface and
- * step_slip, in their order. */
-static OC_ALWAYS_INLINE void slip_implicit_finish(const oc_law *L, const oc_state *start,
-                                                  const double u[2], const double a[2], double N,
-                                                  double y, const double p[2], double inv_np,
-                                                  double w0, double w1, double inv_wmax,
-                                                  oc_step *out) {
-    out->contact = OC_SLIP;
-    double yp[2], ap[2];
-    const double scale = N * inv_np;
-    yp[0] = y * (p[0] * scale);
-    yp[1] = y * (p[1] * scale);
-    out->dgamma = y * L->inv_sigma_ref;
-    out->w[0] = w0;
-    out->w[1] = w1;
-    out->inv_wmax = inv_wmax;
-    on_yield_surface(p, scale, N, ap);
-    step_slip(L, start, u, a, ap, yp, out);
-}
-
-/* A slipping cell of oc_law_step_rest: its trial's norm and scale. */
-typedef struct {
-    const oc_rest *r;
-    double n_tr, sc;
-} slip_cell;
-
-/* The cell's step once its solve gave y, p and 1 / |p|. */
+/* A slipping cell of the batch once its lane of the solve gave y, p, 1 / |p|
+ * and the weights: the slip as oc_law_step's implicit rule finishes it. */
 static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *c, double y,
                                               const double p[2], double inv_np, double w0,
                                               double w1, double inv_wmax) {
     oc_step *o = c->r->out;
-    const double uk[2] = {o->next.u[0], o->next.u[1]};
-    slip_implicit_finish(L, c->r->start, uk, c->r->a, o->next.N, y, p, inv_np, w0, w1, inv_wmax,
-                         o);
+    const double uk[2] = {o->next.u[0], o->next.u[1]}, N = o->next.N;
+    double scale, yp[2], ap[2];
+    o->contact = OC_SLIP;
+    slip_of_root(L, y, p, inv_np, N, w0, w1, inv_wmax, &scale, yp, o);
+    on_yield_surface(p, scale, N, ap);
+    step_slip(L, c->r->start, uk, c->r->a, ap, yp, o);
 }
 
-#ifdef OC_VECTOR_LANES
-/* Two cells in the two lanes of a vector (dgamma2_*): one vector division
- * serves two cells, and the divisions are what the slip's time goes to (the
- * square roots stay one a lane: sqrt may set errno).  A lane done goes on
- * being evaluated (harmlessly: nothing traps) until the other is; its
- * results are those of the evaluation that ended it. */
-typedef struct {
-    dgamma2_solve s;
-    int done[2];
-    double p0[2], p1[2], inv_norm[2], root[2]; /* a lane's, once done */
-} dgamma_pair;
-
-/* One evaluation of both lanes: 1 when both are done. */
-static OC_ALWAYS_INLINE int dgamma_pair_step(dgamma_pair *S, const double sh[2]) {
-    dgamma2_eval E;
-    const v2m end = dgamma2_step(&S->s, sh, &E);
-    v2d p0, p1, inv_norm, root;
-    dgamma2_root(&S->s, &E, &p0, &p1, &inv_norm, &root);
-    for (int l = 0; l < 2; ++l)
-        if (!S->done[l] && end[l]) {
-            S->done[l] = 1;
-            S->p0[l] = p0[l];
-            S->p1[l] = p1[l];
-            S->inv_norm[l] = inv_norm[l];
-            S->root[l] = root[l];
-        }
-    return S->done[0] && S->done[1];
-}
-
-/* Solves and finishes n <= OC_LANES slipping cells, two a vector, the
- * vectors' evaluations in turn (independent chains of square roots and
- * divisions, which the processor overlaps).  An odd cell out fills both
- * lanes of its vector. */
-static void slip_lanes(const oc_law *L, const slip_cell c[], int n) {
-    enum { PAIRS = (OC_LANES + 1) / 2 };
-    const int pairs = (n + 1) / 2;
-    dgamma_pair S[PAIRS];
-    for (int v = 0; v < pairs; ++v) {
-        const slip_cell *c0 = &c[2 * v], *c1 = 2 * v + 1 < n ? &c[2 * v + 1] : c0;
-        const v2d sc = {c0->sc, c1->sc};
-        const v2d ar0 = (v2d){c0->r->a[0], c1->r->a[0]} * sc;
-        const v2d ar1 = (v2d){c0->r->a[1], c1->r->a[1]} * sc;
-        const v2d n_tr = (v2d){c0->n_tr, c1->n_tr} * sc;
-        const v2d N = (v2d){c0->r->out->next.N, c1->r->out->next.N} * sc;
-        dgamma2_start(ar0, ar1, ar0 * ar0 + ar1 * ar1, n_tr, N, L->sig_hat, &S[v].s);
-        S[v].done[0] = S[v].done[1] = 0;
-    }
-    for (int left = pairs; left > 0;)
-        for (int v = 0; v < pairs; ++v)
-            if (!(S[v].done[0] && S[v].done[1]) && dgamma_pair_step(&S[v], L->sig_hat)) --left;
-    for (int v = 0; v < pairs; ++v) {
-        const v2d y = {S[v].root[0], S[v].root[1]};
-        v2d w0, w1, inv_wmax;
-        dgamma2_weights(y, L->sig_hat, &w0, &w1, &inv_wmax);
-        for (int l = 0; l < 2 && 2 * v + l < n; ++l) {
-            const double p[2] = {S[v].p0[l], S[v].p1[l]};
-            slip_cell_finish(L, &c[2 * v + l], y[l], p, S[v].inv_norm[l], w0[l], w1[l],
-                             inv_wmax[l]);
-        }
-    }
-}
-#else
-/* Without vector extensions: the lanes as scalars, the functions of
- * oc_law_step's own solve (dgamma1_*), evaluations in turn. */
-static void slip_lanes(const oc_law *L, const slip_cell c[], int n) {
-    dgamma1_solve S[OC_LANES];
-    double p[OC_LANES][2], inv_np[OC_LANES], y[OC_LANES];
-    int done[OC_LANES];
-    for (int l = 0; l < n; ++l) {
-        const double as0 = c[l].r->a[0] * c[l].sc, as1 = c[l].r->a[1] * c[l].sc;
-        dgamma1_start(as0, as1, as0 * as0 + as1 * as1, c[l].n_tr * c[l].sc,
-                      c[l].r->out->next.N * c[l].sc, L->sig_hat, &S[l]);
-        done[l] = 0;
-    }
-    for (int left = n; left > 0;)
-        for (int l = 0; l < n; ++l) {
-            dgamma1_eval E;
-            if (!done[l] && dgamma1_step(&S[l], L->sig_hat, &E)) {
-                dgamma1_root(&S[l], &E, &p[l][0], &p[l][1], &inv_np[l], &y[l]);
-                done[l] = 1;
-                --left;
-            }
-        }
-    for (int l = 0; l < n; ++l) {
-        double w0, w1, inv_wmax;
-        dgamma1_weights(y[l], L->sig_hat, &w0, &w1, &inv_wmax);
-        slip_cell_finish(L, &c[l], y[l], p[l], inv_np[l], w0, w1, inv_wmax);
-    }
-}
-#endif
-
-void oc_law_step_rest(const oc_law *L, const oc_rest rest[], int n) {
-    /* 1: what oc_law_step does after its first stick test: a trial whose
+void oc_law_step_finish(const oc_law *L, const oc_unfinished pending[], int n) {
+    /* 1: what oc_law_step does after the squares' stick test: a trial whose
      * square is normal sticks by its square root; a cell that slips by an
      * implicit rule where oc_law_step takes its fast solve waits for 2; any
-     * other is oc_law_step's own.  A larger n goes in chunks: the cells are
+     * other is oc_law_step's own.  The law's part of the gate is the same
+     * for every cell.  A larger n goes in chunks: the cells are
      * independent, and slip[] holds OC_BATCH_MAX. */
-    for (; n > OC_BATCH_MAX; n -= OC_BATCH_MAX, rest += OC_BATCH_MAX)
-        oc_law_step_rest(L, rest, OC_BATCH_MAX);
+    for (; n > OC_BATCH_MAX; n -= OC_BATCH_MAX, pending += OC_BATCH_MAX)
+        oc_law_step_finish(L, pending, OC_BATCH_MAX);
     slip_cell slip[OC_BATCH_MAX];
     int n_slip = 0;
-    const int fast = L->p.rule != OC_RULE_EQ20 && L->kappa <= 1e20;
+    const int fast = L->p.rule != OC_RULE_EQ20 && fast_law(L);
     for (int k = 0; k < n; ++k) {
-        oc_step *o = rest[k].out;
-        const oc_state *start = rest[k].start;
-        const double *a = rest[k].a, Nk = o->next.N;
-        const double lim = Nk * (1.0 + 8 * DBL_EPSILON);
+        oc_step *o = pending[k].out;
+        const oc_state *start = pending[k].start;
+        const double *a = pending[k].a, Nk = o->next.N;
         const double sq = a[0] * a[0] + a[1] * a[1];
         const int normal = sq >= 0x1p-900 && sq <= 0x1p1000;
         const double n_tr = normal ? sqrt(sq) : 0.0; /* norm2's, sq being normal */
-        if (normal && n_tr <= lim) {
+        if (normal && oc_sticks_by_root(n_tr, Nk)) {
             oc_step_stick(L, start, a, o);
             continue;
         }
-        if (!normal || !fast || !(n_tr <= 1e10 * Nk)) {
+        if (!normal || !fast || !fast_trial(n_tr, Nk)) {
             const double uk[2] = {o->next.u[0], o->next.u[1]};
             oc_law_step(L, start, uk, Nk, o);
             continue;
         }
         slip_cell *c = &slip[n_slip++];
-        c->r = &rest[k];
+        c->r = &pending[k];
         c->n_tr = n_tr;
         c->sc = pow2_root_inverse(sq); /* trial_scale's, sq being normal */
     }
-    /* 2: the slipping cells OC_LANES at a time. */
+    /* 2: the slipping cells OC_LANES at a time, in the batch's lanes
+     * (law/slip_solve.h's slip_lanes). */
     for (int first = 0; first < n_slip; first += OC_LANES) {
         const int lanes = n_slip - first < OC_LANES ? n_slip - first : OC_LANES;
         if (lanes == 1) { /* nothing to interleave: the cell's own step, in registers */
-            const oc_rest *r = slip[first].r;
+            const oc_unfinished *r = slip[first].r;
             const double uk[2] = {r->out->next.u[0], r->out->next.u[1]};
             oc_law_step(L, r->start, uk, r->out->next.N, r->out);
             break;
@@ -912,22 +522,22 @@ void oc_law_step_rest(const oc_law *L, const oc_rest rest[], int n) {
 
 void oc_law_step_batch(const oc_law *L, const oc_state *const start[], const double u[][2],
                        const double N[], oc_step out[], int n) {
-    for (; n > OC_BATCH_MAX; n -= OC_BATCH_MAX) { /* in chunks: rest[] holds OC_BATCH_MAX */
+    for (; n > OC_BATCH_MAX; n -= OC_BATCH_MAX) { /* in chunks: pending[] holds OC_BATCH_MAX */
         oc_law_step_batch(L, start, u, N, out, OC_BATCH_MAX);
         start += OC_BATCH_MAX, u += OC_BATCH_MAX, N += OC_BATCH_MAX, out += OC_BATCH_MAX;
     }
-    oc_rest rest[OC_BATCH_MAX];
-    int n_rest = 0;
+    oc_unfinished pending[OC_BATCH_MAX];
+    int n_pending = 0;
     for (int k = 0; k < n; ++k) {
         const double uk[2] = {u[k][0], u[k][1]};
-        oc_rest *r = &rest[n_rest];
-        if (!oc_law_step_quick(L, start[k], uk, N[k], &out[k], r->a)) {
+        oc_unfinished *r = &pending[n_pending];
+        if (!oc_law_step_begin(L, start[k], uk, N[k], &out[k], r->a)) {
             r->start = start[k];
             r->out = &out[k];
-            ++n_rest;
+            ++n_pending;
         }
     }
-    oc_law_step_rest(L, rest, n_rest);
+    oc_law_step_finish(L, pending, n_pending);
 }
 
 /* ==== 6. The consistent tangent ==== */

@@ -17,6 +17,8 @@
 #include <float.h>
 #include <math.h>
 
+#include "compiler.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -108,17 +110,10 @@ int oc_law_init(oc_law *law, const oc_params *p);
 void oc_law_step(const oc_law *law, const oc_state *start, const double u[2],
                  double N, oc_step *out);
 
-/* Inlined even where the compiler would make a call (the law's pieces of a
- * step, contact_law.c's and those below). */
-#if defined(__GNUC__) || defined(__clang__)
-#define OC_ALWAYS_INLINE __attribute__((always_inline)) inline
-#else
-#define OC_ALWAYS_INLINE inline
-#endif
-
 /* ---- oc_law_step's open and stick steps, inline: contact_law.c steps by
- * these, and a caller stepping many cells (the patch) runs them in its own
- * loop, cell by cell, leaving the rest to oc_law_step_rest. ---- */
+ * these, and a caller stepping many cells (the patch) begins each cell's
+ * step in its own loop (oc_law_step_begin) and leaves those that may slip
+ * to oc_law_step_finish. ---- */
 
 /* q = Minv a in its factored form (see oc_law.R): a rotation, then
  * G = Q(beta) diag(mu), whose entries never mix mu1 with mu2. */
@@ -163,12 +158,31 @@ static OC_ALWAYS_INLINE void oc_step_stick(const oc_law *L, const oc_state *star
     out->next.energy = start->energy;
 }
 
+/* The stick test |a_tr| <= N, i.e. Phi(q_tr, N) <= 0, in two parts.  A
+ * committed force lies on or inside the yield surface to a few rounding
+ * errors of N; such a trial sticks, so held inputs stick: |a_tr| <= lim =
+ * N (1 + 8 eps).  Most steps stick well inside, which the squares tell
+ * without the square root (oc_sticks_surely): sq = |a_tr|^2 <= lim^2
+ * exactly implies sqrt(sq) <= lim after rounding, and the factor (1 - 4
+ * eps) covers the two roundings of lim2c, which is normal wherever sq >=
+ * 2^-900 passes.  Within it the decision is the square root's, bit for bit
+ * (sq is what norm2 takes the root of in this range), and is taken by it
+ * everywhere else (oc_sticks_by_root, n_tr = |a_tr|). */
+static OC_ALWAYS_INLINE double oc_stick_limit(double N) { return N * (1.0 + 8 * DBL_EPSILON); }
+static OC_ALWAYS_INLINE int oc_sticks_surely(double sq, double N) {
+    const double lim = oc_stick_limit(N);
+    const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
+    return sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000;
+}
+static OC_ALWAYS_INLINE int oc_sticks_by_root(double n_tr, double N) {
+    return n_tr <= oc_stick_limit(N);
+}
+
 /* The first part of oc_law_step: the inputs into out->next, then an open
- * step, or a trial whose square puts it surely inside the yield surface (the
- * first stick test of oc_law_step, contact_law.c): out is then
+ * step, or a trial whose squares say it sticks: out is then
  * oc_law_step(law, start, u, N) bit for bit, and 1 is returned.  Otherwise
- * 0, with the trial in a: oc_law_step_rest finishes the step. */
-static OC_ALWAYS_INLINE int oc_law_step_quick(const oc_law *L, const oc_state *start,
+ * 0, with the trial in a: oc_law_step_finish finishes the step. */
+static OC_ALWAYS_INLINE int oc_law_step_begin(const oc_law *L, const oc_state *start,
                                               const double u[2], double N, oc_step *out,
                                               double a[2]) {
     out->next.u[0] = u[0];
@@ -179,37 +193,36 @@ static OC_ALWAYS_INLINE int oc_law_step_quick(const oc_law *L, const oc_state *s
         return 1;
     }
     oc_trial(L, start, u, a);
-    const double lim = N * (1.0 + 8 * DBL_EPSILON);
-    const double sq = a[0] * a[0] + a[1] * a[1];
-    const double lim2c = (lim * lim) * (1.0 - 4 * DBL_EPSILON);
-    if (sq <= lim2c && sq >= 0x1p-900 && sq <= 0x1p1000) {
+    if (oc_sticks_surely(a[0] * a[0] + a[1] * a[1], N)) {
         oc_step_stick(L, start, a, out);
         return 1;
     }
     return 0;
 }
 
-/* A step that oc_law_step_quick left: its start, its result (whose next.u
- * and next.N hold the inputs, as quick wrote them) and the trial. */
+/* A step that oc_law_step_begin left unfinished: its start, its result
+ * (whose next.u and next.N hold the inputs, as begin wrote them) and the
+ * trial. */
 typedef struct {
     const oc_state *start;
     oc_step *out;
     double a[2];
-} oc_rest;
+} oc_unfinished;
 
-/* Finishes n steps that oc_law_step_quick left (in chunks of OC_BATCH_MAX): each
- * rest[k].out is then, bit for bit, what oc_law_step gives.  The cells that
- * slip by an implicit rule are stepped OC_LANES at a time, their solves'
- * evaluations interleaved and their divisions paired (the cells share the
- * law's tensors and slip eigenbasis); the others as oc_law_step steps them.
- * No out may overlap a start. */
+/* Finishes n steps that oc_law_step_begin left (in chunks of OC_BATCH_MAX):
+ * each pending[k].out is then, bit for bit, what oc_law_step gives: a stick
+ * by the square root or a slip.  The cells that slip by an implicit rule's
+ * fast solve are solved OC_LANES at a time, their evaluations interleaved
+ * and two cells a vector where the compiler has vectors (the cells share
+ * the law's tensors and slip eigenbasis); the others as oc_law_step steps
+ * them.  No out may overlap a start. */
 enum { OC_BATCH_MAX = 64, OC_LANES = 8 };
-void oc_law_step_rest(const oc_law *law, const oc_rest rest[], int n);
+void oc_law_step_finish(const oc_law *law, const oc_unfinished pending[], int n);
 
 /* n steps with one law (in chunks of OC_BATCH_MAX): out[k] is, bit for bit, what
- * oc_law_step(law, start[k], u[k], N[k], &out[k]) gives (oc_law_step_quick
- * on each, then oc_law_step_rest on those it left).  No out[k] may overlap a
- * start or an input. */
+ * oc_law_step(law, start[k], u[k], N[k], &out[k]) gives (oc_law_step_begin
+ * on each, then oc_law_step_finish on those it left).  No out[k] may overlap
+ * a start or an input. */
 void oc_law_step_batch(const oc_law *law, const oc_state *const start[], const double u[][2],
                        const double N[], oc_step out[], int n);
 

@@ -18,6 +18,8 @@
 
 #include <math.h>
 
+#include "compiler.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -151,10 +153,7 @@ int rig_advance(rig_runner *run, rig_observer observe, void *observer_ctx, doubl
  * (or inlines them) instead of through the pointers.  Always inlined: gcc
  * -O2 leaves it a call at a second call site, which then calls through the
  * pointers again (docs/benchmarks.md, the compiled master). */
-#if defined(__GNUC__) || defined(__clang__)
-__attribute__((always_inline))
-#endif
-static inline int rig_advance_on(rig_runner *s, const rig_contact contact, rig_observer observe,
+static OC_ALWAYS_INLINE int rig_advance_on(rig_runner *s, const rig_contact contact, rig_observer observe,
                                  void *observer_ctx, double *x1_failed) {
     const rig_contact *c = &contact;
     const double h = s->h, N = s->N, mu_s = s->mu_s;

@@ -249,9 +249,9 @@ static OC_ALWAYS_INLINE void add_cell(running_sums *R, const oc_step *st, double
     R->slipping += st->contact == OC_SLIP;
 }
 
-/* add_cell for an open or stick step of oc_law_step_quick, whose next.a is
+/* add_cell for an open or stick step of oc_law_step_begin, whose next.a is
  * 0 or the trial, finite (its square passed as normal). */
-static OC_ALWAYS_INLINE void add_quick(running_sums *R, const oc_step *st, double Rr0,
+static OC_ALWAYS_INLINE void add_begun(running_sums *R, const oc_step *st, double Rr0,
                                        double Rr1) {
     const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
     R->T0 += t0;
@@ -262,8 +262,8 @@ static OC_ALWAYS_INLINE void add_quick(running_sums *R, const oc_step *st, doubl
     R->pressed += st->contact != OC_OPEN;
 }
 
-/* What oc_law_step_quick writes of a step (all of an open or stick step). */
-static OC_ALWAYS_INLINE void put_quick(oc_step *to, const oc_step *from) {
+/* What oc_law_step_begin writes of a step (all of an open or stick step). */
+static OC_ALWAYS_INLINE void put_begun(oc_step *to, const oc_step *from) {
     to->q[0] = from->q[0];
     to->q[1] = from->q[1];
     to->next = from->next;
@@ -278,8 +278,8 @@ static OC_ALWAYS_INLINE void put_quick(oc_step *to, const oc_step *from) {
  * formed once a step (n1 + n2 divisions, not two a cell and an integer
  * division), a committed state is read where it lies, not copied, and each
  * cell's kinematics go straight into the law's open and stick steps
- * (oc_law_step_quick) and its result into the sums; the cells those leave
- * are finished OC_BATCH_MAX at a time by oc_law_step_rest (the slipping
+ * (oc_law_step_begin) and its result into the sums; the cells those leave
+ * are finished OC_BATCH_MAX at a time by oc_law_step_finish (the slipping
  * ones' solves interleaved, each the cell's own step bit for bit), and
  * summed after.  Whether every number is finite is read off the sums once
  * a step; only a step that fails looks for its first non-finite cell.
@@ -331,14 +331,14 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
         add_cell(&R, &out[0], r0[0], r1[0]);
     } else {
         oc_state local[OC_BATCH_MAX];
-        oc_rest rest[OC_BATCH_MAX];
+        oc_unfinished pending[OC_BATCH_MAX];
         /* The law's tensors in a copy of its own that no store to out[] can
          * reach: the compiler keeps them in registers across the cells. */
         const oc_law lq = *law;
-        double Rr[OC_BATCH_MAX][2]; /* the moment arms of the cells summed after the rest */
+        double Rr[OC_BATCH_MAX][2]; /* the moment arms of the cells summed after the finish */
         for (int first = 0, i = 0, j = 0; first < n; first += OC_BATCH_MAX) {
             const int count = n - first < OC_BATCH_MAX ? n - first : OC_BATCH_MAX;
-            int n_rest = 0, wait = count; /* the cells from `wait` on are summed after the rest */
+            int n_pending = 0, wait = count; /* the cells from `wait` on are summed after the finish */
             for (int k = 0; k < count; ++k) {
                 const int c = first + k;
                 double d[2] = {u0, u1}, rr[2] = {r0[i], r1[j]};
@@ -366,10 +366,10 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
                  * for the sums: read back from out[c], just stored field by field,
                  * loads would wait on the stores */
                 oc_step st;
-                oc_rest *r = &rest[n_rest];
-                if (oc_law_step_quick(&lq, start, d, Nc, &st, r->a)) {
-                    put_quick(&out[c], &st);
-                    if (k < wait) add_quick(&R, &st, rr[0], rr[1]);
+                oc_unfinished *r = &pending[n_pending];
+                if (oc_law_step_begin(&lq, start, d, Nc, &st, r->a)) {
+                    put_begun(&out[c], &st);
+                    if (k < wait) add_begun(&R, &st, rr[0], rr[1]);
                     else Rr[k][0] = rr[0], Rr[k][1] = rr[1];
                     continue;
                 }
@@ -378,13 +378,13 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
                 out[c].next.N = st.next.N;
                 r->start = start;
                 r->out = &out[c];
-                ++n_rest;
+                ++n_pending;
                 if (k < wait) wait = k;
                 Rr[k][0] = rr[0];
                 Rr[k][1] = rr[1];
             }
-            if (n_rest == 0) continue;
-            oc_law_step_rest(law, rest, n_rest);
+            if (n_pending == 0) continue;
+            oc_law_step_finish(law, pending, n_pending);
             for (int k = wait; k < count; ++k) add_cell(&R, &out[first + k], Rr[k][0], Rr[k][1]);
         }
     }

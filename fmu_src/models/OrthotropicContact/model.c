@@ -53,7 +53,7 @@ static const oc_state *committed(const oc_model *m) {
 static inline double fresh(const double *p) { return *(const volatile double *)p; }
 
 /* Shows steps[shown]: its outputs into their slots. */
-static FMU_HOT void show(oc_model *m) {
+static OC_HOT void show(oc_model *m) {
     const oc_step *st = &m->steps[m->shown];
     /* 0.0 - q rather than -q: an open contact reads +0.0, not -0.0 */
     m->T[0] = 0.0 - fresh(&st->q[0]);
@@ -73,7 +73,7 @@ static oc_state initial_state(const oc_model *m) {
 /* Computes the pending step for the inputs in m from the committed state
  * `from` with `law` into m (which commits neither); or fails and changes
  * nothing. */
-static FMU_HOT fmu_status evaluate(oc_model *m, const oc_law *law, const oc_state *from, fmu_msg *msg) {
+static OC_HOT fmu_status evaluate(oc_model *m, const oc_law *law, const oc_state *from, fmu_msg *msg) {
     /* into the hidden step: `from` (which may be the shown step's state)
      * is read in place, no copy unless it moves */
     oc_step *st = &m->steps[m->shown ^ 1];
@@ -94,7 +94,7 @@ static FMU_HOT fmu_status evaluate(oc_model *m, const oc_law *law, const oc_stat
     return FMU_OK;
 }
 
-FMU_HOT fmu_status fmu_model_update(oc_model *m, int changed, int allow, fmu_msg *msg) {
+OC_HOT fmu_status fmu_model_update(oc_model *m, int changed, int allow, fmu_msg *msg) {
     /* Before the end of initialization the start follows the inputs or the
      * explicit slip; afterwards it is whatever was committed. */
     oc_state init;
@@ -124,14 +124,11 @@ static fmu_status exit_init(oc_model *m, fmu_msg *msg) {
 /* A further step with held inputs: rare (a master sets inputs before a
  * step), so kept out of doStep, whose every call would otherwise pay for
  * the registers the law needs. */
-#if defined(__GNUC__) || defined(__clang__)
-__attribute__((noinline))
-#endif
-static fmu_status step_again(oc_model *m, fmu_msg *msg) {
+static OC_NOINLINE fmu_status step_again(oc_model *m, fmu_msg *msg) {
     return evaluate(m, &m->law, &m->steps[m->shown].next, msg);
 }
 
-FMU_HOT fmu_status fmu_model_do_step(oc_model *m, double h, fmu_msg *msg) {
+OC_HOT fmu_status fmu_model_do_step(oc_model *m, double h, fmu_msg *msg) {
     (void)h; /* rate-independent: the step size does not enter the law */
     if (m->result_committed && step_again(m, msg) != FMU_OK) return FMU_ERR;
     m->result_committed = 1;
