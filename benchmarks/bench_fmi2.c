@@ -4,14 +4,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "fmi2Functions.h"
 #include "bench_common.h"
+#include "fmi2Functions.h"
 #include "models/OrthotropicContact/table.h"
-
 
 static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                   fmi2String m, ...) {
-    (void)e; (void)n; (void)s; (void)c;
+    (void)e;
+    (void)n;
+    (void)s;
+    (void)c;
     fprintf(stderr, "%s\n", m);
 }
 
@@ -55,12 +57,14 @@ enum { N_RULES = 0 OC_SLIDING_RULE_ITEMS(RULE_COUNT) };
 
 int main(int argc, char **argv) {
     const long steps = argc > 1 ? atol(argv[1]) : 500000;
-    printf("# FMI 2.0, ns per step: fmi2SetReal(u1,u2,N) + fmi2DoStep + fmi2GetReal(T1,T2), %ld steps\n",
+    printf("# FMI 2.0, ns per step: fmi2SetReal(u1,u2,N) + fmi2DoStep + fmi2GetReal(T1,T2), %ld "
+           "steps\n",
            steps);
     printf("%-11s %10s %10s %8s\n", "rule", "stick_ns", "slip_ns", "ratio");
     for (int rule = 1; rule <= N_RULES; ++rule) {
         double stick = 1e30, slipv = 1e30;
-        for (int rep = 0; rep < 7; ++rep) { /* stick and slip interleaved; the least disturbed of 7 */
+        for (int rep = 0; rep < 7;
+             ++rep) { /* stick and slip interleaved; the least disturbed of 7 */
             const double a = run(rule, 0, steps), b = run(rule, 1, steps);
             if (a < stick) stick = a;
             if (b < slipv) slipv = b;

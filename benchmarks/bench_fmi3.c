@@ -4,19 +4,20 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "fmi3Functions.h"
 #include "bench_common.h"
+#include "fmi3Functions.h"
 #include "models/OrthotropicContact/table.h"
 
-
 static void quiet(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e; (void)s; (void)c;
+    (void)e;
+    (void)s;
+    (void)c;
     fprintf(stderr, "%s\n", m);
 }
 
 static double run(int rule, int slip, long steps) {
-    fmi3Instance c = fmi3InstantiateCoSimulation("bench", FMU_GUID, "", 0, 0, 0, 0, NULL, 0, NULL,
-                                                 quiet, NULL);
+    fmi3Instance c =
+        fmi3InstantiateCoSimulation("bench", FMU_GUID, "", 0, 0, 0, 0, NULL, 0, NULL, quiet, NULL);
     const fmi3ValueReference vr_rule = OC_VR_slidingRule;
     const fmi3Int64 r = rule;
     fmi3SetInt64(c, &vr_rule, 1, &r, 1);
@@ -55,11 +56,13 @@ enum { N_RULES = 0 OC_SLIDING_RULE_ITEMS(RULE_COUNT) };
 int main(int argc, char **argv) {
     const long steps = argc > 1 ? atol(argv[1]) : 500000;
     printf("# FMI 3.0, ns per step: fmi3SetFloat64(u1,u2,N) + fmi3DoStep + fmi3GetFloat64(T1,T2), "
-           "%ld steps\n", steps);
+           "%ld steps\n",
+           steps);
     printf("%-11s %10s %10s %8s\n", "rule", "stick_ns", "slip_ns", "ratio");
     for (int rule = 1; rule <= N_RULES; ++rule) {
         double stick = 1e30, slipv = 1e30;
-        for (int rep = 0; rep < 7; ++rep) { /* stick and slip interleaved; the least disturbed of 7 */
+        for (int rep = 0; rep < 7;
+             ++rep) { /* stick and slip interleaved; the least disturbed of 7 */
             const double a = run(rule, 0, steps), b = run(rule, 1, steps);
             if (a < stick) stick = a;
             if (b < slipv) slipv = b;

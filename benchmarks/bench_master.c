@@ -26,7 +26,10 @@ enum { ANGLES = 10, STEPS = 513, REPS = 20 }; /* ceil(0.5 m / (0.244 m/s 4 ms)) 
 
 static void logger(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                    fmi2String m, ...) {
-    (void)e; (void)n; (void)s; (void)c;
+    (void)e;
+    (void)n;
+    (void)s;
+    (void)c;
     fprintf(stderr, "FMU: %s\n", m);
 }
 
@@ -51,7 +54,8 @@ int main(int argc, char **argv) {
     long n_rows[ANGLES];
     for (int i = 0; i < ANGLES; ++i)
         if (rm_record(m, &p[i], &r[i], 1, &rows[i][0][0], STEPS + 1, &n_rows[i], &out[i], err,
-                      sizeof err) != 0 || n_rows[i] != STEPS)
+                      sizeof err) != 0 ||
+            n_rows[i] != STEPS)
             return fprintf(stderr, "record: %s (%ld rows)\n", err, n_rows[i]), 2;
 
     void *lib = dlopen(ours, RTLD_NOW | RTLD_LOCAL);
@@ -120,7 +124,8 @@ int main(int argc, char **argv) {
         hi = fmax(hi, rig_ns / contact_ns);
     }
     printf("# the compiled master on the aged mat's dynamic rig at 4 ms (uq), %d runs x %d steps "
-           "a round, least disturbed of %d rounds\n", REPS * ANGLES, STEPS, rounds);
+           "a round, least disturbed of %d rounds\n",
+           REPS * ANGLES, STEPS, rounds);
     printf("rig step (master + contact): %6.1f ns  (%.2f M rig steps/s)\n", best_rig,
            1e3 / best_rig);
     printf("contact step alone:          %6.1f ns  (%.2f M contact steps/s)\n", best_contact,

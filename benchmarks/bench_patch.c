@@ -41,8 +41,8 @@
 #include <string.h>
 
 #include "bench_common.h"
-#include "law/contact_law.h"
 #include "fmi2Functions.h"
+#include "law/contact_law.h"
 #include "models/ContactPatch/table.h"
 
 /* bench_patch_point.c: the point FMU's table */
@@ -71,7 +71,10 @@ typedef struct {
 
 static void logger(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                    fmi2String m, ...) {
-    (void)e; (void)n; (void)s; (void)c;
+    (void)e;
+    (void)n;
+    (void)s;
+    (void)c;
     fprintf(stderr, "FMU: %s\n", m);
 }
 static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
@@ -79,8 +82,9 @@ static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
 static int load(fmi2_api *a, const char *path) {
     a->lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
     if (!a->lib) return fprintf(stderr, "%s\n", dlerror()), -1;
-#define SYM(field, name, type) \
-    if (!(a->field = (type *)dlsym(a->lib, name))) return fprintf(stderr, "%s: no %s\n", path, name), -1;
+#define SYM(field, name, type)                                                                     \
+    if (!(a->field = (type *)dlsym(a->lib, name)))                                                 \
+        return fprintf(stderr, "%s: no %s\n", path, name), -1;
     SYM(inst, "fmi2Instantiate", fmi2InstantiateTYPE)
     SYM(free_inst, "fmi2FreeInstance", fmi2FreeInstanceTYPE)
     SYM(setup, "fmi2SetupExperiment", fmi2SetupExperimentTYPE)
@@ -303,7 +307,7 @@ int main(int argc, char **argv) {
     fmi2_api pa, pt;
     if (load(&pa, patch_path) || load(&pt, point_path)) return 2;
 
-    /* the patch's defaults: the table's start values */
+        /* the patch's defaults: the table's start values */
 #define START_OF(name, vr, type, caus, var, init, start, ...) [vr] = start,
     static const double START[PATCH_VR_COUNT_PLUS_ONE] = {PATCH_VARIABLES(START_OF, START_OF)};
 #undef START_OF
@@ -357,10 +361,11 @@ int main(int argc, char **argv) {
                 pts_hi[g][s] = fmax(pts_hi[g][s], rp);
             }
 
-    printf("# ContactPatch step (FMI 2.0: set u1 u2 theta N, doStep, get T1 T2 Mz) against n point\n"
-           "# FMU steps (set u1 u2 N, doStep, get T1 T2 each) and n linked-in oc_law_step calls;\n"
-           "# %ld cell steps a run, interleaved, least disturbed of %d rounds, thread CPU time\n",
-           cell_steps, rounds);
+    printf(
+        "# ContactPatch step (FMI 2.0: set u1 u2 theta N, doStep, get T1 T2 Mz) against n point\n"
+        "# FMU steps (set u1 u2 N, doStep, get T1 T2 each) and n linked-in oc_law_step calls;\n"
+        "# %ld cell steps a run, interleaved, least disturbed of %d rounds, thread CPU time\n",
+        cell_steps, rounds);
     printf("%5s %-5s %10s %9s %9s %17s %11s %17s %5s\n", "cells", "path", "patch_ns", "cell_ns",
            "law_ns", "cell/law [rounds]", "points_ns", "patch/points", "slip");
     for (int g = 0; g < N_GRIDS; ++g)

@@ -62,7 +62,8 @@ static bench_params params(int set, int rule) {
 
 /* Largest |a - b| / max(|a|, |b|) over the vectors of columns [c0, c0 + n)
  * of the rows, and whether the contact states agree. */
-static double worst(const double *a, const double *b, long rows, int c0, int n, int *states_differ) {
+static double worst(const double *a, const double *b, long rows, int c0, int n,
+                    int *states_differ) {
     double w = 0;
     for (long k = 0; k < rows; ++k) {
         const double *x = a + k * TRACE_COLUMNS, *y = b + k * TRACE_COLUMNS;
@@ -151,7 +152,8 @@ static void floor_of_calls(version *v, int nv, long steps, int rounds) {
 static void bench(version *v, int nv, long steps, int rounds) {
     printf("# ns per step through the FMI calls (set u1, u2, N + doStep + get T1, T2), %ld steps "
            "a run,\n# ours and the peer interleaved, least disturbed of %d rounds; ratio = ours / "
-           "peer [range over rounds]\n", steps, rounds);
+           "peer [range over rounds]\n",
+           steps, rounds);
     printf("%-8s %-11s %-5s %9s %9s %7s %15s %s\n", "FMI", "rule", "path", "ours_ns", "peer_ns",
            "ratio", "round ratios", "target");
     for (int i = 0; i < nv; ++i)
@@ -165,7 +167,8 @@ static void bench(version *v, int nv, long steps, int rounds) {
                     const double o = v[i].run(&v[i].ours, FMU_TOKEN, &bp, slip, steps, NULL);
                     const double p = v[i].run(&v[i].peer, FMU_TOKEN, &bp, slip, steps, NULL);
                     if (v[i].prev.lib) {
-                        const double q = v[i].run(&v[i].prev, FMU_TOKEN_PREV, &bp, slip, steps, NULL);
+                        const double q =
+                            v[i].run(&v[i].prev, FMU_TOKEN_PREV, &bp, slip, steps, NULL);
                         if (q < 0) failed = 1;
                         best[slip][2] = fmin(best[slip][2], q);
                     }
@@ -185,7 +188,10 @@ static void bench(version *v, int nv, long steps, int rounds) {
                 printf("%-8s %-11s %-5s %9.1f %9.1f %7.2f %7.2f-%-7.2f <= %.1f %-8s%s\n", v[i].name,
                        RULES[rule], slip ? "slip" : "stick", best[slip][0], best[slip][1], ratio,
                        lo[slip], hi[slip], target,
-                       failed ? "(a call failed)" : ratio <= target ? "met" : "NOT MET", prev);
+                       failed            ? "(a call failed)"
+                       : ratio <= target ? "met"
+                                         : "NOT MET",
+                       prev);
             }
         }
 }
@@ -195,12 +201,32 @@ int main(int argc, char **argv) {
     const int a0 = do_check ? 2 : 1;
     const long steps = argc > a0 ? atol(argv[a0]) : (do_check ? 20000 : 200000);
     const int rounds = argc > a0 + 1 ? atoi(argv[a0 + 1]) : 9;
-    version v[2] = {
-        {"FMI 2.0", bench2_open, bench2_run, OURS_FMI2, PEER_FMI2, NULL_FMI2, NULL, {0}, {0}, {0}, {0}},
-        {"FMI 3.0", bench3_open, bench3_run, OURS_FMI3, PEER_FMI3, NULL_FMI3, NULL, {0}, {0}, {0}, {0}}};
+    version v[2] = {{"FMI 2.0",
+                     bench2_open,
+                     bench2_run,
+                     OURS_FMI2,
+                     PEER_FMI2,
+                     NULL_FMI2,
+                     NULL,
+                     {0},
+                     {0},
+                     {0},
+                     {0}},
+                    {"FMI 3.0",
+                     bench3_open,
+                     bench3_run,
+                     OURS_FMI3,
+                     PEER_FMI3,
+                     NULL_FMI3,
+                     NULL,
+                     {0},
+                     {0},
+                     {0},
+                     {0}}};
     /* Other binaries of ours in their place (e.g. the cross-built ones a
      * wheel ships), and a previous release measured beside them. */
-    const char *env[2][2] = {{"BENCH_OURS_FMI2", "BENCH_PREV_FMI2"}, {"BENCH_OURS_FMI3", "BENCH_PREV_FMI3"}};
+    const char *env[2][2] = {{"BENCH_OURS_FMI2", "BENCH_PREV_FMI2"},
+                             {"BENCH_OURS_FMI3", "BENCH_PREV_FMI3"}};
     for (int i = 0; i < 2; ++i) {
         if (getenv(env[i][0])) v[i].ours_path = getenv(env[i][0]);
         v[i].prev_path = getenv(env[i][1]);

@@ -8,10 +8,16 @@
 #include "fmi2Functions.h"
 
 enum { INST, FREE, SETUP, ENTER, EXIT, SETR, GETR, SETI, GETI, STEP, NFN };
-static const char *const NAMES[NFN] = {"fmi2Instantiate", "fmi2FreeInstance", "fmi2SetupExperiment",
-                                       "fmi2EnterInitializationMode", "fmi2ExitInitializationMode",
-                                       "fmi2SetReal", "fmi2GetReal", "fmi2SetInteger",
-                                       "fmi2GetInteger", "fmi2DoStep"};
+static const char *const NAMES[NFN] = {"fmi2Instantiate",
+                                       "fmi2FreeInstance",
+                                       "fmi2SetupExperiment",
+                                       "fmi2EnterInitializationMode",
+                                       "fmi2ExitInitializationMode",
+                                       "fmi2SetReal",
+                                       "fmi2GetReal",
+                                       "fmi2SetInteger",
+                                       "fmi2GetInteger",
+                                       "fmi2DoStep"};
 
 int bench2_open(bench_fmu *f, const char *path) {
     if (!(f->lib = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
@@ -28,7 +34,10 @@ int bench2_open(bench_fmu *f, const char *path) {
 
 static void logger(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                    fmi2String m, ...) {
-    (void)e; (void)n; (void)s; (void)c;
+    (void)e;
+    (void)n;
+    (void)s;
+    (void)c;
     fprintf(stderr, "FMU: %s\n", m);
 }
 

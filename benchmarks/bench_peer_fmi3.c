@@ -8,10 +8,15 @@
 #include "fmi3Functions.h"
 
 enum { INST, FREE, ENTER, EXIT, SETF, GETF, SETI64, GETI32, STEP, NFN };
-static const char *const NAMES[NFN] = {"fmi3InstantiateCoSimulation", "fmi3FreeInstance",
-                                       "fmi3EnterInitializationMode", "fmi3ExitInitializationMode",
-                                       "fmi3SetFloat64", "fmi3GetFloat64", "fmi3SetInt64",
-                                       "fmi3GetInt32", "fmi3DoStep"};
+static const char *const NAMES[NFN] = {"fmi3InstantiateCoSimulation",
+                                       "fmi3FreeInstance",
+                                       "fmi3EnterInitializationMode",
+                                       "fmi3ExitInitializationMode",
+                                       "fmi3SetFloat64",
+                                       "fmi3GetFloat64",
+                                       "fmi3SetInt64",
+                                       "fmi3GetInt32",
+                                       "fmi3DoStep"};
 
 int bench3_open(bench_fmu *f, const char *path) {
     if (!(f->lib = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
@@ -27,7 +32,9 @@ int bench3_open(bench_fmu *f, const char *path) {
 }
 
 static void logger(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e; (void)s; (void)c;
+    (void)e;
+    (void)s;
+    (void)c;
     fprintf(stderr, "FMU: %s\n", m);
 }
 
@@ -37,7 +44,8 @@ double bench3_run(const bench_fmu *f, const char *token, const bench_params *bp,
     fmi3GetFloat64TYPE *get_f = (fmi3GetFloat64TYPE *)f->fn[GETF];
     fmi3DoStepTYPE *do_step = (fmi3DoStepTYPE *)f->fn[STEP];
     fmi3Instance c = ((fmi3InstantiateCoSimulationTYPE *)f->fn[INST])(
-        "bench", token, "", fmi3False, fmi3False, fmi3False, fmi3False, NULL, 0, NULL, logger, NULL);
+        "bench", token, "", fmi3False, fmi3False, fmi3False, fmi3False, NULL, 0, NULL, logger,
+        NULL);
     if (!c) return -1;
     const fmi3ValueReference vr_par[6] = {1, 2, 3, 4, 5, 6}, vr_rule = 7;
     const fmi3ValueReference in[3] = {8, 9, 10}, out[2] = {11, 12}, more[3] = {13, 14, 16};
@@ -46,7 +54,8 @@ double bench3_run(const bench_fmu *f, const char *token, const bench_params *bp,
     double result = 0;
     if (set_f(c, vr_par, 6, bp->p, 6) != fmi3OK ||
         ((fmi3SetInt64TYPE *)f->fn[SETI64])(c, &vr_rule, 1, &rule, 1) != fmi3OK ||
-        ((fmi3EnterInitializationModeTYPE *)f->fn[ENTER])(c, fmi3False, 0, 0, fmi3False, 0) != fmi3OK ||
+        ((fmi3EnterInitializationModeTYPE *)f->fn[ENTER])(c, fmi3False, 0, 0, fmi3False, 0) !=
+            fmi3OK ||
         ((fmi3ExitInitializationModeTYPE *)f->fn[EXIT])(c) != fmi3OK) {
         result = -1;
         goto done;

@@ -37,7 +37,6 @@ typedef struct {
     char last[512]; /* the FMU's last logged message */
 } rm_master;
 
-
 static void set_err(char *err, size_t n, const char *fmt, ...) {
     if (!err || n == 0) return;
     va_list ap;
@@ -48,7 +47,9 @@ static void set_err(char *err, size_t n, const char *fmt, ...) {
 
 static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                    fmi2String category, fmi2String message, ...) {
-    (void)name; (void)status; (void)category;
+    (void)name;
+    (void)status;
+    (void)category;
     rm_master *m = env;
     va_list ap;
     va_start(ap, message);
@@ -74,11 +75,11 @@ void *rm_open(const char *binary, const char *guid, const char *resources, char 
         rm_close(m);
         return NULL;
     }
-#define LOAD(field, name)                                                        \
-    if (!(m->field = (void *)dlsym(m->lib, name))) {                             \
-        set_err(err, n, "%s does not export %s", binary, name);                 \
-        rm_close(m);                                                             \
-        return NULL;                                                             \
+#define LOAD(field, name)                                                                          \
+    if (!(m->field = (void *)dlsym(m->lib, name))) {                                               \
+        set_err(err, n, "%s does not export %s", binary, name);                                    \
+        rm_close(m);                                                                               \
+        return NULL;                                                                               \
     }
     LOAD(instantiate, "fmi2Instantiate")
     LOAD(free_instance, "fmi2FreeInstance")
@@ -104,13 +105,13 @@ void *rm_open(const char *binary, const char *guid, const char *resources, char 
 int rm_layout(char *buf, size_t n) {
     size_t used = 0;
     int total = 0;
-#define RM_PUT(...)                                                                          \
-    do {                                                                                     \
-        const int k = snprintf(buf ? buf + used : NULL, buf && used < n ? n - used : 0,      \
-                               __VA_ARGS__);                                                 \
-        if (k < 0) return -1;                                                                \
-        total += k;                                                                          \
-        used = (size_t)total < n ? (size_t)total : n;                                        \
+#define RM_PUT(...)                                                                                \
+    do {                                                                                           \
+        const int k =                                                                              \
+            snprintf(buf ? buf + used : NULL, buf && used < n ? n - used : 0, __VA_ARGS__);        \
+        if (k < 0) return -1;                                                                      \
+        total += k;                                                                                \
+        used = (size_t)total < n ? (size_t)total : n;                                              \
     } while (0)
 #define RM_STRUCT(S) RM_PUT("struct %s %zu\n", #S, sizeof(S));
 #define RM_FIELD_OF(S) RM_FIELD_##S
@@ -118,9 +119,12 @@ int rm_layout(char *buf, size_t n) {
 #define RM_FIELD_rig_setup(type, name) RM_FIELD(rig_setup, type, name)
 #define RM_FIELD_rig_figures(type, name) RM_FIELD(rig_figures, type, name)
 #define RM_LAW_LAYOUT(name, ...) RM_FIELD(rm_contact, double, name)
+    /* a struct's line, then its fields' */
+    /* clang-format off */
     RM_STRUCT(rm_contact) OC_LAW_PARAMETERS(RM_LAW_LAYOUT) RM_FIELD(rm_contact, int, rule)
     RM_STRUCT(rig_setup) RIG_SETUP_FIELDS(RM_FIELD_rig_setup)
     RM_STRUCT(rig_figures) RIG_FIGURES_FIELDS(RM_FIELD_rig_figures)
+    /* clang-format on */
 #undef RM_PUT
 #undef RM_STRUCT
 #undef RM_FIELD_OF
@@ -128,7 +132,7 @@ int rm_layout(char *buf, size_t n) {
 #undef RM_LAW_LAYOUT
 #undef RM_FIELD_rig_setup
 #undef RM_FIELD_rig_figures
-    return total;
+                return total;
 }
 
 /* The contact FMU as rig_core's rig_contact. */
@@ -223,8 +227,10 @@ static void run_error(const fmu_contact *F, int st, const rig_setup *r, const re
         set_err(err, n, "lateral equilibrium not reached at x1 = %g m", x1_failed);
         break;
     case RIG_BAD_SETUP:
-        set_err(err, n, "travel %g m at %g m/s in steps of %g s is not a whole number of steps "
-                        "in [1, 2^53]", r->travel, r->velocity, r->step);
+        set_err(err, n,
+                "travel %g m at %g m/s in steps of %g s is not a whole number of steps "
+                "in [1, 2^53]",
+                r->travel, r->velocity, r->step);
         break;
     default:
         if (st == RIG_OBSERVER_FAILED && rec && rec->full)
@@ -250,7 +256,8 @@ typedef struct {
 
 /* Starts set i on lane L: the instance reset and initialized with the set's
  * parameters.  1, or 0 with err. */
-static int lane_start(lane *L, int i, const rm_contact *p, const rig_setup *r, char *err, size_t n) {
+static int lane_start(lane *L, int i, const rm_contact *p, const rig_setup *r, char *err,
+                      size_t n) {
     rm_master *m = L->F.m;
 #define LAW_VR(name, vr, ...) vr,
 #define LAW_VALUE(name, ...) p[i].name,
@@ -261,7 +268,8 @@ static int lane_start(lane *L, int i, const rm_contact *p, const rig_setup *r, c
 #undef LAW_VALUE
     const fmi2Integer rule = p[i].rule;
     fmi2Component c = L->F.c;
-    if ((L->used && m->reset(c) > fmi2Warning) || m->set_real(c, vr, sizeof vr / sizeof vr[0], v) > fmi2Warning ||
+    if ((L->used && m->reset(c) > fmi2Warning) ||
+        m->set_real(c, vr, sizeof vr / sizeof vr[0], v) > fmi2Warning ||
         m->set_integer(c, &vr_rule, 1, &rule) > fmi2Warning ||
         m->setup(c, fmi2False, 0.0, 0.0, fmi2False, 0.0) > fmi2Warning ||
         m->enter_init(c) > fmi2Warning || m->exit_init(c) > fmi2Warning) {
@@ -271,8 +279,8 @@ static int lane_start(lane *L, int i, const rm_contact *p, const rig_setup *r, c
     L->used = 1;
     L->F.time = 0.0;
     L->set = i;
-    const double scale = rig_lateral_scale(p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2,
-                                           r[i].mass * r[i].g);
+    const double scale =
+        rig_lateral_scale(p[i].mu1, p[i].mu2, p[i].eps1, p[i].eps2, r[i].mass * r[i].g);
     const int st = rig_start(&L->run, &r[i], &L->contact, scale);
     if (st != RIG_OK) {
         run_error(&L->F, st, &r[i], NULL, NAN, err, n);
@@ -291,8 +299,8 @@ static int run_sets(void *h, int count, const rm_contact *p, const rig_setup *r,
     int status = 0, next = 0, active = 0;
     for (int k = 0; k < lanes; ++k) {
         L[k] = (lane){{m, NULL, 0.0, NULL}, {0}, {0}, -1, 0};
-        L[k].contact = (rig_contact){&L[k].F, fc_set_inputs, fc_force, fc_force_du2, fc_save,
-                                     fc_restore, fc_commit};
+        L[k].contact = (rig_contact){&L[k].F, fc_set_inputs, fc_force, fc_force_du2,
+                                     fc_save, fc_restore,    fc_commit};
         L[k].F.c = m->instantiate("cmaster", fmi2CoSimulation, m->guid, m->resources, &cb,
                                   fmi2False, fmi2False);
         if (!L[k].F.c) {
@@ -310,9 +318,11 @@ static int run_sets(void *h, int count, const rm_contact *p, const rig_setup *r,
             double x1_failed = NAN;
             /* the contact's functions as constants (not a->contact, which
              * holds the same in memory): so they are called directly */
-            const int st = rig_advance_on(&a->run, (rig_contact){&a->F, fc_set_inputs, fc_force,
-                                            fc_force_du2, fc_save, fc_restore, fc_commit},
-                                          rec ? record_row : NULL, rec, &x1_failed);
+            const int st =
+                rig_advance_on(&a->run,
+                               (rig_contact){&a->F, fc_set_inputs, fc_force, fc_force_du2, fc_save,
+                                             fc_restore, fc_commit},
+                               rec ? record_row : NULL, rec, &x1_failed);
             if (st != RIG_OK) {
                 run_error(&a->F, st, &r[a->set], rec, x1_failed, err, n);
                 status = -1;
@@ -325,8 +335,10 @@ static int run_sets(void *h, int count, const rm_contact *p, const rig_setup *r,
             a->set = -1;
             active -= 1;
             if (next < count) {
-                if (!lane_start(a, next++, p, r, err, n)) status = -1;
-                else active += 1;
+                if (!lane_start(a, next++, p, r, err, n))
+                    status = -1;
+                else
+                    active += 1;
             }
         }
     }
@@ -338,8 +350,8 @@ static int run_sets(void *h, int count, const rm_contact *p, const rig_setup *r,
     return status;
 }
 
-int rm_run(void *h, int count, const rm_contact *p, const rig_setup *r, rig_figures *out,
-           char *err, size_t n) {
+int rm_run(void *h, int count, const rm_contact *p, const rig_setup *r, rig_figures *out, char *err,
+           size_t n) {
     return run_sets(h, count, p, r, out, NULL, err, n);
 }
 

@@ -42,8 +42,8 @@ void rm_close(void *h);
 
 /* Runs count (contact, rig) sets on one instance, reset between sets; the
  * figures of set i into out[i].  0, or -1 with err. */
-int rm_run(void *h, int count, const rm_contact *p, const rig_setup *r, rig_figures *out,
-           char *err, size_t n);
+int rm_run(void *h, int count, const rm_contact *p, const rig_setup *r, rig_figures *out, char *err,
+           size_t n);
 
 /* One run, recorded every `every` steps (and at the last) into rows
  * (capacity x RM_RECORD_COLUMNS, row-major: t, x1, x2, T1, T2, s1, s2,

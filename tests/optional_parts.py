@@ -15,6 +15,7 @@ conftest.py hands pytest the hooks below (pytest_addoption, ...), the
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -68,6 +69,16 @@ def _wine() -> str | None:
     return None if p.returncode == 0 else f"{path} --version exited {p.returncode}"
 
 
+def _clang_format() -> str | None:
+    """clang-format 14 or newer (the style's keys: .clang-format)."""
+    path = shutil.which("clang-format")
+    if path is None:
+        return "clang-format is not on PATH (apt: clang-format)"
+    p = subprocess.run([path, "--version"], capture_output=True, text=True, timeout=60)
+    m = re.search(r"version (\d+)", p.stdout)
+    return None if m and int(m.group(1)) >= 14 else f"{p.stdout.strip()!r}: 14 or newer needed"
+
+
 def _root() -> str | None:
     return None if os.geteuid() == 0 else "mounting a tmpfs needs root"
 
@@ -95,6 +106,7 @@ PARTS = {p.name: p for p in (
          distribution="hypothesis"),
     Part("qemu-aarch64", "the aarch64 Linux binary run under qemu-user", _qemu),
     Part("wine", "the win64 binaries run under wine64", _wine),
+    Part("clang-format", "the C sources against .clang-format", _clang_format),
     Part("root", "a full disk, a read-only folder: tmpfs mounts", _root, required=False),
     Part("cffconvert", "CITATION.cff against the CFF schema", _module("cffconvert"), required=False),
     Part("libcosim-fmi3", "libcosim runs the FMI 3.0 FMUs like fmpy", None, required=False),

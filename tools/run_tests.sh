@@ -67,6 +67,10 @@ if [ $fast = 0 ] && { ! command -v qemu-aarch64 >/dev/null 2>&1 ||
                       [ ! -e /usr/aarch64-linux-gnu/lib/ld-linux-aarch64.so.1 ]; }; then
   apt_install qemu qemu-user libc6-arm64-cross
 fi
+# clang-format for the C sources' style (tests/contracts/test_c_format.py).
+if ! command -v clang-format >/dev/null 2>&1; then
+  apt_install clang-format clang-format
+fi
 # wine64 to run the win64 binaries (tests/fmus/test_windows.py; `make test` only).
 if [ $fast = 0 ] && ! command -v wine64 >/dev/null 2>&1 && [ ! -x /usr/lib/wine/wine64 ]; then
   apt_install wine wine64

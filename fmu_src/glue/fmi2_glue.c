@@ -35,7 +35,8 @@ static int arrays_refused(fmu_instance *I, const char *fn, size_t n) {
 }
 
 /* The test inline, the message out of line. */
-static inline int arrays_ok(fmu_instance *I, const char *fn, size_t n, const void *a, const void *b) {
+static inline int arrays_ok(fmu_instance *I, const char *fn, size_t n, const void *a,
+                            const void *b) {
     return n == 0 || (a && b) ? 1 : arrays_refused(I, fn, n);
 }
 
@@ -54,7 +55,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     if (!functions) return NULL;
     const char *name = instanceName ? instanceName : "";
     const char *why = NULL;
-    if (!instanceName || !*instanceName) why = "instanceName is empty";
+    if (!instanceName || !*instanceName)
+        why = "instanceName is empty";
     else if (fmuType != fmi2CoSimulation)
         why = "this FMU supports Co-Simulation only";
     else if (!fmuGUID || strcmp(fmuGUID, FMU_MODEL_INFO.token) != 0)
@@ -69,7 +71,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
                               "%s: %s", __func__, why);
         return NULL;
     }
-    void *(*alloc)(size_t, size_t) = functions->allocateMemory ? functions->allocateMemory : calloc2;
+    void *(*alloc)(size_t, size_t) =
+        functions->allocateMemory ? functions->allocateMemory : calloc2;
     void (*release)(void *) = functions->freeMemory ? functions->freeMemory : free;
     fmi2CallbackFunctions *cb = alloc(1, sizeof *cb);
     if (!cb) return NULL;
@@ -105,15 +108,14 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
                                const fmi2String categories[]) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
-    return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories)
-               ? fmi2Error : fmi2OK;
+    return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories) ? fmi2Error
+                                                                                  : fmi2OK;
 }
 
 /* ---- Initialization, termination, reset -------------------------------- */
 
 fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
-                               fmi2Real startTime, fmi2Boolean stopTimeDefined,
-                               fmi2Real stopTime) {
+                               fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
     fmu_instance *I = INST(c);
     (void)toleranceDefined;
     (void)tolerance; /* the law is solved to machine precision */
@@ -124,8 +126,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fm
         return fmi2Error;
     }
     fmu_msg msg;
-    return status2(
-        fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, __func__));
+    return status2(fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, __func__));
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
@@ -164,19 +165,19 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     if (!fmu_allowed(I, __func__, FMU_READABLE) || !arrays_ok(I, __func__, nvr, vr, value))
         return fmi2Error;
     fmu_msg msg;
-    return status2(fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, value, &msg), &msg,
-                              __func__));
+    return status2(
+        fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, value, &msg), &msg, __func__));
 }
 
 fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Integer value[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_READABLE) ||
-        !arrays_ok(I, __func__, nvr, vr, value))
+    if (!fmu_allowed(I, __func__, FMU_READABLE) || !arrays_ok(I, __func__, nvr, vr, value))
         return fmi2Error;
     fmu_msg msg;
-    return status2(fmu_result(I, fmu_model_get_int(I->model, vr, nvr, value, sizeof(fmi2Integer),
-                                                   FMU_INT32 | FMU_ENUM, &msg),
+    return status2(fmu_result(I,
+                              fmu_model_get_int(I->model, vr, nvr, value, sizeof(fmi2Integer),
+                                                FMU_INT32 | FMU_ENUM, &msg),
                               &msg, __func__));
 }
 
@@ -210,19 +211,18 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         return fmi2Error;
     fmu_msg msg;
     return status2(fmu_result(
-        I, fmu_model_set_float64(I->model, vr, nvr, value, fmu_settable(I), &msg), &msg,
-        __func__));
+        I, fmu_model_set_float64(I->model, vr, nvr, value, fmu_settable(I), &msg), &msg, __func__));
 }
 
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer value[]) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, SETTABLE) ||
-        !arrays_ok(I, __func__, nvr, vr, value))
+    if (!fmu_allowed(I, __func__, SETTABLE) || !arrays_ok(I, __func__, nvr, vr, value))
         return fmi2Error;
     fmu_msg msg;
-    return status2(fmu_result(I, fmu_model_set_int(I->model, vr, nvr, value, sizeof(fmi2Integer),
-                                                   FMU_INT32 | FMU_ENUM, fmu_settable(I), &msg),
+    return status2(fmu_result(I,
+                              fmu_model_set_int(I->model, vr, nvr, value, sizeof(fmi2Integer),
+                                                FMU_INT32 | FMU_ENUM, fmu_settable(I), &msg),
                               &msg, __func__));
 }
 
@@ -271,16 +271,16 @@ fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byt
                                  size_t size) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_serialize(I, __func__, FMUstate,
-                                       (unsigned char *)serializedState, size));
+    return status2(
+        fmu_state_serialize(I, __func__, FMUstate, (unsigned char *)serializedState, size));
 }
 
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *FMUstate) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi2Error;
-    return status2(fmu_state_deserialize(I, __func__,
-                                         (const unsigned char *)serializedState, size, FMUstate));
+    return status2(
+        fmu_state_deserialize(I, __func__, (const unsigned char *)serializedState, size, FMUstate));
 }
 
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[],
@@ -304,7 +304,9 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                                        const fmi2Integer order[], const fmi2Real value[]) {
     fmu_instance *I = INST(c);
-    (void)vr; (void)order; (void)value;
+    (void)vr;
+    (void)order;
+    (void)value;
     if (!fmu_allowed(I, __func__, FMU_INIT | FMU_STEP)) return fmi2Error;
     if (nvr == 0) return fmi2OK;
     FMU_ERROR(I, "%s: canInterpolateInputs is false", __func__);
@@ -314,7 +316,9 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference
 fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                                         const fmi2Integer order[], fmi2Real value[]) {
     fmu_instance *I = INST(c);
-    (void)vr; (void)order; (void)value;
+    (void)vr;
+    (void)order;
+    (void)value;
     if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi2Error;
     if (nvr == 0) return fmi2OK;
     FMU_ERROR(I, "%s: maxOutputDerivativeOrder is 0", __func__);
@@ -322,14 +326,14 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
 }
 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
-                      fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
+                      fmi2Real communicationStepSize,
+                      fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
     fmu_instance *I = INST(c);
     (void)noSetFMUStatePriorToCurrentPoint;
     if (!fmu_allowed(I, __func__, FMU_STEP)) return fmi2Error;
     fmu_msg msg;
     return status2(fmu_result(
-        I, fmu_do_step(I, currentCommunicationPoint, communicationStepSize, &msg), &msg,
-        __func__));
+        I, fmu_do_step(I, currentCommunicationPoint, communicationStepSize, &msg), &msg, __func__));
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c) {
@@ -347,9 +351,11 @@ static fmi2Status discard(fmu_instance *I, const char *fn, const char *what) {
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value) {
     fmu_instance *I = INST(c);
-    (void)s; (void)value;
+    (void)s;
+    (void)value;
     if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
-    return discard(I, __func__, "no status kind of type fmi2Status is provided (doStep is synchronous)");
+    return discard(I, __func__,
+                   "no status kind of type fmi2Status is provided (doStep is synchronous)");
 }
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value) {
@@ -364,7 +370,8 @@ fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *
 
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value) {
     fmu_instance *I = INST(c);
-    (void)s; (void)value;
+    (void)s;
+    (void)value;
     if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
     return discard(I, __func__, "no Integer status is provided");
 }
@@ -381,7 +388,8 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value) {
     fmu_instance *I = INST(c);
-    (void)s; (void)value;
+    (void)s;
+    (void)value;
     if (!fmu_allowed(I, __func__, FMU_STEP | FMU_TERMINATED)) return fmi2Error;
     return discard(I, __func__, "no String status is provided");
 }
@@ -398,12 +406,12 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *e) {
     (void)e;
     return not_me(c, __func__);
 }
-fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) {
-    return not_me(c, __func__);
-}
+fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) { return not_me(c, __func__); }
 fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSet, fmi2Boolean *enter,
                                        fmi2Boolean *term) {
-    (void)noSet; (void)enter; (void)term;
+    (void)noSet;
+    (void)enter;
+    (void)term;
     return not_me(c, __func__);
 }
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time) {
@@ -411,22 +419,27 @@ fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time) {
     return not_me(c, __func__);
 }
 fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx) {
-    (void)x; (void)nx;
+    (void)x;
+    (void)nx;
     return not_me(c, __func__);
 }
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real dx[], size_t nx) {
-    (void)dx; (void)nx;
+    (void)dx;
+    (void)nx;
     return not_me(c, __func__);
 }
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real ei[], size_t ni) {
-    (void)ei; (void)ni;
+    (void)ei;
+    (void)ni;
     return not_me(c, __func__);
 }
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx) {
-    (void)x; (void)nx;
+    (void)x;
+    (void)nx;
     return not_me(c, __func__);
 }
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real n[], size_t nx) {
-    (void)n; (void)nx;
+    (void)n;
+    (void)nx;
     return not_me(c, __func__);
 }

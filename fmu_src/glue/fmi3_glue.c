@@ -51,7 +51,8 @@ static int arrays_refused(fmu_instance *I, const char *fn, size_t nvr, const voi
     if (nValues != nvr) {
         FMU_ERROR(I, "%s: nValues = %zu but nValueReferences = %zu (%s)", fn, nValues, nvr,
                   FMU_MODEL_INFO.arrays ? "only outputs are arrays: every settable variable is a "
-                                          "scalar" : "every variable is a scalar");
+                                          "scalar"
+                                        : "every variable is a scalar");
         return 0;
     }
     return 1;
@@ -70,19 +71,19 @@ static void refuse3(fmi3InstanceEnvironment env, fmi3LogMessageCallback log, con
     if (log) log(env, fmi3Error, "logStatusError", text);
 }
 
-fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken,
-                                         fmi3String resourcePath, fmi3Boolean visible,
-                                         fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
-                                         fmi3Boolean earlyReturnAllowed,
-                                         const fmi3ValueReference requiredIntermediateVariables[],
-                                         size_t nRequiredIntermediateVariables,
-                                         fmi3InstanceEnvironment instanceEnvironment,
-                                         fmi3LogMessageCallback logMessage,
-                                         fmi3IntermediateUpdateCallback intermediateUpdate) {
-    (void)visible; (void)earlyReturnAllowed;
-    (void)requiredIntermediateVariables; (void)intermediateUpdate;
+fmi3Instance fmi3InstantiateCoSimulation(
+    fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
+    fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
+    fmi3Boolean earlyReturnAllowed, const fmi3ValueReference requiredIntermediateVariables[],
+    size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
+    fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate) {
+    (void)visible;
+    (void)earlyReturnAllowed;
+    (void)requiredIntermediateVariables;
+    (void)intermediateUpdate;
     const char *why = NULL;
-    if (!instanceName || !*instanceName) why = "instanceName is empty";
+    if (!instanceName || !*instanceName)
+        why = "instanceName is empty";
     else if (!instantiationToken || strcmp(instantiationToken, FMU_MODEL_INFO.token) != 0)
         why = "instantiationToken does not match this FMU's modelDescription.xml";
     else if (eventModeUsed)
@@ -126,7 +127,11 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String in
                                           fmi3Boolean loggingOn,
                                           fmi3InstanceEnvironment instanceEnvironment,
                                           fmi3LogMessageCallback logMessage) {
-    (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
+    (void)instanceName;
+    (void)instantiationToken;
+    (void)resourcePath;
+    (void)visible;
+    (void)loggingOn;
     return refuse_interface(instanceEnvironment, logMessage, __func__);
 }
 
@@ -135,8 +140,14 @@ fmi3Instance fmi3InstantiateScheduledExecution(
     fmi3Boolean visible, fmi3Boolean loggingOn, fmi3InstanceEnvironment instanceEnvironment,
     fmi3LogMessageCallback logMessage, fmi3ClockUpdateCallback clockUpdate,
     fmi3LockPreemptionCallback lockPreemption, fmi3UnlockPreemptionCallback unlockPreemption) {
-    (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
-    (void)clockUpdate; (void)lockPreemption; (void)unlockPreemption;
+    (void)instanceName;
+    (void)instantiationToken;
+    (void)resourcePath;
+    (void)visible;
+    (void)loggingOn;
+    (void)clockUpdate;
+    (void)lockPreemption;
+    (void)unlockPreemption;
     return refuse_interface(instanceEnvironment, logMessage, __func__);
 }
 
@@ -153,8 +164,8 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCa
                                const fmi3String categories[]) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_ALIVE | FMU_CONFIG)) return fmi3Error;
-    return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories)
-               ? fmi3Error : fmi3OK;
+    return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories) ? fmi3Error
+                                                                                  : fmi3OK;
 }
 
 /* ---- Initialization, termination, reset -------------------------------- */
@@ -172,8 +183,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
         return fmi3Error;
     }
     fmu_msg msg;
-    if (fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, __func__))
-        return fmi3Error;
+    if (fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, __func__)) return fmi3Error;
     I->phase = FMU_INIT;
     return fmi3OK;
 }
@@ -211,8 +221,8 @@ static int get_values(fmu_instance *I, const char *fn, const fmi3ValueReference 
         return FMU_S_ERROR;
     }
     fmu_msg msg;
-    return fmu_result(I, fmu_model_get_values(I->model, vr, nvr, values, nValues, type, width,
-                                              &msg), &msg, fn);
+    return fmu_result(
+        I, fmu_model_get_values(I->model, vr, nvr, values, nValues, type, width, &msg), &msg, fn);
 }
 
 /* In configuration mode only the structural parameters may be set. */
@@ -221,9 +231,10 @@ static int config_ok(fmu_instance *I, const char *fn, const fmi3ValueReference v
     for (size_t i = 0; i < nvr; ++i)
         if (!fmu_model_is_structural(vr[i])) {
             const char *name = fmu_model_variable_name(vr[i]);
-            FMU_ERROR(I, "%s: %s (vr %u) is not a structural parameter: in configuration mode "
-                         "only structural parameters may be set", fn, name ? name : "unknown",
-                      vr[i]);
+            FMU_ERROR(I,
+                      "%s: %s (vr %u) is not a structural parameter: in configuration mode "
+                      "only structural parameters may be set",
+                      fn, name ? name : "unknown", vr[i]);
             return 0;
         }
     return 1;
@@ -237,20 +248,20 @@ fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
         return status3(get_values(I, __func__, vr, nvr, values, nValues, FMU_T_Float64, 8));
     if (!arrays_ok(I, __func__, nvr, vr, values, nValues)) return fmi3Error;
     fmu_msg msg;
-    return status3(fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, values, &msg), &msg,
-                              __func__));
+    return status3(
+        fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, values, &msg), &msg, __func__));
 }
 
 fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                           const fmi3Float64 values[], size_t nValues) {
     fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, SETTABLE) ||
-        !arrays_ok(I, __func__, nvr, vr, values, nValues) || !config_ok(I, __func__, vr, nvr))
+    if (!fmu_allowed(I, __func__, SETTABLE) || !arrays_ok(I, __func__, nvr, vr, values, nValues) ||
+        !config_ok(I, __func__, vr, nvr))
         return fmi3Error;
     fmu_msg msg;
-    return status3(fmu_result(
-        I, fmu_model_set_float64(I->model, vr, nvr, values, fmu_settable(I), &msg), &msg,
-        __func__));
+    return status3(
+        fmu_result(I, fmu_model_set_float64(I->model, vr, nvr, values, fmu_settable(I), &msg), &msg,
+                   __func__));
 }
 
 /* Int32 variables through the Int32 functions, Enumerations through Int64,
@@ -277,18 +288,18 @@ static fmi3Status set_ints(fmi3Instance c, const char *fn, const fmi3ValueRefere
         return fmi3Error;
     fmu_msg msg;
     return status3(fmu_result(
-        I, fmu_model_set_int(I->model, vr, nvr, values, width, kinds, fmu_settable(I), &msg),
-        &msg, fn));
+        I, fmu_model_set_int(I->model, vr, nvr, values, width, kinds, fmu_settable(I), &msg), &msg,
+        fn));
 }
 
-#define INT_ACCESS(TYPE, CTYPE, KIND)                                                          \
-    fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
-                             CTYPE values[], size_t nValues) {                                 \
-        return get_ints(c, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE));           \
-    }                                                                                          \
-    fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
-                             const CTYPE values[], size_t nValues) {                           \
-        return set_ints(c, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE));           \
+#define INT_ACCESS(TYPE, CTYPE, KIND)                                                              \
+    fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,            \
+                             CTYPE values[], size_t nValues) {                                     \
+        return get_ints(c, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE));               \
+    }                                                                                              \
+    fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,            \
+                             const CTYPE values[], size_t nValues) {                               \
+        return set_ints(c, __func__, vr, nvr, values, nValues, KIND, sizeof(CTYPE));               \
     }
 INT_ACCESS(Int32, fmi3Int32, FMU_INT32 | FMU_AS_FMI3)
 INT_ACCESS(Int64, fmi3Int64, FMU_ENUM | FMU_AS_FMI3)
@@ -304,16 +315,18 @@ static fmi3Status no_such_variables(fmu_instance *I, const char *fn, int phases,
     return fmi3Error;
 }
 
-#define NO_VARIABLES(TYPE, CTYPE)                                                              \
-    fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
-                             CTYPE values[], size_t nValues) {                                   \
-        (void)values; (void)nValues;                                                             \
-        return no_such_variables(INST(c), __func__, FMU_READABLE, nvr, vr);              \
-    }                                                                                            \
-    fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,         \
-                             const CTYPE values[], size_t nValues) {                             \
-        (void)values; (void)nValues;                                                             \
-        return no_such_variables(INST(c), __func__, SETTABLE, nvr, vr);                  \
+#define NO_VARIABLES(TYPE, CTYPE)                                                                  \
+    fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,            \
+                             CTYPE values[], size_t nValues) {                                     \
+        (void)values;                                                                              \
+        (void)nValues;                                                                             \
+        return no_such_variables(INST(c), __func__, FMU_READABLE, nvr, vr);                        \
+    }                                                                                              \
+    fmi3Status fmi3Set##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,            \
+                             const CTYPE values[], size_t nValues) {                               \
+        (void)values;                                                                              \
+        (void)nValues;                                                                             \
+        return no_such_variables(INST(c), __func__, SETTABLE, nvr, vr);                            \
     }
 NO_VARIABLES(Float32, fmi3Float32)
 NO_VARIABLES(Int8, fmi3Int8)
@@ -326,13 +339,17 @@ NO_VARIABLES(String, fmi3String)
 
 fmi3Status fmi3GetBinary(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                          size_t valueSizes[], fmi3Binary values[], size_t nValues) {
-    (void)valueSizes; (void)values; (void)nValues;
+    (void)valueSizes;
+    (void)values;
+    (void)nValues;
     return no_such_variables(INST(c), __func__, FMU_READABLE, nvr, vr);
 }
 
 fmi3Status fmi3SetBinary(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
                          const size_t valueSizes[], const fmi3Binary values[], size_t nValues) {
-    (void)valueSizes; (void)values; (void)nValues;
+    (void)valueSizes;
+    (void)values;
+    (void)nValues;
     return no_such_variables(INST(c), __func__, SETTABLE, nvr, vr);
 }
 
@@ -358,9 +375,11 @@ static fmi3Status unsupported(fmi3Instance c, const char *fn, const char *why) {
 
 fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance c, fmi3ValueReference valueReference,
                                                size_t *nDependencies) {
-    (void)valueReference; (void)nDependencies;
-    return unsupported(c, __func__, "dependencies are given in the "
-                          "model description's ModelStructure only");
+    (void)valueReference;
+    (void)nDependencies;
+    return unsupported(c, __func__,
+                       "dependencies are given in the "
+                       "model description's ModelStructure only");
 }
 
 fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference dependent,
@@ -368,10 +387,15 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference depend
                                        fmi3ValueReference independents[],
                                        size_t elementIndicesOfIndependents[],
                                        fmi3DependencyKind dependencyKinds[], size_t nDependencies) {
-    (void)dependent; (void)elementIndicesOfDependent; (void)independents;
-    (void)elementIndicesOfIndependents; (void)dependencyKinds; (void)nDependencies;
-    return unsupported(c, __func__, "dependencies are given in the model "
-                          "description's ModelStructure only");
+    (void)dependent;
+    (void)elementIndicesOfDependent;
+    (void)independents;
+    (void)elementIndicesOfIndependents;
+    (void)dependencyKinds;
+    (void)nDependencies;
+    return unsupported(c, __func__,
+                       "dependencies are given in the model "
+                       "description's ModelStructure only");
 }
 
 /* Configuration mode, from the instantiated phase only: the structural
@@ -396,58 +420,77 @@ fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) {
 #define NO_CLOCKS "this FMU has no clocks"
 fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                   fmi3Float64 intervals[], fmi3IntervalQualifier q[]) {
-    (void)vr; (void)n; (void)intervals; (void)q;
+    (void)vr;
+    (void)n;
+    (void)intervals;
+    (void)q;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3GetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                    fmi3UInt64 counters[], fmi3UInt64 resolutions[],
                                    fmi3IntervalQualifier q[]) {
-    (void)vr; (void)n; (void)counters; (void)resolutions; (void)q;
+    (void)vr;
+    (void)n;
+    (void)counters;
+    (void)resolutions;
+    (void)q;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3GetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                fmi3Float64 shifts[]) {
-    (void)vr; (void)n; (void)shifts;
+    (void)vr;
+    (void)n;
+    (void)shifts;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3GetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                 fmi3UInt64 counters[], fmi3UInt64 resolutions[]) {
-    (void)vr; (void)n; (void)counters; (void)resolutions;
+    (void)vr;
+    (void)n;
+    (void)counters;
+    (void)resolutions;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                   const fmi3Float64 intervals[]) {
-    (void)vr; (void)n; (void)intervals;
+    (void)vr;
+    (void)n;
+    (void)intervals;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                    const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
-    (void)vr; (void)n; (void)counters; (void)resolutions;
+    (void)vr;
+    (void)n;
+    (void)counters;
+    (void)resolutions;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                const fmi3Float64 shifts[]) {
-    (void)vr; (void)n; (void)shifts;
+    (void)vr;
+    (void)n;
+    (void)shifts;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3SetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
                                 const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
-    (void)vr; (void)n; (void)counters; (void)resolutions;
+    (void)vr;
+    (void)n;
+    (void)counters;
+    (void)resolutions;
     return unsupported(c, __func__, NO_CLOCKS);
 }
 fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference clockReference,
                                       fmi3Float64 activationTime) {
-    (void)clockReference; (void)activationTime;
+    (void)clockReference;
+    (void)activationTime;
     return unsupported(c, __func__, "this is a Co-Simulation FMU only");
 }
 
 #define NO_EVENTS "this FMU has no event mode (hasEventMode = false)"
-fmi3Status fmi3EnterEventMode(fmi3Instance c) {
-    return unsupported(c, __func__, NO_EVENTS);
-}
-fmi3Status fmi3EnterStepMode(fmi3Instance c) {
-    return unsupported(c, __func__, NO_EVENTS);
-}
+fmi3Status fmi3EnterEventMode(fmi3Instance c) { return unsupported(c, __func__, NO_EVENTS); }
+fmi3Status fmi3EnterStepMode(fmi3Instance c) { return unsupported(c, __func__, NO_EVENTS); }
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance c) {
     return unsupported(c, __func__, NO_EVENTS);
 }
@@ -456,19 +499,22 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *discreteStatesN
                                     fmi3Boolean *nominalsOfContinuousStatesChanged,
                                     fmi3Boolean *valuesOfContinuousStatesChanged,
                                     fmi3Boolean *nextEventTimeDefined, fmi3Float64 *nextEventTime) {
-    (void)discreteStatesNeedUpdate; (void)terminateSimulation;
-    (void)nominalsOfContinuousStatesChanged; (void)valuesOfContinuousStatesChanged;
-    (void)nextEventTimeDefined; (void)nextEventTime;
+    (void)discreteStatesNeedUpdate;
+    (void)terminateSimulation;
+    (void)nominalsOfContinuousStatesChanged;
+    (void)valuesOfContinuousStatesChanged;
+    (void)nextEventTimeDefined;
+    (void)nextEventTime;
     return unsupported(c, __func__, NO_EVENTS);
 }
 
 #define NO_ME "this is a Co-Simulation FMU only"
-fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c) {
-    return unsupported(c, __func__, NO_ME);
-}
+fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c) { return unsupported(c, __func__, NO_ME); }
 fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet, fmi3Boolean *enter,
                                        fmi3Boolean *term) {
-    (void)noSet; (void)enter; (void)term;
+    (void)noSet;
+    (void)enter;
+    (void)term;
     return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 time) {
@@ -476,23 +522,28 @@ fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 time) {
     return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64 x[], size_t n) {
-    (void)x; (void)n;
+    (void)x;
+    (void)n;
     return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], size_t n) {
-    (void)dx; (void)n;
+    (void)dx;
+    (void)n;
     return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 ei[], size_t n) {
-    (void)ei; (void)n;
+    (void)ei;
+    (void)n;
     return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t n) {
-    (void)x; (void)n;
+    (void)x;
+    (void)n;
     return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance c, fmi3Float64 nominals[], size_t n) {
-    (void)nominals; (void)n;
+    (void)nominals;
+    (void)n;
     return unsupported(c, __func__, NO_ME);
 }
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n) {
@@ -544,24 +595,24 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedStat
                                    fmi3FMUState *FMUState) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_deserialize(I, __func__, serializedState, size,
-                                         FMUState));
+    return status3(fmu_state_deserialize(I, __func__, serializedState, size, FMUState));
 }
 
 /* ---- Derivatives ------------------------------------------------------------ */
 
 static fmi3Status derivative3(fmi3Instance c, const char *fn, const fmi3ValueReference unknowns[],
-                             size_t nUnknowns, const fmi3ValueReference knowns[], size_t nKnowns,
-                             const fmi3Float64 seed[], size_t nSeed, fmi3Float64 sensitivity[],
-                             size_t nSensitivity, int adjoint) {
+                              size_t nUnknowns, const fmi3ValueReference knowns[], size_t nKnowns,
+                              const fmi3Float64 seed[], size_t nSeed, fmi3Float64 sensitivity[],
+                              size_t nSensitivity, int adjoint) {
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, fn, FMU_READABLE)) return fmi3Error;
-    const size_t want_seed = adjoint ? nUnknowns : nKnowns, want_out = adjoint ? nKnowns : nUnknowns;
-    if (nSeed != want_seed || nSensitivity != want_out ||
-        (nUnknowns > 0 && !unknowns) || (nKnowns > 0 && !knowns) || (nSeed > 0 && !seed) ||
-        (nSensitivity > 0 && !sensitivity)) {
-        FMU_ERROR(I, "%s: needs %zu seeds and %zu sensitivities for %zu unknowns and %zu knowns "
-                     "(got %zu, %zu, or a NULL array)",
+    const size_t want_seed = adjoint ? nUnknowns : nKnowns,
+                 want_out = adjoint ? nKnowns : nUnknowns;
+    if (nSeed != want_seed || nSensitivity != want_out || (nUnknowns > 0 && !unknowns) ||
+        (nKnowns > 0 && !knowns) || (nSeed > 0 && !seed) || (nSensitivity > 0 && !sensitivity)) {
+        FMU_ERROR(I,
+                  "%s: needs %zu seeds and %zu sensitivities for %zu unknowns and %zu knowns "
+                  "(got %zu, %zu, or a NULL array)",
                   fn, want_seed, want_out, nUnknowns, nKnowns, nSeed, nSensitivity);
         return fmi3Error;
     }
@@ -576,24 +627,28 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference
                                         size_t nUnknowns, const fmi3ValueReference knowns[],
                                         size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                         fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns,
-                      seed, nSeed, sensitivity, nSensitivity, 0);
+    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns, seed, nSeed, sensitivity,
+                       nSensitivity, 0);
 }
 
 fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference unknowns[],
                                     size_t nUnknowns, const fmi3ValueReference knowns[],
                                     size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                     fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns, seed,
-                      nSeed, sensitivity, nSensitivity, 1);
+    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns, seed, nSeed, sensitivity,
+                       nSensitivity, 1);
 }
 
 /* ---- Co-Simulation ---------------------------------------------------------- */
 
 fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
-                                    const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues) {
+                                    const fmi3Int32 orders[], fmi3Float64 values[],
+                                    size_t nValues) {
     fmu_instance *I = INST(c);
-    (void)vr; (void)orders; (void)values; (void)nValues;
+    (void)vr;
+    (void)orders;
+    (void)values;
+    (void)nValues;
     if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi3Error;
     if (nvr == 0) return fmi3OK;
     FMU_ERROR(I, "%s: maxOutputDerivativeOrder is 0", __func__);
@@ -601,7 +656,8 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[
 }
 
 fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint,
-                      fmi3Float64 communicationStepSize, fmi3Boolean noSetFMUStatePriorToCurrentPoint,
+                      fmi3Float64 communicationStepSize,
+                      fmi3Boolean noSetFMUStatePriorToCurrentPoint,
                       fmi3Boolean *eventHandlingNeeded, fmi3Boolean *terminateSimulation,
                       fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime) {
     fmu_instance *I = INST(c);
@@ -609,8 +665,7 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint,
     if (!fmu_allowed(I, __func__, FMU_STEP)) return fmi3Error;
     fmu_msg msg;
     const int st = fmu_result(
-        I, fmu_do_step(I, currentCommunicationPoint, communicationStepSize, &msg), &msg,
-        __func__);
+        I, fmu_do_step(I, currentCommunicationPoint, communicationStepSize, &msg), &msg, __func__);
     if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;

@@ -53,16 +53,17 @@ struct fmu_fields {
     size_t stride; /* sizeof S, the distance of two records */
 };
 
-#define FMU_F64(S, member, name, group, check, vr)                                             \
-    {name, group, FMU_FIELD_F64, FMU_CHECK_##check, vr, offsetof(S, member), NULL, 0}
-#define FMU_U32(S, member, name, group, check, vr)                                             \
-    {name, group, FMU_FIELD_U32, FMU_CHECK_##check, vr, offsetof(S, member), NULL, 0}
-#define FMU_RECORD(S, member, list, group)                                                     \
-    {"", group, FMU_FIELD_RECORD, FMU_CHECK_NONE, 0, offsetof(S, member), list, 1}
-#define FMU_RECORDS(S, member, list, count, group)                                             \
-    {"", group, FMU_FIELD_RECORD, FMU_CHECK_NONE, 0, offsetof(S, member), list, count}
+#define FMU_F64(S, member, name, group, check, vr)                                                 \
+    { name, group, FMU_FIELD_F64, FMU_CHECK_##check, vr, offsetof(S, member), NULL, 0 }
+#define FMU_U32(S, member, name, group, check, vr)                                                 \
+    { name, group, FMU_FIELD_U32, FMU_CHECK_##check, vr, offsetof(S, member), NULL, 0 }
+#define FMU_RECORD(S, member, list, group)                                                         \
+    { "", group, FMU_FIELD_RECORD, FMU_CHECK_NONE, 0, offsetof(S, member), list, 1 }
+#define FMU_RECORDS(S, member, list, count, group)                                                 \
+    { "", group, FMU_FIELD_RECORD, FMU_CHECK_NONE, 0, offsetof(S, member), list, count }
 /* The list of an array of fmu_field describing S. */
-#define FMU_FIELDS(array, S) {array, sizeof array / sizeof array[0], sizeof(S)}
+#define FMU_FIELDS(array, S)                                                                       \
+    { array, sizeof array / sizeof array[0], sizeof(S) }
 
 /* Bytes the list takes. */
 size_t fmu_fields_size(const fmu_fields *list);
@@ -72,8 +73,7 @@ unsigned char *fmu_fields_write(const fmu_fields *list, const void *s, unsigned 
  * advances *p; on the first that fails FMU_ERR with the reason ("serialized
  * state: ..."), s then partly written: read into a scratch copy, or put
  * back what was there. */
-fmu_status fmu_fields_read(const fmu_fields *list, void *s, const unsigned char **p,
-                           fmu_msg *msg);
+fmu_status fmu_fields_read(const fmu_fields *list, void *s, const unsigned char **p, fmu_msg *msg);
 /* 1 if every field of a and b has the same bits (not ==: -0.0 and +0.0
  * differ, as the tensors they give do). */
 int fmu_fields_same(const fmu_fields *list, const void *a, const void *b);

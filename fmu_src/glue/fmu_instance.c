@@ -54,10 +54,11 @@ static inline fmu_status model_refresh(fmu_model *m, fmu_msg *msg) {
  * a structural parameter is named for both versions where the caller's is
  * not known (a Float64 set). */
 static const char *type_name(int kind, unsigned int vr) {
-    return kind == FMU_T_Float64 ? "Float64 (Real)"
-           : kind == FMU_UINT64 ? "UInt64 (a structural parameter)"
+    return kind == FMU_T_Float64                                ? "Float64 (Real)"
+           : kind == FMU_UINT64                                 ? "UInt64 (a structural parameter)"
            : kind == FMU_T_Int32 && fmu_model_is_structural(vr) ? "Integer (UInt64 in FMI 3.0)"
-           : kind == FMU_T_Int32 ? "Int32 (Integer)" : "Enumeration (Integer)";
+           : kind == FMU_T_Int32                                ? "Int32 (Integer)"
+                                                                : "Enumeration (Integer)";
 }
 
 /* x's kind as the caller sees it: its table type, but FMU_UINT64 for a
@@ -68,9 +69,11 @@ static inline int kind_of(const fmu_var *x, unsigned int vr, int kinds) {
 
 /* The name of what a get or set asked for, from its kinds. */
 static const char *asked_name(int kinds) {
-    return kinds & FMU_UINT64 ? "UInt64" : (kinds & (FMU_INT32 | FMU_ENUM)) == FMU_ENUM
-           ? "Enumeration (Int64)" : (kinds & (FMU_INT32 | FMU_ENUM)) == FMU_INT32
-           ? ((kinds & FMU_AS_FMI3) ? "Int32" : "Integer") : "Integer";
+    return kinds & FMU_UINT64                             ? "UInt64"
+           : (kinds & (FMU_INT32 | FMU_ENUM)) == FMU_ENUM ? "Enumeration (Int64)"
+           : (kinds & (FMU_INT32 | FMU_ENUM)) == FMU_INT32
+               ? ((kinds & FMU_AS_FMI3) ? "Int32" : "Integer")
+               : "Integer";
 }
 
 /* A range in a message names its unit, so that "alpha = 90" outside
@@ -90,10 +93,13 @@ static fmu_status why_not_settable(const fmu_var *x, unsigned int vr, int kind, 
     if (x->causality == FMU_C_output)
         return fmu_fail(msg, "variable %s is an output and cannot be set", x->name);
     if (x->causality == FMU_C_independent)
-        return fmu_fail(msg, "variable %s is the independent variable: doStep advances it", x->name);
+        return fmu_fail(msg, "variable %s is the independent variable: doStep advances it",
+                        x->name);
     if (x->causality == FMU_C_parameter && !(allow & FMU_ALLOW_PARAMETERS))
-        return fmu_fail(msg, "parameter %s is fixed: it can be set only before the end of "
-                             "initialization (reset the FMU to change it)", x->name);
+        return fmu_fail(msg,
+                        "parameter %s is fixed: it can be set only before the end of "
+                        "initialization (reset the FMU to change it)",
+                        x->name);
     if (x->causality == FMU_C_input && !(allow & FMU_ALLOW_INPUTS))
         return fmu_fail(msg, "input %s cannot be set in this state", x->name);
     if (!isfinite(value))
@@ -107,8 +113,7 @@ static inline int in_range(const fmu_var *x, double v) {
     return (v >= x->min) & (v <= x->max) & (v - v == 0.0); /* one branch, not three */
 }
 
-fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context,
-                                 fmu_msg *msg) {
+fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context, fmu_msg *msg) {
     const fmu_var *x = var_of(vr);
     if (x && in_range(x, value)) return FMU_OK;
     return fmu_fail(msg, "%s: %s = %g is outside [%g, %g]%s%s", context, x ? x->name : "?", value,
@@ -142,7 +147,7 @@ static OC_ALWAYS_INLINE fmu_status set_batch(fmu_model *m, const unsigned int vr
         /* a row without a variable has settable 0: no name test on the way */
         const fmu_var *x = vr[i] < nv ? &vars[vr[i]] : NULL;
         /* a UInt64 is read unsigned, so that 2^64 - 1 is refused as itself */
-        const double d = !ints                 ? ((const double *)v)[i]
+        const double d = !ints                  ? ((const double *)v)[i]
                          : (kinds & FMU_UINT64) ? (double)((const uint64_t *)v)[i]
                                                 : (double)fmu_int_at(v, width, i);
         if (!x || !(x->settable & allow) ||
@@ -172,8 +177,10 @@ static OC_ALWAYS_INLINE fmu_status set_batch(fmu_model *m, const unsigned int vr
     }
     if (st != FMU_OK) {
         while (i-- > 0) {
-            if (ints) *SLOT_I(m, &vars[vr[i]]) = (int)saved[i];
-            else *SLOT_D(m, &vars[vr[i]]) = saved[i];
+            if (ints)
+                *SLOT_I(m, &vars[vr[i]]) = (int)saved[i];
+            else
+                *SLOT_D(m, &vars[vr[i]]) = saved[i];
         }
         if (refreshed) (void)model_refresh(m, NULL);
     }
@@ -193,23 +200,22 @@ fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, co
 
 static fmu_status not_of_type(unsigned int vr, int kinds, fmu_msg *msg) {
     const fmu_var *x = var_of(vr);
-    const char *asked = (kinds & ~FMU_AS_FMI3) == FMU_T_Float64 ? "Float64 (Real)"
-                                                                 : asked_name(kinds);
+    const char *asked =
+        (kinds & ~FMU_AS_FMI3) == FMU_T_Float64 ? "Float64 (Real)" : asked_name(kinds);
     if (x)
         return fmu_fail(msg, "variable %s (vr %u) is of type %s, not %s", x->name, vr,
                         type_name(kind_of(x, vr, kinds), vr), asked);
     return fmu_fail(msg, "unknown value reference %u", vr);
 }
 
-OC_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
-                                 fmu_msg *msg) {
+OC_HOT fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n,
+                                        double v[], fmu_msg *msg) {
     const fmu_var *const vars = INFO.vars;
     const unsigned int nv = INFO.n_vars;
     for (size_t i = 0; i < n; ++i) {
         /* a row without a variable has type 0: no name test on the way */
         const fmu_var *x = &vars[vr[i] < nv ? vr[i] : 0];
-        if (vr[i] >= nv || x->type != FMU_T_Float64)
-            return not_of_type(vr[i], FMU_T_Float64, msg);
+        if (vr[i] >= nv || x->type != FMU_T_Float64) return not_of_type(vr[i], FMU_T_Float64, msg);
         v[i] = *CSLOT_D(m, x);
     }
     return FMU_OK;
@@ -261,8 +267,9 @@ fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], siz
         const size_t k = values_of(m, vr[i], &t);
         if (vr[i] >= INFO.n_vars) {
             /* an Int32 array is asked for through the Int32 functions only (width 4) */
-            INFO.arrays->get(m, vr[i], type == FMU_T_Float64 ? (void *)((double *)v + at)
-                                                             : (void *)((int32_t *)v + at));
+            INFO.arrays->get(m, vr[i],
+                             type == FMU_T_Float64 ? (void *)((double *)v + at)
+                                                   : (void *)((int32_t *)v + at));
         } else if (type == FMU_T_Float64) {
             ((double *)v)[at] = *CSLOT_D(m, var_of(vr[i]));
         } else {
@@ -273,9 +280,9 @@ fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], siz
     return FMU_OK;
 }
 
-fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[],
-                                size_t n_unknown, const unsigned int known[], size_t n_known,
-                                const double seed[], double out[], int adjoint, fmu_msg *msg) {
+fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[], size_t n_unknown,
+                                const unsigned int known[], size_t n_known, const double seed[],
+                                double out[], int adjoint, fmu_msg *msg) {
     if (!INFO.derivative)
         return fmu_fail(msg, "this FMU provides no derivatives (providesDirectionalDerivative = "
                              "false)");
@@ -289,8 +296,8 @@ static const char *name_or_unknown(unsigned int vr) {
 
 fmu_status fmu_jacobian_derivative(const fmu_jacobian *jac, const fmu_model *m,
                                    const unsigned int unknown[], size_t n_unknown,
-                                   const unsigned int known[], size_t n_known,
-                                   const double seed[], double out[], int adjoint, fmu_msg *msg) {
+                                   const unsigned int known[], size_t n_known, const double seed[],
+                                   double out[], int adjoint, fmu_msg *msg) {
     for (size_t j = 0; j < n_known; ++j)
         if (jac->col(known[j]) < 0)
             return fmu_fail(msg, "known vr %u (%s) is not an input %s", known[j],
@@ -326,8 +333,10 @@ fmu_status fmu_model_init_from(fmu_model *m, const double start[], fmu_msg *msg)
         const fmu_var *x = var_of(vr);
         if (!x || !(x->settable || x->causality == FMU_C_independent)) continue;
         const double s = start ? start[vr] : x->start;
-        if (x->type == FMU_T_Float64) *SLOT_D(m, x) = s;
-        else *SLOT_I(m, x) = (int)s;
+        if (x->type == FMU_T_Float64)
+            *SLOT_D(m, x) = s;
+        else
+            *SLOT_I(m, x) = (int)s;
     }
     if (model_refresh(m, msg) != FMU_OK) return FMU_ERR;
     return fmu_model_update(m, FMU_CHANGED_PARAMETERS | FMU_CHANGED_INPUTS,
@@ -465,8 +474,10 @@ int fmu_set_debug_logging(fmu_instance *I, const char *fn, int on, size_t n,
         for (int k = 0; k < FMU_LOG_N; ++k)
             if (categories[i] && strcmp(categories[i], FMU_LOG_NAMES[k]) == 0) found = k;
         if (found < 0) {
-            FMU_ERROR(I, "%s: unknown log category \"%s\" (known: logStatusError, "
-                         "logStatusWarning, logCalls)", fn, categories[i] ? categories[i] : "(null)");
+            FMU_ERROR(I,
+                      "%s: unknown log category \"%s\" (known: logStatusError, "
+                      "logStatusWarning, logCalls)",
+                      fn, categories[i] ? categories[i] : "(null)");
             return -1;
         }
         next[found] = on ? 1 : 0;
@@ -494,8 +505,10 @@ char *fmu_path_from_uri(const char *uri) {
     const char *p = uri + 5;
     if (p[0] == '/' && p[1] == '/') { /* an authority: empty or localhost, else a UNC host */
         p += 2;
-        if (strncmp(p, "localhost/", 10) == 0) p += 9;
-        else if (*p != '/') p -= 2; /* keep //host/share */
+        if (strncmp(p, "localhost/", 10) == 0)
+            p += 9;
+        else if (*p != '/')
+            p -= 2; /* keep //host/share */
     }
     char *out = malloc(strlen(p) + 1);
     if (!out) return NULL;
@@ -561,7 +574,10 @@ static const char *parse_hex_float(const char *s, double *value) {
     }
     if (mant >> 53) return "more digits than a double holds";
     const double m = (double)mant; /* exact: < 2^53 */
-    const double v = mant ? ldexp(m, (int)(e2 < -100000 ? -100000 : e2 > 100000 ? 100000 : e2)) : 0.0;
+    const double v = mant ? ldexp(m, (int)(e2 < -100000  ? -100000
+                                           : e2 > 100000 ? 100000
+                                                         : e2))
+                          : 0.0;
     if (mant && (!isfinite(v) || v == 0.0 || ldexp(v, (int)-e2) != m))
         return "not representable exactly as a double";
     *value = neg ? -v : v;
@@ -591,8 +607,10 @@ static int load_fail(fmu_instance *I, const char *fn, const char *path, int line
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    if (line > 0) FMU_ERROR(I, "%s: %s, line %d: %s", fn, path, line, text);
-    else FMU_ERROR(I, "%s: %s: %s", fn, path, text);
+    if (line > 0)
+        FMU_ERROR(I, "%s: %s, line %d: %s", fn, path, line, text);
+    else
+        FMU_ERROR(I, "%s: %s: %s", fn, path, text);
     if (f) fclose(f);
     free(start);
     free(freeme);
@@ -631,16 +649,18 @@ int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources
     memcpy(start, I->start, nv * sizeof *start);
     char buf[1002];
     int line = 0;
-#define FAIL(...)                                                                        \
-    do {                                                                                 \
-        free(seen);                                                                      \
-        return load_fail(I, fn, path, line, f, path, start, __VA_ARGS__);                \
+#define FAIL(...)                                                                                  \
+    do {                                                                                           \
+        free(seen);                                                                                \
+        return load_fail(I, fn, path, line, f, path, start, __VA_ARGS__);                          \
     } while (0)
     while (fgets(buf, sizeof buf, f)) {
         ++line;
         size_t n = strlen(buf);
-        if (n > 0 && buf[n - 1] == '\n') buf[--n] = '\0';
-        else if (!feof(f)) FAIL("longer than 1000 characters");
+        if (n > 0 && buf[n - 1] == '\n')
+            buf[--n] = '\0';
+        else if (!feof(f))
+            FAIL("longer than 1000 characters");
         if (n > 0 && buf[n - 1] == '\r') buf[--n] = '\0';
         while (n > 0 && is_blank(buf[n - 1])) buf[--n] = '\0';
         char *p = buf;
@@ -671,7 +691,8 @@ int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources
                       : parse_decimal_integer(p, &v);
             if (why)
                 FAIL("%s = \"%s\": %s; expected a hexadecimal float such as 0x1.8p+3 "
-                     "(printf %%a, Python float.hex()) or a decimal integer", name, p, why);
+                     "(printf %%a, Python float.hex()) or a decimal integer",
+                     name, p, why);
         } else if ((why = parse_decimal_integer(p, &v)) != NULL) {
             FAIL("%s = \"%s\": %s; expected a decimal integer", name, p, why);
         }
@@ -726,8 +747,10 @@ fmu_status fmu_exit_init(fmu_instance *I, fmu_msg *msg) {
 OC_HOT fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg) {
     double *time = fmu_model_time(I->model);
     if (!isfinite(t) || !isfinite(h) || !(h > 0) || !isfinite(t + h))
-        return fmu_fail(msg, "currentCommunicationPoint=%g, communicationStepSize=%g: the step "
-                             "size must be > 0 and the time must stay finite", t, h);
+        return fmu_fail(msg,
+                        "currentCommunicationPoint=%g, communicationStepSize=%g: the step "
+                        "size must be > 0 and the time must stay finite",
+                        t, h);
     /* Masters that count time as t0 + k h differ from a sum of steps by
      * rounding only; anything beyond that is a master error. */
     const double at = fabs(*time); /* finite: no NaN for fmax, which would be a libm call */
@@ -796,8 +819,7 @@ static fmu_status check_read(const fmu_field *f, double v, fmu_msg *msg) {
     }
 }
 
-fmu_status fmu_fields_read(const fmu_fields *list, void *s, const unsigned char **p,
-                           fmu_msg *msg) {
+fmu_status fmu_fields_read(const fmu_fields *list, void *s, const unsigned char **p, fmu_msg *msg) {
     for (unsigned int i = 0; i < list->n; ++i) {
         const fmu_field *f = &list->field[i];
         char *at = (char *)s + f->offset;
@@ -882,9 +904,11 @@ fmu_status fmu_state_read(fmu_instance *I, const unsigned char *buf, size_t size
                         size < 8 ? "too short" : "wrong tag");
     p = fmu_get_u32(p + 4, &format);
     if (format != STATE_FORMAT)
-        return fmu_fail(msg, "serialized state of format %u, this FMU reads format %d only "
-                             "(states are not carried across FMU versions: save them again "
-                             "with this one)", (unsigned)format, STATE_FORMAT);
+        return fmu_fail(msg,
+                        "serialized state of format %u, this FMU reads format %d only "
+                        "(states are not carried across FMU versions: save them again "
+                        "with this one)",
+                        (unsigned)format, STATE_FORMAT);
     if (size != fmu_state_size())
         return fmu_fail(msg, "a serialized %s state has %zu bytes, got %zu",
                         FMU_MODEL_INFO.model_identifier, fmu_state_size(), size);
@@ -961,12 +985,16 @@ int fmu_state_free(fmu_instance *I, const char *fn, void **state) {
      * ours: nothing else is freed); said in the log, the call succeeds. */
     if ((at = held_find(I, state))) {
         held_release(I, at);
-        fmu_log(I, FMU_S_WARNING, FMU_LOG_WARNING, "%s: given the state instead of a pointer to "
-                "it; freed it (the importer's handle now dangles)", fn);
+        fmu_log(I, FMU_S_WARNING, FMU_LOG_WARNING,
+                "%s: given the state instead of a pointer to "
+                "it; freed it (the importer's handle now dangles)",
+                fn);
         return FMU_S_OK;
     }
-    FMU_ERROR(I, "%s: not a state of this instance (freed already, or another instance's): "
-                 "nothing freed", fn);
+    FMU_ERROR(I,
+              "%s: not a state of this instance (freed already, or another instance's): "
+              "nothing freed",
+              fn);
     return FMU_S_ERROR;
 }
 

@@ -45,14 +45,14 @@ struct fmu_instance {
     void *(*alloc)(size_t n, size_t size);
     void (*release)(void *p);
     void *glue; /* the version's own data (callbacks, environment) */
-    struct fmu_held_state *states; /* the FMU states it gave out and has not freed (fmu_instance.c) */
+    struct fmu_held_state
+        *states; /* the FMU states it gave out and has not freed (fmu_instance.c) */
 };
 
 /* NULL if out of memory.  Errors and warnings are logged unless switched
  * off with SetDebugLogging; logging_on adds the call trace. */
 fmu_instance *fmu_instance_new(const char *name, void *(*alloc)(size_t, size_t),
-                               void (*release)(void *), fmu_log_fn log, void *glue,
-                               int logging_on);
+                               void (*release)(void *), fmu_log_fn log, void *glue, int logging_on);
 void fmu_instance_free(fmu_instance *I);
 
 void fmu_log(fmu_instance *I, int status, int category, const char *fmt, ...);
@@ -135,8 +135,8 @@ fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg);
  * slip; a state of another format is refused with a message that says so
  * (its meaning differs: no conversion guesses it). */
 enum { FMU_STATE_FORMAT = 3, FMU_STATE_HEADER_BYTES = 4 + 4 + 4 + 4 + 8 };
-#define FMU_STATE_HEADER_LAYOUT                                                                \
-    "the model's tag (4 bytes), the format (u32), the length in bytes (u32), the FMI phase "  \
+#define FMU_STATE_HEADER_LAYOUT                                                                    \
+    "the model's tag (4 bytes), the format (u32), the length in bytes (u32), the FMI phase "       \
     "(u32: 1 instantiated, 2 initialization, 4 step, 8 terminated), the time (f64)"
 size_t fmu_state_size(void);
 void fmu_state_write(const fmu_instance *I, unsigned char *buf);
@@ -175,8 +175,8 @@ typedef struct {
 enum { FMU_JACOBIAN_MAX = 64 }; /* rows x cols at most */
 fmu_status fmu_jacobian_derivative(const fmu_jacobian *jac, const fmu_model *m,
                                    const unsigned int unknown[], size_t n_unknown,
-                                   const unsigned int known[], size_t n_known,
-                                   const double seed[], double out[], int adjoint, fmu_msg *msg);
+                                   const unsigned int known[], size_t n_known, const double seed[],
+                                   double out[], int adjoint, fmu_msg *msg);
 
 #ifdef __cplusplus
 }

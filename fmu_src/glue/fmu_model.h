@@ -68,20 +68,21 @@ enum {
 
 /* One row of a model's table, indexed by value reference. */
 typedef struct {
-    const char *name;       /* NULL: no variable has this value reference */
-    unsigned char type;     /* FMU_T_* */
-    unsigned char causality;/* FMU_C_* */
-    unsigned char settable; /* FMU_ALLOW_* bit needed to set it, 0: never */
-    double start, min, max; /* min/max may be infinite: values must also be finite */
-    size_t slot;            /* byte offset of the value in struct fmu_model */
-    const char *unit;       /* the table's unit ("rad", "N/m"; "1" or "" for none), for messages */
+    const char *name;        /* NULL: no variable has this value reference */
+    unsigned char type;      /* FMU_T_* */
+    unsigned char causality; /* FMU_C_* */
+    unsigned char settable;  /* FMU_ALLOW_* bit needed to set it, 0: never */
+    double start, min, max;  /* min/max may be infinite: values must also be finite */
+    size_t slot;             /* byte offset of the value in struct fmu_model */
+    const char *unit;        /* the table's unit ("rad", "N/m"; "1" or "" for none), for messages */
 } fmu_var;
 
 /* The row of a table entry X(name, vr, type, causality, ...); the model
  * defines FMU_SLOT_<name> for every variable and, for a table with
  * enumeration types, FMU_T_<EnumType> = FMU_T_Enum (FMU_ENUM_KIND). */
-#define FMU_VAR_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...) \
-    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus, start, lo, hi, FMU_SLOT_##name, unit},
+#define FMU_VAR_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...)                     \
+    [vr] = {#name, FMU_T_##type,    FMU_C_##caus, FMU_SET_##caus, start, lo,                       \
+            hi,    FMU_SLOT_##name, unit},
 #define FMU_ENUM_KIND(type, items) FMU_T_##type = FMU_T_Enum,
 
 typedef struct fmu_model fmu_model;
@@ -91,11 +92,11 @@ enum { FMU_CHANGED_PARAMETERS = FMU_ALLOW_PARAMETERS, FMU_CHANGED_INPUTS = FMU_A
 
 typedef struct {
     const char *model_identifier;
-    const char *token;      /* FMI 2.0 guid, FMI 3.0 instantiationToken */
-    unsigned char tag[4];   /* first bytes of a serialized state of this model */
-    const fmu_var *vars;    /* indexed by value reference; vars[0] is time */
+    const char *token;    /* FMI 2.0 guid, FMI 3.0 instantiationToken */
+    unsigned char tag[4]; /* first bytes of a serialized state of this model */
+    const fmu_var *vars;  /* indexed by value reference; vars[0] is time */
     unsigned int n_vars;
-    size_t size;            /* sizeof(struct fmu_model) */
+    size_t size; /* sizeof(struct fmu_model) */
     /* Optional hooks; NULL takes the glue's default. */
     /* Writes into their slots the outputs that follow from the time, the
      * parameters and the inputs alone (not from what update and do_step
@@ -176,10 +177,10 @@ const char *fmu_model_variable_name(unsigned int vr);
 /* The row of vr, or NULL. */
 const fmu_var *fmu_model_var(unsigned int vr);
 
-fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n,
-                                 const double v[], int allow, fmu_msg *msg);
-fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n,
-                                 double v[], fmu_msg *msg);
+fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n, const double v[],
+                                 int allow, fmu_msg *msg);
+fmu_status fmu_model_get_float64(const fmu_model *m, const unsigned int vr[], size_t n, double v[],
+                                 fmu_msg *msg);
 /* Integers travel as int32_t or int64_t arrays (width 4 or 8; uint64_t
  * when kinds has FMU_UINT64); `kinds` is the mask of FMU_INT32 / FMU_ENUM /
  * FMU_UINT64 the calling function may touch, with FMU_AS_FMI3 from FMI 3.0. */
@@ -195,13 +196,12 @@ fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], siz
                                 size_t n_values, int type, size_t width, fmu_msg *msg);
 /* Whether vr is one of the model's structural parameters. */
 int fmu_model_is_structural(unsigned int vr);
-fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[],
-                                size_t n_unknown, const unsigned int known[], size_t n_known,
-                                const double seed[], double out[], int adjoint, fmu_msg *msg);
+fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[], size_t n_unknown,
+                                const unsigned int known[], size_t n_known, const double seed[],
+                                double out[], int adjoint, fmu_msg *msg);
 /* Whether `value` lies in vr's [min, max] (for models validating a
  * serialized state against their table). */
-fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context,
-                                 fmu_msg *msg);
+fmu_status fmu_model_check_range(unsigned int vr, double value, const char *context, fmu_msg *msg);
 
 /* Width-generic integer access. */
 static inline int64_t fmu_int_at(const void *v, size_t width, size_t i) {

@@ -10,7 +10,8 @@
  * by construction, and any change of the description changes the token.
  * The version comes from the build (-DFMU_VERSION="...").
  *
- * Usage: gen_model_description fmi2|fmi3|build|html2|html3|token|manifest [OUTPUT]   (stdout without OUTPUT) */
+ * Usage: gen_model_description fmi2|fmi3|build|html2|html3|token|manifest [OUTPUT]   (stdout
+ * without OUTPUT) */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -20,7 +21,7 @@
 #define FMU_GENERATOR 1 /* the table header must not include the token this computes */
 #include FMU_TABLE_HEADER
 #ifdef FMU_MODEL_HEADER
-#include FMU_MODEL_HEADER /* the serialized state's field list, FMU_STATE_FIELDS */
+#include FMU_MODEL_HEADER      /* the serialized state's field list, FMU_STATE_FIELDS */
 #include "glue/fmu_instance.h" /* its header's */
 #endif
 
@@ -43,9 +44,9 @@ typedef struct {
 #endif
 #define TF(x) ((x) ? "true" : "false")
 
-#define ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc) \
+#define ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc)                      \
     {#name, #type, #caus, #var, #init, unit, disp, desc, vr, start, lo, hi, 0},
-#define GROUP_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc) \
+#define GROUP_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, disp, desc)                \
     {#name, #type, #caus, #var, #init, unit, disp, desc, vr, start, lo, hi, 1},
 /* A table may mark a group of rows (FMU_GROUPED_VARIABLES(X, G), named
  * FMU_GROUP): the manifest lists it for the package. */
@@ -134,16 +135,28 @@ static void value_attrs(FILE *f, const row *r) {
     if (*r->unit && !is(r->unit, "1")) fprintf(f, " unit=\"%s\"", r->unit);
     if (*r->display) fprintf(f, " displayUnit=\"%s\"", r->display);
     if (isfinite(r->min)) {
-        if (is_int(r)) fprintf(f, " min=\"%d\"", (int)r->min);
-        else { num(b, sizeof b, r->min); fprintf(f, " min=\"%s\"", b); }
+        if (is_int(r))
+            fprintf(f, " min=\"%d\"", (int)r->min);
+        else {
+            num(b, sizeof b, r->min);
+            fprintf(f, " min=\"%s\"", b);
+        }
     }
     if (isfinite(r->max)) {
-        if (is_int(r)) fprintf(f, " max=\"%d\"", (int)r->max);
-        else { num(b, sizeof b, r->max); fprintf(f, " max=\"%s\"", b); }
+        if (is_int(r))
+            fprintf(f, " max=\"%d\"", (int)r->max);
+        else {
+            num(b, sizeof b, r->max);
+            fprintf(f, " max=\"%s\"", b);
+        }
     }
     if (has_start(r)) {
-        if (is_int(r)) fprintf(f, " start=\"%d\"", (int)r->start);
-        else { num(b, sizeof b, r->start); fprintf(f, " start=\"%s\"", b); }
+        if (is_int(r))
+            fprintf(f, " start=\"%d\"", (int)r->start);
+        else {
+            num(b, sizeof b, r->start);
+            fprintf(f, " start=\"%s\"", b);
+        }
     }
 }
 
@@ -166,25 +179,28 @@ static void log_categories(FILE *f) {
           "    <Category name=\"logStatusWarning\" description=\"Warnings\"/>\n"
           "    <Category name=\"logCalls\" description=\"Trace of FMI function calls\"/>\n"
           "  </LogCategories>\n\n"
-          "  <DefaultExperiment " FMU_DEFAULT_EXPERIMENT "/>\n\n", f);
+          "  <DefaultExperiment " FMU_DEFAULT_EXPERIMENT "/>\n\n",
+          f);
 }
 
 static void header(FILE *f, const char *version) {
-    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-               "<!-- Generated from the variable table by gen_model_description: edit the table, "
-               "not this file. -->\n"
-               "<fmiModelDescription\n  fmiVersion=\"%s\"\n  modelName=\"%s\"\n", version,
-            FMU_MODEL_NAME);
+    fprintf(f,
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+            "<!-- Generated from the variable table by gen_model_description: edit the table, "
+            "not this file. -->\n"
+            "<fmiModelDescription\n  fmiVersion=\"%s\"\n  modelName=\"%s\"\n",
+            version, FMU_MODEL_NAME);
 }
 
 static void common_attrs(FILE *f, const char *license_path) {
     fputs("  description=\"", f);
     esc(f, FMU_DESCRIPTION);
-    fprintf(f, "\"\n  author=\"the orthocontact developers\"\n  version=\"%s\"\n"
-               "  copyright=\"Copyright (c) 2026 the orthocontact developers\"\n"
-               "  license=\"BSD-2-Clause (see %s)\"\n"
-               "  generationTool=\"orthocontact gen_model_description\"\n"
-               "  variableNamingConvention=\"flat\"",
+    fprintf(f,
+            "\"\n  author=\"the orthocontact developers\"\n  version=\"%s\"\n"
+            "  copyright=\"Copyright (c) 2026 the orthocontact developers\"\n"
+            "  license=\"BSD-2-Clause (see %s)\"\n"
+            "  generationTool=\"orthocontact gen_model_description\"\n"
+            "  variableNamingConvention=\"flat\"",
             FMU_VERSION, license_path);
 }
 
@@ -222,8 +238,10 @@ static int list_item(const char *list, int k, char name[64], char kind[16]) {
             const char *colon = memchr(p, ':', (size_t)(end - p));
             const char *name_end = colon ? colon : end;
             snprintf(name, 64, "%.*s", (int)(name_end - p), p);
-            if (colon) snprintf(kind, 16, "%.*s", (int)(end - colon - 1), colon + 1);
-            else snprintf(kind, 16, "dependent");
+            if (colon)
+                snprintf(kind, 16, "%.*s", (int)(end - colon - 1), colon + 1);
+            else
+                snprintf(kind, 16, "dependent");
             return 1;
         }
         p = end;
@@ -279,7 +297,6 @@ static int is_structural(const row *r) {
  * glue serves it through the UInt64 functions (fmu_model.h, FMU_UINT64). */
 #define STRUCTURAL_TYPE_FMI3 "UInt64"
 
-
 /* A known of the mode: at a communication point the inputs (the time moves
  * with doStep as the hidden state does: the importer sets neither); in
  * initialization mode also the start time and every variable with
@@ -302,8 +319,10 @@ static int check_dependencies(void) {
     int bad = 0;
     for (int a = 0; a < NARRAYS; ++a)
         if (!deps_of(ARRAYS[a].like)) {
-            fprintf(stderr, "gen_model_description: array %s is like %s, not an output with "
-                            "dependencies\n", ARRAYS[a].name, ARRAYS[a].like);
+            fprintf(stderr,
+                    "gen_model_description: array %s is like %s, not an output with "
+                    "dependencies\n",
+                    ARRAYS[a].name, ARRAYS[a].like);
             bad = 1;
         }
     {
@@ -315,9 +334,11 @@ static int check_dependencies(void) {
             if (!r || !is(r->type, "Int32") || !is(r->causality, "parameter") || r->min < 1 ||
                 !(r->start >= r->min && r->start <= r->max) || !is(r->initial, "exact") ||
                 !(is(r->variability, "fixed") || is(r->variability, "tunable"))) {
-                fprintf(stderr, "gen_model_description: structural parameter %s is not an Int32 "
-                                "parameter, fixed or tunable, initial exact, with min >= 1 and its "
-                                "start in [min, max]\n", name);
+                fprintf(stderr,
+                        "gen_model_description: structural parameter %s is not an Int32 "
+                        "parameter, fixed or tunable, initial exact, with min >= 1 and its "
+                        "start in [min, max]\n",
+                        name);
                 bad = 1;
             }
         }
@@ -344,10 +365,11 @@ static int check_dependencies(void) {
                 int seen = 0;
                 char other[64], other_kind[16];
                 for (int u = 0; list_item(list, u, other, other_kind); ++u) seen += is(other, name);
-                const char *why = !r ? "no such variable"
-                                  : !is_known(r, init) ? "not a known of this mode"
+                const char *why = !r                               ? "no such variable"
+                                  : !is_known(r, init)             ? "not a known of this mode"
                                   : !kind_allowed(kind, out, init) ? "a kind not allowed here"
-                                  : seen > 1 ? "named twice" : NULL;
+                                  : seen > 1                       ? "named twice"
+                                                                   : NULL;
                 if (why) {
                     fprintf(stderr, "gen_model_description: %s depends on %s:%s in %s: %s\n",
                             DEPS[k].output, name, kind, init ? "initialization" : "step mode", why);
@@ -387,11 +409,12 @@ static void fmi2(FILE *f, const char *token) {
     header(f, "2.0");
     fprintf(f, "  guid=\"%s\"\n", token);
     common_attrs(f, "documentation/LICENSE.txt");
-    fprintf(f, "\n  numberOfEventIndicators=\"0\">\n\n"
-               "  <CoSimulation\n    modelIdentifier=\"%s\"\n"
-               "    canHandleVariableCommunicationStepSize=\"true\"\n"
-               "    canGetAndSetFMUstate=\"true\"\n    canSerializeFMUstate=\"true\"\n"
-               "    providesDirectionalDerivative=\"%s\">\n    <SourceFiles>\n",
+    fprintf(f,
+            "\n  numberOfEventIndicators=\"0\">\n\n"
+            "  <CoSimulation\n    modelIdentifier=\"%s\"\n"
+            "    canHandleVariableCommunicationStepSize=\"true\"\n"
+            "    canGetAndSetFMUstate=\"true\"\n    canSerializeFMUstate=\"true\"\n"
+            "    providesDirectionalDerivative=\"%s\">\n    <SourceFiles>\n",
             FMU_MODEL_IDENTIFIER, TF(FMU_PROVIDES_DERIVATIVES));
     for (int i = 0; i < NSOURCES; ++i) fprintf(f, "      <File name=\"%s\"/>\n", SOURCES[i]);
     fputs("      <File name=\"glue/fmi2_glue.c\"/>\n    </SourceFiles>\n  </CoSimulation>\n\n", f);
@@ -431,11 +454,12 @@ static void fmi3(FILE *f, const char *token) {
     header(f, "3.0");
     fprintf(f, "  instantiationToken=\"%s\"\n", token);
     common_attrs(f, "documentation/licenses/LICENSE.txt");
-    fprintf(f, ">\n\n  <CoSimulation\n    modelIdentifier=\"%s\"\n"
-               "    canHandleVariableCommunicationStepSize=\"true\"\n"
-               "    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"\n"
-               "    providesDirectionalDerivatives=\"%s\"\n"
-               "    providesAdjointDerivatives=\"%s\"\n    hasEventMode=\"false\"/>\n\n",
+    fprintf(f,
+            ">\n\n  <CoSimulation\n    modelIdentifier=\"%s\"\n"
+            "    canHandleVariableCommunicationStepSize=\"true\"\n"
+            "    canGetAndSetFMUState=\"true\"\n    canSerializeFMUState=\"true\"\n"
+            "    providesDirectionalDerivatives=\"%s\"\n"
+            "    providesAdjointDerivatives=\"%s\"\n    hasEventMode=\"false\"/>\n\n",
             FMU_MODEL_IDENTIFIER, TF(FMU_PROVIDES_DERIVATIVES), TF(FMU_PROVIDES_DERIVATIVES));
     unit_definitions(f);
     if (NENUMS > 0) {
@@ -456,8 +480,9 @@ static void fmi3(FILE *f, const char *token) {
     fputs("  <ModelVariables>\n", f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
-        const char *el = is_structural(r) ? STRUCTURAL_TYPE_FMI3 : is_enum(r) ? "Enumeration"
-                                                                                : r->type;
+        const char *el = is_structural(r) ? STRUCTURAL_TYPE_FMI3
+                         : is_enum(r)     ? "Enumeration"
+                                          : r->type;
         fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\"", el, r->name, r->vr);
         if (is_enum(r)) fprintf(f, " declaredType=\"%s\"", r->type);
         fprintf(f, " causality=\"%s\" variability=\"%s\"",
@@ -471,8 +496,9 @@ static void fmi3(FILE *f, const char *token) {
     }
     for (int a = 0; a < NARRAYS; ++a) {
         const array_row *x = &ARRAYS[a];
-        fprintf(f, "    <%s name=\"%s\" valueReference=\"%u\" causality=\"output\" "
-                   "variability=\"%s\" initial=\"calculated\" description=\"",
+        fprintf(f,
+                "    <%s name=\"%s\" valueReference=\"%u\" causality=\"output\" "
+                "variability=\"%s\" initial=\"calculated\" description=\"",
                 x->type, x->name, x->vr, is(x->type, "Float64") ? "continuous" : "discrete");
         esc(f, x->desc);
         fputc('"', f);
@@ -502,28 +528,31 @@ static void fmi3(FILE *f, const char *token) {
 }
 
 static void build(FILE *f) {
-    fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-               "<!-- Generated by gen_model_description: how to compile sources/ into the "
-               "binary. -->\n"
-               "<fmiBuildDescription fmiVersion=\"3.0\">\n"
-               "  <BuildConfiguration modelIdentifier=\"%s\">\n"
-               "    <SourceFileSet language=\"C99\">\n", FMU_MODEL_IDENTIFIER);
+    fprintf(f,
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+            "<!-- Generated by gen_model_description: how to compile sources/ into the "
+            "binary. -->\n"
+            "<fmiBuildDescription fmiVersion=\"3.0\">\n"
+            "  <BuildConfiguration modelIdentifier=\"%s\">\n"
+            "    <SourceFileSet language=\"C99\">\n",
+            FMU_MODEL_IDENTIFIER);
     for (int i = 0; i < NSOURCES; ++i) fprintf(f, "      <SourceFile name=\"%s\"/>\n", SOURCES[i]);
     fputs("      <SourceFile name=\"glue/fmi3_glue.c\"/>\n    </SourceFileSet>\n"
           "    <Library name=\"m\" description=\"the C math library (Linux)\"/>\n"
-          "  </BuildConfiguration>\n</fmiBuildDescription>\n", f);
+          "  </BuildConfiguration>\n</fmiBuildDescription>\n",
+          f);
 }
 
 /* Model documentation text with the FMI version's names put in: @SET@,
  * @GET@, @DOSTEP@, @DIRDER@, @REAL@ (the Float64 functions, the directional
  * derivative and the type of FMI 2.0 or 3.0). */
 static void doc(FILE *f, const char *text, int v) {
-    static const char *const KEYS[][3] = {{"@SET@", "fmi2SetReal", "fmi3SetFloat64"},
-                                          {"@GET@", "fmi2GetReal", "fmi3GetFloat64"},
-                                          {"@DOSTEP@", "fmi2DoStep", "fmi3DoStep"},
-                                          {"@DIRDER@", "fmi2GetDirectionalDerivative",
-                                           "fmi3GetDirectionalDerivative"},
-                                          {"@REAL@", "Real", "Float64"}};
+    static const char *const KEYS[][3] = {
+        {"@SET@", "fmi2SetReal", "fmi3SetFloat64"},
+        {"@GET@", "fmi2GetReal", "fmi3GetFloat64"},
+        {"@DOSTEP@", "fmi2DoStep", "fmi3DoStep"},
+        {"@DIRDER@", "fmi2GetDirectionalDerivative", "fmi3GetDirectionalDerivative"},
+        {"@REAL@", "Real", "Float64"}};
     while (*text) {
         int done = 0;
         for (size_t k = 0; k < sizeof KEYS / sizeof KEYS[0] && !done; ++k) {
@@ -542,14 +571,19 @@ static void doc(FILE *f, const char *text, int v) {
 static void value_cell(char *buf, size_t n, const row *r, double x) {
     char v[64];
     num(v, sizeof v, x);
-    if (is(r->unit, "rad")) snprintf(buf, n, "%s (%.10g&deg;)", v, x * 57.29577951308232);
-    else snprintf(buf, n, "%s", v);
+    if (is(r->unit, "rad"))
+        snprintf(buf, n, "%s (%.10g&deg;)", v, x * 57.29577951308232);
+    else
+        snprintf(buf, n, "%s", v);
 }
 
 /* The type of a variable as FMI version v names it. */
 static const char *type_name(const row *r, int v, char *buf, size_t n) {
     if (v == 2) {
-        snprintf(buf, n, "%s", is(r->type, "Float64") ? "Real" : is_enum(r) ? "Integer (see below)" : "Integer");
+        snprintf(buf, n, "%s",
+                 is(r->type, "Float64") ? "Real"
+                 : is_enum(r)           ? "Integer (see below)"
+                                        : "Integer");
     } else {
         snprintf(buf, n, "%s%s", is_enum(r) ? "Enumeration " : "",
                  is_structural(r) ? STRUCTURAL_TYPE_FMI3 : r->type);
@@ -558,41 +592,48 @@ static const char *type_name(const row *r, int v, char *buf, size_t n) {
 }
 
 static void html(FILE *f, int v) {
-    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\">"
-               "<title>%s (FMI %d.0)</title>\n<style>body{font-family:sans-serif;max-width:80em;margin:2em auto}"
-               "table{border-collapse:collapse;font-size:90%%}td,th{border:1px solid #999;padding:2px 6px;"
-               "text-align:left;vertical-align:top}code{background:#eee}</style></head>\n<body>\n"
-               "<!-- Generated from the variable table by gen_model_description. -->\n"
-               "<h1>%s %s: FMI %d.0 Co-Simulation</h1>\n<p>", FMU_MODEL_NAME, v, FMU_MODEL_NAME,
-            FMU_VERSION, v);
+    fprintf(
+        f,
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\">"
+        "<title>%s (FMI "
+        "%d.0)</title>\n<style>body{font-family:sans-serif;max-width:80em;margin:2em auto}"
+        "table{border-collapse:collapse;font-size:90%%}td,th{border:1px solid #999;padding:2px 6px;"
+        "text-align:left;vertical-align:top}code{background:#eee}</style></head>\n<body>\n"
+        "<!-- Generated from the variable table by gen_model_description. -->\n"
+        "<h1>%s %s: FMI %d.0 Co-Simulation</h1>\n<p>",
+        FMU_MODEL_NAME, v, FMU_MODEL_NAME, FMU_VERSION, v);
     esc(f, FMU_DESCRIPTION);
-    fprintf(f, ".</p>\n<p>This page describes the FMI %d.0 FMU; the FMI %d.0 one of the same "
-               "version is built from the same sources and gives the same outputs bit for bit.</p>\n",
+    fprintf(f,
+            ".</p>\n<p>This page describes the FMI %d.0 FMU; the FMI %d.0 one of the same "
+            "version is built from the same sources and gives the same outputs bit for bit.</p>\n",
             v, v == 2 ? 3 : 2);
     doc(f, FMU_DOC_HTML, v); /* the table's text (glue/fmu_table.h) */
     fputs("<h2>Variables</h2>\n<table>\n<tr><th>name</th><th>vr</th><th>causality</th>"
           "<th>variability</th><th>type</th><th>unit</th><th>start</th><th>min</th><th>max</th>"
-          "<th>description</th></tr>\n", f);
+          "<th>description</th></tr>\n",
+          f);
     for (int i = 0; i < NROWS; ++i) {
         const row *r = &ROWS[i];
         char s[96] = "", lo[96] = "", hi[96] = "", type[96];
         if (has_start(r)) value_cell(s, sizeof s, r, r->start);
         if (isfinite(r->min)) value_cell(lo, sizeof lo, r, r->min);
         if (isfinite(r->max)) value_cell(hi, sizeof hi, r, r->max);
-        fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>%s</td><td>%s</td><td>%s</td>"
-                   "<td>%s%s%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>",
+        fprintf(f,
+                "<tr><td><code>%s</code></td><td>%u</td><td>%s</td><td>%s</td><td>%s</td>"
+                "<td>%s%s%s%s</td><td>%s</td><td>%s</td><td>%s</td><td>",
                 r->name, r->vr, v == 3 && is_structural(r) ? "structuralParameter" : r->causality,
-                r->variability, type_name(r, v, type, sizeof type),
-                is(r->unit, "1") ? "" : r->unit, *r->display ? " (display " : "", r->display,
-                *r->display ? ")" : "", s, lo, hi);
+                r->variability, type_name(r, v, type, sizeof type), is(r->unit, "1") ? "" : r->unit,
+                *r->display ? " (display " : "", r->display, *r->display ? ")" : "", s, lo, hi);
         esc(f, r->desc);
         fputs("</td></tr>\n", f);
     }
     for (int a = 0; v == 3 && a < NARRAYS; ++a) {
-        fprintf(f, "<tr><td><code>%s</code></td><td>%u</td><td>output</td><td>%s</td>"
-                   "<td>%s[%s]</td><td>%s</td><td></td><td></td><td></td><td>",
-                ARRAYS[a].name, ARRAYS[a].vr, is(ARRAYS[a].type, "Float64") ? "continuous" : "discrete",
-                ARRAYS[a].type, FMU_STRUCTURAL_PARAMETERS, is(ARRAYS[a].unit, "1") ? "" : ARRAYS[a].unit);
+        fprintf(f,
+                "<tr><td><code>%s</code></td><td>%u</td><td>output</td><td>%s</td>"
+                "<td>%s[%s]</td><td>%s</td><td></td><td></td><td></td><td>",
+                ARRAYS[a].name, ARRAYS[a].vr,
+                is(ARRAYS[a].type, "Float64") ? "continuous" : "discrete", ARRAYS[a].type,
+                FMU_STRUCTURAL_PARAMETERS, is(ARRAYS[a].unit, "1") ? "" : ARRAYS[a].unit);
         esc(f, ARRAYS[a].desc);
         fputs("</td></tr>\n", f);
     }
@@ -604,13 +645,16 @@ static void html(FILE *f, int v) {
               "wants an array's dimension to be (Integer parameters in FMI 2.0). "
               "The arrays above are their shape, row-major (the last index fastest); "
               "fmi3GetFloat64 and fmi3GetInt32 take nValues, the number of values of all the "
-              "variables asked for.</p>\n", f);
+              "variables asked for.</p>\n",
+              f);
     for (int e = 0; e < NENUMS; ++e) {
         const char *var = "";
         for (int i = 0; i < NROWS; ++i)
             if (is(ROWS[i].type, ENUMS[e].name)) var = ROWS[i].name;
-        if (v == 2) fprintf(f, "<h2>The Integer values of <code>%s</code></h2>\n<ul>\n", var);
-        else fprintf(f, "<h2>Enumeration %s (<code>%s</code>)</h2>\n<ul>\n", ENUMS[e].name, var);
+        if (v == 2)
+            fprintf(f, "<h2>The Integer values of <code>%s</code></h2>\n<ul>\n", var);
+        else
+            fprintf(f, "<h2>Enumeration %s (<code>%s</code>)</h2>\n<ul>\n", ENUMS[e].name, var);
         for (int k = 0; k < ENUMS[e].n; ++k) {
             fprintf(f, "<li><code>%d</code> %s: ", ENUMS[e].items[k].value, ENUMS[e].items[k].name);
             esc(f, ENUMS[e].items[k].desc);
@@ -618,14 +662,19 @@ static void html(FILE *f, int v) {
         }
         fputs("</ul>\n", f);
     }
-    fputs("<h2>How to cite</h2>\n<p>The law and the rig are those of A. Konyukhov, K. Schweizerhof, "
-          "<i>On coupled models of anisotropic contact surfaces and their experimental validation</i>, "
-          "report, Institut f&uuml;r Mechanik, Universit&auml;t Karlsruhe, 2007.  This FMU: the "
-          "orthocontact developers, <i>orthocontact</i>, version ", f);
+    fputs(
+        "<h2>How to cite</h2>\n<p>The law and the rig are those of A. Konyukhov, K. Schweizerhof, "
+        "<i>On coupled models of anisotropic contact surfaces and their experimental "
+        "validation</i>, "
+        "report, Institut f&uuml;r Mechanik, Universit&auml;t Karlsruhe, 2007.  This FMU: the "
+        "orthocontact developers, <i>orthocontact</i>, version ",
+        f);
     fputs(FMU_VERSION, f);
     fputs(" (the repository's <code>CITATION.cff</code> holds both).</p>\n", f);
-    fprintf(f, "<h2>License</h2>\n<p>BSD-2-Clause: see <code>%s</code> beside this page.</p>\n"
-               "</body>\n</html>\n", v == 2 ? "LICENSE.txt" : "licenses/LICENSE.txt");
+    fprintf(f,
+            "<h2>License</h2>\n<p>BSD-2-Clause: see <code>%s</code> beside this page.</p>\n"
+            "</body>\n</html>\n",
+            v == 2 ? "LICENSE.txt" : "licenses/LICENSE.txt");
 }
 
 /* A JSON string: the table's texts are ASCII with no control characters
@@ -642,8 +691,10 @@ static void json_str(FILE *f, const char *s) {
 /* A number, or null for none (an infinite bound). */
 static void json_num(FILE *f, const row *r, double x) {
     char b[64];
-    if (!isfinite(x)) fputs("null", f);
-    else if (is_int(r)) fprintf(f, "%d", (int)x);
+    if (!isfinite(x))
+        fputs("null", f);
+    else if (is_int(r))
+        fprintf(f, "%d", (int)x);
     else {
         num(b, sizeof b, x);
         fputs(b, f);
@@ -659,7 +710,8 @@ static void state_layout(FILE *f);
  * table's group (the law's parameters, in the table's order). */
 static void manifest(FILE *f) {
     fputs("{\n  \"generated\": \"by gen_model_description from the variable table: edit the "
-          "table, not this file\",\n  \"modelIdentifier\": ", f);
+          "table, not this file\",\n  \"modelIdentifier\": ",
+          f);
     json_str(f, FMU_MODEL_IDENTIFIER);
     fprintf(f, ",\n  \"version\": \"%s\",\n  \"providesDerivatives\": %s,\n  \"variables\": [\n",
             FMU_VERSION, TF(FMU_PROVIDES_DERIVATIVES));
@@ -670,8 +722,10 @@ static void manifest(FILE *f) {
         fprintf(f, ", \"valueReference\": %u, \"type\": ", r->vr);
         json_str(f, is_enum(r) ? "Enumeration" : r->type);
         fputs(", \"declaredType\": ", f);
-        if (is_enum(r)) json_str(f, r->type);
-        else fputs("null", f);
+        if (is_enum(r))
+            json_str(f, r->type);
+        else
+            fputs("null", f);
         fputs(", \"causality\": ", f);
         json_str(f, r->causality);
         fputs(", \"variability\": ", f);
@@ -683,8 +737,10 @@ static void manifest(FILE *f) {
         fputs(", \"displayUnit\": ", f);
         json_str(f, r->display);
         fputs(", \"start\": ", f);
-        if (has_start(r)) json_num(f, r, r->start);
-        else fputs("null", f);
+        if (has_start(r))
+            json_num(f, r, r->start);
+        else
+            fputs("null", f);
         fputs(", \"min\": ", f);
         json_num(f, r, r->min);
         fputs(", \"max\": ", f);
@@ -699,7 +755,8 @@ static void manifest(FILE *f) {
     if (NARRAYS > 0 || HAS_STRUCTURAL) {
         /* FMI 3.0 only: n1, n2 are structural parameters there, and the arrays */
         fputs("  \"fmi3\": {\"structuralType\": \"" STRUCTURAL_TYPE_FMI3 "\", "
-              "\"structuralParameters\": [", f);
+              "\"structuralParameters\": [",
+              f);
         char name[64], kind[16];
         for (int k = 0; list_item(FMU_STRUCTURAL_PARAMETERS, k, name, kind); ++k) {
             if (k) fputs(", ", f);
@@ -796,7 +853,8 @@ static void state_layout(FILE *f) {
         } else {
             fputs(", \"count\": 1, \"fields\": [", f);
             unsigned int j = i;
-            while (j < L->n && L->field[j].type != FMU_FIELD_RECORD && is(L->field[j].group, x->group))
+            while (j < L->n && L->field[j].type != FMU_FIELD_RECORD &&
+                   is(L->field[j].group, x->group))
                 ++j;
             const fmu_fields run = {x, j - i, 0};
             field_items(f, &run, &first);
@@ -829,8 +887,7 @@ static void compute_token(char token[39]) {
     fclose(t);
     snprintf(token, 39, "{%08x-%04x-%04x-%04x-%012llx}", (unsigned)(h[0] >> 32),
              (unsigned)(h[0] >> 16) & 0xffffu, (unsigned)h[0] & 0xffffu,
-             (unsigned)(h[1] >> 48) & 0xffffu,
-             (unsigned long long)(h[1] & 0xffffffffffffull));
+             (unsigned)(h[1] >> 48) & 0xffffu, (unsigned long long)(h[1] & 0xffffffffffffull));
 }
 
 int main(int argc, char **argv) {
@@ -846,16 +903,24 @@ int main(int argc, char **argv) {
         perror(argv[2]);
         return 1;
     }
-    if (is(argv[1], "fmi2")) fmi2(f, token);
-    else if (is(argv[1], "fmi3")) fmi3(f, token);
+    if (is(argv[1], "fmi2"))
+        fmi2(f, token);
+    else if (is(argv[1], "fmi3"))
+        fmi3(f, token);
     else if (is(argv[1], "token"))
-        fprintf(f, "/* Generated by gen_model_description from the model descriptions' content. */\n"
-                   "#ifndef FMU_TOKEN_H\n#define FMU_TOKEN_H\n"
-                   "#define FMU_TOKEN \"%s\"\n#define FMU_GUID FMU_TOKEN\n#endif\n", token);
-    else if (is(argv[1], "build")) build(f);
-    else if (is(argv[1], "html2")) html(f, 2);
-    else if (is(argv[1], "html3")) html(f, 3);
-    else if (is(argv[1], "manifest")) manifest(f);
+        fprintf(f,
+                "/* Generated by gen_model_description from the model descriptions' content. */\n"
+                "#ifndef FMU_TOKEN_H\n#define FMU_TOKEN_H\n"
+                "#define FMU_TOKEN \"%s\"\n#define FMU_GUID FMU_TOKEN\n#endif\n",
+                token);
+    else if (is(argv[1], "build"))
+        build(f);
+    else if (is(argv[1], "html2"))
+        html(f, 2);
+    else if (is(argv[1], "html3"))
+        html(f, 3);
+    else if (is(argv[1], "manifest"))
+        manifest(f);
     else {
         fprintf(stderr, "unknown output %s\n", argv[1]);
         return 2;

@@ -27,8 +27,7 @@ static void rotated_diag(double t, double d1, double d2, double R[2][2]) {
 static void matmul(const double A[2][2], const double B[2][2], double C[2][2]) {
     double T[2][2];
     for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-            T[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j];
+        for (int j = 0; j < 2; ++j) T[i][j] = A[i][0] * B[0][j] + A[i][1] * B[1][j];
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j) C[i][j] = T[i][j];
 }

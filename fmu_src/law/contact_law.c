@@ -83,8 +83,10 @@ static void slip_operator_eigenbasis(const oc_params *p, oc_law *L, double V[2][
      * angle is taken in [-pi/4, pi/4]: a diagonal S' then gives exactly the
      * identity, not a quarter turn whose cos(pi/2) = 6e-17 would mix the axes. */
     double th = 0.5 * atan2(S[0][1] + S[1][0], S[0][0] - S[1][1]);
-    if (th > 0.25 * 3.14159265358979323846) th -= 0.5 * 3.14159265358979323846;
-    else if (th < -0.25 * 3.14159265358979323846) th += 0.5 * 3.14159265358979323846;
+    if (th > 0.25 * 3.14159265358979323846)
+        th -= 0.5 * 3.14159265358979323846;
+    else if (th < -0.25 * 3.14159265358979323846)
+        th += 0.5 * 3.14159265358979323846;
     const double c = cos(th), s = sin(th);
     V[0][0] = c;
     V[0][1] = -s;
@@ -170,12 +172,11 @@ int oc_law_init(oc_law *out, const oc_params *p) {
     yield_coordinate_maps(p, V, &L);
     eq20_matrix(p, &L);
     /* Parameters far apart enough can still overflow a tensor: refused. */
-    if (!all_finite(&L.B[0][0], 4) || !all_finite(&L.Binv[0][0], 4) ||
-        !all_finite(&L.F[0][0], 4) || !all_finite(&L.P[0][0], 4) ||
-        !all_finite(&L.Minv[0][0], 4) || !all_finite(&L.Y[0][0], 4) || !all_finite(L.sigma, 2) ||
-        !all_finite(&L.R[0][0], 4) || !all_finite(&L.G[0][0], 4) || !all_finite(&L.K[0][0], 4) ||
-        !all_finite(&L.E20[0][0], 4) || !(L.sigma[0] > 0) || !(L.sigma[1] > 0) ||
-        !(L.sig_hat[0] > 0) || !(L.sig_hat[1] > 0) || !isfinite(L.kappa) ||
+    if (!all_finite(&L.B[0][0], 4) || !all_finite(&L.Binv[0][0], 4) || !all_finite(&L.F[0][0], 4) ||
+        !all_finite(&L.P[0][0], 4) || !all_finite(&L.Minv[0][0], 4) || !all_finite(&L.Y[0][0], 4) ||
+        !all_finite(L.sigma, 2) || !all_finite(&L.R[0][0], 4) || !all_finite(&L.G[0][0], 4) ||
+        !all_finite(&L.K[0][0], 4) || !all_finite(&L.E20[0][0], 4) || !(L.sigma[0] > 0) ||
+        !(L.sigma[1] > 0) || !(L.sig_hat[0] > 0) || !(L.sig_hat[1] > 0) || !isfinite(L.kappa) ||
         !isfinite(L.inv_sigma_ref))
         return -1;
     *out = L;
@@ -205,9 +206,8 @@ static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *
 
 /* One cell's solve (dgamma1_*, section 3's opening comment): y, and p (and
  * 1 / |p|) there. */
-static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr,
-                                             double N, const double sh[2], double p[2],
-                                             double *inv_norm) {
+static OC_ALWAYS_INLINE double solve_dgamma(const double a_raw[2], double sq, double n_tr, double N,
+                                            const double sh[2], double p[2], double *inv_norm) {
     dgamma1_solve S;
     dgamma1_eval E;
     dgamma1_start(a_raw[0], a_raw[1], sq, n_tr, N, sh, &S);
@@ -239,7 +239,7 @@ static double solve_dgamma_far(const double a[2], const double sh[2], double rho
         /* Newton: dv = (|b| - 1) / kp, kp = sum_i r_i^2 s_i / wt_i */
         const double kp = r0 * r0 * (sh[0] / w0) + r1 * r1 * (sh[1] / w1);
         double dv = (n / wmin - 1.0) / kp;
-        if (!(fabs(dv) > 1e-15 * v)) break; /* stalls at the root (or NaN: stop) */
+        if (!(fabs(dv) > 1e-15 * v)) break;   /* stalls at the root (or NaN: stop) */
         if (!(v + dv <= vmax)) dv = vmax - v; /* also for dv = inf */
         if (dv == 0.0) break;
         v += dv;
@@ -409,9 +409,9 @@ static OC_ALWAYS_INLINE void step_slip(const oc_law *L, const oc_state *start, c
     oc_force_of(L, ap, out->q);
     out->next.s[0] = u[0] - ge[0];
     out->next.s[1] = u[1] - ge[1];
-    out->next.energy = start->energy + (L->p.rule != OC_RULE_EQ20
-                                            ? dissipation_implicit(L, yp, ap)
-                                            : dissipation_eq20(L, a, ap, out->q));
+    out->next.energy =
+        start->energy + (L->p.rule != OC_RULE_EQ20 ? dissipation_implicit(L, yp, ap)
+                                                   : dissipation_eq20(L, a, ap, out->q));
 }
 
 void oc_law_step(const oc_law *L, const oc_state *start, const double u_in[2], double N,
@@ -570,8 +570,8 @@ static int tangent_eq20(const oc_law *L, const oc_state *start, const double u[2
     matmul(L->G, M, dq_du);
     dq_dN[0] = L->G[0][0] * zh[0] + L->G[0][1] * zh[1];
     dq_dN[1] = L->G[1][0] * zh[0] + L->G[1][1] * zh[1];
-    const double dE = st->q[0] * (st->next.s[0] - start->s[0]) +
-                      st->q[1] * (st->next.s[1] - start->s[1]);
+    const double dE =
+        st->q[0] * (st->next.s[0] - start->s[0]) + st->q[1] * (st->next.s[1] - start->s[1]);
     return !(dE > 0);
 }
 
@@ -649,9 +649,9 @@ void oc_law_jacobian(const oc_law *L, const oc_state *start, const double u[2], 
     J[1][2] = -dq_dN[1];
     J[2][2] = ds_dN[0];
     J[3][2] = ds_dN[1];
-    J[4][2] = eq20_clamped ? 0.0
-                           : dq_dN[0] * ds[0] + dq_dN[1] * ds[1] + st->q[0] * ds_dN[0] +
-                                 st->q[1] * ds_dN[1];
+    J[4][2] = eq20_clamped
+                  ? 0.0
+                  : dq_dN[0] * ds[0] + dq_dN[1] * ds[1] + st->q[0] * ds_dN[0] + st->q[1] * ds_dN[1];
 }
 
 /* ==== 7. A committed state's admissibility ==== */

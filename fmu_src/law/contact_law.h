@@ -53,14 +53,14 @@ typedef struct {
      * Q(beta)^T q (so that |t| = |q|_F), t ~ E t_tr for E = diag(1/mu)
      * Q(gamma) diag(eps) Q(gamma)^T diag(1/mu), scaled to max|E| = 1 */
     double E20[2][2];
-    double Y[2][2];    /* a = Y q: yield coordinates of a force */
+    double Y[2][2]; /* a = Y q: yield coordinates of a force */
     /* q = Minv a, factored as G R a with the rotation R = Q(beta)^T V and
      * G = Q(beta) diag(mu1, mu2): each friction-axis component of q is then
      * exact to rounding, however different mu1 and mu2 are (the product Minv
      * forms the smaller one by cancelling terms of the size of the larger). */
     double R[2][2], G[2][2];
-    double K[2][2];    /* B^-1 G R: the elastic displacement of yield coordinates */
-    double sigma_ref;  /* the larger sigma: the slip solve works in dgamma sigma_ref */
+    double K[2][2];   /* B^-1 G R: the elastic displacement of yield coordinates */
+    double sigma_ref; /* the larger sigma: the slip solve works in dgamma sigma_ref */
     double inv_sigma_ref;
     double sig_hat[2]; /* sigma_i / sigma_ref, in (0, 1] */
     double kappa;      /* sigma_max / sigma_min: bounds how far the slip solve reaches */
@@ -84,9 +84,9 @@ oc_state oc_state_unloaded(double s1, double s2, double energy);
 
 /* The result of one step, and what the tangent needs of it. */
 typedef struct {
-    double q[2];     /* elastic force [N]; T = -q */
-    oc_state next;   /* state after the step (next.a: yield coordinates of q) */
-    int contact;     /* an oc_contact */
+    double q[2];   /* elastic force [N]; T = -q */
+    oc_state next; /* state after the step (next.a: yield coordinates of q) */
+    int contact;   /* an oc_contact */
     /* What the tangent needs of a slip: w_i = 1 + dgamma sigma_i, kept as
      * w_i / max w and 1 / max w, which stay representable where dgamma and
      * w overflow (a trial far outside a tiny yield surface).  Not outputs:
@@ -107,8 +107,8 @@ int oc_law_init(oc_law *law, const oc_params *p);
 /* One return-mapping step from the committed state `start` with the inputs
  * u [m] and N [N].  Pure: it changes nothing but *out.  Homogeneous: the
  * result does not depend on the units (no absolute tolerance anywhere). */
-void oc_law_step(const oc_law *law, const oc_state *start, const double u[2],
-                 double N, oc_step *out);
+void oc_law_step(const oc_law *law, const oc_state *start, const double u[2], double N,
+                 oc_step *out);
 
 /* ---- oc_law_step's open and stick steps, inline: contact_law.c steps by
  * these, and a caller stepping many cells (the patch) begins each cell's
@@ -229,9 +229,8 @@ void oc_law_step_batch(const oc_law *law, const oc_state *const start[], const d
 /* Jacobian of the outputs y = (T1, T2, s1, s2, energy) with respect to
  * x = (u1, u2, N) for the step `st` computed from `start` with (u, N). */
 enum { OC_JAC_ROWS = 5, OC_JAC_COLS = 3 };
-void oc_law_jacobian(const oc_law *law, const oc_state *start,
-                     const double u[2], double N, const oc_step *st,
-                     double J[OC_JAC_ROWS][OC_JAC_COLS]);
+void oc_law_jacobian(const oc_law *law, const oc_state *start, const double u[2], double N,
+                     const oc_step *st, double J[OC_JAC_ROWS][OC_JAC_COLS]);
 
 /* 1 if every output and committed number of the step is finite (q, the
  * committed state); the tangent's internals (dgamma, w) are not checked.

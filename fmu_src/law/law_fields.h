@@ -23,11 +23,14 @@ static const fmu_fields OC_PARAMS_FIELDS = FMU_FIELDS(OC_PARAM_FIELD_LIST, oc_pa
 /* A committed state: the step's inputs, the force's yield coordinates, the
  * slip and the dissipated energy.  Checked by oc_state_check against the
  * law, once the parameters are known. */
-static const fmu_field OC_STATE_FIELD_LIST[] = {
-    FMU_F64(oc_state, u[0], "u1", NULL, NONE, 0),      FMU_F64(oc_state, u[1], "u2", NULL, NONE, 0),
-    FMU_F64(oc_state, N, "N", NULL, NONE, 0),          FMU_F64(oc_state, a[0], "a1", NULL, NONE, 0),
-    FMU_F64(oc_state, a[1], "a2", NULL, NONE, 0),      FMU_F64(oc_state, s[0], "s1", NULL, NONE, 0),
-    FMU_F64(oc_state, s[1], "s2", NULL, NONE, 0),      FMU_F64(oc_state, energy, "energy", NULL, NONE, 0)};
+static const fmu_field OC_STATE_FIELD_LIST[] = {FMU_F64(oc_state, u[0], "u1", NULL, NONE, 0),
+                                                FMU_F64(oc_state, u[1], "u2", NULL, NONE, 0),
+                                                FMU_F64(oc_state, N, "N", NULL, NONE, 0),
+                                                FMU_F64(oc_state, a[0], "a1", NULL, NONE, 0),
+                                                FMU_F64(oc_state, a[1], "a2", NULL, NONE, 0),
+                                                FMU_F64(oc_state, s[0], "s1", NULL, NONE, 0),
+                                                FMU_F64(oc_state, s[1], "s2", NULL, NONE, 0),
+                                                FMU_F64(oc_state, energy, "energy", NULL, NONE, 0)};
 static const fmu_fields OC_STATE_FIELDS = FMU_FIELDS(OC_STATE_FIELD_LIST, oc_state);
 
 #endif

@@ -14,6 +14,9 @@
 
 #include "glue/fmu_table.h"
 
+/* A table's rows and lists keep their own layout. */
+/* clang-format off */
+
 /* Friction coefficients [-] along the friction axes. */
 #define OC_LAW_FRICTION_ROWS(L)                                                                \
     L(mu1, 1, Float64, parameter, fixed, exact, 0.408, 1e-150, 1e150, "1", "",                 \
@@ -59,4 +62,5 @@
     E(coupled, 2, "G = (B F B)^-1: the coupled law of Konyukhov and Schweizerhof")             \
     E(eq20, 3, "the paper's explicit eq. (20), step-size dependent: for reproduction only")
 
+/* clang-format on */
 #endif

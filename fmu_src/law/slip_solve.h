@@ -134,7 +134,7 @@ static OC_ALWAYS_INLINE LANE_M DG(step)(DG(solve) * S, const double sh[2], DG(ev
     E->u1 = u1;
     S->x = LANE(max)(x + dx, zero);
     S->it = S->it + 1.0;
-    return LANE(not)(far & more) | small;
+    return LANE(not )(far & more) | small;
 }
 
 static OC_ALWAYS_INLINE void DG(root)(const DG(solve) * S, const DG(eval) * E, LANE_T *p0,

@@ -153,7 +153,8 @@ int rig_run(const rig_setup *r, const rig_contact *c, double scale, rig_observer
             void *observer_ctx, rig_figures *out, double *x1_failed) {
     rig_runner run;
     int st = rig_start(&run, r, c, scale);
-    while (st == RIG_OK && !rig_done(&run)) st = rig_advance(&run, observe, observer_ctx, x1_failed);
+    while (st == RIG_OK && !rig_done(&run))
+        st = rig_advance(&run, observe, observer_ctx, x1_failed);
     if (st == RIG_OK) rig_finish(&run, out);
     return st;
 }

@@ -26,7 +26,8 @@ extern "C" {
 
 /* Structs are declared through field lists (type, name) so that the
  * compiled master can describe their layout to its Python caller
- * (rm_layout in master_src/rig_master.h) from the same list. */
+ * (rm_layout in master_src/rig_master.h) from the same list; the lists
+ * keep their own layout (clang-format off). */
 #define RIG_DECLARE_FIELD(type, name) type name;
 
 /* The carriage's push on the block, P = max(-T1, 0) [N] for the mat's force
@@ -37,10 +38,12 @@ static inline double rig_push(double T1) { return T1 > 0.0 ? 0.0 : -T1; }
 
 /* The rig, as orthocontact.rig.Rig.  kg, m/s^2, N, m/s, m, s, N s/m;
  * quasistatic: 0 dynamic, 1 quasi-static. */
+/* clang-format off */
 #define RIG_SETUP_FIELDS(F)                                                                  \
     F(double, mass) F(double, g) F(double, f_int) F(double, velocity) F(double, travel)     \
     F(double, mu_strip) F(double, step) F(double, fit_from) F(double, c_strip)              \
     F(int, quasistatic)
+/* clang-format on */
 typedef struct {
     RIG_SETUP_FIELDS(RIG_DECLARE_FIELD)
 } rig_setup;
@@ -48,9 +51,11 @@ typedef struct {
 /* What a run measures: the trajectory angle fitted over the fitted range
  * [x1_fit, x1_end] and over each half of it (split at x1_mid), the mean
  * driving force over the range, the lateral Newton iterations. */
+/* clang-format off */
 #define RIG_FIGURES_FIELDS(F)                                                                \
     F(double, phi_deg) F(double, drive_mean_N) F(double, phi_head_deg) F(double, phi_tail_deg) \
     F(long, newton_iterations)
+/* clang-format on */
 typedef struct {
     RIG_FIGURES_FIELDS(RIG_DECLARE_FIELD)
 } rig_figures;
@@ -80,7 +85,7 @@ typedef struct {
 } rig_line_fit;
 
 void rig_fit_add(rig_line_fit *f, double x1, double x2, double drive);
-double rig_fit_angle_deg(const rig_line_fit *f); /* NaN with fewer than 2 distinct x1 */
+double rig_fit_angle_deg(const rig_line_fit *f);  /* NaN with fewer than 2 distinct x1 */
 double rig_fit_mean_drive(const rig_line_fit *f); /* NaN without points */
 
 /* The contact as the rig sees it.  Each function returns 1 on success, 0 on
@@ -153,8 +158,9 @@ int rig_advance(rig_runner *run, rig_observer observe, void *observer_ctx, doubl
  * (or inlines them) instead of through the pointers.  Always inlined: gcc
  * -O2 leaves it a call at a second call site, which then calls through the
  * pointers again (docs/benchmarks.md, the compiled master). */
-static OC_ALWAYS_INLINE int rig_advance_on(rig_runner *s, const rig_contact contact, rig_observer observe,
-                                 void *observer_ctx, double *x1_failed) {
+static OC_ALWAYS_INLINE int rig_advance_on(rig_runner *s, const rig_contact contact,
+                                           rig_observer observe, void *observer_ctx,
+                                           double *x1_failed) {
     const rig_contact *c = &contact;
     const double h = s->h, N = s->N, mu_s = s->mu_s;
     const long k = s->k;
@@ -173,7 +179,8 @@ static OC_ALWAYS_INLINE int rig_advance_on(rig_runner *s, const rig_contact cont
         if (fabs(T2) > mu_s * rig_push(T1)) {
             if (!c->restore(c->ctx)) return RIG_CONTACT_FAILED;
             long it = 0;
-            const int st = rig_solve_lateral(c, x1, &x2, N, copysign(mu_s, T2), s->scale, s->visc, &it);
+            const int st =
+                rig_solve_lateral(c, x1, &x2, N, copysign(mu_s, T2), s->scale, s->visc, &it);
             s->newton += it;
             if (st != RIG_OK) {
                 if (x1_failed) *x1_failed = x1;

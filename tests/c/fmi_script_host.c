@@ -96,9 +96,12 @@ static double parse_hex(const char *s) {
         if (digits < 1 || digits > 13 || *s != 'p') die(2, "not a hexadecimal float: %s", s);
         mant <<= 4 * (13 - digits);
         long e = strtol(s + 1, NULL, 10);
-        if (lead == 1 && e >= -1022 && e <= 1023) bits = (uint64_t)(e + 1023) << 52 | mant;
-        else if (lead == 0 && (mant == 0 || e == -1022)) bits = mant;
-        else die(2, "not a double's hexadecimal form: exponent %ld", e);
+        if (lead == 1 && e >= -1022 && e <= 1023)
+            bits = (uint64_t)(e + 1023) << 52 | mant;
+        else if (lead == 0 && (mant == 0 || e == -1022))
+            bits = mant;
+        else
+            die(2, "not a double's hexadecimal form: exponent %ld", e);
     }
     bits |= sign;
     double x;
@@ -112,9 +115,12 @@ static void print_hex(FILE *out, double x) {
     const char *sign = b >> 63 ? "-" : "";
     const unsigned e = (unsigned)(b >> 52 & 0x7ff);
     const unsigned long long m = (unsigned long long)(b & (((uint64_t)1 << 52) - 1));
-    if (e == 0x7ff) fprintf(out, m ? " nan" : " %sinf", sign);
-    else if (e == 0) fprintf(out, " %s0x0.%013llxp%s", sign, m, m ? "-1022" : "+0");
-    else fprintf(out, " %s0x1.%013llxp%+d", sign, m, (int)e - 1023);
+    if (e == 0x7ff)
+        fprintf(out, m ? " nan" : " %sinf", sign);
+    else if (e == 0)
+        fprintf(out, " %s0x0.%013llxp%s", sign, m, m ? "-1022" : "+0");
+    else
+        fprintf(out, " %s0x1.%013llxp%+d", sign, m, (int)e - 1023);
 }
 
 /* ---- the calls -------------------------------------------------------- */
@@ -122,7 +128,8 @@ static void print_hex(FILE *out, double x) {
 static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                     fmi2String category, fmi2String message, ...) {
     va_list ap;
-    (void)env; (void)name;
+    (void)env;
+    (void)name;
     va_start(ap, message);
     fprintf(stderr, "[%s %d] ", category ? category : "", (int)status);
     vfprintf(stderr, message, ap);
@@ -193,13 +200,15 @@ int main(int argc, char **argv) {
         } else if (strcmp(cmd, "init") == 0 && n == 3) {
             const double start = parse_hex(a), stop = parse_hex(b);
             if (v3) {
-                check(CALL(fmi3EnterInitializationMode, c, fmi3False, 0.0, start, fmi3True, stop), cmd);
+                check(CALL(fmi3EnterInitializationMode, c, fmi3False, 0.0, start, fmi3True, stop),
+                      cmd);
             } else {
                 check(CALL(fmi2SetupExperiment, c, fmi2False, 0.0, start, fmi2True, stop), cmd);
                 check(CALL(fmi2EnterInitializationMode, c), cmd);
             }
         } else if (strcmp(cmd, "end_init") == 0) {
-            check(v3 ? CALL(fmi3ExitInitializationMode, c) : CALL(fmi2ExitInitializationMode, c), cmd);
+            check(v3 ? CALL(fmi3ExitInitializationMode, c) : CALL(fmi2ExitInitializationMode, c),
+                  cmd);
         } else if (strcmp(cmd, "step") == 0 && n == 3) {
             const double t = parse_hex(a), h = parse_hex(b);
             if (v3) {
@@ -271,13 +280,17 @@ int main(int argc, char **argv) {
             }
             fprintf(out, "%u", vr);
             for (long j = 0; j < nv; ++j) {
-                if (real) print_hex(out, x[j]);
-                else fprintf(out, " %lld", k[j]);
+                if (real)
+                    print_hex(out, x[j]);
+                else
+                    fprintf(out, " %lld", k[j]);
             }
             fputc('\n', out);
         } else if (strcmp(cmd, "free") == 0 && n == 1) {
-            if (v3) CALL(fmi3FreeInstance, c);
-            else CALL(fmi2FreeInstance, c);
+            if (v3)
+                CALL(fmi3FreeInstance, c);
+            else
+                CALL(fmi2FreeInstance, c);
             c = NULL;
         } else {
             die(2, "not a call: %s", buf);

@@ -11,15 +11,16 @@
 
 #include "fmi3FunctionTypes.h"
 
-#define LOAD(name)                                                               \
-    name##TYPE *name = (name##TYPE *)dlsym(lib, #name);                          \
-    if (!name) {                                                                 \
-        fprintf(stderr, "missing %s\n", #name);                                  \
-        return 2;                                                                \
+#define LOAD(name)                                                                                 \
+    name##TYPE *name = (name##TYPE *)dlsym(lib, #name);                                            \
+    if (!name) {                                                                                   \
+        fprintf(stderr, "missing %s\n", #name);                                                    \
+        return 2;                                                                                  \
     }
 
 static void logger(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e; (void)c;
+    (void)e;
+    (void)c;
     fprintf(stderr, "[status %d] %s\n", (int)s, m);
 }
 
@@ -48,12 +49,12 @@ int main(int argc, char **argv) {
     }
     static double rows[100000][4];
     int n = 0;
-    while (n < 100000 && fscanf(in, "%lf,%lf,%lf,%lf", &rows[n][0], &rows[n][1], &rows[n][2],
-                                &rows[n][3]) == 4)
+    while (n < 100000 &&
+           fscanf(in, "%lf,%lf,%lf,%lf", &rows[n][0], &rows[n][1], &rows[n][2], &rows[n][3]) == 4)
         ++n;
     fclose(in);
-    fmi3Instance c = fmi3InstantiateCoSimulation("run", argv[2], "", 0, 0, 0, 0, NULL, 0, NULL,
-                                                 logger, NULL);
+    fmi3Instance c =
+        fmi3InstantiateCoSimulation("run", argv[2], "", 0, 0, 0, 0, NULL, 0, NULL, logger, NULL);
     if (!c || fmi3EnterInitializationMode(c, 0, 0, rows[0][0], 0, 0) != fmi3OK ||
         fmi3ExitInitializationMode(c) != fmi3OK)
         return 3;
@@ -66,7 +67,8 @@ int main(int argc, char **argv) {
         if (fmi3SetFloat64(c, in_vr, 3, &rows[k][1], 3) != fmi3OK ||
             fmi3DoStep(c, rows[k][0], rows[k + 1][0] - rows[k][0], fmi3True, &ev, &term, &early,
                        &last) != fmi3OK ||
-            fmi3GetFloat64(c, out_vr, 5, y, 5) != fmi3OK || fmi3GetInt32(c, &st_vr, 1, &state, 1) != fmi3OK)
+            fmi3GetFloat64(c, out_vr, 5, y, 5) != fmi3OK ||
+            fmi3GetInt32(c, &st_vr, 1, &state, 1) != fmi3OK)
             return 4;
         printf("%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d\n", rows[k + 1][0], y[0], y[1], y[2], y[3],
                y[4], (int)state);

@@ -117,7 +117,7 @@ def test_the_scan_finds_the_paths_of_a_comment(comment, found):
 
 def test_the_scan_reports_a_stale_name_and_passes_a_real_one():
     fake = "python/orthocontact/fake.py"
-    text = ('"""Names fmu_src/contact_law.h, closed_forms/paper.py, conftest.py and\n'
+    text = ('"""Names fmu_src/law/contact_law.h, closed_forms/paper.py, conftest.py and\n'
             'nowhere/cmaster.py."""\n'
             'NAME = "written.json"  # the file it writes, written.json; not docs/gone/\n')
     assert unresolved({fake: text}, files()) == [f"{fake}:1: nowhere/cmaster.py", f"{fake}:3: docs/gone/"]

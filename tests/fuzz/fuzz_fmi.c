@@ -33,11 +33,11 @@
 #include "fmi3Functions.h"
 #endif
 
-#define FUZZ_FAIL(...)                                                   \
-    do {                                                                 \
-        fprintf(stderr, "fuzz_fmi: promise broken: " __VA_ARGS__);      \
-        fprintf(stderr, "\n");                                           \
-        abort();                                                         \
+#define FUZZ_FAIL(...)                                                                             \
+    do {                                                                                           \
+        fprintf(stderr, "fuzz_fmi: promise broken: " __VA_ARGS__);                                 \
+        fprintf(stderr, "\n");                                                                     \
+        abort();                                                                                   \
     } while (0)
 
 /* ---- the variable table ------------------------------------------------- */
@@ -107,16 +107,44 @@ static unsigned byte(reader *r) {
 }
 
 static double value(reader *r) {
-    static const double edge[] = {0.0, -0.0, 1.0, -1.0, 0.5, 2.0, 1e-3, -1e-3, 10.0, 1e-300,
-                                  1e300, DBL_MAX, -DBL_MAX, DBL_MIN, 4.9406564584124654e-324,
-                                  1e-310, 0x1p1023, 1.2e308, 1e-150, 1e150, 1e10, 1e-10, 3.0,
-                                  1e303, 1e6, 12.566370614359172, 1.5707963267948966, 0.408};
+    static const double edge[] = {0.0,
+                                  -0.0,
+                                  1.0,
+                                  -1.0,
+                                  0.5,
+                                  2.0,
+                                  1e-3,
+                                  -1e-3,
+                                  10.0,
+                                  1e-300,
+                                  1e300,
+                                  DBL_MAX,
+                                  -DBL_MAX,
+                                  DBL_MIN,
+                                  4.9406564584124654e-324,
+                                  1e-310,
+                                  0x1p1023,
+                                  1.2e308,
+                                  1e-150,
+                                  1e150,
+                                  1e10,
+                                  1e-10,
+                                  3.0,
+                                  1e303,
+                                  1e6,
+                                  12.566370614359172,
+                                  1.5707963267948966,
+                                  0.408};
     const unsigned b = byte(r);
     const unsigned ne = sizeof edge / sizeof edge[0];
     if (b < ne) return edge[b];
     if (b < 200) return ((double)b - 128.0) * (b & 1 ? 1e-4 : 0.25); /* ordinary numbers */
-    if (b < 205) return b == 200 ? NAN : b == 201 ? INFINITY : b == 202 ? -INFINITY
-                      : b == 203 ? -1e300 : 1e-5;
+    if (b < 205)
+        return b == 200   ? NAN
+               : b == 201 ? INFINITY
+               : b == 202 ? -INFINITY
+               : b == 203 ? -1e300
+                          : 1e-5;
     uint64_t bits = 0;
     for (int i = 0; i < 8; ++i) bits = bits << 8 | byte(r);
     double x;
@@ -137,7 +165,11 @@ typedef fmi2Component inst;
 typedef int status;
 static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                   fmi2String m, ...) {
-    (void)e; (void)n; (void)s; (void)c; (void)m;
+    (void)e;
+    (void)n;
+    (void)s;
+    (void)c;
+    (void)m;
 }
 static const fmi2CallbackFunctions CB = {quiet, calloc, free, NULL, NULL};
 static inst make(int logging) {
@@ -212,11 +244,14 @@ static status restore(inst c, const unsigned char *buf, size_t n) {
 typedef fmi3Instance inst;
 typedef int status;
 static void quiet(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e; (void)s; (void)c; (void)m;
+    (void)e;
+    (void)s;
+    (void)c;
+    (void)m;
 }
 static inst make(int logging) {
-    return fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", 0, logging, 0, 0, NULL, 0, NULL,
-                                       quiet, NULL);
+    return fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", 0, logging, 0, 0, NULL, 0, NULL, quiet,
+                                       NULL);
 }
 static void destroy(inst c) { fmi3FreeInstance(c); }
 static int st_ok(status s) { return s == fmi3OK; }
@@ -378,7 +413,8 @@ static void rejected_changes_nothing(inst c, status s, const char *what) {
     if (!st_defined(s)) FUZZ_FAIL("%s returned status %d", what, s);
     if (st_ok(s) || !snapped) return;
     size_t n = 0;
-    if (!serialize(c, snap_after, sizeof snap_after, &n)) FUZZ_FAIL("%s: rejected, then no state", what);
+    if (!serialize(c, snap_after, sizeof snap_after, &n))
+        FUZZ_FAIL("%s: rejected, then no state", what);
     if (n != snap_n || memcmp(snap_before, snap_after, n) != 0)
         FUZZ_FAIL("%s was rejected but changed the instance", what);
 }
@@ -396,7 +432,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         status s = 0;
         snap(c);
         switch (op) {
-        case 0: case 1: case 2: { /* Float64 values, 1-4 at once */
+        case 0:
+        case 1:
+        case 2: { /* Float64 values, 1-4 at once */
             unsigned vr[4];
             double v[4];
             const size_t n = 1 + byte(&r) % 4;
@@ -420,7 +458,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             rejected_changes_nothing(c, s, "integer or other type");
             break;
         }
-        case 5: case 6: case 7: { /* steps, mostly at the right communication point */
+        case 5:
+        case 6:
+        case 7: { /* steps, mostly at the right communication point */
             const unsigned how = byte(&r);
             const double h = how & 3 ? 1e-3 * (1 + (how >> 2)) : value(&r);
             const double tc = how & 0x80 ? value(&r) : t;
@@ -465,9 +505,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
                 if (st_ok(s)) t = t0;
                 break;
             }
-            case 1: s = enter_init(c); rejected_changes_nothing(c, s, "enter init"); break;
-            case 2: s = exit_init(c); rejected_changes_nothing(c, s, "exit init"); stepping = 0; break;
-            case 3: s = terminate(c); rejected_changes_nothing(c, s, "terminate"); break;
+            case 1:
+                s = enter_init(c);
+                rejected_changes_nothing(c, s, "enter init");
+                break;
+            case 2:
+                s = exit_init(c);
+                rejected_changes_nothing(c, s, "exit init");
+                stepping = 0;
+                break;
+            case 3:
+                s = terminate(c);
+                rejected_changes_nothing(c, s, "terminate");
+                break;
 #if FUZZ_FMI == 3
             case 5:
                 s = enter_config(c);
@@ -487,7 +537,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             rejected_changes_nothing(c, s, "reset");
             if (st_ok(s)) t = 0.0, stepping = 0;
             break;
-        case 10: case 11: {
+        case 10:
+        case 11: {
             double v[NVARS];
             read_all(c, v);
             break;
@@ -499,7 +550,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             if (!serialize(c, buf, sizeof buf, &n) || n == 0) break;
             const unsigned at = byte(&r) | byte(&r) << 8;
             const unsigned how = byte(&r);
-            if (how & 1) buf[at % n] ^= (unsigned char)(1u << (how >> 1 & 7));
+            if (how & 1)
+                buf[at % n] ^= (unsigned char)(1u << (how >> 1 & 7));
             else if (how & 2) {
                 const double x = value(&r);
                 memcpy(buf + (at % (n > 8 ? n - 8 : 1)), &x, n >= 8 ? 8 : n);

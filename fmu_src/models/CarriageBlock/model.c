@@ -46,13 +46,16 @@ static fmu_status refresh(fmu_model *m, fmu_msg *msg) {
 }
 
 /* No derivatives (providesDirectionalDerivative = false): the glue's default. */
-const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS,
-                                       RIG_VR_COUNT_PLUS_ONE, sizeof(struct fmu_model), refresh,
-                                       NULL, NULL, NULL /* no arrays */};
+const fmu_model_info FMU_MODEL_INFO = {
+    FMU_MODEL_IDENTIFIER,     FMU_TOKEN, FMU_STATE_TAG, VARS, RIG_VR_COUNT_PLUS_ONE,
+    sizeof(struct fmu_model), refresh,   NULL,          NULL, NULL /* no arrays */};
 
 /* Every value the glue checked against the table is admissible. */
 fmu_status fmu_model_update(fmu_model *m, int changed, int allow, fmu_msg *msg) {
-    (void)m; (void)changed; (void)allow; (void)msg;
+    (void)m;
+    (void)changed;
+    (void)allow;
+    (void)msg;
     return FMU_OK;
 }
 

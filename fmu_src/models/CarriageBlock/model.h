@@ -26,11 +26,11 @@ struct fmu_model {
 
 /* The model's part of the serialized state (glue/fmu_fields.h); the rest
  * follows from it and the time. */
-#define RIG_PARAMETER_FIELD(name, vr, ...)                                                     \
+#define RIG_PARAMETER_FIELD(name, vr, ...)                                                         \
     FMU_F64(struct fmu_model, par[vr - 1], #name, "the parameters", RANGE, vr),
 static const fmu_field RIG_MODEL_FIELD_LIST[] = {
     RIG_PARAMETER_ROWS(RIG_PARAMETER_FIELD)
-    FMU_F64(struct fmu_model, T[0], "T1", "the inputs", FINITE, 0),
+        FMU_F64(struct fmu_model, T[0], "T1", "the inputs", FINITE, 0),
     FMU_F64(struct fmu_model, T[1], "T2", "the inputs", FINITE, 0),
     FMU_F64(struct fmu_model, x2, "x2", "the lateral motion", FINITE, 0),
     FMU_F64(struct fmu_model, v2, "v2", "the lateral motion", FINITE, 0)};

@@ -12,6 +12,9 @@
 
 #include "glue/fmu_table.h"
 
+/* A table's rows and lists keep their own layout. */
+/* clang-format off */
+
 #define FMU_MODEL_NAME "CarriageBlock"
 #define FMU_MODEL_IDENTIFIER "CarriageBlock"
 /* The guid / instantiationToken is a hash of the generated model
@@ -103,4 +106,5 @@ static const char FMU_DOC_HTML[] =
 enum { FMU_VARIABLES(RIG_VR_ENUM_ENTRY) RIG_VR_COUNT_PLUS_ONE };
 #undef RIG_VR_ENUM_ENTRY
 
+/* clang-format on */
 #endif

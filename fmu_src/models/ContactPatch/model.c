@@ -10,9 +10,10 @@
 
 /* Where each variable of the table lives.  The law's parameters (the
  * table's L rows) live in params under their own names. */
-#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...) \
-    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus, start, lo, hi,   \
-            offsetof(patch_model, params.name), unit},
+#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...)                         \
+    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus,                                     \
+            start, lo,           hi,           offsetof(patch_model, params.name),                 \
+            unit},
 #define FMU_SLOT_time offsetof(patch_model, time)
 #define FMU_SLOT_slidingRule offsetof(patch_model, params.rule)
 #define FMU_SLOT_initialSlip offsetof(patch_model, g.initial_slip)
@@ -65,18 +66,26 @@ static void array_get(const patch_model *m, unsigned int vr, void *out) {
         for (int j = 0; j < n2; ++j) {
             const oc_step *st = &steps[i + n1 * j];
             const size_t k = (size_t)i * (size_t)n2 + (size_t)j;
-            if (vr == PATCH_VR_cellState) ((int32_t *)out)[k] = (int32_t)st->contact;
-            else ((double *)out)[k] = 0.0 - st->q[vr == PATCH_VR_cellT1 ? 0 : 1];
+            if (vr == PATCH_VR_cellState)
+                ((int32_t *)out)[k] = (int32_t)st->contact;
+            else
+                ((double *)out)[k] = 0.0 - st->q[vr == PATCH_VR_cellT1 ? 0 : 1];
         }
 }
 
 static const unsigned int STRUCTURAL[] = {PATCH_VR_n1, PATCH_VR_n2};
 static const fmu_arrays ARRAYS = {array_size, array_get, STRUCTURAL, 2};
 
-const fmu_model_info FMU_MODEL_INFO = {
-    FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS, PATCH_VR_COUNT_PLUS_ONE,
-    sizeof(patch_model), NULL /* the outputs live in their slots */, exit_init, derivative,
-    &ARRAYS};
+const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER,
+                                       FMU_TOKEN,
+                                       FMU_STATE_TAG,
+                                       VARS,
+                                       PATCH_VR_COUNT_PLUS_ONE,
+                                       sizeof(patch_model),
+                                       NULL /* the outputs live in their slots */,
+                                       exit_init,
+                                       derivative,
+                                       &ARRAYS};
 
 /* ---- the cells' kinematics and loads --------------------------------------- */
 
@@ -104,8 +113,11 @@ static double pressure_slope(int n, double N) {
 static patch_frame frame_of(const patch_setup *g) {
     const double h = sin(0.5 * g->theta);
     const double c0 = pressure_slope(g->n[0], g->N), c1 = pressure_slope(g->n[1], g->N);
-    patch_frame f = {-2.0 * h * h, sin(g->theta), 1.0 / ((double)g->n[0] * (double)g->n[1]),
-                     {c0, c1}, {c0 * (g->p[0] / g->length), c1 * (g->p[1] / g->width)}};
+    patch_frame f = {-2.0 * h * h,
+                     sin(g->theta),
+                     1.0 / ((double)g->n[0] * (double)g->n[1]),
+                     {c0, c1},
+                     {c0 * (g->p[0] / g->length), c1 * (g->p[1] / g->width)}};
     return f;
 }
 
@@ -206,24 +218,27 @@ static fmu_status check_pressure(const patch_setup *g, fmu_msg *msg) {
     if (!(g->N > 0.0)) return FMU_OK;
     const double e = fabs(g->p[0]) / g->length + fabs(g->p[1]) / g->width;
     if (!(6.0 * e <= 1.0 + 8 * DBL_EPSILON))
-        return fmu_fail(msg, "centre of pressure p1=%g m, p2=%g m outside the kern of the %g m x %g m "
-                             "patch: |p1|/length + |p2|/width = %g > 1/6, where a linear pressure "
-                             "would pull at a corner (no-tension pressure is not modelled)",
+        return fmu_fail(msg,
+                        "centre of pressure p1=%g m, p2=%g m outside the kern of the %g m x %g m "
+                        "patch: |p1|/length + |p2|/width = %g > 1/6, where a linear pressure "
+                        "would pull at a corner (no-tension pressure is not modelled)",
                         g->p[0], g->p[1], g->length, g->width, e);
     for (int a = 0; a < 2; ++a)
         if (g->n[a] == 1 && g->p[a] != 0.0)
-            return fmu_fail(msg, "centre of pressure p%d=%g m off the axis of a grid with n%d = 1: "
-                                 "one cell along %s has its centre on that axis and cannot carry a "
-                                 "centre of pressure off it (set p%d = 0, or n%d >= 2)",
+            return fmu_fail(msg,
+                            "centre of pressure p%d=%g m off the axis of a grid with n%d = 1: "
+                            "one cell along %s has its centre on that axis and cannot carry a "
+                            "centre of pressure off it (set p%d = 0, or n%d >= 2)",
                             a + 1, g->p[a], a + 1, a ? "width" : "length", a + 1, a + 1);
     return FMU_OK;
 }
 
 /* Cell (i, j)'s message: its force or slip would not be finite. */
 static fmu_status cell_overflow(const patch_setup *g, int c, fmu_msg *msg) {
-    return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the force or "
-                         "slip of cell (%d, %d)", g->u[0], g->u[1], g->theta, g->N,
-                    c % g->n[0] + 1, c / g->n[0] + 1);
+    return fmu_fail(msg,
+                    "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the force or "
+                    "slip of cell (%d, %d)",
+                    g->u[0], g->u[1], g->theta, g->N, c % g->n[0] + 1, c / g->n[0] + 1);
 }
 
 /* The running sums of the outputs, in the order c = i + n1 j. */
@@ -243,16 +258,15 @@ static OC_ALWAYS_INLINE void add_cell(running_sums *R, const oc_step *st, double
     R->T1 += t1;
     R->Mz += Rr0 * t1 - Rr1 * t0;
     R->energy += st->next.energy;
-    R->nonfinite += (st->next.a[0] * 0.0 + st->next.a[1] * 0.0) +
-                    (st->next.s[0] * 0.0 + st->next.s[1] * 0.0);
+    R->nonfinite +=
+        (st->next.a[0] * 0.0 + st->next.a[1] * 0.0) + (st->next.s[0] * 0.0 + st->next.s[1] * 0.0);
     R->pressed += st->contact != OC_OPEN;
     R->slipping += st->contact == OC_SLIP;
 }
 
 /* add_cell for an open or stick step of oc_law_step_begin, whose next.a is
  * 0 or the trial, finite (its square passed as normal). */
-static OC_ALWAYS_INLINE void add_begun(running_sums *R, const oc_step *st, double Rr0,
-                                       double Rr1) {
+static OC_ALWAYS_INLINE void add_begun(running_sums *R, const oc_step *st, double Rr0, double Rr1) {
     const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
     R->T0 += t0;
     R->T1 += t1;
@@ -338,7 +352,8 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
         double Rr[OC_BATCH_MAX][2]; /* the moment arms of the cells summed after the finish */
         for (int first = 0, i = 0, j = 0; first < n; first += OC_BATCH_MAX) {
             const int count = n - first < OC_BATCH_MAX ? n - first : OC_BATCH_MAX;
-            int n_pending = 0, wait = count; /* the cells from `wait` on are summed after the finish */
+            int n_pending = 0,
+                wait = count; /* the cells from `wait` on are summed after the finish */
             for (int k = 0; k < count; ++k) {
                 const int c = first + k;
                 double d[2] = {u0, u1}, rr[2] = {r0[i], r1[j]};
@@ -369,8 +384,10 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
                 oc_unfinished *r = &pending[n_pending];
                 if (oc_law_step_begin(&lq, start, d, Nc, &st, r->a)) {
                     put_begun(&out[c], &st);
-                    if (k < wait) add_begun(&R, &st, rr[0], rr[1]);
-                    else Rr[k][0] = rr[0], Rr[k][1] = rr[1];
+                    if (k < wait)
+                        add_begun(&R, &st, rr[0], rr[1]);
+                    else
+                        Rr[k][0] = rr[0], Rr[k][1] = rr[1];
                     continue;
                 }
                 out[c].next.u[0] = st.next.u[0];
@@ -392,8 +409,10 @@ static fmu_status step_cells(const oc_law *law, const patch_setup *g, const cell
         !isfinite(R.energy)) {
         for (int c = 0; c < n; ++c)
             if (!oc_step_is_finite(&out[c])) return cell_overflow(g, c, msg);
-        return fmu_fail(msg, "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the patch's "
-                             "force, moment or energy", g->u[0], g->u[1], g->theta, g->N);
+        return fmu_fail(msg,
+                        "inputs u1=%g m, u2=%g m, theta=%g rad, N=%g N overflow the patch's "
+                        "force, moment or energy",
+                        g->u[0], g->u[1], g->theta, g->N);
     }
     S->T[0] = R.T0;
     S->T[1] = R.T1;
@@ -431,7 +450,8 @@ static const oc_state *start_of(const patch_model *m, int c) {
  * free buffer, which nothing reads).  The committed states a step starts
  * from stay where they lie: the shown step's start is then that buffer, not
  * a copy of it. */
-static fmu_status evaluate(patch_model *m, const oc_law *law, const cell_source *src, fmu_msg *msg) {
+static fmu_status evaluate(patch_model *m, const oc_law *law, const cell_source *src,
+                           fmu_msg *msg) {
     const int into = free_buffer(m);
     patch_sums S;
     if (step_cells(law, &m->g, src, m->steps[into], &S, msg) != FMU_OK) return FMU_ERR;
@@ -473,8 +493,10 @@ static fmu_status cell_law(const oc_params *p, const patch_setup *g, oc_law *law
     cell.eps1 = p->eps1 * w;
     cell.eps2 = p->eps2 * w;
     if (oc_law_init(law, &cell) != 0)
-        return fmu_fail(msg, "parameters mu=(%g, %g) eps=(%g, %g) over %d x %d cells give "
-                             "non-finite tensors", p->mu1, p->mu2, p->eps1, p->eps2, g->n[0], g->n[1]);
+        return fmu_fail(msg,
+                        "parameters mu=(%g, %g) eps=(%g, %g) over %d x %d cells give "
+                        "non-finite tensors",
+                        p->mu1, p->mu2, p->eps1, p->eps2, g->n[0], g->n[1]);
     return FMU_OK;
 }
 
@@ -556,7 +578,11 @@ static void patch_jacobian(const patch_model *m, double P[P_ROWS][P_COLS]) {
         oc_law_jacobian(&m->law, start_of(m, c), x.d, g->N * x.nu, st, J);
         /* d(d)/dx and dN_c/dx over x = (u1, u2, theta, N, p1, p2) */
         const double dd[2][P_COLS] = {{1, 0, -x.Rr[1], 0, 0, 0}, {0, 1, x.Rr[0], 0, 0, 0}};
-        const double dN[P_COLS] = {0, 0, 0, x.nu, g->N * f.w * f.c[0] * x.xi / g->length,
+        const double dN[P_COLS] = {0,
+                                   0,
+                                   0,
+                                   x.nu,
+                                   g->N * f.w * f.c[0] * x.xi / g->length,
                                    g->N * f.w * f.c[1] * x.eta / g->width};
         const int law_row[3] = {0, 1, 4}; /* T1, T2, energy in the law's rows */
         double dy[3][P_COLS];
@@ -575,15 +601,13 @@ static void patch_jacobian(const patch_model *m, double P[P_ROWS][P_COLS]) {
     }
 }
 
-static void partials(const patch_model *m, double *J) {
-    patch_jacobian(m, (double(*)[P_COLS])J);
-}
+static void partials(const patch_model *m, double *J) { patch_jacobian(m, (double(*)[P_COLS])J); }
 
 /* J fits the glue's buffer (a negative size fails to compile) */
 typedef char jacobian_fits[P_ROWS * P_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
-static const fmu_jacobian JACOBIAN = {P_ROWS, P_COLS, jac_row, jac_col,
-                                      "T1, T2, Mz, dissipatedEnergy", "u1, u2, theta, N, p1, p2",
-                                      partials};
+static const fmu_jacobian JACOBIAN = {
+    P_ROWS,  P_COLS, jac_row, jac_col, "T1, T2, Mz, dissipatedEnergy", "u1, u2, theta, N, p1, p2",
+    partials};
 
 static fmu_status derivative(const patch_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
@@ -623,8 +647,8 @@ static fmu_status read_cells(patch_model *m, const patch_head *was, const unsign
      * of zero entries, and a restored state must continue bit for bit. */
     oc_law law;
     fmu_msg why;
-    if (fmu_fields_same(&OC_PARAMS_FIELDS, &was->params, &m->params) &&
-        was->g.n[0] == m->g.n[0] && was->g.n[1] == m->g.n[1])
+    if (fmu_fields_same(&OC_PARAMS_FIELDS, &was->params, &m->params) && was->g.n[0] == m->g.n[0] &&
+        was->g.n[1] == m->g.n[1])
         law = m->law;
     else if (cell_law(&m->params, &m->g, &law, &why) != FMU_OK)
         return fmu_fail(msg, "serialized state: %s", why.text);

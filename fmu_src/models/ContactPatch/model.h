@@ -51,7 +51,7 @@ struct fmu_model {
     /* The shown result's outputs, where the table reads them: */
     double T[2], Mz, energy, slip_fraction;
     int contact;
-    int shown;            /* the shown step of every cell is steps[shown][c] */
+    int shown; /* the shown step of every cell is steps[shown][c] */
     /* The states the shown step was computed from (its start): the steps
      * steps[from - 1][c].next a doStep committed, where they lie, or start[c]
      * (from = 0, as a zeroed model has it: initial or restored states,

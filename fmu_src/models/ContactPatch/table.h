@@ -29,6 +29,9 @@
 #include "glue/fmu_table.h"
 #include "law/law_table.h"
 
+/* A table's rows and lists keep their own layout. */
+/* clang-format off */
+
 #define FMU_MODEL_NAME "ContactPatch"
 #define FMU_MODEL_IDENTIFIER "ContactPatch"
 #ifndef FMU_GENERATOR
@@ -180,4 +183,5 @@ enum { FMU_VARIABLES(PATCH_VR_ENUM_ENTRY) PATCH_VR_COUNT_PLUS_ONE };
 enum { FMU_ARRAYS(PATCH_VR_ENUM_ENTRY) PATCH_VR_ARRAYS_END };
 #undef PATCH_VR_ENUM_ENTRY
 
+/* clang-format on */
 #endif

@@ -10,9 +10,10 @@
 /* Where each variable of the table lives: the glue reads and writes them
  * there, and the outputs are kept current by evaluate.  The law's
  * parameters (the table's L rows) live in params under their own names. */
-#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...) \
-    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus, start, lo, hi,   \
-            offsetof(oc_model, params.name), unit},
+#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...)                         \
+    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus,                                     \
+            start, lo,           hi,           offsetof(oc_model, params.name),                    \
+            unit},
 #define FMU_SLOT_time offsetof(oc_model, time)
 #define FMU_SLOT_slidingRule offsetof(oc_model, params.rule)
 #define FMU_SLOT_u1 offsetof(oc_model, u[0])
@@ -37,9 +38,16 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
                              double out[], int adjoint, fmu_msg *msg);
 static fmu_status exit_init(oc_model *m, fmu_msg *msg);
 
-const fmu_model_info FMU_MODEL_INFO = {
-    FMU_MODEL_IDENTIFIER, FMU_TOKEN, FMU_STATE_TAG, VARS, OC_VR_COUNT_PLUS_ONE, sizeof(oc_model),
-    NULL /* the outputs live in their slots */, exit_init, derivative, NULL /* no arrays */};
+const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER,
+                                       FMU_TOKEN,
+                                       FMU_STATE_TAG,
+                                       VARS,
+                                       OC_VR_COUNT_PLUS_ONE,
+                                       sizeof(oc_model),
+                                       NULL /* the outputs live in their slots */,
+                                       exit_init,
+                                       derivative,
+                                       NULL /* no arrays */};
 
 static const oc_state *committed(const oc_model *m) {
     return m->result_committed ? &m->steps[m->shown].next : &m->start;
@@ -66,14 +74,16 @@ static OC_HOT void show(oc_model *m) {
 
 /* The committed state before the first step (see models/OrthotropicContact/model.h). */
 static oc_state initial_state(const oc_model *m) {
-    return m->initial_slip == OC_INITIAL_EXPLICIT ? oc_state_unloaded(m->s_start[0], m->s_start[1], 0.0)
-                                                  : oc_state_unloaded(m->u[0], m->u[1], 0.0);
+    return m->initial_slip == OC_INITIAL_EXPLICIT
+               ? oc_state_unloaded(m->s_start[0], m->s_start[1], 0.0)
+               : oc_state_unloaded(m->u[0], m->u[1], 0.0);
 }
 
 /* Computes the pending step for the inputs in m from the committed state
  * `from` with `law` into m (which commits neither); or fails and changes
  * nothing. */
-static OC_HOT fmu_status evaluate(oc_model *m, const oc_law *law, const oc_state *from, fmu_msg *msg) {
+static OC_HOT fmu_status evaluate(oc_model *m, const oc_law *law, const oc_state *from,
+                                  fmu_msg *msg) {
     /* into the hidden step: `from` (which may be the shown step's state)
      * is read in place, no copy unless it moves */
     oc_step *st = &m->steps[m->shown ^ 1];
@@ -156,14 +166,14 @@ static int jac_col(unsigned int vr) {
 }
 
 static void partials(const oc_model *m, double *J) {
-    oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->steps[m->shown],
-                    (double(*)[OC_JAC_COLS])J);
+    oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->steps[m->shown], (double(*)[OC_JAC_COLS])J);
 }
 
 /* J fits the glue's buffer (a negative size fails to compile) */
 typedef char jacobian_fits[OC_JAC_ROWS * OC_JAC_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
-static const fmu_jacobian JACOBIAN = {OC_JAC_ROWS, OC_JAC_COLS, jac_row, jac_col,
-                                      "T1, T2, s1, s2, dissipatedEnergy", "u1, u2, N", partials};
+static const fmu_jacobian JACOBIAN = {
+    OC_JAC_ROWS, OC_JAC_COLS, jac_row, jac_col, "T1, T2, s1, s2, dissipatedEnergy",
+    "u1, u2, N", partials};
 
 static fmu_status derivative(const oc_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
@@ -189,7 +199,8 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
     /* Bit patterns, not ==: -0.0 and +0.0 give tensors that differ in the
      * sign of zero entries, and a restored state must continue bit for bit. */
     const int same = fmu_fields_same(&OC_PARAMS_FIELDS, &m->law.p, &t.params);
-    if (same) t.law = m->law;
+    if (same)
+        t.law = m->law;
     else if (oc_law_init(&t.law, &t.params) != 0)
         return fmu_fail(msg, "serialized state: the parameters give non-finite tensors");
     const char *why = oc_state_check(&t.law, &t.start);

@@ -30,10 +30,10 @@ extern "C" {
 struct fmu_model {
     oc_params params;
     oc_law law;
-    double u[2], N;       /* the current inputs */
-    int initial_slip;     /* OC_INITIAL_AT_INPUTS or OC_INITIAL_EXPLICIT */
-    double s_start[2];    /* the explicit initial slip [m] */
-    oc_state start;       /* the state the shown result was computed from */
+    double u[2], N;    /* the current inputs */
+    int initial_slip;  /* OC_INITIAL_AT_INPUTS or OC_INITIAL_EXPLICIT */
+    double s_start[2]; /* the explicit initial slip [m] */
+    oc_state start;    /* the state the shown result was computed from */
     /* The shown result is steps[shown]; the law writes the next one into
      * the other and it is shown only if it is finite, so that a refused
      * step changes nothing without copying a whole step back and forth (a
@@ -67,7 +67,8 @@ static const fmu_field OC_MODEL_FIELD_LIST[] = {
     FMU_U32(oc_model, initial_slip, "initialSlip", "the initial slip", RANGE, OC_VR_initialSlip),
     FMU_F64(oc_model, s_start[0], "s1Start", "the initial slip", RANGE, OC_VR_s1Start),
     FMU_F64(oc_model, s_start[1], "s2Start", "the initial slip", RANGE, OC_VR_s2Start),
-    FMU_U32(oc_model, result_committed, "committed", "the commit flag (1: the shown step is committed)", FLAG, 0)};
+    FMU_U32(oc_model, result_committed, "committed",
+            "the commit flag (1: the shown step is committed)", FLAG, 0)};
 static const fmu_fields FMU_STATE_FIELDS = FMU_FIELDS(OC_MODEL_FIELD_LIST, oc_model);
 
 #ifdef __cplusplus

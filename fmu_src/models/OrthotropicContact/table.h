@@ -9,6 +9,9 @@
 #include "glue/fmu_table.h"
 #include "law/law_table.h"
 
+/* A table's rows and lists keep their own layout. */
+/* clang-format off */
+
 #define FMU_MODEL_NAME "OrthotropicContact"
 #define FMU_MODEL_IDENTIFIER "OrthotropicContact"
 /* The guid / instantiationToken is a hash of the generated model
@@ -185,4 +188,5 @@ static const char FMU_DOC_HTML[] =
 enum { FMU_VARIABLES(OC_VR_ENUM_ENTRY) OC_VR_COUNT_PLUS_ONE };
 #undef OC_VR_ENUM_ENTRY
 
+/* clang-format on */
 #endif

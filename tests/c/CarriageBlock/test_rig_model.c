@@ -16,7 +16,10 @@ static char last_message[512];
 
 static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                    fmi2String category, fmi2String message, ...) {
-    (void)env; (void)name; (void)status; (void)category;
+    (void)env;
+    (void)name;
+    (void)status;
+    (void)category;
     va_list ap;
     va_start(ap, message);
     vsnprintf(last_message, sizeof last_message, message, ap);
@@ -50,9 +53,11 @@ static void set(fmi2Component c, fmi2ValueReference vr, double v) {
 static void test_table_and_errors(void) {
     fmi2Component c = make("table");
     /* Defaults are the table's start values. */
-    const struct { fmi2ValueReference vr; double start; } par[] = {
-        {RIG_VR_mass, 1.875}, {RIG_VR_g, 9.806}, {RIG_VR_fInt, 5.0}, {RIG_VR_velocity, 0.244},
-        {RIG_VR_muStrip, 0.0}, {RIG_VR_cStrip, 0.0}};
+    const struct {
+        fmi2ValueReference vr;
+        double start;
+    } par[] = {{RIG_VR_mass, 1.875},     {RIG_VR_g, 9.806},     {RIG_VR_fInt, 5.0},
+               {RIG_VR_velocity, 0.244}, {RIG_VR_muStrip, 0.0}, {RIG_VR_cStrip, 0.0}};
     double v;
     CHECK(fmi2GetReal(c, &par[0].vr, 1, &v) == fmi2Error, "read while instantiated");
     start(c);
@@ -96,7 +101,8 @@ static void test_table_and_errors(void) {
     const fmi2ValueReference u = RIG_VR_u1, kn = RIG_VR_T1;
     double seed = 1, out;
     CHECK(fmi2GetDirectionalDerivative(c, &u, 1, &kn, 1, &seed, &out) == fmi2Error &&
-              strstr(last_message, "no derivatives"), "derivative: %s", last_message);
+              strstr(last_message, "no derivatives"),
+          "derivative: %s", last_message);
     fmi2FreeInstance(c);
 }
 
@@ -219,8 +225,8 @@ static void all_outputs(fmi2Component c, double out[RIG_VR_COUNT_PLUS_ONE]) {
 static void same_outputs(const double a[RIG_VR_COUNT_PLUS_ONE],
                          const double b[RIG_VR_COUNT_PLUS_ONE], const char *what) {
     for (fmi2ValueReference vr = 0; vr < RIG_VR_COUNT_PLUS_ONE; ++vr)
-        CHECK(memcmp(&a[vr], &b[vr], sizeof a[vr]) == 0, "%s changed vr %u: %.17g -> %.17g",
-              what, vr, a[vr], b[vr]);
+        CHECK(memcmp(&a[vr], &b[vr], sizeof a[vr]) == 0, "%s changed vr %u: %.17g -> %.17g", what,
+              vr, a[vr], b[vr]);
 }
 
 static void test_outputs_stay_finite(void) {
@@ -232,7 +238,8 @@ static void test_outputs_stay_finite(void) {
     set(c, RIG_VR_velocity, fast);
     last_message[0] = '\0';
     CHECK(fmi2SetupExperiment(c, 0, 0, 1e303, 0, 0) == fmi2Error &&
-              strstr(last_message, "overflows"), "start time 1e303 at 1e6 m/s: %s", last_message);
+              strstr(last_message, "overflows"),
+          "start time 1e303 at 1e6 m/s: %s", last_message);
     CHECK(fmi2EnterInitializationMode(c) == fmi2OK, "enter after the refusal");
     CHECK(get(c, RIG_VR_time) == 0.0 && get(c, RIG_VR_x1) == 0.0, "the refused time was kept");
     fmi2FreeInstance(c);
@@ -308,8 +315,8 @@ static void test_outputs_stay_finite(void) {
     all_outputs(c, before);
     fmi2FMUstate forged = NULL;
     CHECK(fmi2DeSerializeFMUstate(c, (const fmi2Byte *)bytes, n, &forged) == fmi2Error &&
-              forged == NULL && strstr(last_message, "overflows") &&
-              strstr(last_message, "1e+303"), "deserialize: %s", last_message);
+              forged == NULL && strstr(last_message, "overflows") && strstr(last_message, "1e+303"),
+          "deserialize: %s", last_message);
     memcpy(st, bytes, n); /* the glue's state is its serialized bytes */
     CHECK(fmi2SetFMUstate(c, st) == fmi2Error && strstr(last_message, "overflows"),
           "set a state at t = 1e303: %s", last_message);

@@ -31,7 +31,10 @@
 static char last_message[512];
 static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
                   fmi2String m, ...) {
-    (void)e; (void)n; (void)s; (void)c;
+    (void)e;
+    (void)n;
+    (void)s;
+    (void)c;
     va_list ap;
     va_start(ap, m);
     vsnprintf(last_message, sizeof last_message, m, ap);
@@ -40,7 +43,7 @@ static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2St
 static const fmi2CallbackFunctions CB = {quiet, calloc, free, NULL, NULL};
 
 static const fmi2ValueReference KNOWN[6] = {PATCH_VR_u1, PATCH_VR_u2, PATCH_VR_theta,
-                                            PATCH_VR_N, PATCH_VR_p1, PATCH_VR_p2};
+                                            PATCH_VR_N,  PATCH_VR_p1, PATCH_VR_p2};
 static const fmi2ValueReference UNKNOWN[4] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz,
                                               PATCH_VR_dissipatedEnergy};
 
@@ -63,8 +66,10 @@ static void derivatives_match_differences(void) {
         const fmi2ValueReference ivr[3] = {PATCH_VR_n1, PATCH_VR_n2, PATCH_VR_slidingRule};
         const fmi2Integer iv[3] = {1 + (int)pick(6), 1 + (int)pick(5), 1 + (int)pick(2)};
         fmi2SetInteger(c, ivr, 3, iv);
-        const fmi2ValueReference pvr[4] = {PATCH_VR_alpha, PATCH_VR_beta, PATCH_VR_length, PATCH_VR_width};
-        const double pv[4] = {3 * uniform(), 3 * uniform(), 0.02 + 0.1 * uniform(), 0.02 + 0.1 * uniform()};
+        const fmi2ValueReference pvr[4] = {PATCH_VR_alpha, PATCH_VR_beta, PATCH_VR_length,
+                                           PATCH_VR_width};
+        const double pv[4] = {3 * uniform(), 3 * uniform(), 0.02 + 0.1 * uniform(),
+                              0.02 + 0.1 * uniform()};
         fmi2SetReal(c, pvr, 4, pv);
         fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
         fmi2EnterInitializationMode(c);
@@ -91,7 +96,8 @@ static void derivatives_match_differences(void) {
         double col[6][4]; /* column j: d(T1, T2, Mz, energy)/d(known j) */
         for (int j = 0; j < 6; ++j) {
             const double seed = 1.0;
-            CHECK(fmi2GetDirectionalDerivative(c, UNKNOWN, 4, &KNOWN[j], 1, &seed, col[j]) == fmi2OK,
+            CHECK(fmi2GetDirectionalDerivative(c, UNKNOWN, 4, &KNOWN[j], 1, &seed, col[j]) ==
+                      fmi2OK,
                   "derivative column %d", j);
         }
         static const double H[6] = {1e-9, 1e-9, 1e-8, 1e-6, 1e-8, 1e-8};
@@ -118,7 +124,8 @@ static void derivatives_match_differences(void) {
     }
     CHECK(checked > 250, "only %d columns checked", checked);
     CHECK(episodes_slipping > 20, "only %d episodes slipping", episodes_slipping);
-    printf("derivatives: %d columns checked, %d of 60 states slipping\n", checked, episodes_slipping);
+    printf("derivatives: %d columns checked, %d of 60 states slipping\n", checked,
+           episodes_slipping);
 }
 
 /* ---- the reference: the patch's step the plain way, cell by cell --------- */
@@ -246,7 +253,7 @@ static void step_matches_the_plain_per_cell_step(void) {
         g.n2 = 1 + (int)pick(episode % 5 == 4 ? PATCH_MAX_SIDE : 12);
         g.length = 0.02 + 0.2 * uniform();
         g.width = 0.02 + 0.2 * uniform();
-        oc_params q = {0.2 + uniform(), 0.2 + uniform(), 5e3 + 5e4 * uniform(),
+        oc_params q = {0.2 + uniform(),       0.2 + uniform(),   5e3 + 5e4 * uniform(),
                        5e3 + 5e4 * uniform(), 6 * uniform() - 3, 6 * uniform() - 3,
                        1 + (int)pick(3)};
         const int initial = 1 + (int)pick(2);
@@ -255,12 +262,11 @@ static void step_matches_the_plain_per_cell_step(void) {
         const fmi2ValueReference ivr[4] = {PATCH_VR_n1, PATCH_VR_n2, PATCH_VR_slidingRule,
                                            PATCH_VR_initialSlip};
         const fmi2Integer iv[4] = {g.n1, g.n2, q.rule, initial};
-        const fmi2ValueReference pvr[10] = {PATCH_VR_mu1,   PATCH_VR_mu2,    PATCH_VR_eps1,
-                                            PATCH_VR_eps2,  PATCH_VR_alpha,  PATCH_VR_beta,
-                                            PATCH_VR_length, PATCH_VR_width, PATCH_VR_s1Start,
-                                            PATCH_VR_s2Start};
-        const double pv[10] = {q.mu1, q.mu2, q.eps1, q.eps2, q.alpha, q.beta,
-                               g.length, g.width, s_start[0], s_start[1]};
+        const fmi2ValueReference pvr[10] = {
+            PATCH_VR_mu1,  PATCH_VR_mu2,    PATCH_VR_eps1,  PATCH_VR_eps2,    PATCH_VR_alpha,
+            PATCH_VR_beta, PATCH_VR_length, PATCH_VR_width, PATCH_VR_s1Start, PATCH_VR_s2Start};
+        const double pv[10] = {q.mu1,  q.mu2,    q.eps1,  q.eps2,     q.alpha,
+                               q.beta, g.length, g.width, s_start[0], s_start[1]};
         CHECK(fmi2SetInteger(c, ivr, 4, iv) == fmi2OK && fmi2SetReal(c, pvr, 10, pv) == fmi2OK,
               "episode %d: parameters", episode);
         /* the cells' law: eps shared by area */
@@ -272,8 +278,8 @@ static void step_matches_the_plain_per_cell_step(void) {
         CHECK(oc_law_init(&law, &cell) == 0, "episode %d: the cells' law", episode);
         fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
         fmi2EnterInitializationMode(c);
-        double x[6] = {1e-5 * (uniform() - 0.5), 1e-5 * (uniform() - 0.5), 0.01 * (uniform() - 0.5),
-                       20, 0, 0};
+        double x[6] = {
+            1e-5 * (uniform() - 0.5), 1e-5 * (uniform() - 0.5), 0.01 * (uniform() - 0.5), 20, 0, 0};
         fmi2SetReal(c, KNOWN, 6, x);
         CHECK(fmi2ExitInitializationMode(c) == fmi2OK, "episode %d: initialization", episode);
         g.u[0] = x[0];
@@ -327,7 +333,8 @@ static void step_matches_the_plain_per_cell_step(void) {
                     CHECK(strstr(last_message, want) != NULL,
                           "episode %d: refused with \"%s\", not naming \"%s\"", episode,
                           last_message, want);
-                } else CHECK(fmi2SetFMUstate(c, saved) == fmi2OK, "episode %d: restore", episode);
+                } else
+                    CHECK(fmi2SetFMUstate(c, saved) == fmi2OK, "episode %d: restore", episode);
                 fmi2FreeFMUstate(c, &saved);
             }
             /* sometimes p off the axis of a side of one cell (refused while
@@ -338,7 +345,8 @@ static void step_matches_the_plain_per_cell_step(void) {
             const int off_axis = (g.n1 == 1 && x[4] != 0.0) || (g.n2 == 1 && x[5] != 0.0);
             last_message[0] = 0;
             if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) { /* refused: nothing changed */
-                CHECK(off_axis && x[3] > 0 && strstr(last_message, "cannot carry a centre of pressure"),
+                CHECK(off_axis && x[3] > 0 &&
+                          strstr(last_message, "cannot carry a centre of pressure"),
                       "episode %d step %d: p = (%g, %g) on %d x %d cells, N = %g refused: %s",
                       episode, k, x[4], x[5], g.n1, g.n2, x[3], last_message);
                 ++off_axis_refused;
@@ -356,8 +364,8 @@ static void step_matches_the_plain_per_cell_step(void) {
                   "episode %d step %d: outputs", episode, k);
             CHECK(memcmp(got, want, sizeof got) == 0 && got_state == want_state,
                   "episode %d step %d (%d x %d cells): T1 %.17g vs %.17g, Mz %.17g vs %.17g, "
-                  "state %d vs %d", episode, k, g.n1, g.n2, got[0], want[0], got[2], want[2],
-                  got_state, want_state);
+                  "state %d vs %d",
+                  episode, k, g.n1, g.n2, got[0], want[0], got[2], want[2], got_state, want_state);
             CHECK(states_equal(c, ref_from, g.n1 * g.n2),
                   "episode %d step %d: the committed cell states differ", episode, k);
             ++seen[want_state];
@@ -381,17 +389,19 @@ static void step_matches_the_plain_per_cell_step(void) {
         }
         fmi2FreeInstance(c);
     }
-    CHECK(compared > 1000 && restored > 50 && refused > 50 && off_axis_refused > 10 && open_far > 10,
+    CHECK(compared > 1000 && restored > 50 && refused > 50 && off_axis_refused > 10 &&
+              open_far > 10,
           "compared %ld steps, restored %ld, refused %ld overflowing and %ld off a side of one "
-          "cell, %ld open with p far outside the kern", compared, restored, refused,
-          off_axis_refused, open_far);
+          "cell, %ld open with p far outside the kern",
+          compared, restored, refused, off_axis_refused, open_far);
     CHECK(seen[0] > 20 && seen[1] > 20 && seen[2] > 20 && seen[3] > 20,
           "patch states seen: open %d, stick %d, partly %d, all slipping %d", seen[0], seen[1],
           seen[2], seen[3]);
     printf("plain per-cell step: %ld steps bit for bit (open %d, stick %d, partly slipping %d, "
            "all slipping %d), %ld restores, %ld overflowing steps and %ld p off a side of one "
-           "cell refused, %ld open steps with p far outside the kern\n", compared, seen[0],
-           seen[1], seen[2], seen[3], restored, refused, off_axis_refused, open_far);
+           "cell refused, %ld open steps with p far outside the kern\n",
+           compared, seen[0], seen[1], seen[2], seen[3], restored, refused, off_axis_refused,
+           open_far);
 }
 
 /* The cells' normal forces, read from the committed states the FMU
@@ -403,12 +413,14 @@ static void step_matches_the_plain_per_cell_step(void) {
  * an open contact (N <= 0) takes any p, outside the kern too, and so does
  * one call that opens it.  Then closing it with p still outside is refused. */
 static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
-    static const int GRIDS[][2] = {{1, 1}, {2, 2}, {3, 1}, {1, 3}, {4, 2}, {8, 8}, {5, 7}, {32, 32}};
+    static const int GRIDS[][2] = {{1, 1}, {2, 2}, {3, 1}, {1, 3},
+                                   {4, 2}, {8, 8}, {5, 7}, {32, 32}};
     int checked = 0;
     for (size_t gi = 0; gi < sizeof GRIDS / sizeof GRIDS[0]; ++gi) {
         for (int trial = 0; trial < 5; ++trial) {
             const int n1 = GRIDS[gi][0], n2 = GRIDS[gi][1];
-            const double L = 0.02 + 0.2 * uniform(), W = 0.02 + 0.2 * uniform(), N = 1 + 50 * uniform();
+            const double L = 0.02 + 0.2 * uniform(), W = 0.02 + 0.2 * uniform(),
+                         N = 1 + 50 * uniform();
             /* in the kern, |p|/side at least 1/60 wherever the side has cells to carry it */
             const double e1 = n1 > 1 ? (0.1 + 0.8 * uniform()) / 6 : 0.0;
             const double e2 = n2 > 1 ? (0.1 + 0.8 * uniform()) * (1.0 / 6 - e1) : 0.0;
@@ -422,13 +434,15 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
                   "%d x %d: geometry", n1, n2);
             fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
             fmi2EnterInitializationMode(c);
-            const double x[6] = {1e-4 * uniform(), 1e-4 * uniform(), 0.01 * uniform(), N, p[0], p[1]};
+            const double x[6] = {
+                1e-4 * uniform(), 1e-4 * uniform(), 0.01 * uniform(), N, p[0], p[1]};
             CHECK(fmi2SetReal(c, KNOWN, 6, x) == fmi2OK && fmi2ExitInitializationMode(c) == fmi2OK,
                   "%d x %d: p = (%g, %g) refused: %s", n1, n2, p[0], p[1], last_message);
             /* the state holds the shown step's start: a second step with the
              * inputs held starts from the first one's, which carry N_c */
             CHECK(fmi2DoStep(c, 0.0, 1e-3, fmi2True) == fmi2OK &&
-                      fmi2DoStep(c, 1e-3, 1e-3, fmi2True) == fmi2OK, "%d x %d: doStep", n1, n2);
+                      fmi2DoStep(c, 1e-3, 1e-3, fmi2True) == fmi2OK,
+                  "%d x %d: doStep", n1, n2);
             const size_t size = serialize(c, before);
             CHECK(size >= (size_t)PATCH_MAX_CELLS * 64, "%d x %d: state", n1, n2);
             const unsigned char *cells = before + size - (size_t)PATCH_MAX_CELLS * 64;
@@ -437,7 +451,8 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
                 double Nc;
                 memcpy(&Nc, cells + (size_t)k * 64 + 16, 8); /* little-endian hosts */
                 const int i = k % n1, j = k / n1;
-                const double r[2] = {(2 * i + 1 - n1) / (2.0 * n1) * L, (2 * j + 1 - n2) / (2.0 * n2) * W};
+                const double r[2] = {(2 * i + 1 - n1) / (2.0 * n1) * L,
+                                     (2 * j + 1 - n2) / (2.0 * n2) * W};
                 CHECK(Nc > 0, "%d x %d: cell %d pressed by %g", n1, n2, k, Nc);
                 sum += Nc;
                 sum_abs += fabs(Nc);
@@ -461,8 +476,8 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
                 y[4 + a] = 0.01 * (a ? W : L); /* in the kern: e1 + e2 <= 0.15 + 0.01 */
                 const size_t nb = serialize(c, before);
                 last_message[0] = 0;
-                CHECK(fmi2SetReal(c, KNOWN, 6, y) == fmi2Error, "%d x %d: p%d off the axis accepted",
-                      n1, n2, a + 1);
+                CHECK(fmi2SetReal(c, KNOWN, 6, y) == fmi2Error,
+                      "%d x %d: p%d off the axis accepted", n1, n2, a + 1);
                 char want[48];
                 snprintf(want, sizeof want, "off the axis of a grid with n%d = 1", a + 1);
                 CHECK(strstr(last_message, want) != NULL, "%d x %d: refused with \"%s\"", n1, n2,
@@ -472,19 +487,23 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
             }
             /* open, p anywhere: accepted, every cell open; closing with p outside: refused */
             const double open[6] = {x[0], x[1], x[2], -N * uniform(), 3 * L, -2 * W};
-            CHECK(fmi2SetReal(c, KNOWN, 6, open) == fmi2OK, "%d x %d: open with p outside the kern "
-                  "refused: %s", n1, n2, last_message);
+            CHECK(fmi2SetReal(c, KNOWN, 6, open) == fmi2OK,
+                  "%d x %d: open with p outside the kern "
+                  "refused: %s",
+                  n1, n2, last_message);
             const fmi2ValueReference vstate = PATCH_VR_contactState;
             fmi2Integer state = -1;
             double T[3];
             CHECK(fmi2GetInteger(c, &vstate, 1, &state) == fmi2OK && state == 0 &&
-                      fmi2GetReal(c, UNKNOWN, 3, T) == fmi2OK && T[0] == 0 && T[1] == 0 && T[2] == 0,
+                      fmi2GetReal(c, UNKNOWN, 3, T) == fmi2OK && T[0] == 0 && T[1] == 0 &&
+                      T[2] == 0,
                   "%d x %d: open contact state %d", n1, n2, (int)state);
             CHECK(fmi2DoStep(c, 2e-3, 1e-3, fmi2True) == fmi2OK, "%d x %d: open doStep", n1, n2);
             const fmi2ValueReference vN = PATCH_VR_N;
             const double press = N;
             last_message[0] = 0;
-            CHECK(fmi2SetReal(c, &vN, 1, &press) == fmi2Error && strstr(last_message, "outside the kern"),
+            CHECK(fmi2SetReal(c, &vN, 1, &press) == fmi2Error &&
+                      strstr(last_message, "outside the kern"),
                   "%d x %d: closed with p outside the kern: %s", n1, n2, last_message);
             CHECK(fmi2SetReal(c, KNOWN, 6, x) == fmi2OK, "%d x %d: closed again", n1, n2);
             fmi2Terminate(c);
@@ -508,7 +527,9 @@ static void random_sequences(void) {
             const size_t nb = serialize(c, before);
             fmi2Status s = fmi2OK;
             switch (pick(9)) {
-            case 0: case 1: case 2: { /* inputs, sometimes hostile */
+            case 0:
+            case 1:
+            case 2: { /* inputs, sometimes hostile */
                 double v[6];
                 for (int i = 0; i < 6; ++i) v[i] = pick(6) ? (uniform() - 0.5) * 0.02 : hostile();
                 if (pick(2)) v[3] = 5 + 20 * uniform();
@@ -530,7 +551,8 @@ static void random_sequences(void) {
                 if (s == fmi2OK) s = fmi2EnterInitializationMode(c);
                 break;
             case 5: s = fmi2ExitInitializationMode(c); break;
-            case 6: case 7:
+            case 6:
+            case 7:
                 s = fmi2DoStep(c, t, 1e-3, fmi2True);
                 if (s == fmi2OK) t += 1e-3;
                 break;
@@ -539,11 +561,13 @@ static void random_sequences(void) {
                 if (!n) break;
                 fmi2Component d = make();
                 fmi2FMUstate st = NULL;
-                CHECK(fmi2DeSerializeFMUstate(d, (const fmi2Byte *)before, n, &st) == fmi2OK, "deserialize own state");
+                CHECK(fmi2DeSerializeFMUstate(d, (const fmi2Byte *)before, n, &st) == fmi2OK,
+                      "deserialize own state");
                 CHECK(fmi2SetFMUstate(d, st) == fmi2OK, "set own state in a fresh instance");
                 fmi2FreeFMUstate(d, &st);
                 double a[4], b[4];
-                const fmi2Status ra = fmi2GetReal(c, UNKNOWN, 4, a), rb = fmi2GetReal(d, UNKNOWN, 4, b);
+                const fmi2Status ra = fmi2GetReal(c, UNKNOWN, 4, a),
+                                 rb = fmi2GetReal(d, UNKNOWN, 4, b);
                 CHECK(ra == rb, "restored reads with status %d, original %d", rb, ra);
                 if (ra == fmi2OK) CHECK(memcmp(a, b, sizeof a) == 0, "restored outputs differ");
                 fmi2FreeInstance(d);
@@ -555,16 +579,19 @@ static void random_sequences(void) {
             if (s != fmi2OK && nb) {
                 ++refused;
                 const size_t na = serialize(c, after);
-                CHECK(na == nb && memcmp(before, after, nb) == 0, "a refused call changed the instance");
+                CHECK(na == nb && memcmp(before, after, nb) == 0,
+                      "a refused call changed the instance");
             }
             double y[4];
             if (fmi2GetReal(c, UNKNOWN, 4, y) == fmi2OK)
-                for (int i = 0; i < 4; ++i) CHECK(isfinite(y[i]), "output %d = %g read with OK", i, y[i]);
+                for (int i = 0; i < 4; ++i)
+                    CHECK(isfinite(y[i]), "output %d = %g read with OK", i, y[i]);
         }
         fmi2FreeInstance(c);
     }
     CHECK(refused > 100 && restored > 100, "refused %ld, restored %ld", refused, restored);
-    printf("random sequences: %ld calls refused unchanged, %ld states restored\n", refused, restored);
+    printf("random sequences: %ld calls refused unchanged, %ld states restored\n", refused,
+           restored);
 }
 
 int main(void) {

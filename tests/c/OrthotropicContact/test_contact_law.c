@@ -6,12 +6,12 @@
 #include <string.h>
 
 #include "check.h"
-#include "random_values.h"
-#include "law/contact_law.h"
 #include "glue/fmu_bytes.h"
 #include "glue/fmu_model.h"
-#include "models/OrthotropicContact/table.h"
+#include "law/contact_law.h"
 #include "models/OrthotropicContact/model.h"
+#include "models/OrthotropicContact/table.h"
+#include "random_values.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -30,15 +30,28 @@ static double yield(const oc_law *L, const double q[2]) {
 static void test_params_check(void) {
     oc_params good = params(2, 0.1, 0.5, 1e4, 1e3, 0.3, 0.4), p;
     CHECK(oc_params_check(&good) == NULL, "valid parameters rejected");
-    p = good; p.mu1 = 0; CHECK(oc_params_check(&p) != NULL, "mu1 = 0 accepted");
-    p = good; p.mu2 = -1; CHECK(oc_params_check(&p) != NULL, "mu2 < 0 accepted");
-    p = good; p.eps1 = NAN; CHECK(oc_params_check(&p) != NULL, "eps1 NaN accepted");
-    p = good; p.eps2 = INFINITY; CHECK(oc_params_check(&p) != NULL, "eps2 inf accepted");
-    p = good; p.alpha = NAN; CHECK(oc_params_check(&p) != NULL, "alpha NaN accepted");
-    p = good; p.rule = 4; CHECK(oc_params_check(&p) != NULL, "rule 4 accepted");
+    p = good;
+    p.mu1 = 0;
+    CHECK(oc_params_check(&p) != NULL, "mu1 = 0 accepted");
+    p = good;
+    p.mu2 = -1;
+    CHECK(oc_params_check(&p) != NULL, "mu2 < 0 accepted");
+    p = good;
+    p.eps1 = NAN;
+    CHECK(oc_params_check(&p) != NULL, "eps1 NaN accepted");
+    p = good;
+    p.eps2 = INFINITY;
+    CHECK(oc_params_check(&p) != NULL, "eps2 inf accepted");
+    p = good;
+    p.alpha = NAN;
+    CHECK(oc_params_check(&p) != NULL, "alpha NaN accepted");
+    p = good;
+    p.rule = 4;
+    CHECK(oc_params_check(&p) != NULL, "rule 4 accepted");
     oc_law L;
     memset(&L, 0x5a, sizeof L);
-    p = good; p.rule = 0;
+    p = good;
+    p.rule = 0;
     CHECK(oc_law_init(&L, &p) == -1, "init with bad rule succeeded");
 }
 
@@ -111,7 +124,8 @@ static void test_return_onto_yield_surface(void) {
             if (rule != OC_RULE_EQ20) {
                 /* Implicit rule: slip increment is dgamma G q with G = F or (BFB)^-1. */
                 double G[2][2];
-                if (rule == OC_RULE_ASSOCIATED) memcpy(G, L.F, sizeof G);
+                if (rule == OC_RULE_ASSOCIATED)
+                    memcpy(G, L.F, sizeof G);
                 else {
                     double A[2][2];
                     for (int i = 0; i < 2; ++i)
@@ -123,8 +137,10 @@ static void test_return_onto_yield_surface(void) {
                             A[i][j] = acc;
                         }
                     const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-                    G[0][0] = A[1][1] / det; G[1][1] = A[0][0] / det;
-                    G[0][1] = -A[0][1] / det; G[1][0] = -A[1][0] / det;
+                    G[0][0] = A[1][1] / det;
+                    G[1][1] = A[0][0] / det;
+                    G[0][1] = -A[0][1] / det;
+                    G[1][0] = -A[1][0] / det;
                 }
                 const double Gq0 = G[0][0] * st.q[0] + G[0][1] * st.q[1];
                 const double Gq1 = G[1][0] * st.q[0] + G[1][1] * st.q[1];
@@ -265,8 +281,13 @@ static void check_jacobian(int rule, const oc_state *s0, const double u[2], doub
     const double hs[3] = {1e-8, 1e-8, 1e-6};
     for (int j = 0; j < 3; ++j) {
         double up[2] = {u[0], u[1]}, um[2] = {u[0], u[1]}, Np = N, Nm = N;
-        if (j < 2) { up[j] += hs[j]; um[j] -= hs[j]; }
-        else { Np += hs[j]; Nm -= hs[j]; }
+        if (j < 2) {
+            up[j] += hs[j];
+            um[j] -= hs[j];
+        } else {
+            Np += hs[j];
+            Nm -= hs[j];
+        }
         oc_step sp, sm;
         oc_law_step(&L, s0, up, Np, &sp);
         oc_law_step(&L, s0, um, Nm, &sm);
@@ -330,10 +351,14 @@ static void test_held_inputs_anisotropic(void) {
                     s = a.next;
                     for (int rep = 0; rep < 3; ++rep) {
                         oc_law_step(&L, &s, u, 18.4, &b);
-                        CHECK(b.contact == OC_STICK, "rule %d ratio %g fr %d k %d: held inputs "
-                              "slipped again", rule, ratios[r], fr, k);
-                        CHECK(b.q[0] == a.q[0] && b.q[1] == a.q[1], "rule %d ratio %g: held "
-                              "force changed by %g", rule, ratios[r], fabs(b.q[0] - a.q[0]));
+                        CHECK(b.contact == OC_STICK,
+                              "rule %d ratio %g fr %d k %d: held inputs "
+                              "slipped again",
+                              rule, ratios[r], fr, k);
+                        CHECK(b.q[0] == a.q[0] && b.q[1] == a.q[1],
+                              "rule %d ratio %g: held "
+                              "force changed by %g",
+                              rule, ratios[r], fabs(b.q[0] - a.q[0]));
                         CHECK(b.next.energy == a.next.energy, "held inputs dissipated");
                         s = b.next;
                     }
@@ -390,7 +415,8 @@ static void test_model_table_and_errors(void) {
         const int ok_r = fmu_model_get_float64(&m, &vr, 1, &d, &msg) == FMU_OK;
         const int ok_i = fmu_model_get_int(&m, &vr, 1, &i, 4, FMU_INT32 | FMU_ENUM, &msg) == FMU_OK;
         CHECK(!(ok_r && ok_i), "vr %u readable as both types", vr);
-        CHECK((ok_r || ok_i) == (fmu_model_variable_name(vr) != NULL), "vr %u table/accessor mismatch", vr);
+        CHECK((ok_r || ok_i) == (fmu_model_variable_name(vr) != NULL),
+              "vr %u table/accessor mismatch", vr);
         n_real += ok_r;
         n_int += ok_i;
     }
@@ -398,14 +424,16 @@ static void test_model_table_and_errors(void) {
     /* Enumeration and Int32 are told apart (FMI 3.0 reads them differently). */
     const unsigned vr_rule = OC_VR_slidingRule, vr_state = OC_VR_contactState;
     int64_t i64;
-    CHECK(fmu_model_get_int(&m, &vr_rule, 1, &i64, 8, FMU_ENUM, &msg) == FMU_OK && i64 == 2, "rule");
+    CHECK(fmu_model_get_int(&m, &vr_rule, 1, &i64, 8, FMU_ENUM, &msg) == FMU_OK && i64 == 2,
+          "rule");
     CHECK(fmu_model_get_int(&m, &vr_rule, 1, &i64, 8, FMU_INT32, &msg) == FMU_ERR, "rule as Int32");
     CHECK(fmu_model_get_int(&m, &vr_state, 1, &i64, 8, FMU_ENUM, &msg) == FMU_ERR, "state as enum");
 
     const unsigned vr_mu1 = OC_VR_mu1, vr_T1 = OC_VR_T1, vr_u1 = OC_VR_u1, vr_alpha = OC_VR_alpha,
                    vr_time = OC_VR_time, bad = 99;
     double v = -1;
-    CHECK(fmu_model_set_float64(&m, &vr_mu1, 1, &v, FMU_ALLOW_PARAMETERS, &msg) == FMU_ERR, "mu1<0");
+    CHECK(fmu_model_set_float64(&m, &vr_mu1, 1, &v, FMU_ALLOW_PARAMETERS, &msg) == FMU_ERR,
+          "mu1<0");
     CHECK(strstr(msg.text, "mu1") != NULL, "message does not name mu1: %s", msg.text);
     CHECK(m.params.mu1 == 0.408, "rejected call changed mu1");
     v = 1e-151;
@@ -443,7 +471,8 @@ static void test_model_table_and_errors(void) {
     CHECK(fmu_model_set_float64(&m, mixed, 2, mv, 3, &msg) == FMU_ERR, "eps1 < 0 accepted");
     CHECK(m.params.mu2 == 0.625, "partial batch applied");
     int32_t r = 7;
-    CHECK(fmu_model_set_int(&m, &vr_rule, 1, &r, 4, FMU_ENUM, 3, &msg) == FMU_ERR, "rule 7 accepted");
+    CHECK(fmu_model_set_int(&m, &vr_rule, 1, &r, 4, FMU_ENUM, 3, &msg) == FMU_ERR,
+          "rule 7 accepted");
     r = 1;
     CHECK(fmu_model_set_int(&m, &vr_state, 1, &r, 4, FMU_INT32, 3, &msg) == FMU_ERR, "output set");
 }
@@ -484,12 +513,16 @@ static void test_model_state(void) {
     CHECK(memcmp(ya, yb, sizeof ya) == 0, "restored model diverged");
 
     /* Forged fields are refused and change nothing. */
-    struct { size_t at; double value; const char *what; } forged[] = {
-        {0, -1.0, "mu1 < 0"}, {32, 100.0, "alpha out of range"},
-        {6 * 8 + 4 + 3 * 8 + 7 * 8, -1e37, "negative energy"},
-        {6 * 8 + 4 + 3 * 8 + 2 * 8, 0.0, "open contact with a force"},
-        {6 * 8 + 4 + 3 * 8 + 3 * 8, 1e6, "force outside the yield surface"},
-        {6 * 8 + 4, NAN, "NaN input"}};
+    struct {
+        size_t at;
+        double value;
+        const char *what;
+    } forged[] = {{0, -1.0, "mu1 < 0"},
+                  {32, 100.0, "alpha out of range"},
+                  {6 * 8 + 4 + 3 * 8 + 7 * 8, -1e37, "negative energy"},
+                  {6 * 8 + 4 + 3 * 8 + 2 * 8, 0.0, "open contact with a force"},
+                  {6 * 8 + 4 + 3 * 8 + 3 * 8, 1e6, "force outside the yield surface"},
+                  {6 * 8 + 4, NAN, "NaN input"}};
     for (size_t k = 0; k < sizeof forged / sizeof forged[0]; ++k) {
         memcpy(again, buf, n);
         fmu_put_f64(again + forged[k].at, forged[k].value);
@@ -515,8 +548,7 @@ static void test_model_state(void) {
  * in long double.  From an unloaded start at s = 0, displacement d in the
  * axes; returns the force T = -q in X1, X2 and the dissipation l q.G q. */
 static void aligned_reference(int rule, const double mu[2], const double eps[2], double th,
-                              const long double d[2], double N, long double T[2],
-                              long double *E) {
+                              const long double d[2], double N, long double T[2], long double *E) {
     long double qt[2], k[2], q[2], l = 0;
     for (int i = 0; i < 2; ++i) {
         qt[i] = (long double)eps[i] * d[i];
@@ -524,8 +556,8 @@ static void aligned_reference(int rule, const double mu[2], const double eps[2],
                                           : (long double)mu[i] * mu[i] / eps[i];
         q[i] = qt[i];
     }
-#define OC_REF_PHI(x) sqrtl(powl(qt[0] / (mu[0] * (1 + (x) * k[0])), 2) + \
-                            powl(qt[1] / (mu[1] * (1 + (x) * k[1])), 2))
+#define OC_REF_PHI(x)                                                                              \
+    sqrtl(powl(qt[0] / (mu[0] * (1 + (x)*k[0])), 2) + powl(qt[1] / (mu[1] * (1 + (x)*k[1])), 2))
     if (OC_REF_PHI(0.0L) > N) {
         long double lo = 0, hi = 1e-400L;
         while (OC_REF_PHI(hi) > N) {
@@ -534,8 +566,10 @@ static void aligned_reference(int rule, const double mu[2], const double eps[2],
         }
         for (int it = 0; it < 400 && hi - lo > hi * 1e-21L; ++it) {
             const long double m = 0.5L * (lo + hi);
-            if (OC_REF_PHI(m) > N) lo = m;
-            else hi = m;
+            if (OC_REF_PHI(m) > N)
+                lo = m;
+            else
+                hi = m;
         }
         l = 0.5L * (lo + hi);
         for (int i = 0; i < 2; ++i) q[i] = qt[i] / (1 + l * k[i]);
@@ -607,11 +641,13 @@ static void test_accuracy_aligned_axes(void) {
                     const double len = 1e3 * 0.5 * 10 / (1e5 / r);
                     const double du[2] = {len * cos(phi), len * sin(phi)};
                     double eE = 0;
-                    worst = fmax(worst, aligned_error(rule, 0.9, 0.9 / r, 1e5, 1e5 / r, th, du, 10.0, &eE));
+                    worst = fmax(
+                        worst, aligned_error(rule, 0.9, 0.9 / r, 1e5, 1e5 / r, th, du, 10.0, &eE));
                     worstE = fmax(worstE, eE);
                 }
     CHECK(worst <= 4, "aligned axes, mu1/mu2 = eps1/eps2 <= 1e10: force error %.3g x bound", worst);
-    CHECK(worstE <= 4, "aligned axes, mu1/mu2 = eps1/eps2 <= 1e10: energy error %.3g x bound", worstE);
+    CHECK(worstE <= 4, "aligned axes, mu1/mu2 = eps1/eps2 <= 1e10: energy error %.3g x bound",
+          worstE);
     /* A slide along the shared strong axis: |T| = mu1 N (was 8.3e-6 N for 7.2 N). */
     for (int rule = 1; rule <= 2; ++rule) {
         oc_params p = params(rule, 0.72, 0.72e-10, 1e6, 1e-4, 0.7, 0.7);
@@ -621,7 +657,8 @@ static void test_accuracy_aligned_axes(void) {
         oc_step st;
         const double du[2] = {cos(0.7), sin(0.7)};
         oc_law_step(&L, &s0, du, 10.0, &st);
-        CHECK_CLOSE(oc_norm2(st.q[0], st.q[1]), 7.2, 8 * DBL_EPSILON * 7.2, "|T| along the strong axis");
+        CHECK_CLOSE(oc_norm2(st.q[0], st.q[1]), 7.2, 8 * DBL_EPSILON * 7.2,
+                    "|T| along the strong axis");
         CHECK(fabs(st.q[0] * sin(0.7) - st.q[1] * cos(0.7)) <= 8 * DBL_EPSILON * 7.2,
               "rule %d: the force leaves the strong axis: q = (%g, %g)", rule, st.q[0], st.q[1]);
     }
@@ -631,7 +668,8 @@ static void test_accuracy_aligned_axes(void) {
     worst = worstE = 0;
     for (int n = 0; n < 3000; ++n) {
         const int rule = 1 + (int)pick(2);
-        const double mu1 = pow(10, -1.3 + 1.3 * uniform()), mu2 = mu1 * pow(10, 20 * uniform() - 10);
+        const double mu1 = pow(10, -1.3 + 1.3 * uniform()),
+                     mu2 = mu1 * pow(10, 20 * uniform() - 10);
         const double e1 = pow(10, 2 + 4 * uniform()), e2 = e1 * pow(10, 20 * uniform() - 10);
         const double th = pick(4) == 0 ? 0.0 : PI * (2 * uniform() - 1);
         const double phi = pick(4) == 0 ? th + pick(4) * PI / 2 : PI * (2 * uniform() - 1);
@@ -660,13 +698,14 @@ static void test_huge_trial(void) {
         oc_step st;
         const double u[2] = {5e7, 0};
         oc_law_step(&L, &s0, u, 1.0, &st);
-        CHECK(st.contact == OC_SLIP && oc_step_is_finite(&st), "rule %d: q_tr = 5e307 N, N = 1: state %d",
-              rule, st.contact);
+        CHECK(st.contact == OC_SLIP && oc_step_is_finite(&st),
+              "rule %d: q_tr = 5e307 N, N = 1: state %d", rule, st.contact);
         CHECK_CLOSE(st.q[0], 0.5, 4 * DBL_EPSILON, "huge trial: q1 = mu N");
         oc_state forged = oc_state_unloaded(0, 0, 0);
         forged.N = 1.0;
         forged.a[0] = 1.2e308;
-        CHECK(oc_state_check(&L, &forged) != NULL, "a committed force of 1.2e308 with N = 1 accepted");
+        CHECK(oc_state_check(&L, &forged) != NULL,
+              "a committed force of 1.2e308 with N = 1 accepted");
     }
 }
 
@@ -682,7 +721,8 @@ static void test_subnormal_normal_force(void) {
         int32_t r = rule;
         fmu_model_set_int(&m, &vr_rule, 1, &r, 4, FMU_ENUM, 3, &msg);
         for (int k = 1; k < 400; ++k) {
-            const double v[3] = {1e-300 * cos(k), 1e-300 * sin(k), k * 7.3 * 4.9406564584124654e-324};
+            const double v[3] = {1e-300 * cos(k), 1e-300 * sin(k),
+                                 k * 7.3 * 4.9406564584124654e-324};
             oc_step st;
             const oc_state s0 = oc_state_unloaded(0, 0, 0);
             oc_law_step(&m.law, &s0, v, v[2], &st);
@@ -740,12 +780,14 @@ static void test_eq20_strong_friction_contrast(void) {
             oc_step st;
             const double u[2] = {cos(b), sin(b)};
             oc_law_step(&L, &s0, u, 1.0, &st);
-            CHECK(oc_step_is_finite(&st) && st.contact == OC_SLIP, "rule %d beta %g: no slip", rule, b);
+            CHECK(oc_step_is_finite(&st) && st.contact == OC_SLIP, "rule %d beta %g: no slip", rule,
+                  b);
             CHECK_CLOSE(oc_norm2(st.q[0], st.q[1]), 0.5, 4 * DBL_EPSILON, "|q| = mu1 N");
             CHECK(fabs(st.q[0] * sin(b) - st.q[1] * cos(b)) <= 4 * DBL_EPSILON,
                   "rule %d beta %g: the force leaves friction axis 1: (%g, %g)", rule, b, st.q[0],
                   st.q[1]);
-            CHECK_CLOSE(st.next.energy, 0.5 * (1 - 0.5 / 1e4), 1e-14, "energy mu1 N (|u| - mu1 N / eps)");
+            CHECK_CLOSE(st.next.energy, 0.5 * (1 - 0.5 / 1e4), 1e-14,
+                        "energy mu1 N (|u| - mu1 N / eps)");
         }
 }
 
@@ -760,10 +802,14 @@ static void test_power_of_two_units(void) {
     for (int n = 0; n < 12000; ++n) {
         const int corner = n % 2;
         const double mu1 = corner ? 0.625 : pow(10, -1.3 + 1.3 * uniform());
-        const double mu2 = corner ? mu1 * pow(10, -10 + uniform()) : mu1 * pow(10, 20 * uniform() - 10);
+        const double mu2 =
+            corner ? mu1 * pow(10, -10 + uniform()) : mu1 * pow(10, 20 * uniform() - 10);
         const double e1 = corner ? 1000 : pow(10, 2 + 4 * uniform());
         const double e2 = corner ? 1000 : e1 * pow(10, 20 * uniform() - 10);
-        const double al = pick(2) ? 0 : PI * (2 * uniform() - 1), be = pick(3) == 0 ? al : pick(2) ? 0 : PI * (2 * uniform() - 1);
+        const double al = pick(2) ? 0 : PI * (2 * uniform() - 1),
+                     be = pick(3) == 0 ? al
+                          : pick(2)    ? 0
+                                       : PI * (2 * uniform() - 1);
         const int a = corner && pick(2) ? -455 : (int)pick(997) - 498, b = (int)pick(997) - 498;
         const double lm = fmax(fabs(log10(mu1)), fabs(log10(mu2)));
         if (abs(a + b) > 400 || fabs(log10(e1) + (a - b) * log10(2.0)) + 2 * lm >= 290 ||
@@ -787,22 +833,26 @@ static void test_power_of_two_units(void) {
                 u[0] += size * d1;
                 u[1] += size * d2;
                 N = N0 * (0.5 + uniform());
-            } else if (kind == 4) N = 0;
+            } else if (kind == 4)
+                N = 0;
             const double us[2] = {u[0] * m, u[1] * m};
             oc_step st, sts;
             oc_law_step(&L, &s, u, N, &st);
             oc_law_step(&Ls, &ss, us, N * k, &sts);
             const double o[5] = {st.q[0] * k, st.q[1] * k, st.next.s[0] * m, st.next.s[1] * m,
                                  st.next.energy * (k * m)};
-            const double os[5] = {sts.q[0], sts.q[1], sts.next.s[0], sts.next.s[1], sts.next.energy};
+            const double os[5] = {sts.q[0], sts.q[1], sts.next.s[0], sts.next.s[1],
+                                  sts.next.energy};
             int sub = 0;
             for (int i = 0; i < 5; ++i) sub |= subnormal(o[i]) || subnormal(os[i]);
             if (sub) break; /* subnormal numbers lose bits: outside the promise */
             ++compared;
             if (memcmp(o, os, sizeof o) != 0) {
                 if (++differ <= 3)
-                    printf("  units: rule %d mu (%.17g, %.17g) eps (%.17g, %.17g) alpha %.17g beta %.17g "
-                           "k 2^%d m 2^%d step %d\n", rule, mu1, mu2, e1, e2, al, be, a, b, j);
+                    printf("  units: rule %d mu (%.17g, %.17g) eps (%.17g, %.17g) alpha %.17g beta "
+                           "%.17g "
+                           "k 2^%d m 2^%d step %d\n",
+                           rule, mu1, mu2, e1, e2, al, be, a, b, j);
                 break;
             }
             s = st.next;
@@ -815,12 +865,12 @@ static void test_power_of_two_units(void) {
 
 /* 1 if two steps are the same, bit for bit, in every field a step writes. */
 static int same_step(const oc_step *x, const oc_step *y) {
-    const double a[] = {x->q[0], x->q[1], x->next.u[0], x->next.u[1], x->next.N, x->next.a[0],
-                        x->next.a[1], x->next.s[0], x->next.s[1], x->next.energy, x->dgamma,
-                        x->w[0], x->w[1], x->inv_wmax};
-    const double b[] = {y->q[0], y->q[1], y->next.u[0], y->next.u[1], y->next.N, y->next.a[0],
-                        y->next.a[1], y->next.s[0], y->next.s[1], y->next.energy, y->dgamma,
-                        y->w[0], y->w[1], y->inv_wmax};
+    const double a[] = {x->q[0],      x->q[1],      x->next.u[0], x->next.u[1], x->next.N,
+                        x->next.a[0], x->next.a[1], x->next.s[0], x->next.s[1], x->next.energy,
+                        x->dgamma,    x->w[0],      x->w[1],      x->inv_wmax};
+    const double b[] = {y->q[0],      y->q[1],      y->next.u[0], y->next.u[1], y->next.N,
+                        y->next.a[0], y->next.a[1], y->next.s[0], y->next.s[1], y->next.energy,
+                        y->dgamma,    y->w[0],      y->w[1],      y->inv_wmax};
     return x->contact == y->contact && memcmp(a, b, sizeof a) == 0;
 }
 
@@ -861,9 +911,9 @@ static void test_batch_is_the_cell_by_cell_step(void) {
         for (int step = 0; step < 6; ++step) {
             for (int k = 0; k < n; ++k) {
                 switch (pick(12)) {
-                case 0: N[k] = pick(2) ? 0.0 : -1.0; break;          /* open */
-                case 1: N[k] = 0x1p-1040 * (1 + uniform()); break;   /* subnormal */
-                case 2: N[k] = 0x1p-1010 * (1 + uniform()); break;   /* tiny */
+                case 0: N[k] = pick(2) ? 0.0 : -1.0; break;        /* open */
+                case 1: N[k] = 0x1p-1040 * (1 + uniform()); break; /* subnormal */
+                case 2: N[k] = 0x1p-1010 * (1 + uniform()); break; /* tiny */
                 default: N[k] = scale * (1 + 19 * uniform());
                 }
                 const double nk = N[k] > 0 ? N[k] : 1.0;
@@ -879,9 +929,9 @@ static void test_batch_is_the_cell_by_cell_step(void) {
             for (int k = 0; k < n; ++k) {
                 CHECK(same_step(&got[k], &want[k]),
                       "episode %d step %d cell %d of %d (rule %d): q (%.17g, %.17g) vs "
-                      "(%.17g, %.17g), contact %d vs %d", episode, step, k, n, rule,
-                      got[k].q[0], got[k].q[1], want[k].q[0], want[k].q[1], got[k].contact,
-                      want[k].contact);
+                      "(%.17g, %.17g), contact %d vs %d",
+                      episode, step, k, n, rule, got[k].q[0], got[k].q[1], want[k].q[0],
+                      want[k].q[1], got[k].contact, want[k].contact);
                 ++kinds[want[k].contact];
                 slipping += want[k].contact == OC_SLIP;
                 ++compared;

@@ -15,7 +15,8 @@ static fmi2Status last_status;
 
 static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                    fmi2String category, fmi2String message, ...) {
-    (void)env; (void)name;
+    (void)env;
+    (void)name;
     ++n_logged;
     last_status = status;
     snprintf(last_category, sizeof last_category, "%s", category);
@@ -28,7 +29,8 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
 static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
 
 static fmi2Component make(const char *name) {
-    fmi2Component c = fmi2Instantiate(name, fmi2CoSimulation, FMU_GUID, "", &CB, fmi2False, fmi2False);
+    fmi2Component c =
+        fmi2Instantiate(name, fmi2CoSimulation, FMU_GUID, "", &CB, fmi2False, fmi2False);
     CHECK(c != NULL, "instantiate %s failed", name);
     return c;
 }
@@ -46,7 +48,8 @@ static void test_instantiate_rejects(void) {
     CHECK(fmi2Instantiate("x", fmi2CoSimulation, "{bad}", "", &CB, 0, 0) == NULL, "GUID accepted");
     CHECK(strstr(last_message, "GUID") != NULL, "GUID reason not logged: %s", last_message);
     CHECK(fmi2Instantiate("", fmi2CoSimulation, FMU_GUID, "", &CB, 0, 0) == NULL, "empty name");
-    CHECK(fmi2Instantiate("x", fmi2CoSimulation, FMU_GUID, "", NULL, 0, 0) == NULL, "NULL callbacks");
+    CHECK(fmi2Instantiate("x", fmi2CoSimulation, FMU_GUID, "", NULL, 0, 0) == NULL,
+          "NULL callbacks");
 }
 
 static void test_state_machine(void) {
@@ -202,7 +205,8 @@ static void test_instances_and_state(void) {
     }
     unsigned seed = 12345;
     for (int k = 0; k < 2000; ++k) {
-        for (size_t i = 0; i < n; ++i) b6[i] = (fmi2Byte)((seed = seed * 1103515245u + 12345u) >> 16);
+        for (size_t i = 0; i < n; ++i)
+            b6[i] = (fmi2Byte)((seed = seed * 1103515245u + 12345u) >> 16);
         if (k % 2) memcpy(b6, b5, 24); /* a valid header: the fields must be checked too */
         fmi2FMUstate s9 = NULL;
         CHECK(fmi2DeSerializeFMUstate(fresh, b6, n, &s9) == fmi2Error, "random bytes accepted");
@@ -226,7 +230,8 @@ static void test_instances_and_state(void) {
  * initial slip 0 gives the behaviour of the earlier versions, a full slide
  * (8.55 J for the default coupled rule), bit for bit what inputs
  * set only after initialization give. */
-static void first_step(int rule, int initial, double s0, int inputs_in_init, double y[5], int *state) {
+static void first_step(int rule, int initial, double s0, int inputs_in_init, double y[5],
+                       int *state) {
     fmi2Component c = make("initial");
     const fmi2ValueReference vr_rule = OC_VR_slidingRule, vr_init = OC_VR_initialSlip;
     const fmi2ValueReference vr_s[2] = {OC_VR_s1Start, OC_VR_s2Start};
@@ -311,8 +316,8 @@ static void test_state_handles(void) {
     n_logged = 0;
     CHECK(fmi2FreeFMUstate(a, (fmi2FMUstate *)st) == fmi2OK, "the state for its address");
     CHECK(n_logged == 1 && last_status == fmi2Warning &&
-          strstr(last_message, "given the state instead of a pointer to it"), "warning: %s",
-          last_message);
+              strstr(last_message, "given the state instead of a pointer to it"),
+          "warning: %s", last_message);
     fmi2FMUstate left = NULL; /* one left for FreeInstance to free */
     CHECK(fmi2GetFMUstate(a, &left) == fmi2OK, "get one to leave");
     fmi2FreeInstance(a);

@@ -13,7 +13,9 @@ static char last_message[512];
 
 static void logger(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
                    fmi3String message) {
-    (void)env; (void)status; (void)category;
+    (void)env;
+    (void)status;
+    (void)category;
     ++n_logged;
     snprintf(last_message, sizeof last_message, "%s", message);
 }
@@ -45,10 +47,12 @@ static void drive(fmi3Instance c, double u1, double u2, double N, double *t) {
 static void test_rejects(void) {
     n_logged = 0;
     CHECK(fmi3InstantiateCoSimulation("x", "{bad}", "", 0, 0, 0, 0, NULL, 0, NULL, logger, NULL) ==
-              NULL, "bad token accepted");
+              NULL,
+          "bad token accepted");
     CHECK(strstr(last_message, "instantiationToken"), "reason: %s", last_message);
     CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 1, 0, NULL, 0, NULL, logger, NULL) ==
-              NULL, "event mode accepted");
+              NULL,
+          "event mode accepted");
     CHECK(fmi3InstantiateModelExchange("x", FMU_GUID, "", 0, 0, NULL, logger) == NULL, "ME");
 }
 
@@ -146,7 +150,8 @@ static void test_state_into_fresh_instance(void) {
     bytes[n / 2] ^= 0x40;
     bytes[3] ^= 1;
     fmi3FMUState bad = NULL;
-    CHECK(fmi3DeserializeFMUState(b, bytes, n, &bad) == fmi3Error && bad == NULL, "corrupt accepted");
+    CHECK(fmi3DeserializeFMUState(b, bytes, n, &bad) == fmi3Error && bad == NULL,
+          "corrupt accepted");
     free(bytes);
     fmi3FreeFMUState(a, &st);
     fmi3FreeFMUState(b, &sb);
@@ -177,7 +182,8 @@ static void first_step(int64_t rule, int64_t initial, double s0, int inputs_in_i
                                        OC_VR_dissipatedEnergy};
     const fmi3ValueReference vr_state = OC_VR_contactState;
     fmi3Int32 st;
-    CHECK(fmi3GetFloat64(c, out, 5, y, 5) == fmi3OK && fmi3GetInt32(c, &vr_state, 1, &st, 1) == fmi3OK,
+    CHECK(fmi3GetFloat64(c, out, 5, y, 5) == fmi3OK &&
+              fmi3GetInt32(c, &vr_state, 1, &st, 1) == fmi3OK,
           "read");
     *state = st;
     fmi3FreeInstance(c);
@@ -206,15 +212,21 @@ static void intermediate(fmi3InstanceEnvironment env, fmi3Float64 t, fmi3Boolean
                          fmi3Boolean getAllowed, fmi3Boolean stepFinished,
                          fmi3Boolean canReturnEarly, fmi3Boolean *returnEarly,
                          fmi3Float64 *earlyReturnTime) {
-    (void)env; (void)t; (void)setRequested; (void)getAllowed; (void)stepFinished;
-    (void)canReturnEarly; (void)returnEarly; (void)earlyReturnTime;
+    (void)env;
+    (void)t;
+    (void)setRequested;
+    (void)getAllowed;
+    (void)stepFinished;
+    (void)canReturnEarly;
+    (void)returnEarly;
+    (void)earlyReturnTime;
     ++n_intermediate_calls;
 }
 
 static void test_intermediate_variables_requested(void) {
     const fmi3ValueReference wanted[3] = {OC_VR_T1, OC_VR_T2, OC_VR_s1};
-    fmi3Instance c = fmi3InstantiateCoSimulation("inter", FMU_GUID, "", 0, 0, 0, 0, wanted, 3,
-                                                 NULL, logger, intermediate);
+    fmi3Instance c = fmi3InstantiateCoSimulation("inter", FMU_GUID, "", 0, 0, 0, 0, wanted, 3, NULL,
+                                                 logger, intermediate);
     CHECK(c != NULL, "a request for intermediate variables refused: %s", last_message);
     fmi3Instance plain = make("plain");
     start(c);
@@ -226,14 +238,16 @@ static void test_intermediate_variables_requested(void) {
     }
     const fmi3ValueReference out[3] = {OC_VR_T1, OC_VR_T2, OC_VR_s1};
     double a[3], b[3];
-    CHECK(fmi3GetFloat64(c, out, 3, a, 3) == fmi3OK && fmi3GetFloat64(plain, out, 3, b, 3) == fmi3OK,
+    CHECK(fmi3GetFloat64(c, out, 3, a, 3) == fmi3OK &&
+              fmi3GetFloat64(plain, out, 3, b, 3) == fmi3OK,
           "read");
     CHECK(memcmp(a, b, sizeof a) == 0, "the request changed the results");
     CHECK(n_intermediate_calls == 0, "intermediateUpdate called %d times", n_intermediate_calls);
     fmi3FreeInstance(c);
     fmi3FreeInstance(plain);
     CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 0, 0, NULL, 2, NULL, logger, NULL) ==
-              NULL, "NULL list with a count accepted");
+              NULL,
+          "NULL list with a count accepted");
 }
 
 /* The point has no structural parameter: the UInt64 functions refuse each
@@ -246,7 +260,8 @@ static void test_uint64_and_state_handles(void) {
     fmi3UInt64 u = 1;
     n_logged = 0;
     CHECK(fmi3SetUInt64(c, &vr_mu1, 1, &u, 1) == fmi3Error, "mu1 set as UInt64");
-    CHECK(n_logged == 1 && strstr(last_message, "fmi3SetUInt64: variable mu1 (vr 1) is of type Float64 (Real)"),
+    CHECK(n_logged == 1 &&
+              strstr(last_message, "fmi3SetUInt64: variable mu1 (vr 1) is of type Float64 (Real)"),
           "reason: %s", last_message);
     start(c);
     CHECK(fmi3GetUInt64(c, &vr_mu1, 1, &u, 1) == fmi3Error, "mu1 read as UInt64");
@@ -259,8 +274,8 @@ static void test_uint64_and_state_handles(void) {
     CHECK(fmi3GetFMUState(c, &st) == fmi3OK, "get again");
     n_logged = 0;
     CHECK(fmi3FreeFMUState(c, (fmi3FMUState *)st) == fmi3OK && n_logged == 1 &&
-          strstr(last_message, "given the state instead of a pointer to it"), "warning: %s",
-          last_message);
+              strstr(last_message, "given the state instead of a pointer to it"),
+          "warning: %s", last_message);
     fmi3FreeInstance(c);
 }
 

@@ -14,7 +14,10 @@
 #include "random_values.h"
 
 static void quiet(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e; (void)s; (void)c; (void)m;
+    (void)e;
+    (void)s;
+    (void)c;
+    (void)m;
 }
 
 int main(void) {
@@ -23,14 +26,17 @@ int main(void) {
                                         OC_VR_dissipatedEnergy};
     long ok_reads = 0, calls = 0, bad_status = 0, non_finite = 0;
     for (int episode = 0; episode < 200; ++episode) {
-        fmi3Instance c = fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", 0, 0, 0, 0, NULL, 0, NULL,
-                                                     quiet, NULL);
+        fmi3Instance c = fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", 0, 0, 0, 0, NULL, 0,
+                                                     NULL, quiet, NULL);
         fmi3FMUState st = NULL;
         double t = 0.0;
         for (int k = 0; k < 300; ++k, ++calls) {
             fmi3Status s = fmi3OK;
             switch (pick(16)) {
-            case 0: case 1: case 2: case 3: { /* inputs, sometimes hostile */
+            case 0:
+            case 1:
+            case 2:
+            case 3: { /* inputs, sometimes hostile */
                 const fmi3ValueReference vr[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
                 double v[3];
                 for (int i = 0; i < 3; ++i) v[i] = pick(8) ? (uniform() - 0.5) * 0.02 : hostile();
@@ -51,7 +57,8 @@ int main(void) {
                 s = pick(2) ? fmi3SetInt64(c, &vr, 1, &v, 1) : fmi3SetInt32(c, &vr, 1, &w, 1);
                 break;
             }
-            case 6: case 7: {
+            case 6:
+            case 7: {
                 const double h = pick(6) ? 1e-3 : hostile();
                 fmi3Boolean ev, term, early;
                 double last;
@@ -60,7 +67,9 @@ int main(void) {
                 break;
             }
             case 8: s = fmi3GetFMUState(c, &st); break;
-            case 9: if (st) s = fmi3SetFMUState(c, st); break;
+            case 9:
+                if (st) s = fmi3SetFMUState(c, st);
+                break;
             case 10: { /* serialize, maybe corrupt, deserialize, restore */
                 if (!st) break;
                 size_t n = 0;
@@ -80,13 +89,21 @@ int main(void) {
             }
             case 11: {
                 switch (pick(3)) {
-                case 0: s = fmi3EnterInitializationMode(c, 0, 0, 0, 0, 0); t = 0; break;
+                case 0:
+                    s = fmi3EnterInitializationMode(c, 0, 0, 0, 0, 0);
+                    t = 0;
+                    break;
                 case 1: s = fmi3ExitInitializationMode(c); break;
                 default: s = fmi3Terminate(c); break;
                 }
                 break;
             }
-            case 12: if (!pick(10)) { s = fmi3Reset(c); t = 0; } break;
+            case 12:
+                if (!pick(10)) {
+                    s = fmi3Reset(c);
+                    t = 0;
+                }
+                break;
             case 13: {
                 const fmi3ValueReference u[2] = {outs[pick(5)], pick(20)};
                 const fmi3ValueReference kn[2] = {OC_VR_u1 + pick(3), pick(20)};
@@ -122,7 +139,8 @@ int main(void) {
     }
     CHECK(bad_status == 0, "%ld calls returned an undefined status", bad_status);
     CHECK(non_finite == 0, "%ld non-finite values read after successful calls", non_finite);
-    CHECK(ok_reads > 1000, "only %ld successful reads: the sequences did not reach step mode", ok_reads);
+    CHECK(ok_reads > 1000, "only %ld successful reads: the sequences did not reach step mode",
+          ok_reads);
     printf("%ld random calls, %ld successful reads\n", calls, ok_reads);
     return oc_report();
 }

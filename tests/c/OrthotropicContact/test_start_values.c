@@ -20,7 +20,10 @@ static char last_message[1024];
 
 static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                     fmi2String category, fmi2String message, ...) {
-    (void)env; (void)name; (void)status; (void)category;
+    (void)env;
+    (void)name;
+    (void)status;
+    (void)category;
     va_list ap;
     va_start(ap, message);
     vsnprintf(last_message, sizeof last_message, message, ap);
@@ -28,7 +31,9 @@ static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status st
 }
 static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
                     fmi3String message) {
-    (void)env; (void)status; (void)category;
+    (void)env;
+    (void)status;
+    (void)category;
     snprintf(last_message, sizeof last_message, "%s", message);
 }
 static const fmi2CallbackFunctions CB = {logger2, calloc, free, NULL, NULL};
@@ -49,14 +54,17 @@ static fmi2Component make2(void) {
     return fmi2Instantiate("sv", fmi2CoSimulation, FMU_GUID, URI, &CB, 0, 0);
 }
 static fmi3Instance make3(void) {
-    return fmi3InstantiateCoSimulation("sv", FMU_GUID, DIR, 0, 0, 0, 0, NULL, 0, NULL, logger3, NULL);
+    return fmi3InstantiateCoSimulation("sv", FMU_GUID, DIR, 0, 0, 0, 0, NULL, 0, NULL, logger3,
+                                       NULL);
 }
 
 static void test_uri_decoding(void) {
-    const char *cases[][2] = {
-        {"file:///home/a%20b/res/", "/home/a b/res/"}, {"file:/home/x", "/home/x"},
-        {"file://localhost/home/x", "/home/x"},        {"file:///C:/Users/x%2By", "C:/Users/x+y"},
-        {"FILE:///c|/dir", "c:/dir"},                  {"file://server/share/r", "//server/share/r"}};
+    const char *cases[][2] = {{"file:///home/a%20b/res/", "/home/a b/res/"},
+                              {"file:/home/x", "/home/x"},
+                              {"file://localhost/home/x", "/home/x"},
+                              {"file:///C:/Users/x%2By", "C:/Users/x+y"},
+                              {"FILE:///c|/dir", "c:/dir"},
+                              {"file://server/share/r", "//server/share/r"}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
         char *p = fmu_path_from_uri(cases[k][0]);
         CHECK(p && strcmp(p, cases[k][1]) == 0, "%s -> %s, expected %s", cases[k][0],
@@ -114,7 +122,10 @@ static void test_values_read_exactly(void) {
 }
 
 static void test_bad_files_refused(void) {
-    const struct { const char *text, *expect; int line; } bad[] = {
+    const struct {
+        const char *text, *expect;
+        int line;
+    } bad[] = {
         {"mu1 = 0.5\n", "hexadecimal float", 1},
         {"# ok\nmu9 = 0x1p0\n", "no variable named \"mu9\"", 2},
         {"T1 = 0x1p0\n", "not a parameter", 1},
@@ -151,8 +162,8 @@ static void test_bad_files_refused(void) {
     /* Each value in its range, together inadmissible for the law (tensors
      * that overflow): refused as well, with the model's reason. */
     char text[256];
-    snprintf(text, sizeof text, "mu1 = %a\nmu2 = %a\neps1 = %a\neps2 = %a\n", 1e-150, 1e150,
-             1e300, 1e-300);
+    snprintf(text, sizeof text, "mu1 = %a\nmu2 = %a\neps1 = %a\neps2 = %a\n", 1e-150, 1e150, 1e300,
+             1e-300);
     write_file(text);
     fmi2Component c = make2();
     CHECK(c == NULL && strstr(last_message, "not admissible"), "inadmissible set: %s",
@@ -171,8 +182,8 @@ static void test_no_file_is_the_defaults(void) {
     double v;
     CHECK(fmi2GetReal(c, &vr, 1, &v) == fmi2OK && v == 0.408, "default mu1 %g", v);
     fmi2FreeInstance(c);
-    fmi3Instance d = fmi3InstantiateCoSimulation("sv", FMU_GUID, NULL, 0, 0, 0, 0, NULL, 0, NULL,
-                                                 logger3, NULL);
+    fmi3Instance d =
+        fmi3InstantiateCoSimulation("sv", FMU_GUID, NULL, 0, 0, 0, 0, NULL, 0, NULL, logger3, NULL);
     CHECK(d != NULL, "NULL resourcePath refused");
     if (d) fmi3FreeInstance(d);
 }
