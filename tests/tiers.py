@@ -19,6 +19,8 @@ from pathlib import Path
 
 import pytest
 
+from paths import TESTS
+
 SLOW = {
     "identification/test_job.py": "*",         # identification: FMU data, CLI runs
     "identification/test_estimators.py": "*",  # coverage over 200 replicates; 120 sets of raw recordings
@@ -118,20 +120,19 @@ SLOW = {
     },
 }
 
-HERE = Path(__file__).resolve().parent
 
 
 def mark_slow(config, items) -> None:
     """Marks the items SLOW names; raises pytest.UsageError for a stale entry."""
-    missing = sorted(f for f in SLOW if not (HERE / f).is_file())
+    missing = sorted(f for f in SLOW if not (TESTS / f).is_file())
     if missing:
         raise pytest.UsageError(f"tests/tiers.py names files that do not exist: {missing}")
     seen: dict[str, set] = {}
     for item in items:
         path = Path(str(item.fspath))
-        if HERE not in path.parents:
+        if TESTS not in path.parents:
             continue
-        rel = path.relative_to(HERE).as_posix()
+        rel = path.relative_to(TESTS).as_posix()
         if rel not in SLOW:
             continue
         name = getattr(item, "originalname", item.name)

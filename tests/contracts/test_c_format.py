@@ -9,7 +9,8 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
+from paths import ROOT
+
 C_SOURCES = ("fmu_src/**/*.[ch]", "master_src/*.[ch]", "benchmarks/*.[ch]", "tests/c/**/*.[ch]",
              "tests/fuzz/*.c")   # what .clang-format's comment names
 

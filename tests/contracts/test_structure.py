@@ -183,6 +183,17 @@ def test_ruff_finds_nothing():
     assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-1000:]
 
 
+def test_only_paths_py_finds_the_repository_root():
+    """tests/paths.py names the root and its folders once; a test that
+    finds them from its own place (`Path(__file__).resolve().parents[2]`)
+    breaks when it moves, and spells the fact again."""
+    finds = sorted(str(p.relative_to(TESTS)) for p in TESTS.rglob("*.py")
+                   if any(isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "Path"
+                          and [getattr(a, "id", None) for a in n.args] == ["__file__"]
+                          for n in ast.walk(ast.parse(p.read_text()))))
+    assert finds == ["paths.py"]
+
+
 def test_modules_are_small():
     sizes = {module_name(p): len(p.read_text().splitlines()) for p in PKG.rglob("*.py")}
     assert max(sizes.values()) < 400, sorted(sizes.items(), key=lambda kv: -kv[1])[:3]
