@@ -446,7 +446,7 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
             const size_t size = serialize(c, before);
             CHECK(size >= (size_t)PATCH_MAX_CELLS * 64, "%d x %d: state", n1, n2);
             const unsigned char *cells = before + size - (size_t)PATCH_MAX_CELLS * 64;
-            double sum = 0, sum_abs = 0, m[2] = {0, 0}, m_abs[2] = {0, 0};
+            double sum = 0, m[2] = {0, 0}, m_abs[2] = {0, 0};
             for (int k = 0; k < n1 * n2; ++k) {
                 double Nc;
                 memcpy(&Nc, cells + (size_t)k * 64 + 16, 8); /* little-endian hosts */
@@ -455,7 +455,6 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
                                      (2 * j + 1 - n2) / (2.0 * n2) * W};
                 CHECK(Nc > 0, "%d x %d: cell %d pressed by %g", n1, n2, k, Nc);
                 sum += Nc;
-                sum_abs += fabs(Nc);
                 for (int a = 0; a < 2; ++a) {
                     m[a] += Nc * r[a];
                     m_abs[a] += fabs(Nc * r[a]);

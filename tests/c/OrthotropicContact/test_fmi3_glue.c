@@ -181,7 +181,7 @@ static void first_step(int64_t rule, int64_t initial, double s0, int inputs_in_i
     const fmi3ValueReference out[5] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2,
                                        OC_VR_dissipatedEnergy};
     const fmi3ValueReference vr_state = OC_VR_contactState;
-    fmi3Int32 st;
+    fmi3Int32 st = -1; /* a failed read leaves it (CHECK has counted the failure) */
     CHECK(fmi3GetFloat64(c, out, 5, y, 5) == fmi3OK &&
               fmi3GetInt32(c, &vr_state, 1, &st, 1) == fmi3OK,
           "read");
