@@ -120,82 +120,33 @@ fmu_status fmu_model_check_range(unsigned int vr, double value, const char *cont
                     x ? x->min : NAN, x ? x->max : NAN, unit_sep(x), unit_of(x));
 }
 
-/* One pass: each value is checked, its old value saved and the new one
- * written; then refresh (before update, which may derive from its outputs)
- * and update.  A refused value or a refusing model puts the old ones back
- * (last first, so that a value reference named twice ends as it was) and,
- * if refresh had already rewritten its outputs, has it derive them again
- * from the old values (which it accepted before).  Only the refusal formats
- * a message. */
+/* The values set by one call, saved on the stack up to this many (the body
+ * of both setters: glue/set_batch.h). */
 enum { SAVED_ON_STACK = 16 };
-
-/* The batch of fmu_model_set_float64 (ints = 0: v a double[]) and
- * fmu_model_set_int (ints = 1: v integers as it takes them), written once;
- * inlined into each, where `ints` is a constant. */
-static OC_ALWAYS_INLINE fmu_status set_batch(fmu_model *m, const unsigned int vr[], size_t n,
-                                             const void *v, size_t width, int kinds, int allow,
-                                             int ints, fmu_msg *msg) {
-    const fmu_var *const vars = INFO.vars;
-    const unsigned int nv = INFO.n_vars;
-    double stack[SAVED_ON_STACK], *saved = stack; /* an int slot's value exactly too */
-    if (n > SAVED_ON_STACK && !(saved = malloc(n * sizeof *saved)))
-        return fmu_fail(msg, "out of memory");
-    int changed = 0;
-    fmu_status st = FMU_OK;
-    size_t i = 0;
-    for (; i < n; ++i) {
-        /* a row without a variable has settable 0: no name test on the way */
-        const fmu_var *x = vr[i] < nv ? &vars[vr[i]] : NULL;
-        /* a UInt64 is read unsigned, so that 2^64 - 1 is refused as itself */
-        const double d = !ints                  ? ((const double *)v)[i]
-                         : (kinds & FMU_UINT64) ? (double)((const uint64_t *)v)[i]
-                                                : (double)fmu_int_at(v, width, i);
-        if (!x || !(x->settable & allow) ||
-            !(ints ? kind_of(x, vr[i], kinds) & kinds : x->type == FMU_T_Float64) ||
-            !in_range(x, d)) {
-            if (x && !x->name) x = NULL;
-            const int kind = !x ? 0 : ints ? kind_of(x, vr[i], kinds) : x->type;
-            const int type_ok =
-                x && (ints ? kind_of(x, vr[i], kinds) & kinds : x->type == FMU_T_Float64);
-            st = why_not_settable(x, vr[i], kind, type_ok, d, allow, msg);
-            break;
-        }
-        /* in [min, max] (checked before the write): exact for both slot types */
-        if (ints) {
-            saved[i] = *SLOT_I(m, x);
-            *SLOT_I(m, x) = (int)d;
-        } else {
-            saved[i] = *SLOT_D(m, x);
-            *SLOT_D(m, x) = d;
-        }
-        changed |= x->settable;
-    }
-    int refreshed = 0;
-    if (st == FMU_OK && n > 0 && (st = model_refresh(m, msg)) == FMU_OK) {
-        refreshed = 1;
-        st = fmu_model_update(m, changed, allow, msg);
-    }
-    if (st != FMU_OK) {
-        while (i-- > 0) {
-            if (ints)
-                *SLOT_I(m, &vars[vr[i]]) = (int)saved[i];
-            else
-                *SLOT_D(m, &vars[vr[i]]) = saved[i];
-        }
-        if (refreshed) (void)model_refresh(m, NULL);
-    }
-    if (saved != stack) free(saved);
-    return st;
-}
 
 OC_HOT fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n,
                                         const double v[], int allow, fmu_msg *msg) {
-    return set_batch(m, vr, n, v, sizeof(double), 0, allow, 0, msg);
+    double stack[SAVED_ON_STACK]; /* the old values (more: on the heap) */
+#define SET_CTYPE double
+#define SET_SLOT SLOT_D
+#define SET_VALUE v[i]
+#define SET_TYPE_OK x->type == FMU_T_Float64
+#define SET_KIND x->type
+#include "glue/set_batch.h"
 }
 
 fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, const void *v,
                              size_t width, int kinds, int allow, fmu_msg *msg) {
-    return set_batch(m, vr, n, v, width, kinds, allow, 1, msg);
+    int stack[SAVED_ON_STACK]; /* the old values (more: on the heap) */
+    /* In [min, max] (checked before the write): the int slot holds it.  A
+     * UInt64 is read unsigned, so that 2^64 - 1 is refused as itself. */
+#define SET_CTYPE int
+#define SET_SLOT SLOT_I
+#define SET_VALUE                                                                                  \
+    (kinds & FMU_UINT64) ? (double)((const uint64_t *)v)[i] : (double)fmu_int_at(v, width, i)
+#define SET_TYPE_OK kind_of(x, vr[i], kinds) & kinds
+#define SET_KIND kind_of(x, vr[i], kinds)
+#include "glue/set_batch.h"
 }
 
 static fmu_status not_of_type(unsigned int vr, int kinds, fmu_msg *msg) {

@@ -257,7 +257,7 @@ static double solve_dgamma_far(const double a[2], const double sh[2], double rho
  * solve. */
 static OC_ALWAYS_INLINE int fast_law(const oc_law *L) { return L->kappa <= 1e20; }
 static OC_ALWAYS_INLINE int fast_trial(double n_tr, double N) {
-    return (n_tr <= 1e10 * N) & (n_tr >= DBL_MIN); /* one branch, not two */
+    return n_tr <= 1e10 * N && n_tr >= DBL_MIN;
 }
 
 /* The fast solve's slip from its root, once (a cell of oc_law_step and a
@@ -465,12 +465,15 @@ static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *
                                               const double p[2], double inv_np, double w0,
                                               double w1, double inv_wmax) {
     oc_step *o = c->r->out;
-    const double uk[2] = {o->next.u[0], o->next.u[1]}, N = o->next.N;
-    double scale, yp[2], ap[2];
+    const double uk[2] = {o->next.u[0], o->next.u[1]};
+    const double N = o->next.N;
+    const oc_state *start = c->r->start;
+    const double *a = c->r->a;
     o->contact = OC_SLIP;
+    double yp[2], ap[2], scale;
     slip_of_root(L, y, p, inv_np, N, w0, w1, inv_wmax, &scale, yp, o);
     on_yield_surface(p, scale, N, ap);
-    step_slip(L, c->r->start, uk, c->r->a, ap, yp, o);
+    step_slip(L, start, uk, a, ap, yp, o);
 }
 
 void oc_law_step_finish(const oc_law *L, const oc_unfinished pending[], int n) {
