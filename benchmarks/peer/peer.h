@@ -1,7 +1,7 @@
 /*
  * The benchmark's peer: an independent, straightforward implementation of
  * the same contact law (Konyukhov & Schweizerhof, the three sliding rules of
- * fmu_src/contact_law.h) with a minimal FMI 2.0 and 3.0 layer.  It exists
+ * fmu_src/law/contact_law.h) with a minimal FMI 2.0 and 3.0 layer.  It exists
  * only as a yardstick for benchmarks/bench_peer*.c (what the plainest
  * implementation pays for a step) and as a second opinion the benchmark's
  * check compares the shipped FMU with (CTest `peer_agrees`).  It is written
