@@ -10,9 +10,9 @@ command or option is fuzzed without anyone remembering.
 
 A case passes when the command ends as its --help promises: exit 0, exit 1
 without a traceback (a result that does not match the paper), exit 2 with
-one line `orthocontact: error: ...`, or 74 with one line; it fails on a
-traceback, another exit status, a refusal of more than one line, or a run
-past --timeout (killed: a hang).
+a line `orthocontact: error: ...` for each problem of its input, or 74 with
+one line; it fails on a traceback, another exit status, a refusal without
+its line, or a run past --timeout (killed: a hang).
 
   .venv/bin/python tools/cli_fuzz.py [--seed S] [--cases N] [--timeout SECONDS] [--json FILE]
 
@@ -223,8 +223,10 @@ def judge(case: Case, p: subprocess.CompletedProcess | None) -> None:
         case.verdict = "traceback"
     elif p.returncode not in (0, 1, 2, 74):
         case.verdict = f"exit {p.returncode}"
-    elif p.returncode in (2, 74) and len(said) != 1:
-        case.verdict = f"exit {p.returncode} with {len(said)} error lines"
+    elif p.returncode == 74 and len(said) != 1:
+        case.verdict = f"exit 74 with {len(said)} error lines"
+    elif p.returncode == 2 and not said:   # a bad file: one line for each of its problems
+        case.verdict = "exit 2 with no error line"
 
 
 def run_cases(seed: int, count: int, timeout: float, progress=print) -> list[Case]:

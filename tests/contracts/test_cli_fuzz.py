@@ -1,6 +1,6 @@
 """tools/cli_fuzz.py: hostile runs of every command end as --help promises
-(exit 0, 1 without a traceback, or one line with 2 or 74), never in a
-traceback or a hang; and its judge does fail such a run."""
+(exit 0, 1 without a traceback, 2 with a line per problem, 74 with one
+line), never in a traceback or a hang; and its judge does fail such a run."""
 import subprocess
 import sys
 
@@ -26,12 +26,13 @@ def test_the_judge_fails_a_traceback_a_stray_status_a_long_refusal_and_a_hang():
     verdicts = []
     for p in (completed(1, "Traceback (most recent call last):\n  ...\nValueError: x\n"),
               completed(-11, ""),
-              completed(2, "orthocontact: error: one\northocontact: error: two\n"),
+              completed(2, "orthocontact: warning: unusual\n"),
+              completed(74, "orthocontact: error: one\northocontact: error: two\n"),
               None,
               completed(2, "orthocontact: error: expected a number\n"),
               completed(1, "orthocontact: warning: unusual\n")):
         case = cli_fuzz.Case("run", "x", [])
         cli_fuzz.judge(case, p)
         verdicts.append(case.verdict)
-    assert verdicts == ["traceback", "exit -11", "exit 2 with 2 error lines", "hang: killed at the timeout",
-                        "", ""]
+    assert verdicts == ["traceback", "exit -11", "exit 2 with no error line", "exit 74 with 2 error lines",
+                        "hang: killed at the timeout", "", ""]

@@ -196,6 +196,12 @@ def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
     ("twist", "length_m = 0.05", "length_m = 1e-320",
      "patch.length_m: length = 1e-320 m is outside [1e-100, 1e+100] m, the FMU's range"),
     ("twist", "n1 = 12", "n1 = 3.0", "patch.n1: n1 must be an integer, got 3.0"),
+    # the law's values, likewise against the FMU's table (ContactParams raised a ValueError before)
+    ("twist", "mu2 = 0.625\n", "mu2 = 1e-320\n", "law.mu2: mu2 = 1e-320 [-] is outside [1e-150, 1e+150], the "
+     "FMU's range"),
+    ("towed_block", "eps2 = 1.0e5", "eps2 = 1e-320", "law.eps2: eps2 = 1e-320 [N/m] is outside"),
+    ("twist", "eps_ratio = 1.251", "eps_ratio = 1e-320", "law.eps_ratio: eps1 = 9.99988867e-316 [N/m] is "
+     "outside"),
 ])
 def test_a_patch_length_or_rate_that_cannot_be_right_is_refused_naming_its_key(tmp_path, scenario, old, new,
                                                                                  says):

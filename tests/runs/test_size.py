@@ -32,6 +32,7 @@ def _aged_with(tmp_path, old, new) -> Path:
 
 @pytest.mark.parametrize("old,new,key", [
     ("step_deg = 1.0", "step_deg = 1e-6", "sweep.step_deg"),      # 90 million angles
+    ("step_deg = 1.0", "step_deg = 1e-320", "sweep.step_deg"),    # past 2^53 angles: OverflowError before
     ("step_s = 2.0e-4", "step_s = 1e-9", "rig.step_s"),           # 2e9 steps a run
 ])
 def test_huge_work_is_refused_before_it_starts_unless_yes(tmp_path, old, new, key):

@@ -19,6 +19,8 @@ from pathlib import Path
 from ..closed_forms import FORMS
 from ..closed_forms.paper import isotropic_eps_ratio
 from ..errors import InputError, Problems
+from ..fmu.generated import LAW
+from ..fmu.param_checks import check as check_parameter
 from ..fmu.params import RULES, ContactParams
 from ..plausibility import ELASTIC_LENGTHS
 from ..rig.harness import Rig
@@ -44,6 +46,9 @@ if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
+
+
+LAW_ROWS = {row.name: row for row in LAW}
 
 
 class ScenarioError(InputError):
@@ -130,6 +135,8 @@ class Scenario:
     patch = KindTable()           # a body on the patch: the contact rectangle
     twist = KindTable()
     tow = KindTable()
+    pad = KindTable()             # a body on the pad: the rectangle on its foundation
+    push = KindTable()
 
     def head(self) -> dict:
         """summary.json's first keys: which scenario, its title and kind."""
@@ -140,13 +147,17 @@ class Scenario:
         return self.geometry.params_at(self.law, angle_deg, rule)
 
     def angle_count(self) -> int:
-        """len(sweep_angles()), without making the list."""
+        """len(sweep_angles()), without making the list; a step so small that
+        the count is past 2^53 (or overflows) counts as 2^53 + 1, for the size
+        check (runs.size) to refuse it naming sweep.step_deg."""
         s = self.sweep
-        return int(math.floor((s["stop_deg"] - s["start_deg"]) / s["step_deg"] + 1e-9)) + 1
+        steps = (s["stop_deg"] - s["start_deg"]) / s["step_deg"] + 1e-9
+        return int(math.floor(min(steps, 2.0**53))) + 1
 
     def sweep_angles(self) -> list[float]:
         s = self.sweep
         return [s["start_deg"] + k * s["step_deg"] for k in range(self.angle_count())]
+
 
 def load(path) -> Scenario:
     """Reads and validates a scenario file; raises one ScenarioError naming
@@ -243,6 +254,18 @@ def load(path) -> Scenario:
                 + (f"rig.travel_m >= {ELASTIC_LENGTHS * elastic / rig['fit_from']:.3g}" if rig["fit_from"] > 0
                    else "rig.fit_from > 0 (the fit starts where the path does)")))
     law_given = eps1 is not None and {"mu1", "mu2", "eps2", "rule"} <= law.keys()
+    if law_given:   # each against the FMU's own range (a positive 1e-320 passes the schema's check)
+        refused = set()
+        for name, value in (("mu1", law["mu1"]), ("mu2", law["mu2"]), ("eps2", law["eps2"]), ("eps1", eps1)):
+            derived = name == "eps1" and law.get("eps1") is None   # eps_ratio x eps2
+            if derived and "eps2" in refused:
+                continue
+            try:
+                check_parameter("ContactParams", LAW_ROWS[name], value)
+            except ValueError as e:
+                refused.add(name)
+                problems.add(f"{path}: law.{'eps_ratio' if derived else name}: {str(e).split(': ', 1)[1]}")
+        law_given = not refused
     if law_given and len(geo) == len(SCHEMA["geometry"]):
         contact = ContactParams(law["mu1"], law["mu2"], float(eps1), float(law["eps2"]), rule=law["rule"])
         geometry = AxisGeometry(float(geo["alpha_offset_deg"]), float(geo["beta_offset_deg"]))
