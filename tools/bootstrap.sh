@@ -29,6 +29,16 @@ if [ ! -x .venv/bin/python ]; then
   echo "bootstrap: creating .venv"
   python3 -m venv .venv
 fi
+# One set-up at a time (two `make` started together, a test and a build):
+# both would write the same build folder and site-packages.  The lock ends
+# with this script.
+if command -v flock >/dev/null 2>&1; then
+  exec 9>.venv/setup.lock
+  if ! flock -n 9; then
+    echo "bootstrap: another set-up of this checkout is running; waiting for it"
+    flock 9
+  fi
+fi
 
 # What the install reads: the package's metadata and sources, the build's,
 # the set-up's own scripts, and the Python it installs into.
