@@ -5,7 +5,8 @@
  * (law/contact_law.h) at its centre with its own slip state; the law's rows
  * (law/law_table.h) are the patch's.
  *
- * Geometry (models/ContactPatch/model.c says how each number is formed):
+ * Geometry (models/ContactPatch/cells.h and model.c say how each number is
+ * formed):
  *   - a cell centre r = (xi length, eta width) in body coordinates, xi, eta
  *     the midpoints of n1 (n2) equal parts of [-1/2, 1/2];
  *   - its displacement relative to the surface d = u + (R(theta) - I) r;
@@ -28,6 +29,7 @@
 
 #include "glue/fmu_table.h"
 #include "law/law_table.h"
+#include "models/ContactPatch/cell_rows.h"
 
 /* A table's rows and lists keep their own layout. */
 /* clang-format off */
@@ -42,14 +44,12 @@
     "Rectangular contact patch of a rigid body on a flat textured surface: n1 x n2 cells, each " \
     "the coupled orthotropic adhesion-friction law (Konyukhov and Schweizerhof 2007) at its "  \
     "centre with its own slip; force and torque from the body's displacement and rotation"
-#define FMU_SOURCES(S) S(law/contact_law.c) S(models/ContactPatch/model.c) S(glue/fmu_instance.c)
+#define FMU_SOURCES(S)                                                                          \
+    S(law/contact_law.c) S(models/ContactPatch/cells.c) S(models/ContactPatch/model.c)          \
+    S(glue/fmu_instance.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/ContactPatch/model.h"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
-
-/* The largest grid: the model's storage and its serialized state are fixed
- * in size (fmu_model.h), so they hold this many cells whatever n1, n2 are. */
-#define PATCH_MAX_SIDE 32
 
 #ifdef FMU_GENERATOR
 /* The patch, for documentation/index.html. */
@@ -82,14 +82,7 @@ static const char FMU_DOC_HTML[] =
 #endif
 
 #define FMU_ENUM_TYPES(T) T(SlidingRule, OC_SLIDING_RULE_ITEMS) T(InitialSlip, PATCH_INITIAL_SLIP_ITEMS)
-#define PATCH_INITIAL_SLIP_ITEMS(E)                                                              \
-    E(atInputs, 1, "every cell's slip is its displacement at the end of initialization: no "    \
-      "force until the body moves")                                                             \
-    E(explicit, 2, "every cell's slip is (s1Start, s2Start): the rest pose is that "           \
-      "translation at theta = 0")
-
-#define PATCH_KNOWNS_NO_RULE                                                                     \
-    OC_LAW_NAMES "initialSlip s1Start s2Start length width n1 n2 u1 u2 theta N p1 p2"
+#define PATCH_KNOWNS_NO_RULE OC_LAW_NAMES PATCH_CELL_KNOWNS " N p1 p2"
 #define PATCH_KNOWNS PATCH_KNOWNS_NO_RULE " slidingRule"
 #define PATCH_INPUTS "u1 u2 theta N p1 p2"
 #define FMU_DEPENDENCIES(D)                                                                      \
@@ -98,34 +91,8 @@ static const char FMU_DOC_HTML[] =
     D(slipFraction, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)                                          \
     D(contactState, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)
 
-/* The variables: time, the law's rows (value references 1 to 7), then: */
-#define PATCH_INITIAL_SLIP_ROWS(X)                                                               \
-    X(initialSlip, 8, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                     \
-      "Initial slip: 1 atInputs (every cell unloaded where the inputs put it when "              \
-      "initialization ends), 2 explicit (every cell's slip (s1Start, s2Start))")                 \
-    X(s1Start, 9, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                 \
-      "Initial slip of every cell along X1 when initialSlip = explicit")                         \
-    X(s2Start, 10, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                \
-      "Initial slip of every cell along X2 when initialSlip = explicit")
-
-#define PATCH_GEOMETRY_ROWS(X)                                                                   \
-    X(length, 11, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                 \
-      "Side of the patch along the body's axis 1 (X1 at theta = 0)")                             \
-    X(width, 12, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                  \
-      "Side of the patch along the body's axis 2 (X2 at theta = 0)")                             \
-    X(n1, 13, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
-      "Number of cells along length (at most PATCH_MAX_SIDE = 32)")                              \
-    X(n2, 14, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
-      "Number of cells along width (at most PATCH_MAX_SIDE = 32)")
-
-#define PATCH_MOTION_ROWS(X)                                                                     \
-    X(u1, 15, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
-      "Displacement of the patch centre relative to the surface along X1")                       \
-    X(u2, 16, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
-      "Displacement of the patch centre relative to the surface along X2")                       \
-    X(theta, 17, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                \
-      "Rotation of the body relative to the surface, counterclockwise about the normal")
-
+/* The variables: time, the law's rows (value references 1 to 7), the cells'
+ * rows (8 to 17: models/ContactPatch/cell_rows.h), then: */
 #define PATCH_LOAD_ROWS(X)                                                                       \
     X(N, 18, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                         \
       "Total normal force pressing the body on the surface (N <= 0: open contact)")              \

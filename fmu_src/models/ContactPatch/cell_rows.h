@@ -1,0 +1,55 @@
+/*
+ * The rows of a variable table (glue/fmu_table.h) that every model on the
+ * cells (models/ContactPatch/cells.h) has: the initial slip, the
+ * rectangle's geometry and the tangential motion, value references 8 to
+ * 17 after the law's rows.  ContactPatch's and ContactPad's tables list
+ * them; what they add follows from 18 on.
+ */
+#ifndef PATCH_CELL_ROWS_H
+#define PATCH_CELL_ROWS_H
+
+/* A table's rows and lists keep their own layout. */
+/* clang-format off */
+
+/* The largest grid: the model's storage and its serialized state are fixed
+ * in size (fmu_model.h), so they hold this many cells whatever n1, n2 are. */
+#define PATCH_MAX_SIDE 32
+
+#define PATCH_INITIAL_SLIP_ITEMS(E)                                                              \
+    E(atInputs, 1, "every cell's slip is its displacement at the end of initialization: no "    \
+      "force until the body moves")                                                             \
+    E(explicit, 2, "every cell's slip is (s1Start, s2Start): the rest pose is that "           \
+      "translation at theta = 0")
+
+#define PATCH_INITIAL_SLIP_ROWS(X)                                                               \
+    X(initialSlip, 8, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                     \
+      "Initial slip: 1 atInputs (every cell unloaded where the inputs put it when "              \
+      "initialization ends), 2 explicit (every cell's slip (s1Start, s2Start))")                 \
+    X(s1Start, 9, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                 \
+      "Initial slip of every cell along X1 when initialSlip = explicit")                         \
+    X(s2Start, 10, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                \
+      "Initial slip of every cell along X2 when initialSlip = explicit")
+
+#define PATCH_GEOMETRY_ROWS(X)                                                                   \
+    X(length, 11, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                 \
+      "Side of the patch along the body's axis 1 (X1 at theta = 0)")                             \
+    X(width, 12, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                  \
+      "Side of the patch along the body's axis 2 (X2 at theta = 0)")                             \
+    X(n1, 13, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
+      "Number of cells along length (at most PATCH_MAX_SIDE = 32)")                              \
+    X(n2, 14, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
+      "Number of cells along width (at most PATCH_MAX_SIDE = 32)")
+
+#define PATCH_MOTION_ROWS(X)                                                                     \
+    X(u1, 15, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+      "Displacement of the patch centre relative to the surface along X1")                       \
+    X(u2, 16, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+      "Displacement of the patch centre relative to the surface along X2")                       \
+    X(theta, 17, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                \
+      "Rotation of the body relative to the surface, counterclockwise about the normal")
+
+/* The rows' names, for the tables' lists of knowns. */
+#define PATCH_CELL_KNOWNS "initialSlip s1Start s2Start length width n1 n2 u1 u2 theta"
+
+/* clang-format on */
+#endif
