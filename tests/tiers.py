@@ -71,7 +71,8 @@ SLOW = {
     "contracts/test_doc_blocks.py": {"test_slow_page"},   # the pages' blocks marked slow: identify, run, uq
     "contracts/test_cli_fuzz.py": {"test_hostile_runs_of_every_command_end_without_a_traceback"},   # 40 runs
     "fmus/test_model_structure.py": {   # every n1, n2 from 1 to 32 at each base point: 3-11 s
-        "test_the_patchs_declared_dependencies_are_what_the_binary_does"},
+        "test_the_patchs_declared_dependencies_are_what_the_binary_does",
+        "test_the_pads_declared_dependencies_are_what_the_binary_does"},
     "fmus/test_platforms.py": {"test_aarch64_linux_binary_runs_under_qemu_like_the_x86_64_one"},
     "fmus/test_windows.py": "*",   # builds two hosts with zig, starts a wine prefix: 20 s warm
     "fmus/test_fmu.py": {"test_sources_compile_into_a_working_binary"},           # builds from sources/

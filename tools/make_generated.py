@@ -13,7 +13,9 @@ can see.  Read from the manifests the build generates from the tables
       fmu/param_checks.py's LawParameters, which read LAW;
   PATCH_*                     the ContactPatch FMU's model identifier, inputs,
       outputs (Float64 and Int32) and geometry (its parameters the contact
-      has not: length, width, n1, n2 with their ranges).
+      has not: length, width, n1, n2 with their ranges);
+  PAD_*                       the ContactPad FMU's, its foundation (its
+      parameters the patch has not: kn, dn).
 
     make generated                                   (re)write the file
     .venv/bin/python tools/make_generated.py         the same, without the set-up
@@ -223,70 +225,96 @@ def law_section(contact, table: str) -> list[str]:
     return out + contact_params(contact, table)
 
 
-# -- the patch: PATCH_* ---------------------------------------------------------------
+# -- the models on the cells: PATCH_*, PAD_* ------------------------------------------
 
-def patch_section(contact, patch, table: str) -> list[str]:
-    model = patch.model_identifier
-    inputs = [v for v in patch.variables if v.causality == "input"]
-    outputs = [v for v in patch.variables if v.causality == "output"]
+def cells_section(prefix: str, model_m, without, own_name: str, own_words: str, table: str) -> list[str]:
+    """<prefix>_MODEL, _INPUTS, _FLOAT_OUTPUTS, _INTEGER_OUTPUTS and
+    <prefix>_<own_name>: its parameters none of the manifests `without` has
+    (own_words says what they are)."""
+    model = model_m.model_identifier
+    inputs = [v for v in model_m.variables if v.causality == "input"]
+    outputs = [v for v in model_m.variables if v.causality == "output"]
     for v in inputs:
         if v.type != "Float64":
-            raise ValueError(f"{model}: input {v.name} is {v.type}; PatchFMU sets its inputs as Float64")
+            raise ValueError(f"{model}: input {v.name} is {v.type}; {model}'s access sets its inputs as "
+                             "Float64")
     for v in outputs:
         if v.type not in ("Float64", "Int32"):
-            raise ValueError(f"{model}: output {v.name} is {v.type}; PatchFMU reads Float64 and Int32")
-    own = {v.name for v in contact.variables}
-    geometry = [v for v in patch.variables if v.causality == "parameter" and v.name not in own]
+            raise ValueError(f"{model}: output {v.name} is {v.type}; {model}'s access reads Float64 and "
+                             "Int32")
+    others = {v.name for m in without for v in m.variables}
+    own = [v for v in model_m.variables if v.causality == "parameter" and v.name not in others]
     floats = [v for v in outputs if v.type == "Float64"]
     ints = [v for v in outputs if v.type == "Int32"]
 
-    def names(vs) -> str:
-        return "(" + ", ".join(text(v.name) for v in vs) + ("," if len(vs) == 1 else "") + ")"
+    def names(head: str, vs) -> list[str]:
+        """`head = (...)`, the names wrapped under the parenthesis."""
+        items = [text(v.name) for v in vs]
+        one = head + " = (" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
+        return [one] if len(one) <= WIDTH else signature(head + " = ", items, "", 0)
 
     def units(vs) -> str:
         return ", ".join(f"{v.name} [{v.unit or '-'}]" for v in vs)
 
-    out = [rule_line(f"{model} ({table})"), "", f"PATCH_MODEL = {text(model)}", "",
+    out = [rule_line(f"{model} ({table})"), "", f"{prefix}_MODEL = {text(model)}", "",
            *textwrap.wrap(f"Its inputs in the table's order, all Float64: {units(inputs)}.", DOC_WIDTH,
                           initial_indent="# ", subsequent_indent="# "),
-           f"PATCH_INPUTS = {names(inputs)}", "",
+           *names(f"{prefix}_INPUTS", inputs), "",
            *textwrap.wrap(f"Its outputs in the table's order: Float64 {units(floats)}; Int32 "
                           f"{units(ints)}.", DOC_WIDTH, initial_indent="# ", subsequent_indent="# "),
-           f"PATCH_FLOAT_OUTPUTS = {names(floats)}", f"PATCH_INTEGER_OUTPUTS = {names(ints)}", "",
-           "# Its geometry: its parameters the point contact has not, with their type, unit, range and "
-           "start.", "PATCH_GEOMETRY: tuple[Row, ...] = ("]
-    for v in geometry:
+           *names(f"{prefix}_FLOAT_OUTPUTS", floats), *names(f"{prefix}_INTEGER_OUTPUTS", ints), "",
+           f"# {own_words}, with their type, unit, range and start.",
+           f"{prefix}_{own_name}: tuple[Row, ...] = ("]
+    for v in own:
         out += row_lines(v)
     return out + [")"]
 
 
+def patch_section(contact, patch, table: str) -> list[str]:
+    return cells_section("PATCH", patch, (contact,), "GEOMETRY",
+                         "Its geometry: its parameters the point contact has not", table)
+
+
+def pad_section(contact, patch, pad, table: str) -> list[str]:
+    return cells_section("PAD", pad, (contact, patch), "FOUNDATION",
+                         "Its foundation: its parameters the patch has not", table)
+
+
 # -- the file ------------------------------------------------------------------------
 
-def source(contact, patch, tables: dict[str, str]) -> str:
-    """generated.py's text from the contact's and the patch's manifests and
-    {model identifier: its table's path}."""
+def source(contact, patch, tables: dict[str, str], pad=None) -> str:
+    """generated.py's text from the contact's, the patch's (and the pad's)
+    manifests and {model identifier: its table's path}."""
     ct, pt = tables[contact.model_identifier], tables[patch.model_identifier]
-    lines = [f"# Generated by tools/make_generated.py from the variable tables {ct}",
-             f"# ({contact.model_identifier}) and {pt} ({patch.model_identifier}),",
+    names = f"{ct}\n# ({contact.model_identifier}), {pt} ({patch.model_identifier})"
+    if pad is not None:
+        names += f"\n# and {tables[pad.model_identifier]} ({pad.model_identifier}),"
+    else:
+        names = names.replace(", " + pt, " and " + pt) + ","
+    lines = [f"# Generated by tools/make_generated.py from the variable tables {names}",
              "# through the manifests the build writes from them (variables/<model>.json): do not edit.",
              "# Regenerate: make generated.",
              "# tests/fmu/test_generated.py fails while this file is not what the tables give.",
              '"""The facts of the variable tables the package\'s Python code needs, as source:',
              "the law's parameters (LAW: a Row each, with unit, range and start), the sliding",
              "rules' numbers (RULES), ContactParams (the typed parameter object; its checks",
-             "are param_checks.LawParameters', which read LAW) and the ContactPatch FMU's",
-             "inputs, outputs and geometry (PATCH_*).",
+             "are param_checks.LawParameters', which read LAW), the ContactPatch FMU's",
+             "inputs, outputs and geometry (PATCH_*) and the ContactPad FMU's inputs,",
+             "outputs and foundation (PAD_*).",
              "",
              'Units as the tables give them ("" for none); angles in rad."""',
              "from __future__ import annotations", "", "import dataclasses", "import math",
              "from collections.abc import Mapping", "from typing import ClassVar, NoReturn", "",
              "from .param_checks import LawParameters, Row, radians, refuse_misnamed", "",
              *law_section(contact, ct), "", "", *patch_section(contact, patch, pt)]
+    if pad is not None:
+        lines += ["", "", *pad_section(contact, patch, pad, tables[pad.model_identifier])]
     return "\n".join(lines) + "\n"
 
 
 def installed() -> tuple:
-    """The contact's and the patch's manifests as installed with the package, and their tables' paths."""
+    """The contact's and the patch's manifests as installed with the package, their tables' paths
+    and the pad's manifest."""
     from orthocontact.fmu.files import installed_file
     from orthocontact.fmu.variables import manifest, models
     found = installed_file("models.json")
@@ -294,7 +322,7 @@ def installed() -> tuple:
         raise FileNotFoundError("models.json is not installed with the package; run `make setup`")
     tables = {m["modelIdentifier"]: m["table"] for m in json.loads(found.read_text())["models"]}
     roles = models()
-    return manifest(roles["contact"]), manifest(roles["patch"]), tables
+    return manifest(roles["contact"]), manifest(roles["patch"]), tables, manifest(roles["pad"])
 
 
 def generated() -> str:

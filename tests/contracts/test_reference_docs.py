@@ -58,11 +58,11 @@ def test_check_says_which_page_is_stale_and_how_to_refresh(tmp_path):
     (tmp_path / "docs" / "reference").mkdir(parents=True)
     (tmp_path / mr.PAGES["cli"]).write_text((ROOT / mr.PAGES["cli"]).read_text().replace("--seed", "--sead"))
     fmus = next(iter(mr.BLOCK_PAGES))
-    (tmp_path / fmus).write_text((ROOT / fmus).read_text().replace("ships six", "ships four"))
+    (tmp_path / fmus).write_text((ROOT / fmus).read_text().replace("ships eight", "ships four"))
     stale = dict(mr.stale(tmp_path))
     assert set(stale) == {*mr.PAGES.values(), fmus}         # the variables page is missing there
     assert "-| `--sead S`" in stale[mr.PAGES["cli"]] and "+| `--seed S`" in stale[mr.PAGES["cli"]]
-    assert "ships four" in stale[fmus] and "ships six" in stale[fmus]
+    assert "ships four" in stale[fmus] and "ships eight" in stale[fmus]
     (tmp_path / fmus).unlink()
     with pytest.raises(FileNotFoundError, match="fmus.md, which holds generated blocks, is not in"):
         mr.stale(tmp_path)

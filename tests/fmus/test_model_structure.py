@@ -227,17 +227,17 @@ def patch_inputs(scale, push, slip=(0.0, 0.0)):
     return {"u1": float(u[0]), "u2": float(u[1]), "theta": push[1] * scale, "N": N0, **P0}
 
 
-def patch_stick_edge(mode, base):
+def patch_stick_edge(mode, base, model="ContactPatch"):
     """The largest scale of base(scale) at which every cell still sticks
     (contactState 1), by bisection through the FMU, less 1 %: a cell then
     sits within 1 % of sliding, so that every known that moves its trial or
     its limit by 10 % changes the state."""
     lo, hi = 0.0, 1.0
-    assert observe(3, "ContactPatch", base(lo), mode)["contactState"] == 1     # the bracket holds
-    assert observe(3, "ContactPatch", base(hi), mode)["contactState"] != 1
+    assert observe(3, model, base(lo), mode)["contactState"] == 1     # the bracket holds
+    assert observe(3, model, base(hi), mode)["contactState"] != 1
     for _ in range(40):
         mid = 0.5 * (lo + hi)
-        state = observe(3, "ContactPatch", base(mid), mode)["contactState"]
+        state = observe(3, model, base(mid), mode)["contactState"]
         lo, hi = (mid, hi) if state == 1 else (lo, mid)
     return 0.99 * lo
 
@@ -260,10 +260,43 @@ def patch_points(mode):
     return points
 
 
-POINTS = {MODEL_IDENTIFIER: contact_points, RIG_MODEL_IDENTIFIER: rig_points, "ContactPatch": patch_points}
+# The pad: the patch's pushes on a pose in full contact, tilted (every
+# known of the pose moves each cell's limit, so each flips the state at the
+# edge of sliding), and on one whose trailing corners lift (the contact and
+# the pressure's resultants move with every known of the pose, the grid's
+# rounding with n1, n2); its foundation presses with ~4-19 N.
+PAD = dict(LAW, slidingRule=2, length=0.1, width=0.08, n1=4, n2=4, kn=1.2e7, dn=0.0)
+FULL = dict(d=2e-4, phi1=3e-4, phi2=1.2e-3)    # corners 2e-4 +- 6e-5 +- 1.2e-5 m
+LIFTED = dict(d=4e-5, phi1=3e-4, phi2=1.2e-3)  # corners 4e-5 +- 6e-5 +- 1.2e-5 m: x < -0.023 m lifts
 
 
-@pytest.mark.parametrize("model", [m for m in models().values() if m != "ContactPatch"])
+def pad_inputs(scale, push, pose, slip=(0.0, 0.0)):
+    x = patch_inputs(scale, push, slip)
+    return {**{k: x[k] for k in ("u1", "u2", "theta")}, **pose}
+
+
+def pad_points(mode):
+    explicit = dict(initialSlip=2, s1Start=S0[0], s2Start=S0[1])
+    points = []
+    for pose, pushes in ((FULL, PUSHES), (LIFTED, PUSHES[:1])):
+        for push in pushes:
+            if mode == "init":
+                def base(scale, push=push, pose=pose):
+                    return {"time": 0.0, "init": {**PAD, **explicit, **pad_inputs(scale, push, pose, S0)}}
+            else:
+                def base(scale, push=push, pose=pose):
+                    return {"time": 0.0, "init": {**PAD, **pad_inputs(0.0, push, pose)},
+                            "step": pad_inputs(scale, push, pose)}
+            points += [base(patch_stick_edge(mode, base, "ContactPad")), base(3.0)]
+    return points
+
+
+POINTS = {MODEL_IDENTIFIER: contact_points, RIG_MODEL_IDENTIFIER: rig_points, "ContactPatch": patch_points,
+          "ContactPad": pad_points}
+CELLS = ("ContactPatch", "ContactPad")   # every integer n1, n2 tried: tests of their own
+
+
+@pytest.mark.parametrize("model", [m for m in models().values() if m not in CELLS])
 @pytest.mark.parametrize("version", [2, 3])
 @pytest.mark.parametrize("mode", ["init", "step"])
 def test_declared_dependencies_are_what_the_binary_does(model, version, mode):
@@ -280,6 +313,17 @@ def test_the_patchs_declared_dependencies_are_what_the_binary_does(version, mode
     (the two versions compute the same bits: tests/fmus/test_patch.py);
     several seconds: every integer n1, n2 from 1 to 32 is tried."""
     check_declared_dependencies("ContactPatch", version, mode)
+
+
+@pytest.mark.parametrize("version", [2, 3])
+@pytest.mark.parametrize("mode", ["init", "step"])
+def test_the_pads_declared_dependencies_are_what_the_binary_does(version, mode):
+    """The same for the pad at 6 base points: its normal force, moments and
+    contact follow from the pose and the foundation alone (not u1, u2, the
+    law; the contact not kn, which scales the pressure but not where it
+    acts), its damping dn from nothing while the rate has no step to be
+    taken over (initialization)."""
+    check_declared_dependencies("ContactPad", version, mode)
 
 
 def check_declared_dependencies(model, version, mode):

@@ -1,0 +1,533 @@
+#include "models/ContactPad/model.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "glue/fmu_instance.h"
+#include "models/ContactPad/pressure.h"
+
+/* Where each variable of the table lives.  The law's parameters (the
+ * table's L rows) live in params under their own names. */
+#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...)                         \
+    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus,                                     \
+            start, lo,           hi,           offsetof(pad_model, params.name),                   \
+            unit},
+#define FMU_SLOT_time offsetof(pad_model, time)
+#define FMU_SLOT_slidingRule offsetof(pad_model, params.rule)
+#define FMU_SLOT_initialSlip offsetof(pad_model, g.initial_slip)
+#define FMU_SLOT_s1Start offsetof(pad_model, g.s_start[0])
+#define FMU_SLOT_s2Start offsetof(pad_model, g.s_start[1])
+#define FMU_SLOT_length offsetof(pad_model, g.length)
+#define FMU_SLOT_width offsetof(pad_model, g.width)
+#define FMU_SLOT_n1 offsetof(pad_model, g.n[0])
+#define FMU_SLOT_n2 offsetof(pad_model, g.n[1])
+#define FMU_SLOT_u1 offsetof(pad_model, g.u[0])
+#define FMU_SLOT_u2 offsetof(pad_model, g.u[1])
+#define FMU_SLOT_theta offsetof(pad_model, g.theta)
+#define FMU_SLOT_kn offsetof(pad_model, kn)
+#define FMU_SLOT_dn offsetof(pad_model, dn)
+#define FMU_SLOT_d offsetof(pad_model, d)
+#define FMU_SLOT_phi1 offsetof(pad_model, phi[0])
+#define FMU_SLOT_phi2 offsetof(pad_model, phi[1])
+#define FMU_SLOT_T1 offsetof(pad_model, out.T[0])
+#define FMU_SLOT_T2 offsetof(pad_model, out.T[1])
+#define FMU_SLOT_Mz offsetof(pad_model, out.Mz)
+#define FMU_SLOT_Fn offsetof(pad_model, Fn)
+#define FMU_SLOT_M1 offsetof(pad_model, M[0])
+#define FMU_SLOT_M2 offsetof(pad_model, M[1])
+#define FMU_SLOT_dissipatedEnergy offsetof(pad_model, out.energy)
+#define FMU_SLOT_contactFraction offsetof(pad_model, contact_fraction)
+#define FMU_SLOT_slipFraction offsetof(pad_model, out.slip_fraction)
+#define FMU_SLOT_contactState offsetof(pad_model, out.contact)
+
+enum { FMU_ENUM_TYPES(FMU_ENUM_KIND) PAD_ENUM_KINDS_END };
+
+static const fmu_var VARS[PAD_VR_COUNT_PLUS_ONE] = {PAD_VARIABLES(FMU_VAR_ROW, LAW_ROW)};
+
+static fmu_status derivative(const pad_model *m, const unsigned int unknown[], size_t n_unknown,
+                             const unsigned int known[], size_t n_known, const double seed[],
+                             double out[], int adjoint, fmu_msg *msg);
+static fmu_status exit_init(pad_model *m, fmu_msg *msg);
+
+/* ---- FMI 3.0: the cells as arrays (models/ContactPad/table.h's FMU_ARRAYS) --------- */
+
+static size_t array_size(const pad_model *m, unsigned int vr, int *type) {
+    switch (vr) {
+    case PAD_VR_cellT1:
+    case PAD_VR_cellT2:
+    case PAD_VR_cellFn: *type = FMU_T_Float64; break;
+    case PAD_VR_cellState: *type = FMU_T_Int32; break;
+    default: return 0;
+    }
+    return (size_t)m->g.n[0] * (size_t)m->g.n[1];
+}
+
+/* Element [i][j] (row-major, shape (n1, n2)) is cell c = i + n1 j of the
+ * shown step (cells_array). */
+static void array_get(const pad_model *m, unsigned int vr, void *out) {
+    const int what = vr == PAD_VR_cellT1   ? CELLS_ARRAY_T1
+                     : vr == PAD_VR_cellT2 ? CELLS_ARRAY_T2
+                     : vr == PAD_VR_cellFn ? CELLS_ARRAY_N
+                                           : CELLS_ARRAY_STATE;
+    cells_array(&m->cells, &m->g, what, out);
+}
+
+static const unsigned int STRUCTURAL[] = {PAD_VR_n1, PAD_VR_n2};
+static const fmu_arrays ARRAYS = {array_size, array_get, STRUCTURAL, 2};
+
+const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER,
+                                       FMU_TOKEN,
+                                       FMU_STATE_TAG,
+                                       VARS,
+                                       PAD_VR_COUNT_PLUS_ONE,
+                                       sizeof(pad_model),
+                                       NULL /* the outputs live in their slots */,
+                                       exit_init,
+                                       derivative,
+                                       &ARRAYS};
+
+/* ---- the foundation ------------------------------------------------------- */
+
+/* The pressure over the pad is kn e+ with e(r) = f0 + g . r in body
+ * coordinates: the approach d + (phi2, -phi1) . R(theta) r, plus (dn/kn)
+ * times its rate over the previous step, the difference from the
+ * reference pose's approach of the same body point divided by ref.h.
+ * With a = (dn/kn)/ref.h, f0 = d + a (d - d_ref) and g = g_b + a (g_b -
+ * g_ref), g_b = R(theta)^T (phi2, -phi1): each a linear function of the
+ * pose, f0' = (1 + a) d' and g' = (1 + a) g_b'. */
+typedef struct {
+    double f0, g[2];
+    double df0;      /* df0/dd [-] */
+    double dg[3][2]; /* dg/d(theta, phi1, phi2) [1/rad] */
+} pad_field;
+
+/* R(theta)^T (phi2, -phi1): the approach's slopes along the body's axes. */
+static void body_slopes(double theta, double phi1, double phi2, double g[2]) {
+    const double c = cos(theta), s = sin(theta);
+    g[0] = c * phi2 - s * phi1;
+    g[1] = -s * phi2 - c * phi1;
+}
+
+static pad_field field_of(const pad_model *m, const pad_pose *ref) {
+    pad_field F;
+    const double c = cos(m->g.theta), s = sin(m->g.theta);
+    double gb[2];
+    body_slopes(m->g.theta, m->phi[0], m->phi[1], gb);
+    const double a = ref->h > 0.0 && m->dn > 0.0 ? m->dn / m->kn / ref->h : 0.0;
+    F.f0 = m->d;
+    F.g[0] = gb[0];
+    F.g[1] = gb[1];
+    if (a > 0.0) { /* as differences, so that held inputs add exactly nothing */
+        double gr[2];
+        body_slopes(ref->theta, ref->phi[0], ref->phi[1], gr);
+        F.f0 += a * (m->d - ref->d);
+        F.g[0] += a * (gb[0] - gr[0]);
+        F.g[1] += a * (gb[1] - gr[1]);
+    }
+    const double k = 1.0 + a;
+    F.df0 = k;
+    F.dg[0][0] = k * (-s * m->phi[1] - c * m->phi[0]);
+    F.dg[0][1] = k * (-c * m->phi[1] + s * m->phi[0]);
+    F.dg[1][0] = k * -s;
+    F.dg[1][1] = k * -c;
+    F.dg[2][0] = k * c;
+    F.dg[2][1] = k * -s;
+    return F;
+}
+
+/* The cells' half sides and centres [m]. */
+typedef struct {
+    double hx, hy;
+    double x[PATCH_MAX_SIDE], y[PATCH_MAX_SIDE];
+} pad_grid;
+
+static void grid_of(const cells_setup *g, pad_grid *G) {
+    G->hx = g->length / (2.0 * g->n[0]);
+    G->hy = g->width / (2.0 * g->n[1]);
+    for (int i = 0; i < g->n[0]; ++i) G->x[i] = cells_coordinate(i, g->n[0]) * g->length;
+    for (int j = 0; j < g->n[1]; ++j) G->y[j] = cells_coordinate(j, g->n[1]) * g->width;
+}
+
+/* The pressure's resultant and first moment (body axes), and the share of
+ * the area that presses. */
+typedef struct {
+    double Fn, mb[2], contact_fraction;
+} pad_normal;
+
+/* Every cell's normal force Nc[c] [N] and their sums: a cell's force kn
+ * (e A + g . m1) and first moment about the pad centre r N + kn (e m1 +
+ * m2 g), of the moments (A, m1 about its centre, m2) of its pressed part
+ * (pad_clip_moments: its own rectangle's where it presses wholly). */
+static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], pad_normal *S) {
+    const cells_setup *g = &m->g;
+    pad_grid G;
+    grid_of(g, &G);
+    double ex[PATCH_MAX_SIDE], ey[PATCH_MAX_SIDE];
+    for (int i = 0; i < g->n[0]; ++i) ex[i] = F->f0 + F->g[0] * G.x[i];
+    for (int j = 0; j < g->n[1]; ++j) ey[j] = F->g[1] * G.y[j];
+    const double kn = m->kn;
+    double Fn = 0.0, mx = 0.0, my = 0.0, full = 0.0, part = 0.0;
+    const double cell_area = 4.0 * G.hx * G.hy;
+    for (int j = 0, c = 0; j < g->n[1]; ++j)
+        for (int i = 0; i < g->n[0]; ++i, ++c) {
+            const double e = ex[i] + ey[j];
+            pad_moments M;
+            if (pad_clip_moments(e, F->g, G.hx, G.hy, &M)) {
+                const double N = kn * (e * cell_area);
+                Nc[c] = N;
+                Fn += N;
+                mx += G.x[i] * N;
+                my += G.y[j] * N;
+                full += 1.0;
+                continue;
+            }
+            const double N = kn * (e * M.area + (F->g[0] * M.m1[0] + F->g[1] * M.m1[1]));
+            Nc[c] = N;
+            Fn += N;
+            mx += G.x[i] * N + kn * (e * M.m1[0] + M.m2[0] * F->g[0] + M.m2[1] * F->g[1]);
+            my += G.y[j] * N + kn * (e * M.m1[1] + M.m2[1] * F->g[0] + M.m2[2] * F->g[1]);
+            part += M.area / cell_area;
+        }
+    /* the wholly pressed cells' own second moments, A h^2/3 each, once */
+    mx += kn * (full * (cell_area * G.hx * G.hx / 3.0)) * F->g[0];
+    my += kn * (full * (cell_area * G.hy * G.hy / 3.0)) * F->g[1];
+    S->Fn = Fn;
+    S->mb[0] = mx;
+    S->mb[1] = my;
+    S->contact_fraction = (full + part) / (double)cells_count(g);
+}
+
+/* (M1, M2) of a first moment in body axes: turned into the surface's, a
+ * force +X3 at (X, Y) has the moment (Y F, -X F). */
+static void moments_of(double theta, const double mb[2], double M[2]) {
+    const double c = cos(theta), s = sin(theta);
+    M[0] = s * mb[0] + c * mb[1];
+    M[1] = -(c * mb[0] - s * mb[1]);
+}
+
+/* ---- the step ------------------------------------------------------------- */
+
+/* Why a step was refused: cells_step's index `bad` (the first cell whose
+ * force or slip would not be finite, or n1 n2 for a sum), or -1 for the
+ * foundation's force or moments. */
+static fmu_status overflow(const pad_model *m, int bad, fmu_msg *msg) {
+    const cells_setup *g = &m->g;
+    const char *what = bad < 0                ? "the foundation's normal force or moments"
+                       : bad < cells_count(g) ? "the force or slip of cell"
+                                              : "the pad's force, moment or energy";
+    char cell[32] = "";
+    if (bad >= 0 && bad < cells_count(g))
+        snprintf(cell, sizeof cell, " (%d, %d)", bad % g->n[0] + 1, bad / g->n[0] + 1);
+    return fmu_fail(msg,
+                    "inputs u1=%g m, u2=%g m, theta=%g rad, d=%g m, phi1=%g rad, phi2=%g rad "
+                    "overflow %s%s",
+                    g->u[0], g->u[1], g->theta, m->d, m->phi[0], m->phi[1], what, cell);
+}
+
+/* Computes the pending step of every cell for the inputs in m from `src`
+ * with `law`, its rate against `ref` (which commits nothing); or fails and
+ * changes nothing. */
+static fmu_status evaluate(pad_model *m, const oc_law *law, const cells_source *src,
+                           const pad_pose *ref, fmu_msg *msg) {
+    double Nc[PATCH_MAX_CELLS];
+    const pad_field F = field_of(m, ref);
+    pad_normal S;
+    normal_forces(m, &F, Nc, &S);
+    double M[2];
+    moments_of(m->g.theta, S.mb, M);
+    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1])) return overflow(m, -1, msg);
+    cells_sums out;
+    const int bad = cells_evaluate(&m->cells, law, &m->g, Nc, src, &out);
+    if (bad >= 0) return overflow(m, bad, msg);
+    m->out = out;
+    m->Fn = S.Fn;
+    m->M[0] = M[0];
+    m->M[1] = M[1];
+    m->contact_fraction = S.contact_fraction;
+    if (ref != &m->ref) m->ref = *ref;
+    return FMU_OK;
+}
+
+/* The pose of the inputs, its rate over h. */
+static pad_pose pose_now(const pad_model *m, double h) {
+    const pad_pose p = {m->d, {m->phi[0], m->phi[1]}, m->g.theta, h};
+    return p;
+}
+
+fmu_status fmu_model_update(pad_model *m, int changed, int allow, fmu_msg *msg) {
+    oc_law law;
+    const oc_law *use = &m->cells.law;
+    if (changed & FMU_CHANGED_PARAMETERS) {
+        if (cells_law(&m->params, &m->g, &law, msg) != FMU_OK) return FMU_ERR;
+        use = &law;
+    }
+    /* Before the end of initialization the cells start where the inputs or
+     * the explicit slip put them, with no rate; afterwards from what was
+     * committed, the rate against the pose it was committed at. */
+    if (allow & FMU_ALLOW_PARAMETERS) {
+        const cells_source init = cells_initial();
+        const pad_pose none = pose_now(m, 0.0);
+        return evaluate(m, use, &init, &none, msg);
+    }
+    const cells_source src = cells_committed(&m->cells);
+    return evaluate(m, use, &src, m->cells.result_committed ? &m->commit : &m->ref, msg);
+}
+
+/* Every set in initialization already derived the start from the values it
+ * left; deriving it once more here makes the end of initialization the
+ * moment that counts, whatever was restored before it. */
+static fmu_status exit_init(pad_model *m, fmu_msg *msg) {
+    const cells_source init = cells_initial();
+    const pad_pose none = pose_now(m, 0.0);
+    return evaluate(m, &m->cells.law, &init, &none, msg);
+}
+
+/* A further step with held inputs steps every cell again from what the
+ * last doStep committed (the rate against that step's pose: none). */
+fmu_status fmu_model_do_step(pad_model *m, double h, fmu_msg *msg) {
+    if (m->cells.result_committed) {
+        const cells_source src = cells_committed(&m->cells);
+        const pad_pose was = m->commit;
+        if (evaluate(m, &m->cells.law, &src, &was, msg) != FMU_OK) return FMU_ERR;
+    }
+    m->cells.result_committed = 1;
+    m->commit = pose_now(m, h);
+    return FMU_OK;
+}
+
+/* ---- directional derivatives ------------------------------------------------ */
+
+/* Rows: T1, T2, Mz, Fn, M1, M2, dissipatedEnergy; columns: u1, u2, theta,
+ * d, phi1, phi2. */
+enum { P_ROWS = 7, P_COLS = 6 };
+
+static int jac_row(unsigned int vr) {
+    switch (vr) {
+    case PAD_VR_T1: return 0;
+    case PAD_VR_T2: return 1;
+    case PAD_VR_Mz: return 2;
+    case PAD_VR_Fn: return 3;
+    case PAD_VR_M1: return 4;
+    case PAD_VR_M2: return 5;
+    case PAD_VR_dissipatedEnergy: return 6;
+    default: return -1;
+    }
+}
+
+static int jac_col(unsigned int vr) {
+    switch (vr) {
+    case PAD_VR_u1: return 0;
+    case PAD_VR_u2: return 1;
+    case PAD_VR_theta: return 2;
+    case PAD_VR_d: return 3;
+    case PAD_VR_phi1: return 4;
+    case PAD_VR_phi2: return 5;
+    default: return -1;
+    }
+}
+
+/* A cell of the shown step's foundation: its centre, its field, its
+ * pressed part's moments. */
+typedef struct {
+    double r[2], e;
+    pad_moments M;
+} pad_cell;
+
+static pad_cell pad_cell_of(const pad_model *m, const pad_field *F, int c) {
+    const cells_setup *g = &m->g;
+    pad_cell x;
+    const double hx = g->length / (2.0 * g->n[0]), hy = g->width / (2.0 * g->n[1]);
+    x.r[0] = cells_coordinate(c % g->n[0], g->n[0]) * g->length;
+    x.r[1] = cells_coordinate(c / g->n[0], g->n[1]) * g->width;
+    x.e = (F->f0 + F->g[0] * x.r[0]) + F->g[1] * x.r[1];
+    pad_clip_moments(x.e, F->g, hx, hy, &x.M);
+    return x;
+}
+
+/* dN/d(theta, d, phi1, phi2) of a cell whose dN/d(f0, g0, g1) is dn. */
+static void pose_tangent(const pad_field *F, const double dn[3], double dN[4]) {
+    dN[0] = dn[1] * F->dg[0][0] + dn[2] * F->dg[0][1];
+    dN[1] = dn[0] * F->df0;
+    dN[2] = dn[1] * F->dg[1][0] + dn[2] * F->dg[1][1];
+    dN[3] = dn[1] * F->dg[2][0] + dn[2] * F->dg[2][1];
+}
+
+/* What the cells' Jacobian asks of a cell: its normal force's tangent. */
+typedef struct {
+    const pad_model *m;
+    pad_field F;
+} pad_tangent_ctx;
+
+static void normal_tangent(const void *ctx, int c, double dN[4]) {
+    const pad_tangent_ctx *t = ctx;
+    const pad_cell x = pad_cell_of(t->m, &t->F, c);
+    double dn[3];
+    pad_cell_force(t->m->kn, &x.M, x.e, t->F.g, x.r, dn);
+    pose_tangent(&t->F, dn, dN);
+}
+
+/* The pad's Jacobian of the shown step: the cells' (cells_jacobian) for
+ * T1, T2, Mz, dissipatedEnergy; Fn's and the first moment's from the
+ * pressed parts' moments: d/df0 of the integrals of e+ and r e+ are those
+ * of 1 and r, d/dg those of r and r r^T, over the part that presses (the
+ * integrand vanishes on the line that bounds it); then M = (Y, -X) of
+ * R(theta) mb, whose own turning adds (X, Y) to dM/dtheta. */
+static void partials(const pad_model *m, double *Jflat) {
+    double(*P)[P_COLS] = (double(*)[P_COLS])Jflat;
+    pad_tangent_ctx t = {m, field_of(m, &m->ref)};
+    double C[CELLS_JAC_ROWS][CELLS_JAC_COLS];
+    cells_jacobian(&m->cells, &m->g, normal_tangent, &t, C);
+    memset(P, 0, sizeof(double) * P_ROWS * P_COLS);
+    for (int k = 0; k < P_COLS; ++k) {
+        P[0][k] = C[0][k];
+        P[1][k] = C[1][k];
+        P[2][k] = C[2][k];
+        P[6][k] = C[3][k];
+    }
+    /* the foundation: d(Fn, mbx, mby)/d(f0, g0, g1) summed over the cells */
+    double D[3][3] = {{0}};
+    const double kn = m->kn;
+    for (int c = 0, n = cells_count(&m->g); c < n; ++c) {
+        const pad_cell x = pad_cell_of(m, &t.F, c);
+        const pad_moments *M = &x.M;
+        const double I1[2] = {x.r[0] * M->area + M->m1[0], x.r[1] * M->area + M->m1[1]};
+        const double I2[3] = {x.r[0] * x.r[0] * M->area + 2 * x.r[0] * M->m1[0] + M->m2[0],
+                              x.r[0] * x.r[1] * M->area + x.r[0] * M->m1[1] + x.r[1] * M->m1[0] +
+                                  M->m2[1],
+                              x.r[1] * x.r[1] * M->area + 2 * x.r[1] * M->m1[1] + M->m2[2]};
+        D[0][0] += kn * M->area;
+        D[0][1] += kn * I1[0];
+        D[0][2] += kn * I1[1];
+        D[1][0] += kn * I1[0];
+        D[1][1] += kn * I2[0];
+        D[1][2] += kn * I2[1];
+        D[2][0] += kn * I1[1];
+        D[2][1] += kn * I2[1];
+        D[2][2] += kn * I2[2];
+    }
+    /* through the field to (theta, d, phi1, phi2), columns 2 to 5 */
+    double dq[3][4];
+    for (int r = 0; r < 3; ++r) pose_tangent(&t.F, D[r], dq[r]);
+    const double c = cos(m->g.theta), s = sin(m->g.theta);
+    /* the first moment in the surface's axes, X = -M2, Y = M1, for the turning of R(theta) */
+    const double X = -m->M[1], Y = m->M[0];
+    for (int k = 0; k < 4; ++k) {
+        P[3][k + 2] = dq[0][k];
+        P[4][k + 2] = s * dq[1][k] + c * dq[2][k];
+        P[5][k + 2] = -(c * dq[1][k] - s * dq[2][k]);
+    }
+    P[4][2] += X;
+    P[5][2] += Y;
+}
+
+/* J fits the glue's buffer (a negative size fails to compile) */
+typedef char jacobian_fits[P_ROWS * P_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
+static const fmu_jacobian JACOBIAN = {P_ROWS,
+                                      P_COLS,
+                                      jac_row,
+                                      jac_col,
+                                      "T1, T2, Mz, Fn, M1, M2, dissipatedEnergy",
+                                      "u1, u2, theta, d, phi1, phi2",
+                                      partials};
+
+static fmu_status derivative(const pad_model *m, const unsigned int unknown[], size_t n_unknown,
+                             const unsigned int known[], size_t n_known, const double seed[],
+                             double out[], int adjoint, fmu_msg *msg) {
+    return fmu_jacobian_derivative(&JACOBIAN, m, unknown, n_unknown, known, n_known, seed, out,
+                                   adjoint, msg);
+}
+
+/* ---- serialized state: the field list of model.h ------------------------ */
+
+size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
+
+void fmu_model_state_write(const pad_model *m, unsigned char *p) {
+    p = fmu_fields_write(&PAD_HEAD_FIELDS, m, p);
+    cells_state_write(&m->cells, &m->g, p);
+}
+
+/* What the serialized head reads into m, kept to be put back. */
+typedef struct {
+    oc_params params;
+    cells_setup g;
+    double kn, dn, d, phi[2];
+    int result_committed;
+    pad_pose ref, commit;
+} pad_head;
+
+static pad_head head_of(const pad_model *m) {
+    const pad_head h = {
+        m->params, m->g,     m->kn, m->dn, m->d, {m->phi[0], m->phi[1]}, m->cells.result_committed,
+        m->ref,    m->commit};
+    return h;
+}
+
+static void put_head(pad_model *m, const pad_head *h) {
+    m->params = h->params;
+    m->g = h->g;
+    m->kn = h->kn;
+    m->dn = h->dn;
+    m->d = h->d;
+    m->phi[0] = h->phi[0];
+    m->phi[1] = h->phi[1];
+    m->cells.result_committed = h->result_committed;
+    m->ref = h->ref;
+    m->commit = h->commit;
+}
+
+/* fmu_model_state_read once the head is in m: the steps' sizes checked,
+ * the cells checked where they lie in the buffer, then the shown result
+ * recomputed (into the free buffer, which nothing reads) from the committed
+ * states, the inputs and the rate's reference, of which it is a function.
+ * `was` holds the head before. */
+static fmu_status read_cells(pad_model *m, const pad_head *was, const unsigned char *cells,
+                             fmu_msg *msg) {
+    if (!(m->ref.h >= 0.0) || !(m->commit.h >= 0.0))
+        return fmu_fail(msg, "serialized state: a step size h=%g s, %g s below 0", m->ref.h,
+                        m->commit.h);
+    /* A master that saves and restores every step restores the parameters
+     * it already has: keep their tensors instead of recomputing them (bit
+     * patterns: a restored state must continue bit for bit). */
+    oc_law law;
+    fmu_msg why;
+    if (fmu_fields_same(&OC_PARAMS_FIELDS, &was->params, &m->params) && was->g.n[0] == m->g.n[0] &&
+        was->g.n[1] == m->g.n[1])
+        law = m->cells.law;
+    else if (cells_law(&m->params, &m->g, &law, &why) != FMU_OK)
+        return fmu_fail(msg, "serialized state: %s", why.text);
+    if (cells_state_check(&law, &m->g, cells, msg) != FMU_OK) return FMU_ERR;
+    double Nc[PATCH_MAX_CELLS];
+    const pad_field F = field_of(m, &m->ref);
+    pad_normal S;
+    normal_forces(m, &F, Nc, &S);
+    double M[2];
+    moments_of(m->g.theta, S.mb, M);
+    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1])) {
+        overflow(m, -1, &why);
+        return fmu_fail(msg, "serialized state: %s", why.text);
+    }
+    cells_sums out;
+    const int bad = cells_state_read(&m->cells, &law, &m->g, Nc, cells, &out);
+    if (bad >= 0) {
+        overflow(m, bad, &why);
+        return fmu_fail(msg, "serialized state: %s", why.text);
+    }
+    m->out = out;
+    m->Fn = S.Fn;
+    m->M[0] = M[0];
+    m->M[1] = M[1];
+    m->contact_fraction = S.contact_fraction;
+    return FMU_OK;
+}
+
+/* Reads the head into m, checked field by field, and the cells; a refused
+ * state puts the head back and changes nothing else. */
+fmu_status fmu_model_state_read(pad_model *m, const unsigned char *p, fmu_msg *msg) {
+    const pad_head head = head_of(m);
+    fmu_status st = fmu_fields_read(&PAD_HEAD_FIELDS, m, &p, msg);
+    if (st == FMU_OK) st = read_cells(m, &head, p, msg);
+    if (st != FMU_OK) put_head(m, &head);
+    return st;
+}

@@ -1,0 +1,102 @@
+/*
+ * The contact pad as a model of the shared FMI glue (fmu_model.h): the
+ * variables of models/ContactPad/table.h, the patch's cells
+ * (models/ContactPatch/cells.h) pressed by a Winkler foundation under the
+ * pad's pose (models/ContactPad/pressure.h), and the serialized state.
+ *
+ * Step semantics as the patch's: setting inputs computes every cell's
+ * normal force and step from the committed states without committing them;
+ * the outputs read that pending result; a doStep commits all cells.  A
+ * step in which any cell, sum, force or moment would not be finite is
+ * refused and changes nothing.
+ *
+ * The approach's rate (the foundation's damping dn) is taken over the
+ * previous communication step: against the pose a step starts from (the
+ * pose of the last committed step, `ref`) and the size of that step; the
+ * pending step knows no other (the step size reaches the model at doStep
+ * only).  Before the first doStep there is none (ref.h = 0).
+ */
+#ifndef PAD_MODEL_H
+#define PAD_MODEL_H
+
+#include "glue/fmu_fields.h"
+#include "glue/fmu_model.h"
+#include "law/contact_law.h"
+#include "law/law_fields.h"
+#include "models/ContactPad/table.h"
+#include "models/ContactPatch/cells.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A pose of the pad and the step size its rate is taken over. */
+typedef struct {
+    double d, phi[2], theta; /* [m], [rad], [rad] */
+    double h;                /* [s]; 0: no rate */
+} pad_pose;
+
+struct fmu_model {
+    oc_params params; /* the table's law parameters: eps1, eps2 the whole pad's */
+    cells_setup g;    /* the geometry, the initial slip, u1, u2, theta */
+    double kn, dn;    /* the foundation [N/m^3], [N s/m^3] */
+    double d, phi[2]; /* the pose's inputs [m], [rad] */
+    /* The shown step's outputs, where the table reads them: */
+    cells_sums out;
+    double Fn, M[2], contact_fraction;
+    double time;
+    /* The pose the shown step's rate is taken against (the start's), and
+     * that of the shown step with the size of the doStep that committed it
+     * (while cells.result_committed): the next step's reference. */
+    pad_pose ref, commit;
+    cells_grid cells;
+};
+typedef struct fmu_model pad_model;
+
+/* The model's part of the serialized state (glue/fmu_fields.h): the head,
+ * then every cell's committed state (the cells' own: cells.h).  The shown
+ * result is not stored but recomputed from the committed states, the
+ * inputs and the rate's reference. */
+#define PAD_POSE_FIELDS(member, group)                                                             \
+    FMU_F64(pad_model, member.d, "d", group, FINITE, 0),                                           \
+        FMU_F64(pad_model, member.phi[0], "phi1", group, FINITE, 0),                               \
+        FMU_F64(pad_model, member.phi[1], "phi2", group, FINITE, 0),                               \
+        FMU_F64(pad_model, member.theta, "theta", group, FINITE, 0),                               \
+        FMU_F64(pad_model, member.h, "h", group, FINITE, 0)
+static const fmu_field PAD_MODEL_FIELD_LIST[] = {
+    FMU_RECORD(pad_model, params, &OC_PARAMS_FIELDS,
+               "the law's parameters (eps1, eps2 the whole pad's)"),
+    FMU_U32(pad_model, g.initial_slip, "initialSlip", "the initial slip", RANGE,
+            PAD_VR_initialSlip),
+    FMU_F64(pad_model, g.s_start[0], "s1Start", "the initial slip", RANGE, PAD_VR_s1Start),
+    FMU_F64(pad_model, g.s_start[1], "s2Start", "the initial slip", RANGE, PAD_VR_s2Start),
+    FMU_F64(pad_model, g.length, "length", "the geometry", RANGE, PAD_VR_length),
+    FMU_F64(pad_model, g.width, "width", "the geometry", RANGE, PAD_VR_width),
+    FMU_U32(pad_model, g.n[0], "n1", "the geometry", RANGE, PAD_VR_n1),
+    FMU_U32(pad_model, g.n[1], "n2", "the geometry", RANGE, PAD_VR_n2),
+    FMU_F64(pad_model, kn, "kn", "the foundation", RANGE, PAD_VR_kn),
+    FMU_F64(pad_model, dn, "dn", "the foundation", RANGE, PAD_VR_dn),
+    FMU_F64(pad_model, g.u[0], "u1", "the inputs", FINITE, 0),
+    FMU_F64(pad_model, g.u[1], "u2", "the inputs", FINITE, 0),
+    FMU_F64(pad_model, g.theta, "theta", "the inputs", FINITE, 0),
+    FMU_F64(pad_model, d, "d", "the inputs", FINITE, 0),
+    FMU_F64(pad_model, phi[0], "phi1", "the inputs", FINITE, 0),
+    FMU_F64(pad_model, phi[1], "phi2", "the inputs", FINITE, 0),
+    FMU_U32(pad_model, cells.result_committed, "committed",
+            "the commit flag (1: the shown step is committed)", FLAG, 0),
+    PAD_POSE_FIELDS(ref, "the pose the shown step's rate is taken against, and over what step "
+                         "[s] (0: none)"),
+    PAD_POSE_FIELDS(commit, "the shown step's pose and the size [s] of the doStep that committed "
+                            "it (while committed)"),
+    FMU_RECORDS(pad_model, cells.start, &OC_STATE_FIELDS, PATCH_MAX_CELLS,
+                "the cells' committed states (cell c = i + n1 j)")};
+enum { PAD_MODEL_FIELDS = sizeof PAD_MODEL_FIELD_LIST / sizeof PAD_MODEL_FIELD_LIST[0] };
+static const fmu_fields FMU_STATE_FIELDS = FMU_FIELDS(PAD_MODEL_FIELD_LIST, pad_model);
+/* The head: all but the cells. */
+static const fmu_fields PAD_HEAD_FIELDS = {PAD_MODEL_FIELD_LIST, PAD_MODEL_FIELDS - 1,
+                                           sizeof(pad_model)};
+
+#ifdef __cplusplus
+}
+#endif
+#endif
