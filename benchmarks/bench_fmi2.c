@@ -6,20 +6,12 @@
 
 #include "bench_common.h"
 #include "fmi2Functions.h"
+#include "host_support.h"
 #include "models/OrthotropicContact/table.h"
 
-static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
-                  fmi2String m, ...) {
-    (void)e;
-    (void)n;
-    (void)s;
-    (void)c;
-    fprintf(stderr, "%s\n", m);
-}
-
 static double run(int rule, int slip, long steps) {
-    const fmi2CallbackFunctions cb = {quiet, calloc, free, NULL, NULL};
-    fmi2Component c = fmi2Instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, 0, 0);
+    fmi2Component c =
+        fmi2Instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &host_print2_cb, 0, 0);
     const fmi2ValueReference vr_rule = OC_VR_slidingRule;
     const int r = rule;
     fmi2SetInteger(c, &vr_rule, 1, &r);

@@ -6,18 +6,12 @@
 
 #include "bench_common.h"
 #include "fmi3Functions.h"
+#include "host_support.h"
 #include "models/OrthotropicContact/table.h"
 
-static void quiet(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e;
-    (void)s;
-    (void)c;
-    fprintf(stderr, "%s\n", m);
-}
-
 static double run(int rule, int slip, long steps) {
-    fmi3Instance c =
-        fmi3InstantiateCoSimulation("bench", FMU_GUID, "", 0, 0, 0, 0, NULL, 0, NULL, quiet, NULL);
+    fmi3Instance c = fmi3InstantiateCoSimulation("bench", FMU_GUID, "", 0, 0, 0, 0, NULL, 0, NULL,
+                                                 host_print3, NULL);
     const fmi3ValueReference vr_rule = OC_VR_slidingRule;
     const fmi3Int64 r = rule;
     fmi3SetInt64(c, &vr_rule, 1, &r, 1);

@@ -20,18 +20,10 @@
 #include "bench_common.h"
 #include "fmi2Functions.h"
 #include "fmu_token.h"
+#include "host_support.h"
 #include "rig_master.h"
 
 enum { ANGLES = 10, STEPS = 513, REPS = 20 }; /* ceil(0.5 m / (0.244 m/s 4 ms)) */
-
-static void logger(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
-                   fmi2String m, ...) {
-    (void)e;
-    (void)n;
-    (void)s;
-    (void)c;
-    fprintf(stderr, "FMU: %s\n", m);
-}
 
 int main(int argc, char **argv) {
     (void)bench_inputs;
@@ -72,7 +64,6 @@ int main(int argc, char **argv) {
         (fmi2EnterInitializationModeTYPE *)dlsym(lib, "fmi2EnterInitializationMode");
     fmi2ExitInitializationModeTYPE *exit_ =
         (fmi2ExitInitializationModeTYPE *)dlsym(lib, "fmi2ExitInitializationMode");
-    const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
 
     double best_rig = 1e30, best_contact = 1e30, lo = 1e30, hi = 0, sink = 0;
     for (int round = 0; round < rounds; ++round) {
@@ -84,7 +75,7 @@ int main(int argc, char **argv) {
 
         /* the same steps through the FMI calls alone, set up as the master
          * sets up every run (one instance, reset between runs) */
-        fmi2Component c = inst("replay", fmi2CoSimulation, FMU_TOKEN, "", &cb, 0, 0);
+        fmi2Component c = inst("replay", fmi2CoSimulation, FMU_TOKEN, "", &host_print2_cb, 0, 0);
         t0 = now();
         for (int k = 0; k < REPS; ++k)
             for (int i = 0; i < ANGLES; ++i) {

@@ -42,6 +42,7 @@
 
 #include "bench_common.h"
 #include "fmi2Functions.h"
+#include "host_support.h"
 #include "law/contact_law.h"
 #include "models/ContactPatch/table.h"
 
@@ -68,16 +69,6 @@ typedef struct {
     fmi2GetIntegerTYPE *get_int;
     fmi2DoStepTYPE *do_step;
 } fmi2_api;
-
-static void logger(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
-                   fmi2String m, ...) {
-    (void)e;
-    (void)n;
-    (void)s;
-    (void)c;
-    fprintf(stderr, "FMU: %s\n", m);
-}
-static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
 
 static int load(fmi2_api *a, const char *path) {
     a->lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
@@ -167,7 +158,7 @@ static const fmi2ValueReference PATCH_IN[4] = {PATCH_VR_u1, PATCH_VR_u2, PATCH_V
 static const fmi2ValueReference PATCH_OUT[3] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz};
 
 static run_result run_patch(const fmi2_api *a, const grid *G, int slip, long steps) {
-    fmi2Component c = a->inst("patch", fmi2CoSimulation, FMU_TOKEN, "", &CB, 0, 0);
+    fmi2Component c = a->inst("patch", fmi2CoSimulation, FMU_TOKEN, "", &host_print2_cb, 0, 0);
     const fmi2ValueReference vn[2] = {PATCH_VR_n1, PATCH_VR_n2};
     const fmi2Integer nn[2] = {G->side, G->side};
     a->set_int(c, vn, 2, nn);
@@ -214,7 +205,8 @@ static run_result run_points(const fmi2_api *a, const grid *G, int slip, long st
     double u[3];
     bench_inputs(0, slip, u);
     for (int i = 0; i < G->n; ++i) {
-        fmi2Component c = a->inst("point", fmi2CoSimulation, BENCH_POINT_TOKEN, "", &CB, 0, 0);
+        fmi2Component c =
+            a->inst("point", fmi2CoSimulation, BENCH_POINT_TOKEN, "", &host_print2_cb, 0, 0);
         for (int j = 0; BENCH_POINT_LAW_NAMES[j]; ++j)
             for (int q = 0; q < N_LAW; ++q)
                 if (strcmp(BENCH_POINT_LAW_NAMES[j], order[q]) == 0)

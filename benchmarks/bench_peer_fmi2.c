@@ -6,6 +6,7 @@
 #include "bench_common.h"
 #include "bench_peer.h"
 #include "fmi2Functions.h"
+#include "host_support.h"
 
 enum { INST, FREE, SETUP, ENTER, EXIT, SETR, GETR, SETI, GETI, STEP, NFN };
 static const char *const NAMES[NFN] = {"fmi2Instantiate",
@@ -32,23 +33,13 @@ int bench2_open(bench_fmu *f, const char *path) {
     return 0;
 }
 
-static void logger(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
-                   fmi2String m, ...) {
-    (void)e;
-    (void)n;
-    (void)s;
-    (void)c;
-    fprintf(stderr, "FMU: %s\n", m);
-}
-
 double bench2_run(const bench_fmu *f, const char *token, const bench_params *bp, int slip,
                   long steps, double *trace) {
     fmi2SetRealTYPE *set_real = (fmi2SetRealTYPE *)f->fn[SETR];
     fmi2GetRealTYPE *get_real = (fmi2GetRealTYPE *)f->fn[GETR];
     fmi2DoStepTYPE *do_step = (fmi2DoStepTYPE *)f->fn[STEP];
-    const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
     fmi2Component c = ((fmi2InstantiateTYPE *)f->fn[INST])("bench", fmi2CoSimulation, token, "",
-                                                           &cb, fmi2False, fmi2False);
+                                                           &host_print2_cb, fmi2False, fmi2False);
     if (!c) return -1;
     const fmi2ValueReference vr_par[6] = {1, 2, 3, 4, 5, 6}, vr_rule = 7;
     const fmi2ValueReference in[3] = {8, 9, 10}, out[2] = {11, 12}, more[3] = {13, 14, 16};

@@ -6,6 +6,7 @@
 #include "bench_common.h"
 #include "bench_peer.h"
 #include "fmi3Functions.h"
+#include "host_support.h"
 
 enum { INST, FREE, ENTER, EXIT, SETF, GETF, SETI64, GETI32, STEP, NFN };
 static const char *const NAMES[NFN] = {"fmi3InstantiateCoSimulation",
@@ -31,20 +32,13 @@ int bench3_open(bench_fmu *f, const char *path) {
     return 0;
 }
 
-static void logger(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e;
-    (void)s;
-    (void)c;
-    fprintf(stderr, "FMU: %s\n", m);
-}
-
 double bench3_run(const bench_fmu *f, const char *token, const bench_params *bp, int slip,
                   long steps, double *trace) {
     fmi3SetFloat64TYPE *set_f = (fmi3SetFloat64TYPE *)f->fn[SETF];
     fmi3GetFloat64TYPE *get_f = (fmi3GetFloat64TYPE *)f->fn[GETF];
     fmi3DoStepTYPE *do_step = (fmi3DoStepTYPE *)f->fn[STEP];
     fmi3Instance c = ((fmi3InstantiateCoSimulationTYPE *)f->fn[INST])(
-        "bench", token, "", fmi3False, fmi3False, fmi3False, fmi3False, NULL, 0, NULL, logger,
+        "bench", token, "", fmi3False, fmi3False, fmi3False, fmi3False, NULL, 0, NULL, host_print3,
         NULL);
     if (!c) return -1;
     const fmi3ValueReference vr_par[6] = {1, 2, 3, 4, 5, 6}, vr_rule = 7;

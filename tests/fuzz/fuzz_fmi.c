@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include FUZZ_TABLE_HEADER
+#include "host_support.h"
 
 #if FUZZ_FMI == 2
 #include "fmi2Functions.h"
@@ -163,17 +164,8 @@ static unsigned vref(reader *r) {
 #if FUZZ_FMI == 2
 typedef fmi2Component inst;
 typedef int status;
-static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
-                  fmi2String m, ...) {
-    (void)e;
-    (void)n;
-    (void)s;
-    (void)c;
-    (void)m;
-}
-static const fmi2CallbackFunctions CB = {quiet, calloc, free, NULL, NULL};
 static inst make(int logging) {
-    return fmi2Instantiate("fuzz", fmi2CoSimulation, FMU_GUID, "", &CB, 0, logging);
+    return fmi2Instantiate("fuzz", fmi2CoSimulation, FMU_GUID, "", &host_quiet2_cb, 0, logging);
 }
 static void destroy(inst c) { fmi2FreeInstance(c); }
 static int st_ok(status s) { return s == fmi2OK; }
@@ -243,15 +235,9 @@ static status restore(inst c, const unsigned char *buf, size_t n) {
 #else
 typedef fmi3Instance inst;
 typedef int status;
-static void quiet(fmi3InstanceEnvironment e, fmi3Status s, fmi3String c, fmi3String m) {
-    (void)e;
-    (void)s;
-    (void)c;
-    (void)m;
-}
 static inst make(int logging) {
-    return fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", 0, logging, 0, 0, NULL, 0, NULL, quiet,
-                                       NULL);
+    return fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", 0, logging, 0, 0, NULL, 0, NULL,
+                                       host_quiet3, NULL);
 }
 static void destroy(inst c) { fmi3FreeInstance(c); }
 static int st_ok(status s) { return s == fmi3OK; }

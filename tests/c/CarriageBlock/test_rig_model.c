@@ -3,51 +3,35 @@
  * against their closed forms, its lateral dynamics against the closed form
  * of the scheme it documents, and its state restored into a fresh instance. */
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
 #include "fmi2Functions.h"
 #include "glue/fmu_bytes.h"
+#include "host_support.h"
 #include "models/CarriageBlock/table.h"
 
-static char last_message[512];
-
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...) {
-    (void)env;
-    (void)name;
-    (void)status;
-    (void)category;
-    va_list ap;
-    va_start(ap, message);
-    vsnprintf(last_message, sizeof last_message, message, ap);
-    va_end(ap);
-}
-
-static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
-
 static fmi2Component make(const char *name) {
-    fmi2Component c = fmi2Instantiate(name, fmi2CoSimulation, FMU_GUID, "", &CB, 0, 0);
-    CHECK(c != NULL, "instantiate %s: %s", name, last_message);
+    fmi2Component c = fmi2Instantiate(name, fmi2CoSimulation, FMU_GUID, "", &host_keep2_cb, 0, 0);
+    CHECK(c != NULL, "instantiate %s: %s", name, host_log.message);
     return c;
 }
 
 static void start(fmi2Component c) {
     CHECK(fmi2SetupExperiment(c, 0, 0, 0, 0, 0) == fmi2OK, "setup");
     CHECK(fmi2EnterInitializationMode(c) == fmi2OK, "enter");
-    CHECK(fmi2ExitInitializationMode(c) == fmi2OK, "exit: %s", last_message);
+    CHECK(fmi2ExitInitializationMode(c) == fmi2OK, "exit: %s", host_log.message);
 }
 
 static double get(fmi2Component c, fmi2ValueReference vr) {
     double v = NAN;
-    CHECK(fmi2GetReal(c, &vr, 1, &v) == fmi2OK, "get vr %u: %s", vr, last_message);
+    CHECK(fmi2GetReal(c, &vr, 1, &v) == fmi2OK, "get vr %u: %s", vr, host_log.message);
     return v;
 }
 
 static void set(fmi2Component c, fmi2ValueReference vr, double v) {
-    CHECK(fmi2SetReal(c, &vr, 1, &v) == fmi2OK, "set vr %u = %g: %s", vr, v, last_message);
+    CHECK(fmi2SetReal(c, &vr, 1, &v) == fmi2OK, "set vr %u = %g: %s", vr, v, host_log.message);
 }
 
 static void test_table_and_errors(void) {
@@ -69,7 +53,7 @@ static void test_table_and_errors(void) {
         const int ok = fmi2GetReal(c, &vr, 1, &v) == fmi2OK;
         CHECK(ok == (vr < RIG_VR_COUNT_PLUS_ONE), "vr %u readable: %d", vr, ok);
         CHECK(fmi2GetInteger(c, &vr, 1, &i) == fmi2Error, "vr %u read as Integer", vr);
-        if (!ok) CHECK(strstr(last_message, "unknown value reference"), "%s", last_message);
+        if (!ok) CHECK(strstr(host_log.message, "unknown value reference"), "%s", host_log.message);
     }
     fmi2Terminate(c);
     fmi2Reset(c);
@@ -77,32 +61,34 @@ static void test_table_and_errors(void) {
     const fmi2ValueReference vr_mass = RIG_VR_mass, vr_x1 = RIG_VR_x1, vr_T1 = RIG_VR_T1,
                              vr_time = RIG_VR_time;
     v = 0.0;
-    CHECK(fmi2SetReal(c, &vr_mass, 1, &v) == fmi2Error && strstr(last_message, "mass"), "mass 0");
+    CHECK(fmi2SetReal(c, &vr_mass, 1, &v) == fmi2Error && strstr(host_log.message, "mass"),
+          "mass 0");
     v = 1.0;
-    CHECK(fmi2SetReal(c, &vr_x1, 1, &v) == fmi2Error && strstr(last_message, "output"), "output");
-    CHECK(fmi2SetReal(c, &vr_time, 1, &v) == fmi2Error && strstr(last_message, "independent"),
+    CHECK(fmi2SetReal(c, &vr_x1, 1, &v) == fmi2Error && strstr(host_log.message, "output"),
+          "output");
+    CHECK(fmi2SetReal(c, &vr_time, 1, &v) == fmi2Error && strstr(host_log.message, "independent"),
           "time set");
     v = NAN;
-    CHECK(fmi2SetReal(c, &vr_T1, 1, &v) == fmi2Error && strstr(last_message, "finite"), "NaN");
+    CHECK(fmi2SetReal(c, &vr_T1, 1, &v) == fmi2Error && strstr(host_log.message, "finite"), "NaN");
     v = INFINITY;
     CHECK(fmi2SetReal(c, &vr_T1, 1, &v) == fmi2Error, "inf input accepted");
     const fmi2ValueReference batch[2] = {RIG_VR_velocity, RIG_VR_g};
     const double bv[2] = {0.5, -1.0};
     CHECK(fmi2SetReal(c, batch, 2, bv) == fmi2Error, "g < 0 accepted");
     int iv = 1;
-    CHECK(fmi2SetInteger(c, &vr_mass, 1, &iv) == fmi2Error && strstr(last_message, "Float64"),
-          "Integer set of a Real: %s", last_message);
+    CHECK(fmi2SetInteger(c, &vr_mass, 1, &iv) == fmi2Error && strstr(host_log.message, "Float64"),
+          "Integer set of a Real: %s", host_log.message);
     start(c);
     CHECK(get(c, RIG_VR_velocity) == 0.244, "partial batch applied");
     CHECK(get(c, RIG_VR_mass) == 1.875, "rejected mass kept");
     v = 2.0;
-    CHECK(fmi2SetReal(c, &vr_mass, 1, &v) == fmi2Error && strstr(last_message, "fixed"),
+    CHECK(fmi2SetReal(c, &vr_mass, 1, &v) == fmi2Error && strstr(host_log.message, "fixed"),
           "parameter in step mode");
     const fmi2ValueReference u = RIG_VR_u1, kn = RIG_VR_T1;
     double seed = 1, out;
     CHECK(fmi2GetDirectionalDerivative(c, &u, 1, &kn, 1, &seed, &out) == fmi2Error &&
-              strstr(last_message, "no derivatives"),
-          "derivative: %s", last_message);
+              strstr(host_log.message, "no derivatives"),
+          "derivative: %s", host_log.message);
     fmi2FreeInstance(c);
 }
 
@@ -192,13 +178,13 @@ static void test_state_into_fresh_instance(void) {
     fmi2Component b = make("b"); /* never initialized */
     fmi2FMUstate sb = NULL;
     CHECK(fmi2DeSerializeFMUstate(b, bytes, n, &sb) == fmi2OK && fmi2SetFMUstate(b, sb) == fmi2OK,
-          "restore: %s", last_message);
+          "restore: %s", host_log.message);
     double tb = t;
     for (int k = 0; k < 100; ++k, t += h, tb += h) {
         set(a, RIG_VR_T2, -1.0);
         set(b, RIG_VR_T2, -1.0);
         fmi2DoStep(a, t, h, 1);
-        CHECK(fmi2DoStep(b, tb, h, 1) == fmi2OK, "restored instance steps: %s", last_message);
+        CHECK(fmi2DoStep(b, tb, h, 1) == fmi2OK, "restored instance steps: %s", host_log.message);
     }
     for (fmi2ValueReference vr = 0; vr < RIG_VR_COUNT_PLUS_ONE; ++vr) {
         const double ya = get(a, vr), yb = get(b, vr);
@@ -236,10 +222,10 @@ static void test_outputs_stay_finite(void) {
     /* A start time whose x1 overflows. */
     fmi2Component c = make("start time");
     set(c, RIG_VR_velocity, fast);
-    last_message[0] = '\0';
+    host_log.message[0] = '\0';
     CHECK(fmi2SetupExperiment(c, 0, 0, 1e303, 0, 0) == fmi2Error &&
-              strstr(last_message, "overflows"),
-          "start time 1e303 at 1e6 m/s: %s", last_message);
+              strstr(host_log.message, "overflows"),
+          "start time 1e303 at 1e6 m/s: %s", host_log.message);
     CHECK(fmi2EnterInitializationMode(c) == fmi2OK, "enter after the refusal");
     CHECK(get(c, RIG_VR_time) == 0.0 && get(c, RIG_VR_x1) == 0.0, "the refused time was kept");
     fmi2FreeInstance(c);
@@ -251,8 +237,8 @@ static void test_outputs_stay_finite(void) {
     double before[RIG_VR_COUNT_PLUS_ONE], after[RIG_VR_COUNT_PLUS_ONE];
     all_outputs(c, before);
     CHECK(before[RIG_VR_x1] == 0.244 * 1e303, "x1 at the start time");
-    CHECK(fmi2SetReal(c, &vr_v, 1, &fast) == fmi2Error && strstr(last_message, "overflows"),
-          "velocity 1e6 at 1e303 s: %s", last_message);
+    CHECK(fmi2SetReal(c, &vr_v, 1, &fast) == fmi2Error && strstr(host_log.message, "overflows"),
+          "velocity 1e6 at 1e303 s: %s", host_log.message);
     all_outputs(c, after);
     same_outputs(before, after, "a refused velocity");
     /* In a batch with a value that was accepted before it: all or nothing. */
@@ -274,20 +260,20 @@ static void test_outputs_stay_finite(void) {
     set(c, RIG_VR_T2, 1.0);
     all_outputs(c, before);
     CHECK(isfinite(before[RIG_VR_x1]), "x1 finite at the start");
-    CHECK(fmi2DoStep(c, t0, 1e301, 1) == fmi2Error && strstr(last_message, "overflows"),
-          "step to x1 = inf: %s", last_message);
+    CHECK(fmi2DoStep(c, t0, 1e301, 1) == fmi2Error && strstr(host_log.message, "overflows"),
+          "step to x1 = inf: %s", host_log.message);
     all_outputs(c, after);
     same_outputs(before, after, "a refused step");
     /* The lateral motion overflowing is refused alike, and the time moved
      * for it goes back (t0 + 5e300: x1 = 1.75e308 still finite). */
     set(c, RIG_VR_T2, 1.7e308);
     all_outputs(c, before);
-    CHECK(fmi2DoStep(c, t0, 5e300, 1) == fmi2Error && strstr(last_message, "lateral motion"),
-          "lateral overflow: %s", last_message);
+    CHECK(fmi2DoStep(c, t0, 5e300, 1) == fmi2Error && strstr(host_log.message, "lateral motion"),
+          "lateral overflow: %s", host_log.message);
     all_outputs(c, after);
     same_outputs(before, after, "a refused lateral step");
     set(c, RIG_VR_T2, 1.0);
-    CHECK(fmi2DoStep(c, t0, 1.0, 1) == fmi2OK, "an ordinary step: %s", last_message);
+    CHECK(fmi2DoStep(c, t0, 1.0, 1) == fmi2OK, "an ordinary step: %s", host_log.message);
     CHECK(get(c, RIG_VR_time) == t0 + 1.0 && get(c, RIG_VR_x1) == fast * (t0 + 1.0),
           "time and x1 after it");
     fmi2FreeInstance(c);
@@ -315,16 +301,17 @@ static void test_outputs_stay_finite(void) {
     all_outputs(c, before);
     fmi2FMUstate forged = NULL;
     CHECK(fmi2DeSerializeFMUstate(c, (const fmi2Byte *)bytes, n, &forged) == fmi2Error &&
-              forged == NULL && strstr(last_message, "overflows") && strstr(last_message, "1e+303"),
-          "deserialize: %s", last_message);
+              forged == NULL && strstr(host_log.message, "overflows") &&
+              strstr(host_log.message, "1e+303"),
+          "deserialize: %s", host_log.message);
     memcpy(st, bytes, n); /* the glue's state is its serialized bytes */
-    CHECK(fmi2SetFMUstate(c, st) == fmi2Error && strstr(last_message, "overflows"),
-          "set a state at t = 1e303: %s", last_message);
+    CHECK(fmi2SetFMUstate(c, st) == fmi2Error && strstr(host_log.message, "overflows"),
+          "set a state at t = 1e303: %s", host_log.message);
     all_outputs(c, after);
     same_outputs(before, after, "a refused state");
     fmu_put_f64(bytes + 16, 1e-3);
     memcpy(st, bytes, n);
-    CHECK(fmi2SetFMUstate(c, st) == fmi2OK, "the untouched state restores: %s", last_message);
+    CHECK(fmi2SetFMUstate(c, st) == fmi2OK, "the untouched state restores: %s", host_log.message);
     CHECK(get(c, RIG_VR_time) == 1e-3 && get(c, RIG_VR_x1) == fast * 1e-3, "restored time, x1");
     free(bytes);
     fmi2FreeFMUstate(c, &st);

@@ -15,7 +15,6 @@
  *     nothing (the serialized state is the same byte for byte), and a state
  *     the FMU wrote restores into a fresh instance reading the same outputs. */
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,24 +22,10 @@
 
 #include "check.h"
 #include "fmi2Functions.h"
+#include "host_support.h"
 #include "models/ContactPatch/model.h"
 #include "models/ContactPatch/table.h"
 #include "random_values.h"
-
-/* The last message the FMU logged, kept to check what a refusal says. */
-static char last_message[512];
-static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
-                  fmi2String m, ...) {
-    (void)e;
-    (void)n;
-    (void)s;
-    (void)c;
-    va_list ap;
-    va_start(ap, m);
-    vsnprintf(last_message, sizeof last_message, m, ap);
-    va_end(ap);
-}
-static const fmi2CallbackFunctions CB = {quiet, calloc, free, NULL, NULL};
 
 static const fmi2ValueReference KNOWN[6] = {PATCH_VR_u1, PATCH_VR_u2, PATCH_VR_theta,
                                             PATCH_VR_N,  PATCH_VR_p1, PATCH_VR_p2};
@@ -48,7 +33,7 @@ static const fmi2ValueReference UNKNOWN[4] = {PATCH_VR_T1, PATCH_VR_T2, PATCH_VR
                                               PATCH_VR_dissipatedEnergy};
 
 static fmi2Component make(void) {
-    return fmi2Instantiate("patch", fmi2CoSimulation, FMU_GUID, "", &CB, 0, 0);
+    return fmi2Instantiate("patch", fmi2CoSimulation, FMU_GUID, "", &host_keep2_cb, 0, 0);
 }
 
 /* The pending outputs (and the slip fraction) for inputs x. */
@@ -313,7 +298,7 @@ static void step_matches_the_plain_per_cell_step(void) {
                 memcpy(bad, x, sizeof bad);
                 bad[pick(2)] = (pick(2) ? 1 : -1) * 1e308;
                 bad[3] = 1e300;
-                last_message[0] = 0;
+                host_log.message[0] = 0;
                 if (fmi2SetReal(c, KNOWN, 6, bad) != fmi2OK) {
                     ++refused;
                     /* it names the first cell (in the order c = i + n1 j) whose
@@ -330,9 +315,9 @@ static void step_matches_the_plain_per_cell_step(void) {
                                      cell % g.n1 + 1, cell / g.n1 + 1);
                             break;
                         }
-                    CHECK(strstr(last_message, want) != NULL,
+                    CHECK(strstr(host_log.message, want) != NULL,
                           "episode %d: refused with \"%s\", not naming \"%s\"", episode,
-                          last_message, want);
+                          host_log.message, want);
                 } else
                     CHECK(fmi2SetFMUstate(c, saved) == fmi2OK, "episode %d: restore", episode);
                 fmi2FreeFMUstate(c, &saved);
@@ -343,12 +328,12 @@ static void step_matches_the_plain_per_cell_step(void) {
             if (g.n2 == 1 && pick(5) == 0) x[5] = -0.01 * g.width, x[4] *= 0.9;
             if (x[3] <= 0 && pick(2) == 0) x[4] = (pick(2) ? 1 : -1) * 10 * g.length;
             const int off_axis = (g.n1 == 1 && x[4] != 0.0) || (g.n2 == 1 && x[5] != 0.0);
-            last_message[0] = 0;
+            host_log.message[0] = 0;
             if (fmi2SetReal(c, KNOWN, 6, x) != fmi2OK) { /* refused: nothing changed */
                 CHECK(off_axis && x[3] > 0 &&
-                          strstr(last_message, "cannot carry a centre of pressure"),
+                          strstr(host_log.message, "cannot carry a centre of pressure"),
                       "episode %d step %d: p = (%g, %g) on %d x %d cells, N = %g refused: %s",
-                      episode, k, x[4], x[5], g.n1, g.n2, x[3], last_message);
+                      episode, k, x[4], x[5], g.n1, g.n2, x[3], host_log.message);
                 ++off_axis_refused;
                 continue;
             }
@@ -437,7 +422,7 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
             const double x[6] = {
                 1e-4 * uniform(), 1e-4 * uniform(), 0.01 * uniform(), N, p[0], p[1]};
             CHECK(fmi2SetReal(c, KNOWN, 6, x) == fmi2OK && fmi2ExitInitializationMode(c) == fmi2OK,
-                  "%d x %d: p = (%g, %g) refused: %s", n1, n2, p[0], p[1], last_message);
+                  "%d x %d: p = (%g, %g) refused: %s", n1, n2, p[0], p[1], host_log.message);
             /* the state holds the shown step's start: a second step with the
              * inputs held starts from the first one's, which carry N_c */
             CHECK(fmi2DoStep(c, 0.0, 1e-3, fmi2True) == fmi2OK &&
@@ -474,13 +459,13 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
                 memcpy(y, x, sizeof y);
                 y[4 + a] = 0.01 * (a ? W : L); /* in the kern: e1 + e2 <= 0.15 + 0.01 */
                 const size_t nb = serialize(c, before);
-                last_message[0] = 0;
+                host_log.message[0] = 0;
                 CHECK(fmi2SetReal(c, KNOWN, 6, y) == fmi2Error,
                       "%d x %d: p%d off the axis accepted", n1, n2, a + 1);
                 char want[48];
                 snprintf(want, sizeof want, "off the axis of a grid with n%d = 1", a + 1);
-                CHECK(strstr(last_message, want) != NULL, "%d x %d: refused with \"%s\"", n1, n2,
-                      last_message);
+                CHECK(strstr(host_log.message, want) != NULL, "%d x %d: refused with \"%s\"", n1,
+                      n2, host_log.message);
                 CHECK(serialize(c, after) == nb && memcmp(before, after, nb) == 0,
                       "%d x %d: the refused set changed the instance", n1, n2);
             }
@@ -489,7 +474,7 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
             CHECK(fmi2SetReal(c, KNOWN, 6, open) == fmi2OK,
                   "%d x %d: open with p outside the kern "
                   "refused: %s",
-                  n1, n2, last_message);
+                  n1, n2, host_log.message);
             const fmi2ValueReference vstate = PATCH_VR_contactState;
             fmi2Integer state = -1;
             double T[3];
@@ -500,10 +485,10 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
             CHECK(fmi2DoStep(c, 2e-3, 1e-3, fmi2True) == fmi2OK, "%d x %d: open doStep", n1, n2);
             const fmi2ValueReference vN = PATCH_VR_N;
             const double press = N;
-            last_message[0] = 0;
+            host_log.message[0] = 0;
             CHECK(fmi2SetReal(c, &vN, 1, &press) == fmi2Error &&
-                      strstr(last_message, "outside the kern"),
-                  "%d x %d: closed with p outside the kern: %s", n1, n2, last_message);
+                      strstr(host_log.message, "outside the kern"),
+                  "%d x %d: closed with p outside the kern: %s", n1, n2, host_log.message);
             CHECK(fmi2SetReal(c, KNOWN, 6, x) == fmi2OK, "%d x %d: closed again", n1, n2);
             fmi2Terminate(c);
             fmi2FreeInstance(c);

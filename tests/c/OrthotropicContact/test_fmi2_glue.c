@@ -1,36 +1,17 @@
 /* The FMI 2.0 glue called directly: state machine, logging categories,
  * instance independence and state handling. */
 #include <math.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
 #include "fmi2Functions.h"
+#include "host_support.h"
 #include "models/OrthotropicContact/table.h"
-
-static int n_logged;
-static char last_category[64], last_message[512];
-static fmi2Status last_status;
-
-static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                   fmi2String category, fmi2String message, ...) {
-    (void)env;
-    (void)name;
-    ++n_logged;
-    last_status = status;
-    snprintf(last_category, sizeof last_category, "%s", category);
-    va_list ap;
-    va_start(ap, message);
-    vsnprintf(last_message, sizeof last_message, message, ap);
-    va_end(ap);
-}
-
-static const fmi2CallbackFunctions CB = {logger, calloc, free, NULL, NULL};
 
 static fmi2Component make(const char *name) {
     fmi2Component c =
-        fmi2Instantiate(name, fmi2CoSimulation, FMU_GUID, "", &CB, fmi2False, fmi2False);
+        fmi2Instantiate(name, fmi2CoSimulation, FMU_GUID, "", &host_keep2_cb, fmi2False, fmi2False);
     CHECK(c != NULL, "instantiate %s failed", name);
     return c;
 }
@@ -42,12 +23,15 @@ static void start(fmi2Component c) {
 }
 
 static void test_instantiate_rejects(void) {
-    n_logged = 0;
-    CHECK(fmi2Instantiate("x", fmi2ModelExchange, FMU_GUID, "", &CB, 0, 0) == NULL, "ME accepted");
-    CHECK(n_logged == 1 && strstr(last_message, "Co-Simulation"), "no reason logged");
-    CHECK(fmi2Instantiate("x", fmi2CoSimulation, "{bad}", "", &CB, 0, 0) == NULL, "GUID accepted");
-    CHECK(strstr(last_message, "GUID") != NULL, "GUID reason not logged: %s", last_message);
-    CHECK(fmi2Instantiate("", fmi2CoSimulation, FMU_GUID, "", &CB, 0, 0) == NULL, "empty name");
+    host_log.count = 0;
+    CHECK(fmi2Instantiate("x", fmi2ModelExchange, FMU_GUID, "", &host_keep2_cb, 0, 0) == NULL,
+          "ME accepted");
+    CHECK(host_log.count == 1 && strstr(host_log.message, "Co-Simulation"), "no reason logged");
+    CHECK(fmi2Instantiate("x", fmi2CoSimulation, "{bad}", "", &host_keep2_cb, 0, 0) == NULL,
+          "GUID accepted");
+    CHECK(strstr(host_log.message, "GUID") != NULL, "GUID reason not logged: %s", host_log.message);
+    CHECK(fmi2Instantiate("", fmi2CoSimulation, FMU_GUID, "", &host_keep2_cb, 0, 0) == NULL,
+          "empty name");
     CHECK(fmi2Instantiate("x", fmi2CoSimulation, FMU_GUID, "", NULL, 0, 0) == NULL,
           "NULL callbacks");
 }
@@ -56,17 +40,17 @@ static void test_state_machine(void) {
     fmi2Component c = make("sm");
     const fmi2ValueReference vr_T1 = OC_VR_T1, vr_mu1 = OC_VR_mu1;
     double v;
-    n_logged = 0;
+    host_log.count = 0;
     CHECK(fmi2DoStep(c, 0, 1e-3, fmi2True) == fmi2Error, "doStep before init");
-    CHECK(n_logged == 1 && last_status == fmi2Error, "wrong-state call not logged");
-    CHECK(strcmp(last_category, "logStatusError") == 0, "category %s", last_category);
+    CHECK(host_log.count == 1 && host_log.status == fmi2Error, "wrong-state call not logged");
+    CHECK(strcmp(host_log.category, "logStatusError") == 0, "category %s", host_log.category);
     CHECK(fmi2GetReal(c, &vr_T1, 1, &v) == fmi2Error, "getReal while instantiated");
     CHECK(fmi2ExitInitializationMode(c) == fmi2Error, "exit init before enter");
     start(c);
     CHECK(fmi2SetupExperiment(c, 0, 0, 0, 0, 0) == fmi2Error, "setup in step mode");
     v = 0.5;
     CHECK(fmi2SetReal(c, &vr_mu1, 1, &v) == fmi2Error, "fixed parameter set in step mode");
-    CHECK(strstr(last_message, "fixed") != NULL, "reason: %s", last_message);
+    CHECK(strstr(host_log.message, "fixed") != NULL, "reason: %s", host_log.message);
     CHECK(fmi2DoStep(c, 0, 1e-3, fmi2True) == fmi2OK, "doStep");
     CHECK(fmi2DoStep(c, 0.5, 1e-3, fmi2True) == fmi2Error, "doStep at the wrong time");
     CHECK(fmi2DoStep(c, 1e-3, -1, fmi2True) == fmi2Error, "negative step");
@@ -90,24 +74,25 @@ static void test_logging_filter(void) {
     fmi2Component c = make("log");
     const fmi2ValueReference bad = 999;
     double v = 0;
-    n_logged = 0;
+    host_log.count = 0;
     CHECK(fmi2SetReal(c, &bad, 1, &v) == fmi2Error, "unknown vr");
-    CHECK(n_logged == 1 && strstr(last_message, "999"), "unknown vr not named: %s", last_message);
+    CHECK(host_log.count == 1 && strstr(host_log.message, "999"), "unknown vr not named: %s",
+          host_log.message);
     const fmi2String cats[] = {"logStatusError"};
     CHECK(fmi2SetDebugLogging(c, fmi2False, 1, cats) == fmi2OK, "switch errors off");
-    n_logged = 0;
+    host_log.count = 0;
     CHECK(fmi2SetReal(c, &bad, 1, &v) == fmi2Error, "still an error");
-    CHECK(n_logged == 0, "filtered category still logged");
+    CHECK(host_log.count == 0, "filtered category still logged");
     CHECK(fmi2SetDebugLogging(c, fmi2True, 0, NULL) == fmi2OK, "all on");
-    n_logged = 0;
+    host_log.count = 0;
     start(c);
-    CHECK(n_logged >= 3 && strcmp(last_category, "logCalls") == 0, "call trace missing");
+    CHECK(host_log.count >= 3 && strcmp(host_log.category, "logCalls") == 0, "call trace missing");
     const fmi2String unknown[] = {"logNonsense"};
     CHECK(fmi2SetDebugLogging(c, fmi2True, 1, unknown) == fmi2Error, "unknown category");
     /* A '%' in a message must reach the logger as a literal. */
     const fmi2String pct[] = {"50%s"};
     fmi2SetDebugLogging(c, fmi2True, 1, pct);
-    CHECK(strstr(last_message, "50%s") != NULL, "percent mangled: %s", last_message);
+    CHECK(strstr(host_log.message, "50%s") != NULL, "percent mangled: %s", host_log.message);
     fmi2FreeInstance(c);
 }
 
@@ -165,7 +150,7 @@ static void test_instances_and_state(void) {
     fmi2Component fresh = make("fresh");
     fmi2FMUstate st4 = NULL;
     CHECK(fmi2DeSerializeFMUstate(fresh, bytes, n, &st4) == fmi2OK, "deserialize into fresh");
-    CHECK(fmi2SetFMUstate(fresh, st4) == fmi2OK, "set state into fresh: %s", last_message);
+    CHECK(fmi2SetFMUstate(fresh, st4) == fmi2OK, "set state into fresh: %s", host_log.message);
     double tf = ta - 50e-3;
     for (int k = 101; k <= 150; ++k) drive(fresh, 1e-4 * k, -1e-5 * k, 18.0, &tf);
     double cont[4];
@@ -280,15 +265,15 @@ static void test_range_message_names_the_unit(void) {
     const fmi2ValueReference alpha = OC_VR_alpha, eps1 = OC_VR_eps1, mu1 = OC_VR_mu1;
     double v = 90.0;
     CHECK(fmi2SetReal(c, &alpha, 1, &v) == fmi2Error, "alpha = 90 accepted");
-    CHECK(strstr(last_message, "alpha = 90 rejected: outside [-12.5664, 12.5664] rad") != NULL,
-          "unit not named: %s", last_message);
+    CHECK(strstr(host_log.message, "alpha = 90 rejected: outside [-12.5664, 12.5664] rad") != NULL,
+          "unit not named: %s", host_log.message);
     v = -1.0;
     CHECK(fmi2SetReal(c, &eps1, 1, &v) == fmi2Error, "eps1 = -1 accepted");
-    CHECK(strstr(last_message, "1e+300] N/m") != NULL, "unit not named: %s", last_message);
+    CHECK(strstr(host_log.message, "1e+300] N/m") != NULL, "unit not named: %s", host_log.message);
     v = -1.0; /* dimensionless ("1"): no unit after the range */
     CHECK(fmi2SetReal(c, &mu1, 1, &v) == fmi2Error, "mu1 = -1 accepted");
-    CHECK(strstr(last_message, "1e+150]") != NULL && strstr(last_message, "] 1") == NULL,
-          "dimensionless unit printed: %s", last_message);
+    CHECK(strstr(host_log.message, "1e+150]") != NULL && strstr(host_log.message, "] 1") == NULL,
+          "dimensionless unit printed: %s", host_log.message);
     fmi2FreeInstance(c);
 }
 
@@ -304,20 +289,20 @@ static void test_state_handles(void) {
     CHECK(fmi2GetFMUstate(a, &st) == fmi2OK && st != NULL, "get state");
     kept = st;
     CHECK(fmi2FreeFMUstate(a, &st) == fmi2OK && st == NULL, "free");
-    n_logged = 0;
+    host_log.count = 0;
     CHECK(fmi2FreeFMUstate(a, &kept) == fmi2Error && kept != NULL, "double free accepted");
-    CHECK(n_logged == 1 && strstr(last_message, "not a state of this instance"), "reason: %s",
-          last_message);
+    CHECK(host_log.count == 1 && strstr(host_log.message, "not a state of this instance"),
+          "reason: %s", host_log.message);
     CHECK(fmi2GetFMUstate(a, &kept) == fmi2Error, "a freed state reused by get");
     CHECK(fmi2GetFMUstate(b, &other) == fmi2OK, "get state of b");
     CHECK(fmi2FreeFMUstate(a, &other) == fmi2Error && other != NULL, "b's state freed by a");
     CHECK(fmi2FreeFMUstate(b, &other) == fmi2OK && other == NULL, "b frees its own");
     CHECK(fmi2GetFMUstate(a, &st) == fmi2OK, "get again");
-    n_logged = 0;
+    host_log.count = 0;
     CHECK(fmi2FreeFMUstate(a, (fmi2FMUstate *)st) == fmi2OK, "the state for its address");
-    CHECK(n_logged == 1 && last_status == fmi2Warning &&
-              strstr(last_message, "given the state instead of a pointer to it"),
-          "warning: %s", last_message);
+    CHECK(host_log.count == 1 && host_log.status == fmi2Warning &&
+              strstr(host_log.message, "given the state instead of a pointer to it"),
+          "warning: %s", host_log.message);
     fmi2FMUstate left = NULL; /* one left for FreeInstance to free */
     CHECK(fmi2GetFMUstate(a, &left) == fmi2OK, "get one to leave");
     fmi2FreeInstance(a);

@@ -6,23 +6,13 @@
 
 #include "check.h"
 #include "fmi3Functions.h"
+#include "host_support.h"
 #include "models/OrthotropicContact/table.h"
 
-static int n_logged;
-static char last_message[512];
-
-static void logger(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
-                   fmi3String message) {
-    (void)env;
-    (void)status;
-    (void)category;
-    ++n_logged;
-    snprintf(last_message, sizeof last_message, "%s", message);
-}
-
 static fmi3Instance make(const char *name) {
-    fmi3Instance c = fmi3InstantiateCoSimulation(name, FMU_GUID, "", fmi3False, fmi3False,
-                                                 fmi3False, fmi3False, NULL, 0, NULL, logger, NULL);
+    fmi3Instance c =
+        fmi3InstantiateCoSimulation(name, FMU_GUID, "", fmi3False, fmi3False, fmi3False, fmi3False,
+                                    NULL, 0, NULL, host_keep3, NULL);
     CHECK(c != NULL, "instantiate %s failed", name);
     return c;
 }
@@ -37,23 +27,23 @@ static void drive(fmi3Instance c, double u1, double u2, double N, double *t) {
     const fmi3ValueReference vrs[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
     const double v[3] = {u1, u2, N};
     fmi3Boolean ev, term, early;
-    CHECK(fmi3SetFloat64(c, vrs, 3, v, 3) == fmi3OK, "set inputs: %s", last_message);
+    CHECK(fmi3SetFloat64(c, vrs, 3, v, 3) == fmi3OK, "set inputs: %s", host_log.message);
     CHECK(fmi3DoStep(c, *t, 1e-3, fmi3True, &ev, &term, &early, &t_now) == fmi3OK, "doStep: %s",
-          last_message);
+          host_log.message);
     CHECK(!ev && !term && !early && fabs(t_now - (*t + 1e-3)) < 1e-15, "doStep flags");
     *t += 1e-3;
 }
 
 static void test_rejects(void) {
-    n_logged = 0;
-    CHECK(fmi3InstantiateCoSimulation("x", "{bad}", "", 0, 0, 0, 0, NULL, 0, NULL, logger, NULL) ==
-              NULL,
+    host_log.count = 0;
+    CHECK(fmi3InstantiateCoSimulation("x", "{bad}", "", 0, 0, 0, 0, NULL, 0, NULL, host_keep3,
+                                      NULL) == NULL,
           "bad token accepted");
-    CHECK(strstr(last_message, "instantiationToken"), "reason: %s", last_message);
-    CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 1, 0, NULL, 0, NULL, logger, NULL) ==
-              NULL,
+    CHECK(strstr(host_log.message, "instantiationToken"), "reason: %s", host_log.message);
+    CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 1, 0, NULL, 0, NULL, host_keep3,
+                                      NULL) == NULL,
           "event mode accepted");
-    CHECK(fmi3InstantiateModelExchange("x", FMU_GUID, "", 0, 0, NULL, logger) == NULL, "ME");
+    CHECK(fmi3InstantiateModelExchange("x", FMU_GUID, "", 0, 0, NULL, host_keep3) == NULL, "ME");
 }
 
 static void test_types_and_states(void) {
@@ -226,8 +216,8 @@ static void intermediate(fmi3InstanceEnvironment env, fmi3Float64 t, fmi3Boolean
 static void test_intermediate_variables_requested(void) {
     const fmi3ValueReference wanted[3] = {OC_VR_T1, OC_VR_T2, OC_VR_s1};
     fmi3Instance c = fmi3InstantiateCoSimulation("inter", FMU_GUID, "", 0, 0, 0, 0, wanted, 3, NULL,
-                                                 logger, intermediate);
-    CHECK(c != NULL, "a request for intermediate variables refused: %s", last_message);
+                                                 host_keep3, intermediate);
+    CHECK(c != NULL, "a request for intermediate variables refused: %s", host_log.message);
     fmi3Instance plain = make("plain");
     start(c);
     start(plain);
@@ -245,8 +235,8 @@ static void test_intermediate_variables_requested(void) {
     CHECK(n_intermediate_calls == 0, "intermediateUpdate called %d times", n_intermediate_calls);
     fmi3FreeInstance(c);
     fmi3FreeInstance(plain);
-    CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 0, 0, NULL, 2, NULL, logger, NULL) ==
-              NULL,
+    CHECK(fmi3InstantiateCoSimulation("x", FMU_GUID, "", 0, 0, 0, 0, NULL, 2, NULL, host_keep3,
+                                      NULL) == NULL,
           "NULL list with a count accepted");
 }
 
@@ -258,11 +248,12 @@ static void test_uint64_and_state_handles(void) {
     fmi3Instance c = make("handles");
     const fmi3ValueReference vr_mu1 = OC_VR_mu1;
     fmi3UInt64 u = 1;
-    n_logged = 0;
+    host_log.count = 0;
     CHECK(fmi3SetUInt64(c, &vr_mu1, 1, &u, 1) == fmi3Error, "mu1 set as UInt64");
-    CHECK(n_logged == 1 &&
-              strstr(last_message, "fmi3SetUInt64: variable mu1 (vr 1) is of type Float64 (Real)"),
-          "reason: %s", last_message);
+    CHECK(host_log.count == 1 &&
+              strstr(host_log.message,
+                     "fmi3SetUInt64: variable mu1 (vr 1) is of type Float64 (Real)"),
+          "reason: %s", host_log.message);
     start(c);
     CHECK(fmi3GetUInt64(c, &vr_mu1, 1, &u, 1) == fmi3Error, "mu1 read as UInt64");
     fmi3FMUState st = NULL, kept = NULL;
@@ -270,12 +261,12 @@ static void test_uint64_and_state_handles(void) {
     kept = st;
     CHECK(fmi3FreeFMUState(c, &st) == fmi3OK && st == NULL, "free");
     CHECK(fmi3FreeFMUState(c, &kept) == fmi3Error, "double free accepted");
-    CHECK(strstr(last_message, "not a state of this instance"), "reason: %s", last_message);
+    CHECK(strstr(host_log.message, "not a state of this instance"), "reason: %s", host_log.message);
     CHECK(fmi3GetFMUState(c, &st) == fmi3OK, "get again");
-    n_logged = 0;
-    CHECK(fmi3FreeFMUState(c, (fmi3FMUState *)st) == fmi3OK && n_logged == 1 &&
-              strstr(last_message, "given the state instead of a pointer to it"),
-          "warning: %s", last_message);
+    host_log.count = 0;
+    CHECK(fmi3FreeFMUState(c, (fmi3FMUState *)st) == fmi3OK && host_log.count == 1 &&
+              strstr(host_log.message, "given the state instead of a pointer to it"),
+          "warning: %s", host_log.message);
     fmi3FreeInstance(c);
 }
 

@@ -5,7 +5,6 @@
  * named, no file = the compiled defaults, reset back to the file's values.
  * OC_TEST_DIR (from CMake) holds "start values/resources/". */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,29 +13,8 @@
 #include "fmi2Functions.h"
 #include "fmi3Functions.h"
 #include "glue/fmu_instance.h"
+#include "host_support.h"
 #include "models/OrthotropicContact/table.h"
-
-static char last_message[1024];
-
-static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                    fmi2String category, fmi2String message, ...) {
-    (void)env;
-    (void)name;
-    (void)status;
-    (void)category;
-    va_list ap;
-    va_start(ap, message);
-    vsnprintf(last_message, sizeof last_message, message, ap);
-    va_end(ap);
-}
-static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
-                    fmi3String message) {
-    (void)env;
-    (void)status;
-    (void)category;
-    snprintf(last_message, sizeof last_message, "%s", message);
-}
-static const fmi2CallbackFunctions CB = {logger2, calloc, free, NULL, NULL};
 
 #define DIR OC_TEST_DIR "/start values/resources/"
 #define URI "file://" OC_TEST_DIR "/start%20values/resources"
@@ -51,10 +29,10 @@ static void write_file(const char *text) {
 }
 
 static fmi2Component make2(void) {
-    return fmi2Instantiate("sv", fmi2CoSimulation, FMU_GUID, URI, &CB, 0, 0);
+    return fmi2Instantiate("sv", fmi2CoSimulation, FMU_GUID, URI, &host_keep2_cb, 0, 0);
 }
 static fmi3Instance make3(void) {
-    return fmi3InstantiateCoSimulation("sv", FMU_GUID, DIR, 0, 0, 0, 0, NULL, 0, NULL, logger3,
+    return fmi3InstantiateCoSimulation("sv", FMU_GUID, DIR, 0, 0, 0, 0, NULL, 0, NULL, host_keep3,
                                        NULL);
 }
 
@@ -88,7 +66,7 @@ static void test_values_read_exactly(void) {
                                       OC_VR_beta};
     const double want[5] = {0.5, eps1, s1, s2, 0.0};
     fmi2Component c = make2();
-    CHECK(c != NULL, "FMI 2.0 refused a good file: %s", last_message);
+    CHECK(c != NULL, "FMI 2.0 refused a good file: %s", host_log.message);
     if (!c) return;
     fmi2SetupExperiment(c, 0, 0, 0, 0, 0);
     fmi2EnterInitializationMode(c);
@@ -111,7 +89,7 @@ static void test_values_read_exactly(void) {
     fmi2FreeInstance(c);
 
     fmi3Instance d = make3();
-    CHECK(d != NULL, "FMI 3.0 refused a good file: %s", last_message);
+    CHECK(d != NULL, "FMI 3.0 refused a good file: %s", host_log.message);
     if (!d) return;
     fmi3EnterInitializationMode(d, 0, 0, 0, 0, 0);
     fmi3Int64 r64;
@@ -145,18 +123,18 @@ static void test_bad_files_refused(void) {
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; ++k) {
         write_file(bad[k].text);
-        last_message[0] = '\0';
+        host_log.message[0] = '\0';
         fmi2Component c = make2();
         char line[32];
         snprintf(line, sizeof line, "line %d:", bad[k].line);
         CHECK(c == NULL, "FMI 2.0 accepted: %s", bad[k].text);
-        CHECK(strstr(last_message, bad[k].expect) && strstr(last_message, line) &&
-                  strstr(last_message, "start values/resources/start_values.txt"),
-              "case %zu: message \"%s\"", k, last_message);
+        CHECK(strstr(host_log.message, bad[k].expect) && strstr(host_log.message, line) &&
+                  strstr(host_log.message, "start values/resources/start_values.txt"),
+              "case %zu: message \"%s\"", k, host_log.message);
         if (c) fmi2FreeInstance(c);
         fmi3Instance d = make3();
-        CHECK(d == NULL && strstr(last_message, bad[k].expect), "FMI 3.0 case %zu: %s", k,
-              last_message);
+        CHECK(d == NULL && strstr(host_log.message, bad[k].expect), "FMI 3.0 case %zu: %s", k,
+              host_log.message);
         if (d) fmi3FreeInstance(d);
     }
     /* Each value in its range, together inadmissible for the law (tensors
@@ -166,24 +144,24 @@ static void test_bad_files_refused(void) {
              1e-300);
     write_file(text);
     fmi2Component c = make2();
-    CHECK(c == NULL && strstr(last_message, "not admissible"), "inadmissible set: %s",
-          last_message);
+    CHECK(c == NULL && strstr(host_log.message, "not admissible"), "inadmissible set: %s",
+          host_log.message);
     if (c) fmi2FreeInstance(c);
 }
 
 static void test_no_file_is_the_defaults(void) {
     remove(DIR "start_values.txt");
-    last_message[0] = '\0';
+    host_log.message[0] = '\0';
     fmi2Component c = make2();
-    CHECK(c != NULL && last_message[0] == '\0', "no file: %s", last_message);
+    CHECK(c != NULL && host_log.message[0] == '\0', "no file: %s", host_log.message);
     fmi2SetupExperiment(c, 0, 0, 0, 0, 0);
     fmi2EnterInitializationMode(c);
     const fmi2ValueReference vr = OC_VR_mu1;
     double v;
     CHECK(fmi2GetReal(c, &vr, 1, &v) == fmi2OK && v == 0.408, "default mu1 %g", v);
     fmi2FreeInstance(c);
-    fmi3Instance d =
-        fmi3InstantiateCoSimulation("sv", FMU_GUID, NULL, 0, 0, 0, 0, NULL, 0, NULL, logger3, NULL);
+    fmi3Instance d = fmi3InstantiateCoSimulation("sv", FMU_GUID, NULL, 0, 0, 0, 0, NULL, 0, NULL,
+                                                 host_keep3, NULL);
     CHECK(d != NULL, "NULL resourcePath refused");
     if (d) fmi3FreeInstance(d);
 }
