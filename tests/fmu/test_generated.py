@@ -19,6 +19,11 @@ from orthocontact.fmu import generated
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.generated import (
     LAW,
+    PAD_FLOAT_OUTPUTS,
+    PAD_FOUNDATION,
+    PAD_INPUTS,
+    PAD_INTEGER_OUTPUTS,
+    PAD_MODEL,
     PATCH_FLOAT_OUTPUTS,
     PATCH_GEOMETRY,
     PATCH_INPUTS,
@@ -83,6 +88,20 @@ def test_the_patchs_facts_are_its_model_descriptions(fmi_version):
         v = by_name[row.name]
         assert v.causality in ("parameter", "structuralParameter") and float(v.start) == row.start
     assert max(row.max for row in PATCH_GEOMETRY if row.type == "Int32") == 32   # PATCH_MAX_SIDE
+
+
+def test_the_pads_facts_are_its_model_descriptions(fmi_version):
+    md = read_model_description(str(find_fmu(fmi_version=fmi_version, model=PAD_MODEL)))
+    assert md.coSimulation.modelIdentifier == PAD_MODEL == models()["pad"]
+    assert PAD_INPUTS == tuple(v.name for v in md.modelVariables if v.causality == "input")
+    outputs = [v for v in md.modelVariables if v.causality == "output" and v.name not in
+               {a.name for a in manifest(PAD_MODEL).arrays}]
+    assert PAD_FLOAT_OUTPUTS == tuple(v.name for v in outputs if v.type in ("Real", "Float64"))
+    assert PAD_INTEGER_OUTPUTS == tuple(v.name for v in outputs if v.type in ("Integer", "Int32"))
+    by_name = {v.name: v for v in md.modelVariables}
+    assert [row.name for row in PAD_FOUNDATION] == ["kn", "dn"]   # the patch's geometry is its own
+    for row in PAD_FOUNDATION:
+        assert by_name[row.name].causality == "parameter" and float(by_name[row.name].start) == row.start
 
 
 def test_contact_params_cross_to_another_process():

@@ -85,11 +85,19 @@ class PatchGeometry:
                 raise ValueError(f"PatchGeometry: {problem}")
 
 
-class PatchFMU(FreedOnClose):
-    """One instance of the ContactPatch FMU, FMI 2.0 or 3.0."""
+class CellsFMU(FreedOnClose):
+    """One instance of an FMU on the patch's cells, FMI 2.0 or 3.0: what the
+    patch (PatchFMU) and the pad (fmu.pad.PadFMU) share.  A subclass names
+    its MODEL, its INPUTS (all Float64, set together), its FLOAT_OUTPUTS and
+    INTEGER_OUTPUTS, and LOAD: the outputs load() and derivative() read."""
+    MODEL: str = PATCH_MODEL
+    INPUTS: tuple = PATCH_INPUTS
+    FLOAT_OUTPUTS: tuple = PATCH_FLOAT_OUTPUTS
+    INTEGER_OUTPUTS: tuple = PATCH_INTEGER_OUTPUTS
+    LOAD: tuple = ("T1", "T2", "Mz")
 
     def __init__(self, fmu_path=None, instance_name: str = "patch", fmi_version: int = 2):
-        path = find_fmu(fmu_path, fmi_version, model=PATCH_MODEL)
+        path = find_fmu(fmu_path, fmi_version, model=self.MODEL)
         self.path = path
         md = model_description(path)
         self.fmi_version = int(md.fmiVersion.split(".")[0])
@@ -107,8 +115,9 @@ class PatchFMU(FreedOnClose):
             self._set_real, self._get_real = self._slave.setReal, self._slave.getReal
         else:
             self._set_real, self._get_real = self._slave.setFloat64, self._slave.getFloat64
-        self._in_vr = [self.vr[n] for n in INPUTS]
-        self._out_vr = [self.vr[n] for n in OUTPUTS]
+        self._in_vr = [self.vr[n] for n in self.INPUTS]
+        self._out_vr = [self.vr[n] for n in self.FLOAT_OUTPUTS]
+        self._load_vr = [self.vr[n] for n in self.LOAD]
 
     def _call(self, what: str, fn, *args):
         """fmpy raises on an error status; the FMU's last logged line says why."""
@@ -124,19 +133,16 @@ class PatchFMU(FreedOnClose):
         self._call(f"setting {name}", integer_call(self._slave, self.fmi_version, self.types[name]),
                    [self.vr[name]], [int(value)])
 
-    def initialize(self, params: ContactParams, geometry: PatchGeometry,
-                   inputs: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
-                   centre_of_pressure: tuple[float, float] = (0.0, 0.0)):
-        """Sets the law's parameters and the patch's, the initial inputs
-        (u1 [m], u2 [m], theta [rad], N [N]) and enters step mode; every cell
-        starts unloaded where the inputs put it (initialSlip = atInputs)."""
-        if len(inputs) != 4:
-            raise ValueError(f"inputs must be (u1 [m], u2 [m], theta [rad], N [N]), got {inputs!r}")
+    def _start(self, params: ContactParams, geometry: PatchGeometry, reals: dict, inputs: tuple):
+        """Sets the law's parameters, the geometry and the model's own `reals`
+        {name: value}, the initial inputs (INPUTS' order) and enters step
+        mode; every cell starts unloaded where the inputs put it
+        (initialSlip = atInputs)."""
         law = params.fmu_values()
         rule = law.pop(params.RULE_VARIABLE)
         sizes = {row.name: float(getattr(geometry, row.name))
                  for row in PATCH_GEOMETRY if row.type == "Float64"}
-        values = {**law, **sizes}
+        values = {**law, **sizes, **reals}
         self._call("setting parameters", self._set_real, [self.vr[n] for n in values],
                    list(values.values()))
         self._set_integer(params.RULE_VARIABLE, int(rule))
@@ -147,12 +153,73 @@ class PatchFMU(FreedOnClose):
         self.shape = (geometry.n1, geometry.n2)
         if self.fmi_version == 2:
             self._call("setupExperiment", self._slave.setupExperiment)
-            self._call("enterInitializationMode", self._slave.enterInitializationMode)
-        else:
-            self._call("enterInitializationMode", self._slave.enterInitializationMode)
-        self.set_inputs(*inputs, *centre_of_pressure)
+        self._call("enterInitializationMode", self._slave.enterInitializationMode)
+        self._set_inputs(inputs)
         self._call("exitInitializationMode", self._slave.exitInitializationMode)
         self.initialized = True
+
+    def _set_inputs(self, values):
+        """All INPUTS in one call (their order): the pending step, not committed."""
+        pairs = ", ".join(f"{n}={float(v)}" for n, v in zip(self.INPUTS, values))
+        self._call(f"setting inputs ({pairs})", self._set_real, self._in_vr, [float(v) for v in values])
+
+    def outputs(self) -> dict:
+        """FLOAT_OUTPUTS (T1, T2 [N], Mz [N m], dissipatedEnergy [J],
+        slipFraction [-], ...) and contactState (0 open, 1 all stick, 2
+        partly slipping, 3 all slipping) of the pending step."""
+        out = dict(zip(self.FLOAT_OUTPUTS, self._call("getting outputs", self._get_real, self._out_vr)))
+        get_int = self._slave.getInteger if self.fmi_version == 2 else self._slave.getInt32
+        for name in self.INTEGER_OUTPUTS:
+            out[name] = self._call(f"getting {name}", get_int, [self.vr[name]])[0]
+        return out
+
+    def _cells(self, name: str, get) -> list[list]:
+        """The FMI 3.0 array `name` of the pending step, [i][j] the i-th cell
+        along length, the j-th along width; FMI 2.0 has no arrays: ValueError."""
+        if self.fmi_version != 3:
+            raise ValueError(f"{self.path}: the cells' values are FMI 3.0 arrays ({name}); "
+                             "FMI 2.0 has no arrays")
+        if self.shape is None:
+            raise ValueError(f"{name}: the FMU is not initialized yet (initialize sets n1, n2)")
+        n1, n2 = self.shape
+        flat = self._call(f"getting {name}", get, [self.vr[name]], n1 * n2)
+        return [list(flat[i * n2:(i + 1) * n2]) for i in range(n1)]
+
+    def cell_states(self) -> list[list[int]]:
+        """Each cell's state in the pending step (0 open, 1 stick, 2 slip),
+        [i][j] the i-th cell along length, the j-th along width: the FMI 3.0
+        array cellState.  FMI 2.0 has no arrays: ValueError there."""
+        return self._cells("cellState", getattr(self._slave, "getInt32", None))
+
+    def load(self) -> tuple:
+        """LOAD of the pending step ((T1, T2, Mz) [N, N, N m] for the patch)."""
+        return tuple(self._call(f"getting {', '.join(self.LOAD)}", self._get_real, self._load_vr))
+
+    def derivative(self, known: str) -> tuple:
+        """d(LOAD)/d(known) of the pending step, known one of INPUTS (the
+        FMU's consistent tangent)."""
+        return tuple(self._call(f"getting d({', '.join(self.LOAD)})/d{known}",
+                                self._slave.getDirectionalDerivative, self._load_vr, [self.vr[known]],
+                                [1.0]))
+
+    def do_step(self, h: float):
+        """Commits the pending step; h [s] is the communication step size."""
+        self._call(f"doStep(t={self.time}, h={h})", self._slave.doStep, self.time, h)
+        self.time += h
+
+
+class PatchFMU(CellsFMU):
+    """One instance of the ContactPatch FMU, FMI 2.0 or 3.0."""
+
+    def initialize(self, params: ContactParams, geometry: PatchGeometry,
+                   inputs: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0),
+                   centre_of_pressure: tuple[float, float] = (0.0, 0.0)):
+        """Sets the law's parameters and the patch's, the initial inputs
+        (u1 [m], u2 [m], theta [rad], N [N]) and enters step mode; every cell
+        starts unloaded where the inputs put it (initialSlip = atInputs)."""
+        if len(inputs) != 4:
+            raise ValueError(f"inputs must be (u1 [m], u2 [m], theta [rad], N [N]), got {inputs!r}")
+        self._start(params, geometry, {}, (*inputs, *centre_of_pressure))
 
     def set_inputs(self, u1: float, u2: float, theta: float, N: float, p1: float = 0.0,
                    p2: float = 0.0):
@@ -161,44 +228,4 @@ class PatchFMU(FreedOnClose):
         in one call: with N > 0, p must lie in the kern and be 0 along a side
         of one cell (else FMUError with the FMU's reason, nothing changed);
         with N <= 0 the contact is open and p is not looked at."""
-        self._call(f"setting inputs (u1={u1}, u2={u2}, theta={theta}, N={N}, p1={p1}, p2={p2})",
-                   self._set_real, self._in_vr, [float(u1), float(u2), float(theta), float(N),
-                                                 float(p1), float(p2)])
-
-    def outputs(self) -> dict:
-        """T1, T2 [N], Mz [N m], dissipatedEnergy [J], slipFraction [-] and
-        contactState (0 open, 1 all stick, 2 partly slipping, 3 all slipping)
-        of the pending step."""
-        out = dict(zip(OUTPUTS, self._call("getting outputs", self._get_real, self._out_vr)))
-        get_int = self._slave.getInteger if self.fmi_version == 2 else self._slave.getInt32
-        for name in PATCH_INTEGER_OUTPUTS:
-            out[name] = self._call(f"getting {name}", get_int, [self.vr[name]])[0]
-        return out
-
-    def cell_states(self) -> list[list[int]]:
-        """Each cell's state in the pending step (0 open, 1 stick, 2 slip),
-        [i][j] the i-th cell along length, the j-th along width: the FMI 3.0
-        array cellState.  FMI 2.0 has no arrays: ValueError there."""
-        if self.fmi_version != 3:
-            raise ValueError(f"{self.path}: the cells' states are an FMI 3.0 array (cellState); "
-                             "FMI 2.0 has no arrays")
-        if self.shape is None:
-            raise ValueError("cell_states: the patch is not initialized yet (initialize sets n1, n2)")
-        n1, n2 = self.shape
-        flat = self._call("getting cellState", self._slave.getInt32, [self.vr["cellState"]], n1 * n2)
-        return [flat[i * n2:(i + 1) * n2] for i in range(n1)]
-
-    def load(self) -> tuple[float, float, float]:
-        """(T1, T2, Mz) [N, N, N m] of the pending step."""
-        return tuple(self._call("getting T1, T2, Mz", self._get_real, self._out_vr[:3]))
-
-    def derivative(self, known: str) -> tuple[float, float, float]:
-        """d(T1, T2, Mz)/d(known) of the pending step, known one of INPUTS
-        (the FMU's consistent tangent)."""
-        return tuple(self._call(f"getting d(T, Mz)/d{known}", self._slave.getDirectionalDerivative,
-                                self._out_vr[:3], [self.vr[known]], [1.0]))
-
-    def do_step(self, h: float):
-        """Commits the pending step; h [s] is the communication step size."""
-        self._call(f"doStep(t={self.time}, h={h})", self._slave.doStep, self.time, h)
-        self.time += h
+        self._set_inputs((u1, u2, theta, N, p1, p2))
