@@ -5,20 +5,21 @@ import json
 from cli_run import scenario_variant
 from orthocontact.experiment.kinds import KINDS, RunOptions, fmu_for
 from orthocontact.experiment.scenario import load
-from orthocontact.reproduction import kinds, paper_report, patch_report
+from orthocontact.reproduction import kinds, pad_report, paper_report, patch_report
 from paths import SCENARIOS
 
 
 def test_every_kind_runs_by_its_runner_and_reports_in_its_section():
     for k in KINDS.values():
         assert callable(k.part("run")) and k.part("report").section in paper_report.sections()
-    assert paper_report.sections() == [patch_report.PATCH, paper_report.SCENARIOS]
+    assert paper_report.sections() == [patch_report.PATCH, pad_report.PAD, paper_report.SCENARIOS]
 
 
 def test_reproduce_runs_the_patch_section_first_each_section_in_file_order():
-    names = ["case1", "step_study", "towed_block", "twist", "mat_aged"]
+    names = ["case1", "pushed_block", "step_study", "towed_block", "twist", "mat_aged"]
     ordered = kinds.in_report_order([load(SCENARIOS / f"{n}.toml") for n in names])
-    assert [sc.name for sc in ordered] == ["towed_block", "twist", "case1", "step_study", "mat_aged"]
+    assert [sc.name for sc in ordered] == ["towed_block", "twist", "pushed_block", "case1", "step_study",
+                                           "mat_aged"]
 
 
 def test_a_scenario_run_writes_its_summary_with_the_fmus_version(tmp_path):

@@ -170,6 +170,20 @@ def test_a_step_studys_estimate_is_the_runs_it_makes(tmp_path, counted):
     assert work.steps == 3 * sum(steps_per_run(0.02, rig.velocity_m_s, h) for h in (2e-3, 1e-3))
 
 
+def test_a_pushs_estimate_is_its_heights_times_its_angles_and_the_fmi3_cells_at_most():
+    """The bundled push: 4 heights x 4 angles of 25 carriage steps, and the
+    cells of each height's first angle again where the FMU has no arrays."""
+    work = scenario_work(load(SCENARIOS / "pushed_block.toml"))
+    assert work.parts == (("pushes", 16, 25), ("the cells again (FMI 3.0), at most", 4, 25))
+
+
+def test_a_push_of_a_billion_steps_is_refused_naming_its_keys(tmp_path):
+    big = scenario_variant(SCENARIOS / "pushed_block.toml", "step_m = 2.0e-4", "step_m = 1e-12",
+                           tmp_path / "big.toml")
+    with pytest.raises(InputError, match=r"push.travel_m or push.step_m"):
+        check_scenario_size(load(big), yes=False)
+
+
 def test_uqs_estimate_is_the_runs_it_makes(tmp_path, counted, identified):
     """uq's draws at each angle and its step check (the estimates at the
     scenario's step and at the uq step)."""

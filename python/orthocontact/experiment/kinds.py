@@ -29,9 +29,10 @@ from dataclasses import dataclass, field
 
 from ..errors import InputError, Problems
 from ..fmu.files import MODEL_IDENTIFIER, find_fmu
+from ..fmu.pad import PAD_MODEL, foundation_problem
 from ..fmu.params import RULES
 from ..fmu.patch import GEOMETRY, PATCH_MODEL, geometry_problem, geometry_range
-from .keys import ANGLE_DEG, POSITIVE, REQUIRED, boolean, choice, list_of, number
+from .keys import ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, list_of, number
 
 # The pieces of a kind written above this layer: what registers each, and
 # what it is.
@@ -192,13 +193,17 @@ PATCH = {"length_m": (POSITIVE, REQUIRED), "width_m": (POSITIVE, REQUIRED),
          "n1": (number(*geometry_range("n1")), 8), "n2": (number(*geometry_range("n2")), 8)}
 
 
+def rectangle_problems(path, table: str, given: dict, problems: Problems) -> None:
+    """A [patch] or [pad] table's sides and cells against the FMU's own ranges."""
+    for name, key in zip(GEOMETRY, ("length_m", "width_m", "n1", "n2")):
+        problem = geometry_problem(name, given[key]) if key in given else None
+        if problem is not None:
+            problems.add(f"{path}: {table}.{key}: {problem}")
+
+
 def patch_geometry(path, values: dict, problems: Problems) -> None:
     """The patch's sides and cells against the FMU's own ranges."""
-    patch = values["patch"]
-    for name, key in zip(GEOMETRY, ("length_m", "width_m", "n1", "n2")):
-        problem = geometry_problem(name, patch[key]) if key in patch else None
-        if problem is not None:
-            problems.add(f"{path}: patch.{key}: {problem}")
+    rectangle_problems(path, "patch", values["patch"], problems)
 
 
 kind("twist", model=PATCH_MODEL, carriage=False, check=patch_geometry, tables={"patch": PATCH, "twist": {
@@ -211,3 +216,22 @@ kind("towed_block", model=PATCH_MODEL, carriage=False, check=patch_geometry, tab
     "step_s": (number(0, 0.1, lo_open=True), 5e-3),
     "angles_deg": (list_of(ANGLE_DEG, unique=True), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]),
     "rules": (list_of(choice(RUN_RULES), unique=True), list(RUN_RULES))}})
+
+# The pad under a body on the ContactPad FMU (rig.pushed): the patch's
+# rectangle on a Winkler foundation of stiffness kn [N/m^3].
+PAD = {**PATCH, "kn_N_m3": (POSITIVE, REQUIRED)}
+
+
+def pad_geometry(path, values: dict, problems: Problems) -> None:
+    """The pad's sides, cells and foundation against the FMU's own ranges."""
+    pad = values["pad"]
+    rectangle_problems(path, "pad", pad, problems)
+    problem = foundation_problem("kn", pad["kn_N_m3"]) if "kn_N_m3" in pad else None
+    if problem is not None:
+        problems.add(f"{path}: pad.kn_N_m3: {problem}")
+
+
+kind("pushed_block", model=PAD_MODEL, carriage=False, check=pad_geometry, tables={"pad": PAD, "push": {
+    "heights_m": (list_of(NON_NEGATIVE, unique=True), REQUIRED),
+    "angles_deg": (list_of(ANGLE_DEG, unique=True), [0.0, 30.0, 60.0, 90.0]),
+    "travel_m": (POSITIVE, REQUIRED), "step_m": (POSITIVE, 1e-4)}})

@@ -11,7 +11,9 @@ from ..experiment.kinds import RunOptions, kind_of
 from ..experiment.scenario import Scenario
 from ..fmu.files import fmi_version_of
 from ..output.tables import write_json
-from . import paper_report, planar_outputs, scenario_outputs  # noqa: F401  (each registers its kinds' pieces)
+
+# each registers its kinds' pieces
+from . import paper_report, planar_outputs, pushed_outputs, scenario_outputs  # noqa: F401
 
 
 def run_scenario(sc: Scenario, out: Path, fmu_path, how: RunOptions) -> dict:

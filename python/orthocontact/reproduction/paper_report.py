@@ -2,14 +2,15 @@
 obtained here, with the kind of evidence each comparison is (closed-form,
 round-trip, prediction), the calibration chain, the sensitivity section and
 a section per group of scenario kinds (Section): the contact patch's
-(patch_report: not the paper's, not counted), then the paper's scenarios.
+(patch_report) and the contact pad's (pad_report: not the paper's, not
+counted), then the paper's scenarios.
 
 Each scenario kind's part of the report (experiment.kinds.ReportPart: its
 section, its lines, its entry in report.json, the paper's numbers it
 compares with) is its piece "report", registered where it is written: the
-sweep's and the step study's here, the patch's in patch_report (imported
-here: this module has every part of the report); the report asks each
-scenario's kind."""
+sweep's and the step study's here, the patch's in patch_report and the
+pad's in pad_report (imported here: this module has every part of the
+report); the report asks each scenario's kind."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -20,7 +21,7 @@ from ..experiment.kinds import KINDS as SCENARIO_KINDS
 from ..experiment.kinds import ReportPart, Section, kind_of, register
 from ..experiment.scenario import Scenario
 from ..output.tables import write_json
-from . import patch_report  # noqa: F401  (registers the patch's kinds' parts: the report has them all)
+from . import pad_report, patch_report  # noqa: F401  (register their kinds' parts: the report has them all)
 from .sensitivity import report_lines
 
 # The paper's scenarios, each with its figures: the report's last section

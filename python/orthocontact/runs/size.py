@@ -170,6 +170,17 @@ def towed_work(sc) -> Work:
     return Work().plus("tows", len(tw["rules"]) * len(tw["angles_deg"]), tw["duration_s"] / tw["step_s"])
 
 
+@estimates("pushed_block", "push.angles_deg or push.heights_m", "push.travel_m or push.step_m")
+def pushed_work(sc) -> Work:
+    """A push at each of its heights and mat angles, a carriage step at a
+    time, and the pressure's cells at the first angle of each height again
+    where the FMU has no arrays (FMI 2.0: at most one run a height)."""
+    pu = sc.push
+    steps = math.ceil(pu["travel_m"] / pu["step_m"] - 1e-9)
+    return (Work().plus("pushes", len(pu["heights_m"]) * len(pu["angles_deg"]), steps)
+            .plus("the cells again (FMI 3.0), at most", len(pu["heights_m"]), steps))
+
+
 def scenario_work(sc) -> Work:
     """Every rig run `orthocontact run` makes for a scenario: its kind's
     estimate."""

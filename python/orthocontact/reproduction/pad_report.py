@@ -1,0 +1,68 @@
+"""The report's section on the contact pad: the runs of the scenario kind of
+a body on the pad (reproduction.pushed_outputs: pushed_block) against their
+closed forms, the kind's part of the report (experiment.kinds.ReportPart)
+registered here.  The pad is this project's extension of the paper's law:
+its checks are not rows of the paper's table and not in the headline's
+counts; a failed check is its warning line, as in `orthocontact run`."""
+from __future__ import annotations
+
+from ..experiment.kinds import ReportPart, Section, register
+from ..experiment.scenario import Scenario
+
+INTRO = ("Not the paper's: the patch's cells on a Winkler foundation (the ContactPad FMU), whose pressure "
+         "follows the block's pose, each run against its own closed forms "
+         "(docs/guides/contact-pad.md in the repository). Its checks are not rows of the paper's table "
+         "above and not in its counts.")
+
+PAD = Section("The contact pad", (INTRO, ""), json_key="contact_pad")
+
+
+def pushed_json(sc: Scenario, s: dict) -> dict:
+    """report.json's entry of a push at heights: its checks, runs and thresholds."""
+    return {"kind": s["kind"], "checks": s["checks"], "runs": s["runs"], "thresholds": s["thresholds"]}
+
+
+def _number(x, fmt: str) -> str:
+    return "—" if x is None else format(x, fmt)
+
+
+def pushed_lines(sc: Scenario, s: dict) -> list[str]:
+    """A push's lines in the section: each run's regime, pressure centre and
+    trajectory angle against the closed forms, the thresholds, the figures."""
+    p = s["pad"]
+    lines = [f"### {sc.title}", "",
+             f"The block ({s['weight_N']:.4g} N) on a {p['length_m'] * 1e3:g} × {p['width_m'] * 1e3:g} mm "
+             f"pad of {p['n1']} × {p['n2']} cells on a foundation of {p['kn_N_m3']:.3g} N/m³, pushed along "
+             "X1 at a height h above the contact, free to drift laterally, quasi-static. The push's moment "
+             "moves the pressure's centre by e = μh toward the leading edge (μ the law's friction along X1 "
+             "with the block free laterally): full contact while μh ≤ L/6, the trailing edge lifting "
+             "beyond, tipping past μh = L/2. The trajectory angle φ is the point law's at every height "
+             "(every pressed cell slides the same way; the law is homogeneous in the normal force).", "",
+             "| h [mm] | mat angle [deg] | μh / L | regime (closed form) | e / L | contact fraction "
+             "(closed form) | φ [deg] | closed form [deg] |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in s["runs"]:
+        L = r["length_m"]
+        regime = r["regime"] + ("" if r["regime"] == r["regime_closed"] else f" (**{r['regime_closed']}**)")
+        if r["regime"] == "tips":
+            regime += f" at {r['tipped_at_m'] * 1e3:.3g} mm of travel"
+        e = None if r["e_m"] is None or r["regime"] == "tips" else r["e_m"] / L
+        lines.append(f"| {r['height_m'] * 1e3:g} | {r['angle_deg']:g} | {r['mu'] * r['height_m'] / L:.4f} | "
+                     f"{regime} | {_number(e, '.4f')} | "
+                     f"{_number(r['contact_fraction'] if r['regime'] != 'tips' else None, '.4f')} "
+                     f"({_number(r['contact_fraction_closed'], '.4f')}) | {_number(r['phi_deg'], '+.4f')} | "
+                     f"{r['phi_closed_deg']:+.4f} |")
+    heights = ", ".join(f"a = {a}°: lift-off from h = {t['lift_off_height_m'] * 1e3:.4g} mm, tipping from "
+                        f"{t['tipping_height_m'] * 1e3:.4g} mm" for a, t in s["thresholds"].items())
+    check = "Check: ok." if s["checks"]["ok"] else f"Check: **warning**: {s['checks']['warning']}"
+    lines += ["", f"Thresholds (closed form): {heights}.", "", check, "",
+              f"Figures: [the pressure under the block]({sc.name}/pressure_cells.png), "
+              f"[φ against mat angle at each height]({sc.name}/phi_vs_angle.png), "
+              f"[full contact, lift-off and tipping]({sc.name}/regimes.png); data: "
+              f"[{sc.name}/pushed_block.csv]({sc.name}/pushed_block.csv), "
+              f"[{sc.name}/push_paths.csv]({sc.name}/push_paths.csv), "
+              f"[{sc.name}/pressure_cells.csv]({sc.name}/pressure_cells.csv).", ""]
+    return lines
+
+
+register("pushed_block", "report", ReportPart(PAD, pushed_lines, pushed_json))

@@ -1,0 +1,255 @@
+"""The paper's block pushed at a height, on the ContactPad FMU: a quasi-static
+rig.  The carriage pushes the block along X1 through a frictionless strip
+at height h [m] above the contact (the paper's rig: the block is free to
+drift along X2, its yaw held by the strip's face), the block pressed by its
+weight m g.  Each step moves the block's X1 position by the carriage's
+increment and solves its equilibrium for the four unknowns
+x = (u2 [m], d [m], phi1 [rad], phi2 [rad]):
+
+    T2 = 0                (the strip carries no lateral force)
+    Fn = m g              (the weight)
+    M2 = h T1             (the push P = -T1 at height h: its moment h P
+                           about X2 balanced by the pressure's M2)
+    M1 = -h T2            (a lateral force at h; 0 here)
+
+by Newton with the FMU's directional derivatives of the pending step
+(backtracking on the residual), then commits the step.  The push's moment
+moves the pressure's centre toward the leading edge by e = h P / (m g):
+in steady sliding P = mu m g with mu = 1/sqrt(F11) the law's friction along
+X1 under lateral equilibrium (closed_forms.paper.steady_drive_force), so
+e = mu h and the block is in full contact while mu h <= length/6, lifts its
+trailing edge beyond, and tips past mu h = length/2
+(closed_forms.pad.pushed_at_height).  Tipping is a result, not an error:
+where the push's moment h |T1| reaches m g length/2 no pressure under the
+pad can hold it (its centre would leave the pad), and the run stops there.
+Each step first balances the block laterally at the last step's pose (u2
+alone) and asks that of the push it then carries: T1 / Fn under lateral
+equilibrium is the friction, which the pressure's shape does not change
+once every pressed cell slides.
+
+In steady sliding every pressed cell slides the same way, and the law is
+homogeneous of degree one in the normal force: the cells' forces are their
+normal forces times one steady force, whatever the pressure's shape, so the
+trajectory angle is the point law's (closed_forms.paper.steady_tan_phi)
+with or without the height, lift-off included; the height moves the
+pressure, not the path."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..closed_forms.pad import FULL_CONTACT, LIFT_OFF, TIPS
+from ..errors import InputError
+from ..fmu.pad import Foundation, PadFMU
+from ..fmu.params import ContactParams
+from ..fmu.patch import PatchGeometry
+
+# The unknowns of a step and the residuals' scales' names.
+UNKNOWNS = ("u2", "d", "phi1", "phi2")
+# Newton's tolerance on the residuals, relative to the weight (forces) and
+# the weight times the pad's length (moments).
+RESIDUAL_TOL = 1e-11
+NEWTON_ITERATIONS = 40
+# Halvings of a carriage step through which a step's Newton is continued.
+CONTINUATION_DEPTH = 8
+# The largest tilt [rad] a step may reach: the pad's approach d + phi2 X -
+# phi1 Y is the first order of sin(phi) (relative error phi^2/6: 4e-4 here).
+MAX_TILT_RAD = 0.05
+
+
+class PushNotSolved(InputError):
+    """A step whose equilibrium Newton did not find (not tipping: that is a
+    result); the message names the step."""
+
+
+@dataclass(frozen=True)
+class PushedBlock:
+    """The block: mass_kg [kg] under g [m/s^2] on its pad (geometry and
+    foundation), pushed at height_m [m] above the contact (>= 0)."""
+    mass_kg: float
+    g: float
+    pad: PatchGeometry
+    foundation: Foundation
+    height_m: float
+
+    def __post_init__(self):
+        for name in ("mass_kg", "g"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                raise ValueError(f"PushedBlock: {name} must be a finite number > 0, got {v!r}")
+        h = self.height_m
+        if isinstance(h, bool) or not isinstance(h, (int, float)) or not math.isfinite(h) or h < 0:
+            raise ValueError(f"PushedBlock: height_m must be a finite number >= 0, got {h!r}")
+
+    @property
+    def weight(self) -> float:
+        """m g [N]."""
+        return self.mass_kg * self.g
+
+
+@dataclass(frozen=True)
+class PushResult:
+    """A push's record, one entry per step solved: the carriage's travel x1
+    [m], the block's lateral position x2 [m], its pose d [m], phi1, phi2
+    [rad], the wrench T1, T2 [N], Mz, M1, M2 [N m], Fn [N], contact_fraction
+    and slip_fraction [-], Newton's iterations.  regime: FULL_CONTACT or
+    LIFT_OFF at the last step, or TIPS (the run stopped at tipped_at_m [m]
+    of travel, where h |T1| reached m g length/2).  cells: the cells' normal
+    forces and states (n1, n2) at the last step solved, when asked (FMI 3.0)."""
+    x1: np.ndarray
+    x2: np.ndarray
+    d: np.ndarray
+    phi1: np.ndarray
+    phi2: np.ndarray
+    T1: np.ndarray
+    T2: np.ndarray
+    Mz: np.ndarray
+    M1: np.ndarray
+    M2: np.ndarray
+    Fn: np.ndarray
+    contact_fraction: np.ndarray
+    slip_fraction: np.ndarray
+    iterations: np.ndarray
+    regime: str
+    tipped_at_m: float | None = None
+    cell_normal: np.ndarray | None = None
+    cell_state: np.ndarray | None = None
+
+    def trajectory_tan_phi(self, fit_from: float = 0.5) -> float:
+        """The steady slope dx2/dx1 of the path: a line fitted over the part
+        of the travel from fit_from of it on (NaN for a run that tipped)."""
+        if self.regime == TIPS or len(self.x1) < 2:
+            return math.nan
+        keep = self.x1 >= fit_from * self.x1[-1]
+        return float(np.polyfit(self.x1[keep], self.x2[keep], 1)[0])
+
+
+def _positive(name: str, v) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+        raise ValueError(f"{name} must be a finite number > 0, got {v!r}")
+    return float(v)
+
+
+class _NotConverged(Exception):
+    """Newton did not reach equilibrium from its start (a continuation may)."""
+
+
+class _Tips(Exception):
+    """The push's moment cannot be held: the run's result, not an error."""
+
+
+def push(params: ContactParams, block: PushedBlock, travel_m: float, step_m: float,
+         fmi_version: int = 2, fmu_path=None, cells: bool = False) -> PushResult:
+    """Pushes the block over travel_m [m] in carriage steps of step_m [m]
+    from rest (every cell unloaded where the block settles under its
+    weight); each step's equilibrium by Newton (module docstring), started
+    from the last step's and, where it does not converge, continued through
+    intermediate carriage positions (pending steps, none committed).  With
+    cells, the cells' normal forces and states at the last step solved
+    (FMI 3.0).  A step it cannot solve, or whose tilt exceeds MAX_TILT_RAD
+    (the pad's approach is linear in small tilts), raises PushNotSolved."""
+    travel, h_step = _positive("travel_m", travel_m), _positive("step_m", step_m)
+    n = int(math.ceil(travel / h_step - 1e-9))
+    g, W = block.pad, block.weight
+    h = float(block.height_m)
+    kn = block.foundation.kn
+    force_tol, moment_tol = RESIDUAL_TOL * W, RESIDUAL_TOL * W * max(g.length, g.width)
+    x = np.array([0.0, W / (kn * g.length * g.width), 0.0, 0.0])   # settled, level
+    rec = {k: [] for k in ("x1", "x2", "d", "phi1", "phi2", "T1", "T2", "Mz", "M1", "M2", "Fn",
+                           "contact_fraction", "slip_fraction", "iterations")}
+    regime, tipped, last_cells = None, None, (None, None)
+    with PadFMU(fmu_path, "pushed", fmi_version) as fmu:
+        fmu.initialize(params, g, block.foundation, (0.0, x[0], 0.0, x[1], x[2], x[3]))
+
+        def residual(u1, x):
+            fmu.set_inputs(u1, x[0], 0.0, x[1], x[2], x[3])
+            T1, T2, Mz, Fn, M1, M2 = fmu.load()
+            R = np.array([T2 / force_tol, (Fn - W) / force_tol, (M1 + h * T2) / moment_tol,
+                          (M2 - h * T1) / moment_tol])
+            return R, (T1, T2, Mz, Fn, M1, M2)
+
+        def jacobian():
+            J = np.array(fmu.jacobian(UNKNOWNS, ("T1", "T2", "Fn", "M1", "M2")))
+            dT1, dT2, dFn, dM1, dM2 = J
+            return np.array([dT2 / force_tol, dFn / force_tol, (dM1 + h * dT2) / moment_tol,
+                             (dM2 - h * dT1) / moment_tol])
+
+        def equilibrium(u1, x):
+            """Newton from x at carriage position u1, backtracking on the residual."""
+            R, w = residual(u1, x)
+            it = 0
+            while np.max(np.abs(R)) > 1.0:
+                if it == NEWTON_ITERATIONS:
+                    raise _NotConverged(f"{np.max(np.abs(R)):.3g}")
+                dx = np.linalg.solve(jacobian(), -R)
+                step, norm = 1.0, np.max(np.abs(R))
+                while True:   # backtracking: a step that does not reduce the residual is halved
+                    trial = x + step * dx
+                    R_new, w_new = residual(u1, trial)
+                    if np.max(np.abs(R_new)) < norm or step < 1e-6:
+                        break
+                    step *= 0.5
+                x, R, w = trial, R_new, w_new
+                it += 1
+            return x, w, it
+
+        def lateral(u1, x):
+            """x with u2 such that T2 = 0 at x's pose (Newton in u2 alone, at most
+            NEWTON_ITERATIONS steps), and T1 / Fn there; _Tips if the push's
+            moment needs the pressure's centre beyond the leading edge, h |T1|
+            >= Fn length/2: T1 / Fn under lateral equilibrium is the friction
+            the pressure's shape hardly changes (not at all in full slip)."""
+            x = x.copy()
+            for _ in range(NEWTON_ITERATIONS):
+                R, w = residual(u1, x)
+                if abs(R[0]) <= 1.0:
+                    break
+                x[0] -= w[1] / fmu.jacobian(("u2",), ("T2",))[0][0]
+            T1, Fn = w[0], w[3]
+            if Fn > 0 and h * abs(T1) >= 0.5 * Fn * g.length:
+                raise _Tips
+            return x
+
+        def continued(u0, u1, x, depth=0):
+            """equilibrium at u1, through the midpoint of (u0, u1) where it does not converge."""
+            try:
+                return equilibrium(u1, x)
+            except _NotConverged as e:
+                if depth == CONTINUATION_DEPTH:
+                    raise PushNotSolved(f"the push at travel {u1:.6g} m (height {h:g} m): Newton did not "
+                                        f"reach equilibrium (residual {e} tolerances)") from None
+                xm, _, im = continued(u0, 0.5 * (u0 + u1), x, depth + 1)
+                x1, w1, i1 = continued(0.5 * (u0 + u1), u1, xm, depth + 1)
+                return x1, w1, im + i1
+
+        u_prev = 0.0
+        for k in range(1, n + 1):
+            u1 = min(k * h_step, travel)
+            try:
+                x, w, it = continued(u_prev, u1, lateral(u1, x))
+            except _Tips:
+                regime, tipped = TIPS, u1
+                break
+            if max(abs(x[2]), abs(x[3])) > MAX_TILT_RAD:
+                raise PushNotSolved(f"the push at travel {u1:.6g} m (height {h:g} m) tilts the block by "
+                                    f"{math.degrees(max(abs(x[2]), abs(x[3]))):.3g} deg, beyond the small "
+                                    f"tilts the pad models ({math.degrees(MAX_TILT_RAD):.3g} deg)")
+            u_prev = u1
+            out = fmu.outputs()
+            if cells and k == n:
+                last_cells = (np.array(fmu.cell_normal_forces()), np.array(fmu.cell_states()))
+            fmu.do_step(1.0)
+            for key, v in zip(("x1", "x2", "d", "phi1", "phi2"), (u1, *x)):
+                rec[key].append(float(v))
+            for key, v in zip(("T1", "T2", "Mz", "Fn", "M1", "M2"), w):
+                rec[key].append(float(v))
+            rec["contact_fraction"].append(out["contactFraction"])
+            rec["slip_fraction"].append(out["slipFraction"])
+            rec["iterations"].append(it)
+    if regime is None:
+        regime = FULL_CONTACT if rec["contact_fraction"] and rec["contact_fraction"][-1] == 1.0 else LIFT_OFF
+    arrays = {k: np.array(v) for k, v in rec.items()}
+    return PushResult(**arrays, regime=regime, tipped_at_m=tipped, cell_normal=last_cells[0],
+                      cell_state=last_cells[1])
