@@ -282,25 +282,25 @@ def figure_phi(sc: Scenario, runs: list, path: Path) -> None:
     """phi against the mat angle at each height, with the paper's closed form
     (the scenario's) and its measured extremum where the scenario gives it."""
     plt = pyplot()
-    fig, ax = plt.subplots(figsize=(9, 4.5))
+    fig, ax = plt.subplots(figsize=(7, 4.5))
     angles = sorted({r["angle_deg"] for r in runs})
     fine = np.linspace(min(angles), max(angles), 181)
     ax.plot(fine, closed_form_phi_deg_array(sc, fine), "-", color="0.3",
-            label=f"paper's closed form ({sc.closed_form}), any height")
+            label=f"paper's closed form ({sc.closed_form})")
     for k, h in enumerate(sorted({r["height_m"] for r in runs})):
         mine = [r for r in runs if r["height_m"] == h and r["phi_deg"] is not None]
         tips = [r["angle_deg"] for r in runs if r["height_m"] == h and r["phi_deg"] is None]
-        label = f"pad FMU, h = {h * 1e3:g} mm" + (f" (tips at a = {', '.join(f'{a:g}' for a in tips)}°)"
+        label = f"pad FMU, h = {h * 1e3:g} mm" + (f" (tips at {', '.join(f'{a:g}' for a in tips)}°)"
                                                  if tips else "")
         ax.plot([r["angle_deg"] for r in mine], [r["phi_deg"] for r in mine], "os^vD"[k % 5], ms=6 - k,
                 mfc="none", color=f"C{k}", label=label)
     if "extremum_phi_deg" in sc.paper:
         sign = -1.0 if sc.paper.get("phi_sign_differs") else 1.0
         ax.axhline(sign * sc.paper["extremum_phi_deg"], color="C3", ls=":", lw=1,
-                   label=f"paper's measured extremum {sign * sc.paper['extremum_phi_deg']:+g}° (our sign)")
+                   label=f"paper's measured extremum, {sign * sc.paper['extremum_phi_deg']:+g}°")
     ax.set_xlabel(f"{swept_label(sc)} [deg]")
     ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
-    finish(fig, ax, path, f"{sc.title}: φ at every height", outside=True)
+    finish(fig, ax, path, f"{sc.title}: φ at every height")
 
 
 def figure_regimes(sc: Scenario, runs: list, path: Path) -> None:
@@ -320,7 +320,7 @@ def figure_regimes(sc: Scenario, runs: list, path: Path) -> None:
     for a in (ax, bx):
         for t, name in ((1 / 6, "1/6: lift-off"), (0.5, "1/2: tips")):
             a.axvline(t, color="C3", ls=":", lw=1)
-            a.text(t, 0.02, f" {name}", color="C3", fontsize=7, transform=a.get_xaxis_transform())
+            a.text(t, 0.02, f"{name} ", color="C3", fontsize=7, ha="right", transform=a.get_xaxis_transform())
     for k, regime in enumerate((FULL_CONTACT, LIFT_OFF, TIPS)):
         mine = [r for r in runs if r["regime"] == regime]
         xs = [r["mu"] * r["height_m"] / L for r in mine]
@@ -336,5 +336,5 @@ def figure_regimes(sc: Scenario, runs: list, path: Path) -> None:
     bx.set_ylabel("contact fraction")
     bx.grid(alpha=0.3)
     bx.legend(fontsize=8)
-    fig.suptitle(f"{sc.title}: full contact, lift-off and tipping", fontsize=10)
-    finish(fig, ax, path, "the pressure's centre")
+    fig.suptitle(f"{sc.title}: full contact, lift-off and tipping", fontsize=10, y=0.995)
+    finish(fig, ax, path, "")
