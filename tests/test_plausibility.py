@@ -189,6 +189,11 @@ def test_a_force_is_judged_against_f_int_and_m_g():
     assert plausibility.force_check(4.0, 5.0, N).line == ("force_N = 4: below f_int_N = 5 N (the sensor "
                                                           "reads F_int plus the push)")
     assert "mu = (F - F_int)/(m g) = 10.6, outside (0, 5)" in plausibility.force_check(200.0, 5.0, N).line
+    # too large a force names a smaller unit that fits (it said "kN, or lbf?", which give smaller numbers)
+    assert plausibility.force_check(12500.0, 5.0, N).line.endswith("; force_N in mN? (the column is in N)")
+    assert plausibility.force_check(1275.0, 5.0, N).line.endswith("; force_N in gram-force? (the column is "
+                                                                   "in N)")
+    assert plausibility.force_check(1e9, 5.0, N).line.endswith("; force_N in N? (the column is in N)")
 
 
 def test_identify_refuses_a_stiffness_that_cannot_be_right_and_writes_nothing(tmp_path):

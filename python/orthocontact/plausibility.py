@@ -333,13 +333,17 @@ MU_FROM_FORCE = (0.0, 5.0)
 KN = 1e3
 
 
+# Units a force log may be in that give larger numbers than N: factor to N, name.
+SMALL_FORCE_UNITS = ((1e-3, "mN"), (9.80665e-3, "gram-force"))
+
+
 def force_check(force_N: float, f_int_N: float, normal_force: float, where: str = "") -> Finding | None:
     """A driving force of sliding [N] against the carriage's internal
     resistance F_int [N] and the normal force m g [N]: an error at or below
     F_int (the sensor reads F_int plus the push; kN named where KN times
     the force would imply a friction coefficient in MU_FROM_FORCE), or
     implying a friction coefficient (F - F_int)/(m g) outside MU_FROM_FORCE
-    (N? kN, or lbf?)."""
+    (a larger one names the smaller unit that fits: mN, gram-force)."""
     mu = (force_N - f_int_N) / normal_force
     if MU_FROM_FORCE[0] < mu < MU_FROM_FORCE[1]:
         return None
@@ -347,9 +351,12 @@ def force_check(force_N: float, f_int_N: float, normal_force: float, where: str 
         why = f"below f_int_N = {f_int_N:g} N (the sensor reads F_int plus the push)"
         if MU_FROM_FORCE[0] < (KN * force_N - f_int_N) / normal_force < MU_FROM_FORCE[1]:
             why += "; force_N in kN?"
-    else:
-        why = (f"mu = (F - F_int)/(m g) = {mu:.3g}, outside ({MU_FROM_FORCE[0]:g}, {MU_FROM_FORCE[1]:g}): "
-               "N? (kN, or lbf?)")
+    else:   # too large a force: logged in a smaller unit than N
+        why = f"mu = (F - F_int)/(m g) = {mu:.3g}, outside ({MU_FROM_FORCE[0]:g}, {MU_FROM_FORCE[1]:g})"
+        lo, hi = MU_FROM_FORCE
+        slip = next((unit for factor, unit in SMALL_FORCE_UNITS
+                     if lo < (factor * force_N - f_int_N) / normal_force < hi), "N")
+        why += f"; force_N in {slip}? (the column is in N)"
     return Finding("error", f"{where}force_N = {force_N:g}: {why}")
 
 
