@@ -4,7 +4,7 @@
 #define BENCH_COMMON_H
 #include <time.h>
 
-static double now(void) {
+static inline double now(void) {
     struct timespec ts;
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts); /* not the time others take the core */
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
@@ -13,7 +13,7 @@ static double now(void) {
 /* Step k of the path: slip = 0, the body oscillates inside the sticking
  * ellipse; slip = 1, it is pushed steadily (0.244 m/s, 0.1 ms steps) and every
  * step slips.  u = (u1 [m], u2 [m], N [N]). */
-static void bench_inputs(long k, int slip, double u[3]) {
+static inline void bench_inputs(long k, int slip, double u[3]) {
     if (slip) {
         u[0] = 2.44e-5 * k;
         u[1] = 0.3 * u[0];

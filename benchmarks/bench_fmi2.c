@@ -5,9 +5,13 @@
 #include <stdlib.h>
 
 #include "bench_common.h"
+#include "bench_rules.h"
 #include "fmi2Functions.h"
 #include "host_support.h"
 #include "models/OrthotropicContact/table.h"
+
+/* the heading's words */
+#define CALLS "FMI 2.0, ns per step: fmi2SetReal(u1,u2,N) + fmi2DoStep + fmi2GetReal(T1,T2)"
 
 static double run(int rule, int slip, long steps) {
     fmi2Component c =
@@ -35,33 +39,8 @@ static double run(int rule, int slip, long steps) {
     const double dt = now() - t0;
     int state;
     fmi2GetInteger(c, &vr_state, 1, &state);
-    if (state != (slip ? 2 : 1)) fprintf(stderr, "unexpected contact state %d\n", state);
     fmi2FreeInstance(c);
-    if (sink == 12345.6789) printf(" ");
-    return 1e9 * dt / steps;
+    return bench_ns(dt, steps, state, slip, sink);
 }
 
-/* The sliding rules by their numbers, from the table's enumeration. */
-#define RULE_NAME(name, value, description) [value] = #name,
-#define RULE_COUNT(name, value, description) +1
-static const char *const RULE_NAMES[] = {OC_SLIDING_RULE_ITEMS(RULE_NAME)};
-enum { N_RULES = 0 OC_SLIDING_RULE_ITEMS(RULE_COUNT) };
-
-int main(int argc, char **argv) {
-    const long steps = argc > 1 ? atol(argv[1]) : 500000;
-    printf("# FMI 2.0, ns per step: fmi2SetReal(u1,u2,N) + fmi2DoStep + fmi2GetReal(T1,T2), %ld "
-           "steps\n",
-           steps);
-    printf("%-11s %10s %10s %8s\n", "rule", "stick_ns", "slip_ns", "ratio");
-    for (int rule = 1; rule <= N_RULES; ++rule) {
-        double stick = 1e30, slipv = 1e30;
-        for (int rep = 0; rep < 7;
-             ++rep) { /* stick and slip interleaved; the least disturbed of 7 */
-            const double a = run(rule, 0, steps), b = run(rule, 1, steps);
-            if (a < stick) stick = a;
-            if (b < slipv) slipv = b;
-        }
-        printf("%-11s %10.1f %10.1f %8.2f\n", RULE_NAMES[rule], stick, slipv, slipv / stick);
-    }
-    return 0;
-}
+int main(int argc, char **argv) { return bench_rules(argc, argv, CALLS, run); }

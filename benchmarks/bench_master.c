@@ -26,7 +26,6 @@
 enum { ANGLES = 10, STEPS = 513, REPS = 20 }; /* ceil(0.5 m / (0.244 m/s 4 ms)) */
 
 int main(int argc, char **argv) {
-    (void)bench_inputs;
     const int rounds = argc > 1 ? atoi(argv[1]) : 7;
     char err[512];
     const char *ours = getenv("BENCH_OURS_FMI2") ? getenv("BENCH_OURS_FMI2") : OURS_FMI2;

@@ -20,19 +20,14 @@
  * build's), BENCH_PREV_FMI2/3 with BENCH_PREV_TOKEN (a previous release,
  * measured in the same rounds and printed beside).
  */
+#include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench_common.h"
 #include "bench_peer.h"
-#include <time.h>
-
-static double now_cpu(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
 #include "fmu_token.h"
 
 /* The token a previous release checks (BENCH_PREV_FMI*): its own, given as
@@ -46,6 +41,19 @@ typedef struct {
     const char *ours_path, *peer_path, *null_path, *prev_path;
     bench_fmu ours, peer, null, prev;
 } version;
+
+int bench_open(bench_fmu *f, const char *path, const char *const names[], int n) {
+    if (!(f->lib = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
+        fprintf(stderr, "cannot load %s: %s\n", path, dlerror());
+        return -1;
+    }
+    for (int i = 0; i < n; ++i)
+        if (!(f->fn[i] = dlsym(f->lib, names[i]))) {
+            fprintf(stderr, "%s does not export %s\n", path, names[i]);
+            return -1;
+        }
+    return 0;
+}
 
 static const char *const RULES[4] = {"", "associated", "coupled", "eq20"};
 
@@ -117,14 +125,14 @@ static int check(version *v, int nv, long steps) {
 static double chain_ns(int op, long n) {
     volatile double seed = 1.0000001;
     double x = seed;
-    const double t0 = now_cpu();
+    const double t0 = now();
     if (op == 0)
         for (long i = 0; i < n; ++i) x = sqrt(x);
     else if (op == 1)
         for (long i = 0; i < n; ++i) x = 1.0000001 / x;
     else
         for (long i = 0; i < n; ++i) x = x * 1.0000001 + 1e-300;
-    const double dt = now_cpu() - t0;
+    const double dt = now() - t0;
     seed = x; /* keeps the chain */
     return 1e9 * dt / n;
 }

@@ -1,5 +1,4 @@
 /* FMI 2.0 half of bench_peer.c (bench_peer.h). */
-#include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -8,81 +7,46 @@
 #include "fmi2Functions.h"
 #include "host_support.h"
 
-enum { INST, FREE, SETUP, ENTER, EXIT, SETR, GETR, SETI, GETI, STEP, NFN };
-static const char *const NAMES[NFN] = {"fmi2Instantiate",
-                                       "fmi2FreeInstance",
-                                       "fmi2SetupExperiment",
-                                       "fmi2EnterInitializationMode",
-                                       "fmi2ExitInitializationMode",
-                                       "fmi2SetReal",
-                                       "fmi2GetReal",
-                                       "fmi2SetInteger",
-                                       "fmi2GetInteger",
-                                       "fmi2DoStep"};
+/* The calls a run makes (bench_peer_run.h), each without its prefix fmi2 */
+/* clang-format off */
+#define BENCH_CALLS(F) F(Instantiate) F(FreeInstance) F(SetupExperiment) F(EnterInitializationMode) \
+    F(ExitInitializationMode) F(SetReal) F(GetReal) F(SetInteger) F(GetInteger) F(DoStep)
+/* clang-format on */
+#define BENCH_FMI 2
+typedef fmi2Component fmu_t;
+#include "bench_peer_run.h"
 
-int bench2_open(bench_fmu *f, const char *path) {
-    if (!(f->lib = dlopen(path, RTLD_NOW | RTLD_LOCAL))) {
-        fprintf(stderr, "cannot load %s: %s\n", path, dlerror());
-        return -1;
+static inline void stop(const bench_fmu *f, fmu_t c) { CALL(FreeInstance)(c); }
+
+static inline fmu_t start(const bench_fmu *f, const char *token, const bench_params *bp) {
+    fmu_t c = CALL(Instantiate)("bench", fmi2CoSimulation, token, "", &host_print2_cb, fmi2False,
+                                fmi2False);
+    const fmi2Integer rule = bp->rule;
+    if (c &&
+        (CALL(SetReal)(c, BENCH_VR_PARAMS, 6, bp->p) != fmi2OK ||
+         CALL(SetInteger)(c, &BENCH_VR_RULE, 1, &rule) != fmi2OK ||
+         CALL(SetupExperiment)(c, fmi2False, 0, 0, fmi2False, 0) != fmi2OK ||
+         CALL(EnterInitializationMode)(c) != fmi2OK || CALL(ExitInitializationMode)(c) != fmi2OK)) {
+        stop(f, c);
+        return NULL;
     }
-    for (int i = 0; i < NFN; ++i)
-        if (!(f->fn[i] = dlsym(f->lib, NAMES[i]))) {
-            fprintf(stderr, "%s does not export %s\n", path, NAMES[i]);
-            return -1;
-        }
-    return 0;
+    return c;
 }
 
-double bench2_run(const bench_fmu *f, const char *token, const bench_params *bp, int slip,
-                  long steps, double *trace) {
-    fmi2SetRealTYPE *set_real = (fmi2SetRealTYPE *)f->fn[SETR];
-    fmi2GetRealTYPE *get_real = (fmi2GetRealTYPE *)f->fn[GETR];
-    fmi2DoStepTYPE *do_step = (fmi2DoStepTYPE *)f->fn[STEP];
-    fmi2Component c = ((fmi2InstantiateTYPE *)f->fn[INST])("bench", fmi2CoSimulation, token, "",
-                                                           &host_print2_cb, fmi2False, fmi2False);
-    if (!c) return -1;
-    const fmi2ValueReference vr_par[6] = {1, 2, 3, 4, 5, 6}, vr_rule = 7;
-    const fmi2ValueReference in[3] = {8, 9, 10}, out[2] = {11, 12}, more[3] = {13, 14, 16};
-    const fmi2ValueReference vr_state = 15;
-    const fmi2Integer rule = bp->rule;
-    double result = 0;
-    if (set_real(c, vr_par, 6, bp->p) != fmi2OK ||
-        ((fmi2SetIntegerTYPE *)f->fn[SETI])(c, &vr_rule, 1, &rule) != fmi2OK ||
-        ((fmi2SetupExperimentTYPE *)f->fn[SETUP])(c, fmi2False, 0, 0, fmi2False, 0) != fmi2OK ||
-        ((fmi2EnterInitializationModeTYPE *)f->fn[ENTER])(c) != fmi2OK ||
-        ((fmi2ExitInitializationModeTYPE *)f->fn[EXIT])(c) != fmi2OK) {
-        result = -1;
-        goto done;
-    }
-    double t = 0, h = 1e-4, sink = 0;
-    int bad = 0;
-    if (trace) {
-        for (long k = 0; k < steps; ++k) {
-            double u[3], *row = trace + k * TRACE_COLUMNS;
-            fmi2Integer state;
-            bench_inputs(k, slip, u);
-            bad |= set_real(c, in, 3, u) | do_step(c, t, h, fmi2True) | get_real(c, out, 2, row) |
-                   get_real(c, more, 3, row + 2) |
-                   ((fmi2GetIntegerTYPE *)f->fn[GETI])(c, &vr_state, 1, &state);
-            row[5] = state;
-            t += h;
-        }
-    } else {
-        const double t0 = now();
-        for (long k = 0; k < steps; ++k) {
-            double u[3], T[2];
-            bench_inputs(k, slip, u);
-            bad |= set_real(c, in, 3, u) | do_step(c, t, h, fmi2True) | get_real(c, out, 2, T);
-            t += h;
-            sink += T[0];
-        }
-        result = 1e9 * (now() - t0) / steps;
-        fmi2Integer state;
-        ((fmi2GetIntegerTYPE *)f->fn[GETI])(c, &vr_state, 1, &state);
-        if (state != (slip ? 2 : 1)) bad = 1;
-    }
-    if (bad || sink == 12345.6789) result = -1;
-done:
-    ((fmi2FreeInstanceTYPE *)f->fn[FREE])(c);
-    return result;
+static inline int step(const bench_fmu *f, fmu_t c, double t, double h, const double u[3],
+                       double T[2]) {
+    int st = CALL(SetReal)(c, BENCH_VR_IN, 3, u);
+    st |= CALL(DoStep)(c, t, h, fmi2True);
+    return st | CALL(GetReal)(c, BENCH_VR_T, 2, T);
+}
+
+static inline int state(const bench_fmu *f, fmu_t c) {
+    fmi2Integer s;
+    return CALL(GetInteger)(c, &BENCH_VR_STATE, 1, &s) == fmi2OK ? s : -1;
+}
+
+static inline int more(const bench_fmu *f, fmu_t c, double *row) {
+    const int s = state(f, c);
+    row[5] = s;
+    return CALL(GetReal)(c, BENCH_VR_MORE, 3, row + 2) | (s < 0);
 }

@@ -1,7 +1,9 @@
 /* A null FMU for the benchmark's floor (bench_peer): the FMI 2.0 calls a
  * step makes, doing nothing but keep the inputs and hand back two numbers.
  * What a step through dlopen'ed FMI calls costs before any physics or check.
- * Not an FMU anyone should use. */
+ * Not an FMU anyone should use.  Each version's null FMU is written out on
+ * its own (null_fmi3.c repeats it on purpose): nothing shared between them
+ * or with the FMU's glue, so that the floor is the calls' and nothing else's. */
 #include <stdlib.h>
 
 #include "fmi2Functions.h"

@@ -1,4 +1,5 @@
-/* The FMI 3.0 null FMU for the benchmark's floor: see null_fmi2.c. */
+/* The FMI 3.0 null FMU for the benchmark's floor: see null_fmi2.c (why it
+ * repeats that file's shape). */
 #include <stdlib.h>
 
 #include "fmi3Functions.h"

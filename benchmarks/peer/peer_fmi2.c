@@ -1,5 +1,8 @@
 /* The peer's minimal FMI 2.0 Co-Simulation layer (see peer.h): the calls a
- * master makes to run it, each checking its instance and phase. */
+ * master makes to run it, each checking its instance and phase.  Written
+ * apart from the FMU's glue and from peer_fmi3.c, each call spelled out: the
+ * peer is an independent reference (bench_peer --check, the CTest
+ * peer_agrees), so its twin layers repeat each other on purpose. */
 #include <stdlib.h>
 
 #include "fmi2Functions.h"

@@ -1,5 +1,7 @@
 /* The peer's minimal FMI 3.0 Co-Simulation layer (see peer.h): the calls a
- * master makes to run it, each checking its instance and phase. */
+ * master makes to run it, each checking its instance and phase.  Written
+ * apart from the FMU's glue and from peer_fmi2.c, on purpose (an independent
+ * reference: see peer_fmi2.c). */
 #include <stdlib.h>
 
 #include "fmi3Functions.h"
