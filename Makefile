@@ -33,8 +33,8 @@ crosscheck: setup
 # Regenerates docs/reference/variables.md (from the variable tables, through the
 # installed package's manifests and FMUs: hence setup, which rebuilds what changed)
 # and docs/reference/cli.md (from the parser); tests/contracts/test_reference_docs.py
-# fails while either differs from what this writes.  Also the contact patch
-# guide's figures (tools/make_patch_figures.py, from the bundled scenarios).
+# fails while either differs from what this writes.  Also the contact patch's
+# and pad's guides' figures (tools/make_patch_figures.py, from the bundled scenarios).
 docs: setup
 	.venv/bin/python tools/make_reference.py
 	.venv/bin/python tools/make_patch_figures.py

@@ -1,9 +1,13 @@
-"""Writes the contact patch guide's figures (docs/guides/contact-patch.md)
-from the bundled scenarios, through the command a user runs:
+"""Writes the contact patch's and the contact pad's guides' figures
+(docs/guides/contact-patch.md, contact-pad.md) from the bundled scenarios,
+through the command a user runs:
 
     docs/figures/patch_twist.png         torque against angle (scenarios/twist.toml)
     docs/figures/patch_twist_cells.png   the cells in stick and slip during that twist
     docs/figures/patch_yaw_vs_angle.png  the towed block's steady yaw (scenarios/towed_block.toml)
+    docs/figures/pad_pressure_cells.png  the pressure under the pushed block (scenarios/pushed_block.toml)
+    docs/figures/pad_regimes.png         its full contact, lift-off and tipping against mu h / length
+    docs/figures/pad_phi_vs_angle.png    its trajectory angle at every height
 
 Usage: python tools/make_patch_figures.py   (after `make setup`; a few seconds)
 """
@@ -20,7 +24,10 @@ OUT = ROOT / "docs" / "figures"
 # (scenario, figure the run writes, the guide's copy)
 FIGURES = (("twist", "twist.png", "patch_twist.png"),
            ("twist", "twist_cells.png", "patch_twist_cells.png"),
-           ("towed_block", "yaw_vs_angle.png", "patch_yaw_vs_angle.png"))
+           ("towed_block", "yaw_vs_angle.png", "patch_yaw_vs_angle.png"),
+           ("pushed_block", "pressure_cells.png", "pad_pressure_cells.png"),
+           ("pushed_block", "regimes.png", "pad_regimes.png"),
+           ("pushed_block", "phi_vs_angle.png", "pad_phi_vs_angle.png"))
 
 
 def main() -> int:

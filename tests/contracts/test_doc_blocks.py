@@ -53,7 +53,10 @@ NOT_LINKED = {"out", "results", ".git"}
 FIGURES = {"docs/coverage.png": "benchmarks/bench_coverage.py",
            "docs/figures/patch_twist.png": "tools/make_patch_figures.py",
            "docs/figures/patch_twist_cells.png": "tools/make_patch_figures.py",
-           "docs/figures/patch_yaw_vs_angle.png": "tools/make_patch_figures.py"}
+           "docs/figures/patch_yaw_vs_angle.png": "tools/make_patch_figures.py",
+           "docs/figures/pad_pressure_cells.png": "tools/make_patch_figures.py",
+           "docs/figures/pad_regimes.png": "tools/make_patch_figures.py",
+           "docs/figures/pad_phi_vs_angle.png": "tools/make_patch_figures.py"}
 
 
 @dataclass
