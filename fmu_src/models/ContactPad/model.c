@@ -159,37 +159,54 @@ typedef struct {
 /* Every cell's normal force Nc[c] [N] and their sums: a cell's force kn
  * (e A + g . m1) and first moment about the pad centre r N + kn (e m1 +
  * m2 g), of the moments (A, m1 about its centre, m2) of its pressed part
- * (pad_clip_moments: its own rectangle's where it presses wholly). */
+ * (pad_clip_moments: its own rectangle's where it presses wholly).  Where
+ * every corner of the pad presses, so does every cell: the pressure is
+ * linear, each cell's force kn A e at its centre and the sums the whole
+ * rectangle's, Fn = kn L W f0 and first moments kn g (W L^3/12, L W^3/12),
+ * with no test or sum a cell (the step's cost is the cells'). */
 static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], pad_normal *S) {
     const cells_setup *g = &m->g;
+    const int n1 = g->n[0], n2 = g->n[1];
     pad_grid G;
     grid_of(g, &G);
     double ex[PATCH_MAX_SIDE], ey[PATCH_MAX_SIDE];
-    for (int i = 0; i < g->n[0]; ++i) ex[i] = F->f0 + F->g[0] * G.x[i];
-    for (int j = 0; j < g->n[1]; ++j) ey[j] = F->g[1] * G.y[j];
-    const double kn = m->kn;
+    for (int i = 0; i < n1; ++i) ex[i] = F->f0 + F->g[0] * G.x[i];
+    for (int j = 0; j < n2; ++j) ey[j] = F->g[1] * G.y[j];
+    const double kn = m->kn, cell_area = 4.0 * G.hx * G.hy, kA = kn * cell_area;
+    const double L = g->length, W = g->width;
+    if (F->f0 - (fabs(F->g[0]) * (0.5 * L) + fabs(F->g[1]) * (0.5 * W)) > 0) {
+        for (int j = 0, c = 0; j < n2; ++j)
+            for (int i = 0; i < n1; ++i, ++c) Nc[c] = kA * (ex[i] + ey[j]);
+        S->Fn = kn * (L * W) * F->f0;
+        S->mb[0] = kn * F->g[0] * (W * L * L * L / 12.0);
+        S->mb[1] = kn * F->g[1] * (L * W * W * W / 12.0);
+        S->contact_fraction = 1.0;
+        return;
+    }
     double Fn = 0.0, mx = 0.0, my = 0.0, full = 0.0, part = 0.0;
-    const double cell_area = 4.0 * G.hx * G.hy;
-    for (int j = 0, c = 0; j < g->n[1]; ++j)
-        for (int i = 0; i < g->n[0]; ++i, ++c) {
+    for (int j = 0, c = 0; j < n2; ++j) {
+        double row_N = 0.0, row_my = 0.0; /* a row's cells share y: its force's moment once */
+        for (int i = 0; i < n1; ++i, ++c) {
             const double e = ex[i] + ey[j];
             pad_moments M;
             if (pad_clip_moments(e, F->g, G.hx, G.hy, &M)) {
-                const double N = kn * (e * cell_area);
+                const double N = kA * e;
                 Nc[c] = N;
-                Fn += N;
+                row_N += N;
                 mx += G.x[i] * N;
-                my += G.y[j] * N;
                 full += 1.0;
                 continue;
             }
             const double N = kn * (e * M.area + (F->g[0] * M.m1[0] + F->g[1] * M.m1[1]));
             Nc[c] = N;
-            Fn += N;
+            row_N += N;
             mx += G.x[i] * N + kn * (e * M.m1[0] + M.m2[0] * F->g[0] + M.m2[1] * F->g[1]);
-            my += G.y[j] * N + kn * (e * M.m1[1] + M.m2[1] * F->g[0] + M.m2[2] * F->g[1]);
+            row_my += kn * (e * M.m1[1] + M.m2[1] * F->g[0] + M.m2[2] * F->g[1]);
             part += M.area / cell_area;
         }
+        Fn += row_N;
+        my += G.y[j] * row_N + row_my;
+    }
     /* the wholly pressed cells' own second moments, A h^2/3 each, once */
     mx += kn * (full * (cell_area * G.hx * G.hx / 3.0)) * F->g[0];
     my += kn * (full * (cell_area * G.hy * G.hy / 3.0)) * F->g[1];
