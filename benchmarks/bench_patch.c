@@ -10,18 +10,28 @@
  *   - law:    oc_law_step called directly (contact_law.c linked in) on each
  *             cell, each cell's committed state the one before: the point
  *             law's own step, the floor a cell's cost is held to.
- * The three compute the same cells: at the end of every run the patch's T
- * must equal the points' and the law's sums (cell order, as the patch sums)
- * to 1e-12 relative, and the slip fraction be 0 (stick) or 1 (slip), else
- * the program says so and exits 1.  Both FMUs are the host build's binaries
- * (FMI 2.0), loaded with dlopen as an importer loads them.
+ *   - pad:    the ContactPad FMU, the same cells on a Winkler foundation
+ *             (kn = 1e7 N/m^3), given u1, u2, theta and the
+ *             approach d = N/(kn A) that presses each cell as the patch
+ *             does: fmi2SetReal(u1, u2, theta, d, phi1, phi2) + fmi2DoStep +
+ *             fmi2GetReal(T1, T2, Mz, Fn, M1, M2);
+ *   - lifted: the pad tilted by phi2 = 2 d/length at half that approach, so
+ *             that its trailing quarter lifts and the cells along the line
+ *             are clipped (its figures only: its forces are not the patch's).
+ * The four compute the same cells: at the end of every run the patch's T
+ * must equal the points', the law's and the pad's sums (cell order, as the
+ * patch sums) to 1e-12 relative, and the slip fraction be 0 (stick) or 1
+ * (slip), else the program says so and exits 1.  The FMUs are the host
+ * build's binaries (FMI 2.0), loaded with dlopen as an importer loads them.
  *
- * Runs are interleaved (for each grid and path: patch, points, law), `rounds`
+ * Runs are interleaved (for each grid and path: patch, points, law, pad,
+ * lifted), `rounds`
  * rounds; each figure is the least disturbed (smallest) of its rounds, thread
  * CPU time, and each ratio is that of those figures with the range of the
  * rounds' own ratios beside it.  Targets: a cell's cost in the
- * patch <= 1.2x the law's own step, and a 100-cell patch step <= 0.5x of 100
- * point steps through the FMI calls.
+ * patch <= 1.2x the law's own step, a 100-cell patch step <= 0.5x of 100
+ * point steps through the FMI calls, and a pad's cell <= 1.3x a patch's at
+ * 100 and 400 cells.
  *
  * Paths (bench_common.h's, plus a turn): stick, the body oscillates inside
  * every cell's sticking ellipse (u as bench_inputs, theta within 2e-4 rad);
@@ -31,8 +41,8 @@
  * coupled rule), uniform pressure.
  *
  *   bench_patch [cell_steps [rounds]]   cell_steps: cells x steps a run
- * Environment: BENCH_PATCH_FMI2, BENCH_POINT_FMI2 (binaries to run instead
- * of the host build's).
+ * Environment: BENCH_PATCH_FMI2, BENCH_POINT_FMI2, BENCH_PAD_FMI2 (binaries
+ * to run instead of the host build's).
  */
 #include <dlfcn.h>
 #include <math.h>
@@ -52,6 +62,10 @@ extern const char *const BENCH_POINT_LAW_NAMES[];
 extern const unsigned int BENCH_POINT_LAW_VRS[];
 extern const unsigned int BENCH_POINT_VRS[8];
 enum { P_RULE, P_INITIAL, P_U1, P_U2, P_N, P_T1, P_T2, P_STATE };
+/* bench_patch_pad.c: the pad FMU's table */
+extern const char *const BENCH_PAD_TOKEN;
+extern const unsigned int BENCH_PAD_VRS[17];
+enum { D_U1, D_T1 = 6, D_N1 = 12, D_N2, D_KN, D_SLIP, D_CONTACT };
 
 enum { N_GRIDS = 4, MAX_CELLS = 400, PERIOD = 16 };
 static const int SIDES[N_GRIDS] = {1, 4, 10, 20};
@@ -188,6 +202,54 @@ static run_result run_patch(const fmi2_api *a, const grid *G, int slip, long ste
     return r;
 }
 
+/* The pad's foundation [N/m^3] and the patch's sides (its table's defaults). */
+enum { PAD_KN = 10000000 };
+static double pad_area, pad_length;
+
+/* The pad given the patch's inputs: d = N/(kn A) presses each cell with the
+ * patch's N/n; lifted, half that approach and phi2 = 2 d/length, so that
+ * the part x < -length/4 lifts and the cells along that line are clipped. */
+static run_result run_pad(const fmi2_api *a, const grid *G, int slip, long steps, int lifted) {
+    fmi2Component c = a->inst("pad", fmi2CoSimulation, BENCH_PAD_TOKEN, "", &host_print2_cb, 0, 0);
+    const fmi2ValueReference vn[2] = {BENCH_PAD_VRS[D_N1], BENCH_PAD_VRS[D_N2]};
+    const fmi2Integer nn[2] = {G->side, G->side};
+    a->set_int(c, vn, 2, nn);
+    const fmi2ValueReference vkn = BENCH_PAD_VRS[D_KN];
+    const double kn = PAD_KN;
+    a->set_real(c, &vkn, 1, &kn);
+    a->setup(c, fmi2False, 0, 0, fmi2False, 0);
+    a->enter(c);
+    fmi2ValueReference in[6], out[6];
+    for (int i = 0; i < 6; ++i) in[i] = BENCH_PAD_VRS[D_U1 + i], out[i] = BENCH_PAD_VRS[D_T1 + i];
+    const double scale = lifted ? 0.5 : 1.0;
+    double u[3];
+    bench_inputs(0, slip, u);
+    const double d0 = u[2] / (kn * pad_area);
+    const double v0[6] = {u[0],       u[1], theta_of(0, slip),
+                          scale * d0, 0.0,  lifted ? 2 * d0 / pad_length : 0.0};
+    a->set_real(c, in, 6, v0);
+    a->exit_init(c);
+    double t = 0, h = 1e-4, sink = 0, y[6] = {0, 0, 0, 0, 0, 0};
+    const double t0 = now();
+    for (long k = 0; k < steps; ++k) {
+        bench_inputs(k, slip, u);
+        const double d = u[2] / (kn * pad_area);
+        const double v[6] = {u[0],      u[1], theta_of(k, slip),
+                             scale * d, 0.0,  lifted ? 2 * d / pad_length : 0.0};
+        a->set_real(c, in, 6, v);
+        a->do_step(c, t, h, fmi2True);
+        t += h;
+        a->get_real(c, out, 6, y);
+        sink += y[2] + y[3];
+    }
+    run_result r = {1e9 * (now() - t0) / steps, {y[0], y[1]}, 0};
+    const fmi2ValueReference vsf = BENCH_PAD_VRS[D_SLIP];
+    a->get_real(c, &vsf, 1, &r.slip_fraction);
+    a->free_inst(c);
+    if (sink == 12345.6789) printf(" ");
+    return r;
+}
+
 static fmi2Component points[MAX_CELLS];
 
 static run_result run_points(const fmi2_api *a, const grid *G, int slip, long steps) {
@@ -296,8 +358,9 @@ int main(int argc, char **argv) {
     const int rounds = argc > 2 ? atoi(argv[2]) : 7;
     const char *patch_path = getenv("BENCH_PATCH_FMI2") ? getenv("BENCH_PATCH_FMI2") : PATCH_FMI2;
     const char *point_path = getenv("BENCH_POINT_FMI2") ? getenv("BENCH_POINT_FMI2") : POINT_FMI2;
-    fmi2_api pa, pt;
-    if (load(&pa, patch_path) || load(&pt, point_path)) return 2;
+    const char *pad_path = getenv("BENCH_PAD_FMI2") ? getenv("BENCH_PAD_FMI2") : PAD_FMI2;
+    fmi2_api pa, pt, pd;
+    if (load(&pa, patch_path) || load(&pt, point_path) || load(&pd, pad_path)) return 2;
 
         /* the patch's defaults: the table's start values */
 #define START_OF(name, vr, type, caus, var, init, start, ...) [vr] = start,
@@ -310,16 +373,18 @@ int main(int argc, char **argv) {
 
     static grid grids[N_GRIDS];
     for (int g = 0; g < N_GRIDS; ++g) make_grid(&grids[g], SIDES[g], d[6], d[7], &p);
+    pad_area = d[6] * d[7];
+    pad_length = d[6];
 
-    /* [grid][slip][patch, points, law]: best ns; ratio ranges over rounds */
-    double best[N_GRIDS][2][3], cell_lo[N_GRIDS][2], cell_hi[N_GRIDS][2], pts_lo[N_GRIDS][2],
-        pts_hi[N_GRIDS][2], worst_diff = 0, sf[N_GRIDS][2];
+    /* [grid][slip][patch, points, law, pad, lifted]: best ns; ratio ranges over rounds */
+    double best[N_GRIDS][2][5], cell_lo[N_GRIDS][2], cell_hi[N_GRIDS][2], pts_lo[N_GRIDS][2],
+        pts_hi[N_GRIDS][2], pad_lo[N_GRIDS][2], pad_hi[N_GRIDS][2], worst_diff = 0, sf[N_GRIDS][2];
     int failed = 0;
     for (int g = 0; g < N_GRIDS; ++g)
         for (int s = 0; s < 2; ++s) {
-            best[g][s][0] = best[g][s][1] = best[g][s][2] = 1e30;
-            cell_lo[g][s] = pts_lo[g][s] = 1e30;
-            cell_hi[g][s] = pts_hi[g][s] = 0;
+            for (int r = 0; r < 5; ++r) best[g][s][r] = 1e30;
+            cell_lo[g][s] = pts_lo[g][s] = pad_lo[g][s] = 1e30;
+            cell_hi[g][s] = pts_hi[g][s] = pad_hi[g][s] = 0;
         }
     for (int round = 0; round < rounds; ++round)
         for (int g = 0; g < N_GRIDS; ++g)
@@ -330,18 +395,26 @@ int main(int argc, char **argv) {
                 const run_result a = run_patch(&pa, G, s, steps);
                 const run_result b = run_points(&pt, G, s, steps);
                 const run_result l = run_law(G, s, steps);
-                const double dp = rel(a.T, b.T), dl = rel(a.T, l.T);
-                worst_diff = fmax(worst_diff, fmax(dp, dl));
+                const run_result q = run_pad(&pd, G, s, steps, 0);
+                const run_result z = run_pad(&pd, G, s, steps, 1);
+                const double dp = rel(a.T, b.T), dl = rel(a.T, l.T), dq = rel(a.T, q.T);
+                worst_diff = fmax(worst_diff, fmax(fmax(dp, dl), dq));
                 const double want = s ? 1.0 : 0.0;
-                if (!(dp <= 1e-12 && dl <= 1e-12) || a.slip_fraction != want ||
-                    b.slip_fraction != want || l.slip_fraction != want) {
+                if (!(dp <= 1e-12 && dl <= 1e-12 && dq <= 1e-12) || a.slip_fraction != want ||
+                    b.slip_fraction != want || l.slip_fraction != want || q.slip_fraction != want ||
+                    !isfinite(z.T[0] + z.T[1])) {
                     fprintf(stderr,
                             "%d cells, %s: patch T (%.17g, %.17g) slip %g; points (%.17g, %.17g) "
-                            "slip %g; law (%.17g, %.17g) slip %g\n",
+                            "slip %g; law (%.17g, %.17g) slip %g; pad (%.17g, %.17g) slip %g\n",
                             G->n, s ? "slip" : "stick", a.T[0], a.T[1], a.slip_fraction, b.T[0],
-                            b.T[1], b.slip_fraction, l.T[0], l.T[1], l.slip_fraction);
+                            b.T[1], b.slip_fraction, l.T[0], l.T[1], l.slip_fraction, q.T[0],
+                            q.T[1], q.slip_fraction);
                     failed = 1;
                 }
+                best[g][s][3] = fmin(best[g][s][3], q.ns);
+                best[g][s][4] = fmin(best[g][s][4], z.ns);
+                pad_lo[g][s] = fmin(pad_lo[g][s], q.ns / a.ns);
+                pad_hi[g][s] = fmax(pad_hi[g][s], q.ns / a.ns);
                 sf[g][s] = a.slip_fraction;
                 best[g][s][0] = fmin(best[g][s][0], a.ns);
                 best[g][s][1] = fmin(best[g][s][1], b.ns);
@@ -358,16 +431,18 @@ int main(int argc, char **argv) {
         "# FMU steps (set u1 u2 N, doStep, get T1 T2 each) and n linked-in oc_law_step calls;\n"
         "# %ld cell steps a run, interleaved, least disturbed of %d rounds, thread CPU time\n",
         cell_steps, rounds);
-    printf("%5s %-5s %10s %9s %9s %17s %11s %17s %5s\n", "cells", "path", "patch_ns", "cell_ns",
-           "law_ns", "cell/law [rounds]", "points_ns", "patch/points", "slip");
+    printf("%5s %-5s %10s %9s %9s %17s %11s %17s %5s %10s %17s %10s\n", "cells", "path", "patch_ns",
+           "cell_ns", "law_ns", "cell/law [rounds]", "points_ns", "patch/points", "slip", "pad_ns",
+           "pad/patch", "lifted_ns");
     for (int g = 0; g < N_GRIDS; ++g)
         for (int s = 0; s < 2; ++s) {
             const int n = grids[g].n;
             const double *b = best[g][s];
             printf("%5d %-5s %10.1f %9.2f %9.2f %5.2f [%4.2f-%4.2f] %11.1f %5.3f [%4.2f-%4.2f] "
-                   "%5.2f\n",
+                   "%5.2f %10.1f %5.2f [%4.2f-%4.2f] %10.1f\n",
                    n, s ? "slip" : "stick", b[0], b[0] / n, b[2] / n, b[0] / b[2], cell_lo[g][s],
-                   cell_hi[g][s], b[1], b[0] / b[1], pts_lo[g][s], pts_hi[g][s], sf[g][s]);
+                   cell_hi[g][s], b[1], b[0] / b[1], pts_lo[g][s], pts_hi[g][s], sf[g][s], b[3],
+                   b[3] / b[0], pad_lo[g][s], pad_hi[g][s], b[4]);
         }
     for (int s = 0; s < 2; ++s) {
         const double rc = best[3][s][0] / best[3][s][2], rp = best[2][s][0] / best[2][s][1];
@@ -376,9 +451,16 @@ int main(int argc, char **argv) {
                s ? "slip " : "stick", rc, rc <= 1.2 ? "met" : "NOT MET", rp,
                rp <= 0.5 ? "met" : "NOT MET");
     }
-    printf("patch, points and law agree: max relative difference of T %.1e %s\n", worst_diff,
+    for (int s = 0; s < 2; ++s) {
+        const double r100 = best[2][s][3] / best[2][s][0], r400 = best[3][s][3] / best[3][s][0];
+        printf("%s: a pad's cell / a patch's at 100 cells %.2f, at 400 cells %.2f, target <= 1.30 "
+               "%s\n",
+               s ? "slip " : "stick", r100, r400, fmax(r100, r400) <= 1.3 ? "met" : "NOT MET");
+    }
+    printf("patch, points, law and pad agree: max relative difference of T %.1e %s\n", worst_diff,
            failed ? "-- FAILED (> 1e-12 or a cell in the wrong state)" : "(<= 1e-12)");
     dlclose(pa.lib);
     dlclose(pt.lib);
+    dlclose(pd.lib);
     return failed;
 }
