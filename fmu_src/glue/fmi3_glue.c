@@ -18,6 +18,14 @@
 
 #define INST(c) ((fmu_instance *)(c))
 
+/* What FMI 2.0 defines alike (glue/fmi_both.h) */
+#define FMI_PREFIX fmi3
+#define FMI_INSTANCE fmi3Instance
+#define FMI_STATE State
+#define FMI_DESERIALIZE Deserialize
+#define FMI_CONFIG FMU_CONFIG
+#include "glue/fmi_both.h"
+
 typedef struct {
     fmi3InstanceEnvironment env;
     fmi3LogMessageCallback log;
@@ -28,7 +36,6 @@ static void log_fmi3(fmu_instance *I, int status, const char *category, const ch
     if (g->log) g->log(g->env, (fmi3Status)status, category, text);
 }
 
-static fmi3Status status3(int s) { return (fmi3Status)s; }
 static void *calloc3(size_t n, size_t size) { return calloc(n, size); }
 
 /* One value per value reference (a model's arrays are outputs: gets of a
@@ -107,18 +114,12 @@ fmi3Instance fmi3InstantiateCoSimulation(
         free(g);
         return NULL;
     }
-    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, __func__);
-    if (fmu_load_start_values(I, __func__, resourcePath, 0) != 0) {
-        fmu_instance_free(I);
-        free(g);
-        return NULL;
-    }
-    return I;
+    return with_start_values(I, __func__, resourcePath, 0);
 }
 
 static fmi3Instance refuse_interface(fmi3InstanceEnvironment env, fmi3LogMessageCallback log,
                                      const char *fn) {
-    refuse3(env, log, fn, "this is a Co-Simulation FMU only");
+    refuse3(env, log, fn, NO_ME);
     return NULL;
 }
 
@@ -151,23 +152,6 @@ fmi3Instance fmi3InstantiateScheduledExecution(
     return refuse_interface(instanceEnvironment, logMessage, __func__);
 }
 
-void fmi3FreeInstance(fmi3Instance c) {
-    fmu_instance *I = INST(c);
-    if (!I) return;
-    fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, __func__);
-    void *g = I->glue;
-    fmu_instance_free(I);
-    free(g);
-}
-
-fmi3Status fmi3SetDebugLogging(fmi3Instance c, fmi3Boolean loggingOn, size_t nCategories,
-                               const fmi3String categories[]) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE | FMU_CONFIG)) return fmi3Error;
-    return fmu_set_debug_logging(I, __func__, loggingOn, nCategories, categories) ? fmi3Error
-                                                                                  : fmi3OK;
-}
-
 /* ---- Initialization, termination, reset -------------------------------- */
 
 fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefined,
@@ -176,36 +160,10 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance c, fmi3Boolean toleranceDefi
     fmu_instance *I = INST(c);
     (void)toleranceDefined;
     (void)tolerance; /* the law is solved to machine precision */
-    if (!fmu_allowed(I, __func__, FMU_INSTANTIATED)) return fmi3Error;
-    if (!isfinite(startTime) || (stopTimeDefined && !(stopTime >= startTime))) {
-        FMU_ERROR(I, "%s: startTime = %g, stopTime = %g are not a valid interval", __func__,
-                  startTime, stopTime);
+    if (!fmu_allowed(I, __func__, FMU_INSTANTIATED) ||
+        start_at(I, __func__, startTime, stopTimeDefined, stopTime) != FMU_S_OK)
         return fmi3Error;
-    }
-    fmu_msg msg;
-    if (fmu_result(I, fmu_set_start_time(I, startTime, &msg), &msg, __func__)) return fmi3Error;
     I->phase = FMU_INIT;
-    return fmi3OK;
-}
-
-fmi3Status fmi3ExitInitializationMode(fmi3Instance c) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_INIT)) return fmi3Error;
-    fmu_msg msg;
-    return status3(fmu_result(I, fmu_exit_init(I, &msg), &msg, __func__));
-}
-
-fmi3Status fmi3Terminate(fmi3Instance c) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_INIT | FMU_STEP)) return fmi3Error;
-    I->phase = FMU_TERMINATED;
-    return fmi3OK;
-}
-
-fmi3Status fmi3Reset(fmi3Instance c) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE | FMU_CONFIG)) return fmi3Error;
-    fmu_reset(I);
     return fmi3OK;
 }
 
@@ -245,10 +203,10 @@ fmi3Status fmi3GetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi3Error;
     if (FMU_MODEL_INFO.arrays)
-        return status3(get_values(I, __func__, vr, nvr, values, nValues, FMU_T_Float64, 8));
+        return status_of(get_values(I, __func__, vr, nvr, values, nValues, FMU_T_Float64, 8));
     if (!arrays_ok(I, __func__, nvr, vr, values, nValues)) return fmi3Error;
     fmu_msg msg;
-    return status3(
+    return status_of(
         fmu_result(I, fmu_model_get_float64(I->model, vr, nvr, values, &msg), &msg, __func__));
 }
 
@@ -259,7 +217,7 @@ fmi3Status fmi3SetFloat64(fmi3Instance c, const fmi3ValueReference vr[], size_t 
         !config_ok(I, __func__, vr, nvr))
         return fmi3Error;
     fmu_msg msg;
-    return status3(
+    return status_of(
         fmu_result(I, fmu_model_set_float64(I->model, vr, nvr, values, fmu_settable(I), &msg), &msg,
                    __func__));
 }
@@ -272,10 +230,10 @@ static fmi3Status get_ints(fmi3Instance c, const char *fn, const fmi3ValueRefere
     fmu_instance *I = INST(c);
     if (!fmu_allowed(I, fn, FMU_READABLE)) return fmi3Error;
     if (FMU_MODEL_INFO.arrays)
-        return status3(get_values(I, fn, vr, nvr, values, nValues, kinds, width));
+        return status_of(get_values(I, fn, vr, nvr, values, nValues, kinds, width));
     if (!arrays_ok(I, fn, nvr, vr, values, nValues)) return fmi3Error;
     fmu_msg msg;
-    return status3(
+    return status_of(
         fmu_result(I, fmu_model_get_int(I->model, vr, nvr, values, width, kinds, &msg), &msg, fn));
 }
 
@@ -287,7 +245,7 @@ static fmi3Status set_ints(fmi3Instance c, const char *fn, const fmi3ValueRefere
         !config_ok(I, fn, vr, nvr))
         return fmi3Error;
     fmu_msg msg;
-    return status3(fmu_result(
+    return status_of(fmu_result(
         I, fmu_model_set_int(I->model, vr, nvr, values, width, kinds, fmu_settable(I), &msg), &msg,
         fn));
 }
@@ -304,16 +262,6 @@ static fmi3Status set_ints(fmi3Instance c, const char *fn, const fmi3ValueRefere
 INT_ACCESS(Int32, fmi3Int32, FMU_INT32 | FMU_AS_FMI3)
 INT_ACCESS(Int64, fmi3Int64, FMU_ENUM | FMU_AS_FMI3)
 INT_ACCESS(UInt64, fmi3UInt64, FMU_UINT64 | FMU_AS_FMI3)
-
-/* Types of which this FMU has no variables: any value reference is unknown. */
-static fmi3Status no_such_variables(fmu_instance *I, const char *fn, int phases, size_t nvr,
-                                    const fmi3ValueReference vr[]) {
-    if (!fmu_allowed(I, fn, phases)) return fmi3Error;
-    if (nvr == 0) return fmi3OK;
-    FMU_ERROR(I, "%s: unknown value reference %u (this FMU has no variables of that type)", fn,
-              vr ? vr[0] : 0u);
-    return fmi3Error;
-}
 
 #define NO_VARIABLES(TYPE, CTYPE)                                                                  \
     fmi3Status fmi3Get##TYPE(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,            \
@@ -367,12 +315,6 @@ fmi3Status fmi3SetClock(fmi3Instance c, const fmi3ValueReference vr[], size_t nv
 
 /* ---- What this FMU does not provide ----------------------------------------- */
 
-static fmi3Status unsupported(fmi3Instance c, const char *fn, const char *why) {
-    fmu_instance *I = INST(c);
-    if (I) FMU_ERROR(I, "%s: %s", fn, why);
-    return fmi3Error;
-}
-
 fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance c, fmi3ValueReference valueReference,
                                                size_t *nDependencies) {
     (void)valueReference;
@@ -398,23 +340,22 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference depend
                        "description's ModelStructure only");
 }
 
-/* Configuration mode, from the instantiated phase only: the structural
- * parameters are fixed, so there is no reconfiguration mode. */
-fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) {
+/* Configuration mode, entered from the instantiated phase only and left back
+ * to it: the structural parameters are fixed, so there is no
+ * reconfiguration mode. */
+static fmi3Status configuration(fmi3Instance c, const char *fn, int from, int to) {
     fmu_instance *I = INST(c);
     if (!FMU_MODEL_INFO.arrays || !FMU_MODEL_INFO.arrays->n_structural)
-        return unsupported(c, __func__, "this FMU has no structural parameters");
-    if (!fmu_allowed(I, __func__, FMU_INSTANTIATED)) return fmi3Error;
-    I->phase = FMU_CONFIG;
+        return unsupported(c, fn, "this FMU has no structural parameters");
+    if (!fmu_allowed(I, fn, from)) return fmi3Error;
+    I->phase = to;
     return fmi3OK;
 }
+fmi3Status fmi3EnterConfigurationMode(fmi3Instance c) {
+    return configuration(c, __func__, FMU_INSTANTIATED, FMU_CONFIG);
+}
 fmi3Status fmi3ExitConfigurationMode(fmi3Instance c) {
-    fmu_instance *I = INST(c);
-    if (!FMU_MODEL_INFO.arrays || !FMU_MODEL_INFO.arrays->n_structural)
-        return unsupported(c, __func__, "this FMU has no structural parameters");
-    if (!fmu_allowed(I, __func__, FMU_CONFIG)) return fmi3Error;
-    I->phase = FMU_INSTANTIATED;
-    return fmi3OK;
+    return configuration(c, __func__, FMU_CONFIG, FMU_INSTANTIATED);
 }
 
 #define NO_CLOCKS "this FMU has no clocks"
@@ -436,56 +377,36 @@ fmi3Status fmi3GetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[]
     (void)q;
     return unsupported(c, __func__, NO_CLOCKS);
 }
-fmi3Status fmi3GetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
-                               fmi3Float64 shifts[]) {
-    (void)vr;
-    (void)n;
-    (void)shifts;
-    return unsupported(c, __func__, NO_CLOCKS);
-}
-fmi3Status fmi3GetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
-                                fmi3UInt64 counters[], fmi3UInt64 resolutions[]) {
-    (void)vr;
-    (void)n;
-    (void)counters;
-    (void)resolutions;
-    return unsupported(c, __func__, NO_CLOCKS);
-}
-fmi3Status fmi3SetIntervalDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
-                                  const fmi3Float64 intervals[]) {
-    (void)vr;
-    (void)n;
-    (void)intervals;
-    return unsupported(c, __func__, NO_CLOCKS);
-}
-fmi3Status fmi3SetIntervalFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
-                                   const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
-    (void)vr;
-    (void)n;
-    (void)counters;
-    (void)resolutions;
-    return unsupported(c, __func__, NO_CLOCKS);
-}
-fmi3Status fmi3SetShiftDecimal(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
-                               const fmi3Float64 shifts[]) {
-    (void)vr;
-    (void)n;
-    (void)shifts;
-    return unsupported(c, __func__, NO_CLOCKS);
-}
-fmi3Status fmi3SetShiftFraction(fmi3Instance c, const fmi3ValueReference vr[], size_t n,
-                                const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
-    (void)vr;
-    (void)n;
-    (void)counters;
-    (void)resolutions;
-    return unsupported(c, __func__, NO_CLOCKS);
-}
+/* The calls on clocks' shifts and intervals given as one number (decimal)
+ * or as counters and resolutions (fraction), one a row; const for a set. */
+#define NO_CLOCK_DECIMAL(name, CONST)                                                              \
+    fmi3Status fmi3##name(fmi3Instance c, const fmi3ValueReference vr[], size_t n,                 \
+                          CONST fmi3Float64 values[]) {                                            \
+        (void)vr;                                                                                  \
+        (void)n;                                                                                   \
+        (void)values;                                                                              \
+        return unsupported(c, __func__, NO_CLOCKS);                                                \
+    }
+#define NO_CLOCK_FRACTION(name, CONST)                                                             \
+    fmi3Status fmi3##name(fmi3Instance c, const fmi3ValueReference vr[], size_t n,                 \
+                          CONST fmi3UInt64 counters[], CONST fmi3UInt64 resolutions[]) {           \
+        (void)vr;                                                                                  \
+        (void)n;                                                                                   \
+        (void)counters;                                                                            \
+        (void)resolutions;                                                                         \
+        return unsupported(c, __func__, NO_CLOCKS);                                                \
+    }
+NO_CLOCK_DECIMAL(GetShiftDecimal, )
+NO_CLOCK_DECIMAL(SetIntervalDecimal, const)
+NO_CLOCK_DECIMAL(SetShiftDecimal, const)
+NO_CLOCK_FRACTION(GetShiftFraction, )
+NO_CLOCK_FRACTION(SetIntervalFraction, const)
+NO_CLOCK_FRACTION(SetShiftFraction, const)
 fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference clockReference,
                                       fmi3Float64 activationTime) {
     (void)clockReference;
     (void)activationTime;
-    return unsupported(c, __func__, "this is a Co-Simulation FMU only");
+    return unsupported(c, __func__, NO_ME);
 }
 
 #define NO_EVENTS "this FMU has no event mode (hasEventMode = false)"
@@ -508,44 +429,8 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *discreteStatesN
     return unsupported(c, __func__, NO_EVENTS);
 }
 
-#define NO_ME "this is a Co-Simulation FMU only"
-fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance c) { return unsupported(c, __func__, NO_ME); }
-fmi3Status fmi3CompletedIntegratorStep(fmi3Instance c, fmi3Boolean noSet, fmi3Boolean *enter,
-                                       fmi3Boolean *term) {
-    (void)noSet;
-    (void)enter;
-    (void)term;
-    return unsupported(c, __func__, NO_ME);
-}
-fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64 time) {
-    (void)time;
-    return unsupported(c, __func__, NO_ME);
-}
-fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64 x[], size_t n) {
-    (void)x;
-    (void)n;
-    return unsupported(c, __func__, NO_ME);
-}
-fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance c, fmi3Float64 dx[], size_t n) {
-    (void)dx;
-    (void)n;
-    return unsupported(c, __func__, NO_ME);
-}
-fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64 ei[], size_t n) {
-    (void)ei;
-    (void)n;
-    return unsupported(c, __func__, NO_ME);
-}
-fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float64 x[], size_t n) {
-    (void)x;
-    (void)n;
-    return unsupported(c, __func__, NO_ME);
-}
-fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance c, fmi3Float64 nominals[], size_t n) {
-    (void)nominals;
-    (void)n;
-    return unsupported(c, __func__, NO_ME);
-}
+/* Model Exchange: the functions glue/fmi_both.h does not define */
+FMI_NO_ME_ARRAY(GetContinuousStateDerivatives, fmi3Float64)
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n) {
     (void)n;
     return unsupported(c, __func__, NO_ME);
@@ -555,50 +440,17 @@ fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance c, size_t *n) {
     return unsupported(c, __func__, NO_ME);
 }
 
-/* ---- FMU state ------------------------------------------------------------ */
-
-/* The state objects and their checks are the shared instance layer's. */
-
-fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_get(I, __func__, FMUState));
-}
-
-fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState FMUState) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_set(I, __func__, FMUState));
-}
-
-fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState *FMUState) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_free(I, __func__, FMUState));
-}
-
-fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState FMUState, size_t *size) {
-    fmu_instance *I = INST(c);
-    (void)FMUState;
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_size_of(I, __func__, size));
-}
-
-fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState FMUState, fmi3Byte serializedState[],
-                                 size_t size) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_serialize(I, __func__, FMUState, serializedState, size));
-}
-
-fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const fmi3Byte serializedState[], size_t size,
-                                   fmi3FMUState *FMUState) {
-    fmu_instance *I = INST(c);
-    if (!fmu_allowed(I, __func__, FMU_ALIVE)) return fmi3Error;
-    return status3(fmu_state_deserialize(I, __func__, serializedState, size, FMUState));
-}
-
 /* ---- Derivatives ------------------------------------------------------------ */
+
+fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
+                                    const fmi3Int32 orders[], fmi3Float64 values[],
+                                    size_t nValues) {
+    (void)vr;
+    (void)orders;
+    (void)values;
+    (void)nValues;
+    return refuse_unless_empty(c, __func__, FMU_READABLE, nvr, "maxOutputDerivativeOrder is 0");
+}
 
 static fmi3Status derivative3(fmi3Instance c, const char *fn, const fmi3ValueReference unknowns[],
                               size_t nUnknowns, const fmi3ValueReference knowns[], size_t nKnowns,
@@ -617,43 +469,25 @@ static fmi3Status derivative3(fmi3Instance c, const char *fn, const fmi3ValueRef
         return fmi3Error;
     }
     fmu_msg msg;
-    return status3(fmu_result(I,
-                              fmu_model_derivative(I->model, unknowns, nUnknowns, knowns, nKnowns,
-                                                   seed, sensitivity, adjoint, &msg),
-                              &msg, fn));
+    return status_of(fmu_result(I,
+                                fmu_model_derivative(I->model, unknowns, nUnknowns, knowns, nKnowns,
+                                                     seed, sensitivity, adjoint, &msg),
+                                &msg, fn));
 }
 
-fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference unknowns[],
-                                        size_t nUnknowns, const fmi3ValueReference knowns[],
-                                        size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
-                                        fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns, seed, nSeed, sensitivity,
-                       nSensitivity, 0);
-}
-
-fmi3Status fmi3GetAdjointDerivative(fmi3Instance c, const fmi3ValueReference unknowns[],
-                                    size_t nUnknowns, const fmi3ValueReference knowns[],
-                                    size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
-                                    fmi3Float64 sensitivity[], size_t nSensitivity) {
-    return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns, seed, nSeed, sensitivity,
-                       nSensitivity, 1);
-}
+/* The two derivatives' calls, one a row. */
+#define DERIVATIVE(KIND, adjoint)                                                                  \
+    fmi3Status fmi3Get##KIND##Derivative(fmi3Instance c, const fmi3ValueReference unknowns[],      \
+                                         size_t nUnknowns, const fmi3ValueReference knowns[],      \
+                                         size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,   \
+                                         fmi3Float64 sensitivity[], size_t nSensitivity) {         \
+        return derivative3(c, __func__, unknowns, nUnknowns, knowns, nKnowns, seed, nSeed,         \
+                           sensitivity, nSensitivity, adjoint);                                    \
+    }
+DERIVATIVE(Directional, 0)
+DERIVATIVE(Adjoint, 1)
 
 /* ---- Co-Simulation ---------------------------------------------------------- */
-
-fmi3Status fmi3GetOutputDerivatives(fmi3Instance c, const fmi3ValueReference vr[], size_t nvr,
-                                    const fmi3Int32 orders[], fmi3Float64 values[],
-                                    size_t nValues) {
-    fmu_instance *I = INST(c);
-    (void)vr;
-    (void)orders;
-    (void)values;
-    (void)nValues;
-    if (!fmu_allowed(I, __func__, FMU_READABLE)) return fmi3Error;
-    if (nvr == 0) return fmi3OK;
-    FMU_ERROR(I, "%s: maxOutputDerivativeOrder is 0", __func__);
-    return fmi3Error;
-}
 
 fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint,
                       fmi3Float64 communicationStepSize,
@@ -670,5 +504,5 @@ fmi3Status fmi3DoStep(fmi3Instance c, fmi3Float64 currentCommunicationPoint,
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;
     if (lastSuccessfulTime) *lastSuccessfulTime = *fmu_model_time(I->model);
-    return status3(st);
+    return status_of(st);
 }
