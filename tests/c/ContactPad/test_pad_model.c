@@ -24,19 +24,10 @@
 
 #include "check.h"
 #include "fmi2Functions.h"
+#include "host_support.h"
 #include "models/ContactPad/model.h"
 #include "models/ContactPad/table.h"
 #include "random_values.h"
-
-static void quiet(fmi2ComponentEnvironment e, fmi2String n, fmi2Status s, fmi2String c,
-                  fmi2String m, ...) {
-    (void)e;
-    (void)n;
-    (void)s;
-    (void)c;
-    (void)m;
-}
-static const fmi2CallbackFunctions CB = {quiet, calloc, free, NULL, NULL};
 
 enum { NK = 6, NU = 7 };
 static const fmi2ValueReference KNOWN[NK] = {PAD_VR_u1, PAD_VR_u2,   PAD_VR_theta,
@@ -45,7 +36,7 @@ static const fmi2ValueReference UNKNOWN[NU] = {
     PAD_VR_T1, PAD_VR_T2, PAD_VR_Mz, PAD_VR_Fn, PAD_VR_M1, PAD_VR_M2, PAD_VR_dissipatedEnergy};
 
 static fmi2Component make(void) {
-    return fmi2Instantiate("pad", fmi2CoSimulation, FMU_GUID, "", &CB, 0, 0);
+    return fmi2Instantiate("pad", fmi2CoSimulation, FMU_GUID, "", &host_quiet2_cb, 0, 0);
 }
 
 /* The pending outputs for inputs x, then slipFraction and contactState. */
