@@ -4,54 +4,44 @@ import dataclasses
 import math
 from pathlib import Path
 
-from orthocontact.identification.identified import (
-    REPORTED,
-    SCHEMA_VERSION,
-    Assumptions,
-    Covariance,
-    DataRecord,
-    Estimate,
-    IdentifiedFile,
-    NotIdentified,
-    Points,
-    ReductionSummary,
-    reported_names,
-)
+from orthocontact.identification import identified
 from orthocontact.identification.identified_file import from_json
 from orthocontact.identification.measurements import data_digest
 
 FILES = {"rig.toml": "0" * 64, "angles.csv": "1" * 64}
 
 
-def made_by_hand(**changes) -> IdentifiedFile:
+def made_by_hand(**changes) -> identified.IdentifiedFile:
     """Angles alone at two velocities: l1/l2 fitted, the rest not identified."""
-    f = IdentifiedFile(
-        estimates={**{n: NotIdentified("needs forces.csv") for n in REPORTED},
-                   "l1_l2_ratio": Estimate(0.82, 0.01, (0.8, 0.84), math.inf,
-                                           note="what angles alone determine")},
+    f = identified.IdentifiedFile(
+        estimates={**{n: identified.NotIdentified("needs forces.csv") for n in identified.REPORTED},
+                   "l1_l2_ratio": identified.Estimate(0.82, 0.01, (0.8, 0.84), math.inf,
+                                                      note="what angles alone determine")},
         max_rule=None, eq40=None, eq41=None, eq1=None,
         noise_estimate={"angles_deg": 0.3, "angles_deg_by_velocity": {"0.125": 0.35, "0.244": 0.25}},
         noise_model={"angles_deg": {"between_runs": 0.3}}, intervals="log scale",
         noise_assumed=("angles_deg",), fit_residuals={"angles": {"rms": 0.3}}, dof=3,
-        covariance=Covariance(("l1_l2_ratio",), (0.82,), ((1e-4,),)), covariance_joint=None,
-        points=Points(angles=((30.0, -10.0), (60.0, -9.0), (30.0, -10.5), (60.0, -8.5)),
-                      angle_velocities=(0.125, 0.125, 0.244, 0.244), forces=None),
+        covariance=identified.Covariance(("l1_l2_ratio",), (0.82,), ((1e-4,),)), covariance_joint=None,
+        points=identified.Points(angles=((30.0, -10.0), (60.0, -9.0), (30.0, -10.5), (60.0, -8.5)),
+                                 angle_velocities=(0.125, 0.125, 0.244, 0.244), forces=None),
         ramp_stick_points=0, validation_fmu=None,
-        data=DataRecord(folder="d", absolute_folder="/d", forces=0, angles=4, ramp=0, files=FILES,
-                        sha256=data_digest(FILES)),
-        assumptions=Assumptions(rule="coupled", alpha_offset_deg=90.0, beta_offset_deg=0.0, mass_kg=1.875,
-                                g=9.806, f_int_N=5.0, ramp_angle_deg=0.0, mu_strip=0.0, c_strip_N_s_m=0.0,
-                                phi_convention="counterclockwise", ci="95%"),
-        reduction=ReductionSummary(runs={"slide": 4, "carriage": 0, "ramp": 0}, left_out=(), flagged={},
-                                   table="reduction.csv", figures=("reduction_30deg.png",), scenario=None))
+        data=identified.DataRecord(folder="d", absolute_folder="/d", forces=0, angles=4, ramp=0,
+                                   files=FILES, sha256=data_digest(FILES)),
+        assumptions=identified.Assumptions(rule="coupled", alpha_offset_deg=90.0, beta_offset_deg=0.0,
+                                           mass_kg=1.875, g=9.806, f_int_N=5.0, ramp_angle_deg=0.0,
+                                           mu_strip=0.0, c_strip_N_s_m=0.0,
+                                           phi_convention="counterclockwise", ci="95%"),
+        reduction=identified.ReductionSummary(runs={"slide": 4, "carriage": 0, "ramp": 0}, left_out=(),
+                                              flagged={}, table="reduction.csv",
+                                              figures=("reduction_30deg.png",), scenario=None))
     return dataclasses.replace(f, **changes)
 
 
 def test_the_json_object_reads_back_as_the_object():
     f = made_by_hand()
     d = f.as_json()
-    assert d["schema_version"] == SCHEMA_VERSION
-    assert list(d)[:7] == ["schema_version", *REPORTED, "l1_l2_ratio"]
+    assert d["schema_version"] == identified.SCHEMA_VERSION
+    assert list(d)[:7] == ["schema_version", *identified.REPORTED, "l1_l2_ratio"]
     assert d["eps2"] == {"identifiable": False, "reason": "needs forces.csv"}
     assert d["l1_l2_ratio"]["dof"] == "inf"       # JSON has no infinity: the text "inf"
     assert "covariance_joint" not in d and d["noise_assumed"] == ["angles_deg"]
@@ -61,5 +51,5 @@ def test_the_json_object_reads_back_as_the_object():
 
 
 def test_a_summary_lists_the_five_and_what_else_was_fitted():
-    assert reported_names(made_by_hand().estimates) == [*REPORTED, "l1_l2_ratio"]
-    assert reported_names({"c_strip": 1, "f_int": 2}) == [*REPORTED, "c_strip", "f_int"]
+    assert identified.reported_names(made_by_hand().estimates) == [*identified.REPORTED, "l1_l2_ratio"]
+    assert identified.reported_names({"c_strip": 1, "f_int": 2}) == [*identified.REPORTED, "c_strip", "f_int"]

@@ -68,7 +68,7 @@ def test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs(tmp_p
 
 
 def test_the_runs_section_of_identified_md_by_hand():
-    from orthocontact.identification.identified_file import ReductionSummary
+    from orthocontact.identification.identified import ReductionSummary
     noise_model = {"angles": {"between_runs": {"0.125": 0.2, "0.244": 0.05}, "within_run_rms": 0.011},
                    "forces": {"between_runs": 0.04, "within_run_rms": 0.0}}
     reduction = ReductionSummary(runs={"slide": 20, "carriage": 3, "ramp": 2}, left_out=("s07",),

@@ -23,19 +23,7 @@ from ..errors import InputError
 from ..fmu.params import RULES
 from ..output.manifest import written_by
 from ..textfiles import read_text
-from .identified import (
-    FITTED_TOO,
-    REPORTED,
-    SCHEMA_VERSION,
-    Assumptions,
-    Covariance,
-    DataRecord,
-    Estimate,
-    IdentifiedFile,
-    NotIdentified,
-    Points,
-    ReductionSummary,
-)
+from . import identified
 from .measurements import changed_files, data_digest
 
 SCHEMA = Path(__file__).with_name("identified.schema.json")   # installed with the package
@@ -50,7 +38,7 @@ class DataProvenance:
     digest: str       # SHA-256 of their sha256sum listing (measurements.data_digest)
 
 
-def write_identified(path, f: IdentifiedFile) -> Path:
+def write_identified(path, f: identified.IdentifiedFile) -> Path:
     """Writes identified.json (indented JSON); the one writer."""
     from ..output.tables import write_json
     path = Path(path)
@@ -60,7 +48,7 @@ def write_identified(path, f: IdentifiedFile) -> Path:
 
 # -- the reader ---------------------------------------------------------------------
 
-def read_identified(path, force: bool = False, override: str = "") -> IdentifiedFile:
+def read_identified(path, force: bool = False, override: str = "") -> identified.IdentifiedFile:
     """identified.json -> IdentifiedFile, checked: its schema version, every
     field (InputError naming the file and the field), the run that wrote it
     (output.manifest), the plausibility gate (plausible_identified: a value
@@ -74,9 +62,10 @@ def read_identified(path, force: bool = False, override: str = "") -> Identified
     if not isinstance(d, dict):
         raise InputError(f"{path}: expected a JSON object {WRITTEN_BY}")
     version = d.get("schema_version")
-    if version != SCHEMA_VERSION or isinstance(version, bool):
-        raise InputError(f"{path}: schema_version: expected {SCHEMA_VERSION}, got {_short(version)} (a file "
-                         "of another version of orthocontact: run `orthocontact identify` again)")
+    if version != identified.SCHEMA_VERSION or isinstance(version, bool):
+        raise InputError(f"{path}: schema_version: expected {identified.SCHEMA_VERSION}, got "
+                         f"{_short(version)} (a file of another version of orthocontact: run "
+                         "`orthocontact identify` again)")
     written_by(path)   # in an output folder: as its run wrote it
     f = from_json(path, d)
     errors, _ = plausibility.split(plausible_identified(f))
@@ -165,11 +154,11 @@ def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
 
 
-def _estimate(path, name, d) -> Estimate | NotIdentified:
+def _estimate(path, name, d) -> identified.Estimate | identified.NotIdentified:
     f = _Fields(path, name, d)
     if "value" not in d:
         if d.get("identifiable") is False:
-            return NotIdentified(f.text("reason"))
+            return identified.NotIdentified(f.text("reason"))
         f.fail("value", "a finite number > 0 (or identifiable: false and the reason)", None)
     value = f.number("value", 0, lo_open=True)
     stderr = f.number("stderr", 0)
@@ -181,11 +170,11 @@ def _estimate(path, name, d) -> Estimate | NotIdentified:
         dof = math.inf
     elif dof is not None:
         dof = f.number("dof", 0, lo_open=True, what='a number > 0, "inf" or null')
-    return Estimate(value, stderr, (float(ci[0]), float(ci[1])), dof, f.text("unit", optional=True),
-                    f.text("note", optional=True))
+    return identified.Estimate(value, stderr, (float(ci[0]), float(ci[1])), dof,
+                               f.text("unit", optional=True), f.text("note", optional=True))
 
 
-def _covariance(path, where, d) -> Covariance:
+def _covariance(path, where, d) -> identified.Covariance:
     if not isinstance(d, dict) or not {"parameters", "values", "matrix"} <= set(d):
         raise InputError(f"{path}: {where}: expected parameters, values and matrix "
                          f"({WRITTEN_BY}; run it again)")
@@ -203,19 +192,19 @@ def _covariance(path, where, d) -> Covariance:
         raise InputError(f"{path}: {where}: expected finite numbers")
     if any(v <= 0 for v in values):
         raise InputError(f"{path}: {where}.values: expected estimates > 0, got {_short(values)}")
-    return Covariance(tuple(names), tuple(float(v) for v in values),
-                      tuple(tuple(float(x) for x in r) for r in matrix))
+    return identified.Covariance(tuple(names), tuple(float(v) for v in values),
+                                 tuple(tuple(float(x) for x in r) for r in matrix))
 
 
-def from_json(path, d: dict) -> IdentifiedFile:
+def from_json(path, d: dict) -> identified.IdentifiedFile:
     """The typed file of identified.json's object `d` (read from `path`);
     InputError naming the file and the first field that is not as identify
     writes it."""
     path = Path(path)
     top = _Fields(path, "", d)
     estimates = {}
-    for name in REPORTED + FITTED_TOO:
-        if name in d or name in REPORTED:
+    for name in identified.REPORTED + identified.FITTED_TOO:
+        if name in d or name in identified.REPORTED:
             if not isinstance(d.get(name), dict):
                 top.fail(name, f"an object {WRITTEN_BY}", d.get(name))
             estimates[name] = _estimate(path, name, d[name])
@@ -223,7 +212,7 @@ def from_json(path, d: dict) -> IdentifiedFile:
     rule = a.d.get("rule")
     if rule not in RULES:
         a.fail("rule", f"one of {', '.join(RULES)}", rule)
-    assumptions = Assumptions(
+    assumptions = identified.Assumptions(
         rule=rule, alpha_offset_deg=a.number("alpha_offset_deg", what="a finite number [deg]"),
         beta_offset_deg=a.number("beta_offset_deg", what="a finite number [deg]"),
         mass_kg=a.number("mass_kg", 0, lo_open=True), g=a.number("g", 0, lo_open=True),
@@ -231,7 +220,8 @@ def from_json(path, d: dict) -> IdentifiedFile:
         mu_strip=a.number("mu_strip", 0), c_strip_N_s_m=a.number_or_estimated("c_strip_N_s_m"),
         phi_convention=a.text("phi_convention"), ci=a.text("ci"))
     for key, name in (("f_int_N", "f_int"), ("c_strip_N_s_m", "c_strip")):
-        if getattr(assumptions, key) == "estimated" and not isinstance(estimates.get(name), Estimate):
+        estimated = isinstance(estimates.get(name), identified.Estimate)
+        if getattr(assumptions, key) == "estimated" and not estimated:
             top.fail(name, f'its estimate (assumptions.{key} is "estimated")', d.get(name))
     data = top.sub("data")
     files = data.d.get("files")
@@ -246,13 +236,13 @@ def from_json(path, d: dict) -> IdentifiedFile:
     folder = data.d.get("folder")
     if not isinstance(folder, str) or not folder:
         raise InputError(f"{path}: data.folder: expected the measurement folder's path")
-    record = DataRecord(folder=folder, absolute_folder=data.text("absolute_folder"),
-                        forces=data.integer("forces"), angles=data.integer("angles"),
-                        ramp=data.integer("ramp"), files=dict(files), sha256=stated)
+    record = identified.DataRecord(folder=folder, absolute_folder=data.text("absolute_folder"),
+                                   forces=data.integer("forces"), angles=data.integer("angles"),
+                                   ramp=data.integer("ramp"), files=dict(files), sha256=stated)
     pts = top.sub("points")
-    points = Points(angles=pts.rows("angles", 2, "[[mat angle deg, phi deg], ...]"),
-                    angle_velocities=pts.rows("angle_velocities", 1, "a velocity [m/s] per angle"),
-                    forces=pts.rows("forces", 2, "[[mat angle deg, force N], ...]"))
+    points = identified.Points(angles=pts.rows("angles", 2, "[[mat angle deg, phi deg], ...]"),
+                               angle_velocities=pts.rows("angle_velocities", 1, "a velocity [m/s] per angle"),
+                               forces=pts.rows("forces", 2, "[[mat angle deg, force N], ...]"))
     if points.angle_velocities is not None and len(points.angle_velocities) != len(points.angles or ()):
         pts.fail("angle_velocities", f"one velocity [m/s] per angle ({len(points.angles or ())})",
                  len(points.angle_velocities))
@@ -276,13 +266,14 @@ def from_json(path, d: dict) -> IdentifiedFile:
             r.fail("runs", "{kind: count}", runs)
         if not (isinstance(left, list) and isinstance(flagged, dict) and isinstance(figures, list)):
             r.fail("", "runs, left_out, flagged, table, figures and scenario", d["reduction"])
-        reduction = ReductionSummary(runs=dict(runs), left_out=tuple(left), flagged=dict(flagged),
-                                     table=r.text("table"), figures=tuple(figures),
-                                     scenario=r.text("scenario", optional=True))
+        reduction = identified.ReductionSummary(runs=dict(runs), left_out=tuple(left),
+                                                flagged=dict(flagged), table=r.text("table"),
+                                                figures=tuple(figures),
+                                                scenario=r.text("scenario", optional=True))
     intervals = d.get("intervals")
     if not isinstance(intervals, str):
         top.fail("intervals", "a string", intervals)
-    return IdentifiedFile(
+    return identified.IdentifiedFile(
         estimates=estimates, max_rule=top.obj("max_rule"), eq40=top.obj("eq40"), eq41=top.obj("eq41"),
         eq1=top.obj("eq1"), noise_estimate=dict(noise.d), noise_model=top.obj("noise_model", optional=False),
         intervals=intervals, noise_assumed=tuple(assumed),
@@ -308,7 +299,7 @@ ASSUMED = {"mass_kg": "mass_kg", "g": "g", "f_int_N": "f_int_N", "c_strip_N_s_m"
            "mu_strip": "mu_strip"}
 
 
-def plausible_identified(f: IdentifiedFile) -> list:
+def plausible_identified(f: identified.IdentifiedFile) -> list:
     """The plausibility Findings of the file's numbers with a unit: each
     estimate's value, the covariance's values (what uq draws around) and
     the assumptions (mass, g, F_int, strip terms).  Numbers outside the
@@ -339,7 +330,7 @@ def plausible_identified(f: IdentifiedFile) -> list:
 NAMED = 12   # changed files named in the one line; the rest counted
 
 
-def check_data(path, data: DataRecord) -> DataProvenance:
+def check_data(path, data: identified.DataRecord) -> DataProvenance:
     """The data folder identified.json (read from `path`) names, found as
     given, relative to the file's folder, or by its absolute path, and every
     file the identification read in it as it was then; InputError naming

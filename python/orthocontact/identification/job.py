@@ -18,18 +18,9 @@ import numpy as np
 from .. import plausibility
 from ..experiment.rig_setup import RigSetup
 from ..fmu.params import ContactParams
+from . import identified
 from .estimators import JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
-from .identified import (
-    REPORTED,
-    Assumptions,
-    Covariance,
-    DataRecord,
-    Estimate,
-    IdentifiedFile,
-    NotIdentified,
-    Points,
-    ReductionSummary,
-)
+from .identified import REPORTED
 from .identified_file import write_identified
 from .measurements import MeasurementSet, data_digest, data_files, load_data, write_measurements
 from .statistics import json_dof, res_stats
@@ -145,19 +136,20 @@ class Identification:
     start: dict
     warnings: tuple = ()     # one line each: identified values that are unusual (plausible_values)
 
-    def identified_file(self, reduction: ReductionSummary | None = None) -> IdentifiedFile:
+    def identified_file(self, reduction: identified.ReductionSummary | None = None
+                        ) -> identified.IdentifiedFile:
         """The result as identified.json holds it (identified_file), with the
         reduction's summary when the data were raw recordings."""
         f = self.fit
 
         def estimate(n, unit=None, note=None):
             dof = f.param_dof.get(n)
-            return Estimate(value=f.values[n], stderr=f.stderr[n], ci95=tuple(f.ci95[n]),
-                            dof=None if dof is None else
-                            (math.inf if not math.isfinite(dof) else round(float(dof), 2)),
-                            unit=unit, note=note)
+            return identified.Estimate(value=f.values[n], stderr=f.stderr[n], ci95=tuple(f.ci95[n]),
+                                       dof=None if dof is None else
+                                       (math.inf if not math.isfinite(dof) else round(float(dof), 2)),
+                                       unit=unit, note=note)
         estimates = {n: estimate(n) if n in f.values else
-                     NotIdentified(f.not_identifiable.get(n, "not determined")) for n in REPORTED}
+                     identified.NotIdentified(f.not_identifiable.get(n, "not determined")) for n in REPORTED}
         if "c_strip" in f.values:
             estimates["c_strip"] = estimate("c_strip", "N s/m", "the strip's lateral viscosity, from the "
                                                                 "angles' change with velocity")
@@ -182,17 +174,17 @@ class Identification:
         # normal); the joint one, with F_int and the strip, beside it.
         law = [i for i, n in enumerate(f.free) if n not in ("f_int", "c_strip")]
         sym = 0.5 * (f.cov + f.cov.T)
-        cov = Covariance(parameters=tuple(f.free[i] for i in law),
-                         values=tuple(f.values[f.free[i]] for i in law),
-                         matrix=tuple(tuple(float(sym[i, j]) for j in law) for i in law))
-        joint = None if len(law) == len(f.free) else Covariance(
+        cov = identified.Covariance(parameters=tuple(f.free[i] for i in law),
+                                    values=tuple(f.values[f.free[i]] for i in law),
+                                    matrix=tuple(tuple(float(sym[i, j]) for j in law) for i in law))
+        joint = None if len(law) == len(f.free) else identified.Covariance(
             parameters=tuple(f.free), values=tuple(f.values[n] for n in f.free),
             matrix=tuple(tuple(float(c) for c in row) for row in sym))
 
         def rows(a):
             return None if a is None else tuple(tuple(float(x) for x in r) for r in a)
         r = d.rig
-        return IdentifiedFile(
+        return identified.IdentifiedFile(
             estimates=estimates, max_rule=self.max_rule,
             eq40={k: v for k, v in (self.eq40 or {}).items() if k != "eq41"} or None,
             eq41=(self.eq40 or {}).get("eq41"), eq1=self.eq1, noise_estimate=noise,
@@ -212,18 +204,20 @@ class Identification:
             noise_assumed=tuple(unit[g] for g in f.sigma_assumed),
             fit_residuals={g: res_stats(x) for g, x in f.residuals.items()}, dof=f.dof,
             covariance=cov, covariance_joint=joint,
-            points=Points(angles=rows(d.angles),
-                          angle_velocities=None if d.angles is None or d.angle_velocities is None
-                          else tuple(float(v) for v in d.angle_velocities),
-                          forces=rows(d.forces)),
+            points=identified.Points(angles=rows(d.angles),
+                                     angle_velocities=None if d.angles is None or d.angle_velocities is None
+                                     else tuple(float(v) for v in d.angle_velocities),
+                                     forces=rows(d.forces)),
             ramp_stick_points=f.stick_points, validation_fmu=self.validation,
-            data=DataRecord(folder=str(d.folder), absolute_folder=str(Path(d.folder).resolve()),
-                            forces=0 if d.forces is None else len(d.forces),
-                            angles=0 if d.angles is None else len(d.angles),
-                            ramp=0 if d.ramp is None else len(d.ramp),
-                            # every file the identification read, and one digest over them
-                            files=d.files, sha256=None if d.files is None else data_digest(d.files)),
-            assumptions=Assumptions(
+            data=identified.DataRecord(folder=str(d.folder),
+                                       absolute_folder=str(Path(d.folder).resolve()),
+                                       forces=0 if d.forces is None else len(d.forces),
+                                       angles=0 if d.angles is None else len(d.angles),
+                                       ramp=0 if d.ramp is None else len(d.ramp),
+                                       # every file the identification read, and one digest over them
+                                       files=d.files,
+                                       sha256=None if d.files is None else data_digest(d.files)),
+            assumptions=identified.Assumptions(
                 rule=r.rule, alpha_offset_deg=r.alpha_offset_deg, beta_offset_deg=r.beta_offset_deg,
                 mass_kg=r.mass_kg, g=r.g, f_int_N="estimated" if "f_int" in f.values else r.f_int_N,
                 ramp_angle_deg=r.ramp_angle_deg, mu_strip=r.mu_strip,
@@ -314,13 +308,13 @@ def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
         figures = write_figures(rec, red, out)
         scenario = write_rig_scenario(data, res.fit.values, out)
         summary = reduction_summary(red, figures, scenario)
-    identified = res.identified_file(summary)
-    write_identified(out / "identified.json", identified)
+    result = res.identified_file(summary)
+    write_identified(out / "identified.json", result)
     fit_figure(res, out / "fit.png")
     md = markdown_text(res)
     if summary is not None:
         from .report import reduction_markdown
-        md += "\n" + reduction_markdown(identified.noise_model, summary)
+        md += "\n" + reduction_markdown(result.noise_model, summary)
     (out / "identified.md").write_text(md)
     return res
 
