@@ -85,7 +85,7 @@ class ModelSources:
     cosim: dict = None    # {2 or 3: the CoSimulation element's attributes} (cosim_of)
 
 
-FMI_VERSIONS = (2, 3)   # the package ships every model for each (orthocontact/fmi2/, fmi3/)
+FMI_VERSIONS = (2, 3)   # the package ships every model for each, in its fmi2 and fmi3 folders
 
 
 def installed_models() -> list[ModelSources]:

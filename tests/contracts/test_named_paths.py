@@ -23,7 +23,7 @@ TOP = ("CMakeLists.txt", "Makefile")
 # Names that are neither in the tree nor in its code: system headers, the
 # build tree and the placeholders of examples.
 NOT_IN_THE_TREE = {
-    "sysexits.h", "linux/prctl.h",                     # system headers
+    "sysexits.h", "linux/prctl.h", "linux/fs.h",       # system headers
     "build/python/orthocontact/",                      # CMake's staging of the package
     "INPUT.csv", "s.toml", "file.py", "out/", "folder/forces/",  # an example's placeholders
 }
