@@ -16,13 +16,12 @@ force and step without committing them, so a master can iterate on the
 pending result with its derivatives (`jacobian`); `do_step` commits it."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from .generated import PAD_FLOAT_OUTPUTS, PAD_FOUNDATION, PAD_INPUTS, PAD_INTEGER_OUTPUTS, PAD_MODEL
 from .param_checks import Row
 from .params import ContactParams
-from .patch import CellsFMU, PatchGeometry
+from .patch import CellsFMU, PatchGeometry, refuse_problems, table_row, value_problem
 
 # The foundation's parameters (its parameters the patch has not), in the table's order.
 FOUNDATION = tuple(row.name for row in PAD_FOUNDATION)
@@ -32,21 +31,14 @@ WRENCH = ("T1", "T2", "Mz", "Fn", "M1", "M2")
 
 def foundation_row(name: str) -> Row:
     """The row of the foundation's parameter `name` (FOUNDATION) in the FMU's table."""
-    for row in PAD_FOUNDATION:
-        if row.name == name:
-            return row
-    raise KeyError(f"{PAD_MODEL} has no foundation parameter {name!r} (it has {', '.join(FOUNDATION)})")
+    return table_row(PAD_FOUNDATION, name, f"{PAD_MODEL} has no foundation parameter")
 
 
 def foundation_problem(name: str, value) -> str | None:
     """What is wrong with `value` for the foundation's parameter `name` by
-    the FMU's own table (a finite number in [min, max]); None if it is right."""
-    v = foundation_row(name)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        return f"{name} must be a finite number, got {value!r}"
-    if value < v.min or value > v.max:
-        return f"{name} = {value!r} {v.unit} is outside [{v.min:g}, {v.max:g}] {v.unit}, the FMU's range"
-    return None
+    the FMU's own table (a finite number in [min, max]: the patch's
+    value_problem); None if it is right."""
+    return value_problem(foundation_row(name), value)
 
 
 @dataclass(frozen=True)
@@ -58,10 +50,7 @@ class Foundation:
     dn: float = foundation_row("dn").start
 
     def __post_init__(self):
-        for name in FOUNDATION:
-            problem = foundation_problem(name, getattr(self, name))
-            if problem is not None:
-                raise ValueError(f"Foundation: {problem}")
+        refuse_problems(self, PAD_FOUNDATION)
 
 
 class PadFMU(CellsFMU):

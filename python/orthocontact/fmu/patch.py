@@ -30,12 +30,44 @@ OUTPUTS = PATCH_FLOAT_OUTPUTS          # read as reals; PATCH_INTEGER_OUTPUTS as
 GEOMETRY = tuple(row.name for row in PATCH_GEOMETRY)
 
 
-def geometry_row(name: str) -> Row:
-    """The row of the patch's geometry parameter `name` (GEOMETRY) in the FMU's table."""
-    for row in PATCH_GEOMETRY:
+def table_row(rows: tuple[Row, ...], name: str, what: str) -> Row:
+    """The row `name` of `rows` (a part of a model's table: the patch's
+    geometry, the pad's foundation); KeyError `what` 'name' with the names
+    there are (`what`, e.g. "ContactPatch has no geometry parameter")."""
+    for row in rows:
         if row.name == name:
             return row
-    raise KeyError(f"{PATCH_MODEL} has no geometry parameter {name!r} (it has {', '.join(GEOMETRY)})")
+    raise KeyError(f"{what} {name!r} (it has {', '.join(row.name for row in rows)})")
+
+
+def value_problem(row: Row, value) -> str | None:
+    """What is wrong with `value` for the parameter of `row` by the FMU's
+    own table: its type (a Float64 a finite number, an integer parameter an
+    int) and its range [min, max] in the row's unit; None if it is right."""
+    name = row.name
+    count = row.type != "Float64"
+    if isinstance(value, bool) or not isinstance(value, int if count else (int, float)) or \
+            (not count and not math.isfinite(value)):
+        return f"{name} must be {'an integer' if count else 'a finite number'}, got {value!r}"
+    if (row.min is not None and value < row.min) or (row.max is not None and value > row.max):
+        unit = f" {row.unit}" if row.unit else ""
+        return f"{name} = {value!r}{unit} is outside [{row.min:g}, {row.max:g}]{unit}, the FMU's range"
+    return None
+
+
+def refuse_problems(record, rows: tuple[Row, ...]) -> None:
+    """ValueError "<its class>: <problem>" for the first field of the
+    dataclass `record` named by `rows` that its row refuses (value_problem):
+    a frozen dataclass's __post_init__, before the FMU sees the value."""
+    for row in rows:
+        problem = value_problem(row, getattr(record, row.name))
+        if problem is not None:
+            raise ValueError(f"{type(record).__name__}: {problem}")
+
+
+def geometry_row(name: str) -> Row:
+    """The row of the patch's geometry parameter `name` (GEOMETRY) in the FMU's table."""
+    return table_row(PATCH_GEOMETRY, name, f"{PATCH_MODEL} has no geometry parameter")
 
 
 def geometry_range(name: str) -> tuple:
@@ -54,17 +86,9 @@ def cells_start(name: str) -> int:
 
 def geometry_problem(name: str, value) -> str | None:
     """What is wrong with `value` for the patch's geometry parameter `name`
-    (GEOMETRY) by the FMU's own table: its type (a length a finite number, a
-    cell count an integer) and its range [min, max]; None if it is right."""
-    v = geometry_row(name)
-    count = v.type != "Float64"
-    if isinstance(value, bool) or not isinstance(value, int if count else (int, float)) or \
-            (not count and not math.isfinite(value)):
-        return f"{name} must be {'an integer' if count else 'a finite number'}, got {value!r}"
-    if (v.min is not None and value < v.min) or (v.max is not None and value > v.max):
-        unit = f" {v.unit}" if v.unit else ""
-        return f"{name} = {value!r}{unit} is outside [{v.min:g}, {v.max:g}]{unit}, the FMU's range"
-    return None
+    (GEOMETRY) by the FMU's own table (value_problem: a length a finite
+    number, a cell count an integer, in [min, max]); None if it is right."""
+    return value_problem(geometry_row(name), value)
 
 
 @dataclass(frozen=True)
@@ -79,10 +103,7 @@ class PatchGeometry:
     n2: int = cells_start("n2")
 
     def __post_init__(self):
-        for name in GEOMETRY:
-            problem = geometry_problem(name, getattr(self, name))
-            if problem is not None:
-                raise ValueError(f"PatchGeometry: {problem}")
+        refuse_problems(self, PATCH_GEOMETRY)
 
 
 class CellsFMU(FreedOnClose):
