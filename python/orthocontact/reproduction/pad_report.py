@@ -6,15 +6,13 @@ its checks are not rows of the paper's table and not in the headline's
 counts; a failed check is its warning line, as in `orthocontact run`."""
 from __future__ import annotations
 
-from ..experiment.kinds import ReportPart, Section, register
+from ..experiment.kinds import ReportPart, register
 from ..experiment.scenario import Scenario
+from .patch_report import check_line, extension_section, figures_line, link, rectangle_mm
 
-INTRO = ("Not the paper's: the patch's cells on a Winkler foundation (the ContactPad FMU), whose pressure "
-         "follows the block's pose, each run against its own closed forms "
-         "(docs/guides/contact-pad.md in the repository). Its checks are not rows of the paper's table "
-         "above and not in its counts.")
-
-PAD = Section("The contact pad", (INTRO, ""), json_key="contact_pad")
+PAD = extension_section("The contact pad", "the patch's cells on a Winkler foundation (the ContactPad "
+                        "FMU), whose pressure follows the block's pose", "docs/guides/contact-pad.md",
+                        "contact_pad")
 
 
 def pushed_json(sc: Scenario, s: dict) -> dict:
@@ -31,8 +29,8 @@ def pushed_lines(sc: Scenario, s: dict) -> list[str]:
     trajectory angle against the closed forms, the thresholds, the figures."""
     p = s["pad"]
     lines = [f"### {sc.title}", "",
-             f"The block ({s['weight_N']:.4g} N) on a {p['length_m'] * 1e3:g} × {p['width_m'] * 1e3:g} mm "
-             f"pad of {p['n1']} × {p['n2']} cells on a foundation of {p['kn_N_m3']:.3g} N/m³, pushed along "
+             f"The block ({s['weight_N']:.4g} N) on a {rectangle_mm(p)} pad of "
+             f"{p['n1']} × {p['n2']} cells on a foundation of {p['kn_N_m3']:.3g} N/m³, pushed along "
              "X1 at a height h above the contact, free to drift laterally, quasi-static. The push's moment "
              "moves the pressure's centre by e = μh toward the leading edge (μ the law's friction along X1 "
              "with the block free laterally): full contact while μh ≤ L/6, the trailing edge lifting "
@@ -54,14 +52,11 @@ def pushed_lines(sc: Scenario, s: dict) -> list[str]:
                      f"{r['phi_closed_deg']:+.4f} |")
     heights = ", ".join(f"a = {a}°: lift-off from h = {t['lift_off_height_m'] * 1e3:.4g} mm, tipping from "
                         f"{t['tipping_height_m'] * 1e3:.4g} mm" for a, t in s["thresholds"].items())
-    check = "Check: ok." if s["checks"]["ok"] else f"Check: **warning**: {s['checks']['warning']}"
-    lines += ["", f"Thresholds (closed form): {heights}.", "", check, "",
-              f"Figures: [the pressure under the block]({sc.name}/pressure_cells.png), "
-              f"[φ against mat angle at each height]({sc.name}/phi_vs_angle.png), "
-              f"[full contact, lift-off and tipping]({sc.name}/regimes.png); data: "
-              f"[{sc.name}/pushed_block.csv]({sc.name}/pushed_block.csv), "
-              f"[{sc.name}/push_paths.csv]({sc.name}/push_paths.csv), "
-              f"[{sc.name}/pressure_cells.csv]({sc.name}/pressure_cells.csv).", ""]
+    lines += ["", f"Thresholds (closed form): {heights}.", "", check_line(s), "",
+              figures_line(sc, [link(sc, "pressure_cells.png", "the pressure under the block"),
+                                link(sc, "phi_vs_angle.png", "φ against mat angle at each height"),
+                                link(sc, "regimes.png", "full contact, lift-off and tipping")],
+                           ("pushed_block.csv", "push_paths.csv", "pressure_cells.csv")), ""]
     return lines
 
 

@@ -10,12 +10,19 @@ from __future__ import annotations
 from ..experiment.kinds import ReportPart, Section, register
 from ..experiment.scenario import Scenario
 
-INTRO = ("Not the paper's: the law over an area (the ContactPatch FMU, n1 × n2 cells, each the point "
-         "law with its own slip) under a block, each run against its own closed forms "
-         "(docs/guides/contact-patch.md in the repository). Its checks are not rows of the paper's "
-         "table above and not in its counts.")
 
-PATCH = Section("The contact patch", (INTRO, ""), json_key="contact_patch")
+def extension_section(title: str, what: str, guide: str, json_key: str) -> Section:
+    """The section of one of this project's extensions of the paper's law
+    (the patch, the pad): `what` it is, its `guide` in docs/, and that its
+    checks are not the paper's."""
+    intro = (f"Not the paper's: {what}, each run against its own closed forms ({guide} in the "
+             "repository). Its checks are not rows of the paper's table above and not in its counts.")
+    return Section(title, (intro, ""), json_key=json_key)
+
+
+PATCH = extension_section("The contact patch", "the law over an area (the ContactPatch FMU, n1 × n2 "
+                          "cells, each the point law with its own slip) under a block",
+                          "docs/guides/contact-patch.md", "contact_patch")
 
 
 def twist_json(sc: Scenario, s: dict) -> dict:
@@ -31,21 +38,33 @@ def towed_json(sc: Scenario, s: dict) -> dict:
             "max_deviation_deg": s["max_deviation_deg"]}
 
 
-def _check_line(s: dict) -> str:
+def check_line(s: dict) -> str:
+    """The run's check: ok, or its warning line as `orthocontact run` prints it."""
     return "Check: ok." if s["checks"]["ok"] else f"Check: **warning**: {s['checks']['warning']}"
 
 
-def _patch_size(s: dict) -> str:
-    """"L × W mm" of a run's patch."""
-    p = s["patch"]
+def rectangle_mm(p: dict) -> str:
+    """"L × W mm" of a patch's or pad's table (length_m, width_m)."""
     return f"{p['length_m'] * 1e3:g} × {p['width_m'] * 1e3:g} mm"
+
+
+def link(sc: Scenario, name: str, text: str | None = None) -> str:
+    """A Markdown link to the file `name` of the scenario's folder, its text
+    the path unless `text` is given."""
+    return f"[{text or f'{sc.name}/{name}'}]({sc.name}/{name})"
+
+
+def figures_line(sc: Scenario, figures: list, data: tuple) -> str:
+    """"Figures: ...; data: ...." from the figures' links and the names of
+    the data files in the scenario's folder."""
+    return f"Figures: {', '.join(figures)}; data: {', '.join(link(sc, name) for name in data)}."
 
 
 def twist_lines(sc: Scenario, s: dict) -> list[str]:
     """A twist's lines in the section: its slope and plateau against their closed forms."""
     p = s["patch"]
     lines = [f"### {sc.title}", "",
-             f"Turned about the centre of a {_patch_size(s)} patch of "
+             f"Turned about the centre of a {rectangle_mm(p)} patch of "
              f"{p['n1']} × {p['n2']} cells pressed with {s['normal_N']:.4g} N. While every cell sticks "
              "the torque follows the grid's torsional stiffness k (the slope −Mz/θ of the first step); "
              "once every cell slides it follows the full-slip plateau of the grid's closed form, reached "
@@ -62,16 +81,14 @@ def twist_lines(sc: Scenario, s: dict) -> list[str]:
                      f"{-r['Mz_full_slip_end_N_m']:.6g} | "
                      + ("not checked: the twist stops before it" if plateau is None else f"{plateau:.1e}")
                      + f" ({r['plateau_tolerance']:.1e}, past {r['plateau_from_deg']:.3g}°) |")
-    lines += ["", _check_line(s), ""]
-    figures = f"[torque against angle]({sc.name}/twist.png)"
+    lines += ["", check_line(s), ""]
     cells = s.get("cells") or {}
+    figures, data = [link(sc, "twist.png", "torque against angle")], ("twist.csv",)
     if cells.get("from"):
-        figures += (f", [the cells in stick and slip]({sc.name}/twist_cells.png) "
-                    f"(their states: {cells['from']})")
-    data = f"[{sc.name}/twist.csv]({sc.name}/twist.csv)"
-    if cells.get("from"):
-        data += f", [{sc.name}/twist_cells.csv]({sc.name}/twist_cells.csv)"
-    lines.append(f"Figures: {figures}; data: {data}.")
+        figures.append(f"{link(sc, 'twist_cells.png', 'the cells in stick and slip')} "
+                       f"(their states: {cells['from']})")
+        data += ("twist_cells.csv",)
+    lines.append(figures_line(sc, figures, data))
     if not cells.get("from"):
         lines.append(f"No figure of the cells: {cells.get('why', 'no cell states')}.")
     return lines + [""]
@@ -80,7 +97,7 @@ def twist_lines(sc: Scenario, s: dict) -> list[str]:
 def towed_lines(sc: Scenario, s: dict) -> list[str]:
     """A towed block's lines in the section: its steady yaw against its closed form."""
     lines = [f"### {sc.title}", "",
-             f"A {_patch_size(s)} patch pressed with "
+             f"A {rectangle_mm(s['patch'])} patch pressed with "
              f"{s['normal_N']:.4g} N, towed along X1 through a pin ahead of its centre. Its steady yaw "
              "(counterclockwise from the motion) against its closed form, the direction of the law's "
              "steady sliding force, and against the paper's φ: the yaw is −φ with the mat turned back "
@@ -94,12 +111,11 @@ def towed_lines(sc: Scenario, s: dict) -> list[str]:
                      f"{t['yaw_closed_deg']:+.4f} | "
                      f"{t['deviation_deg']:.1e} | {t['minus_phi_turned_by_yaw_deg']:+.4f} | "
                      f"{t['phi_deg']:+.4f} |")
-    lines += ["", f"{_check_line(s)} Largest deviation {s['max_deviation_deg']:.1e}° (tolerance "
+    lines += ["", f"{check_line(s)} Largest deviation {s['max_deviation_deg']:.1e}° (tolerance "
               f"{s['checks']['tolerance_deg']:g}°).", "",
-              f"Figures: [steady yaw against mat angle, with φ]({sc.name}/yaw_vs_angle.png), "
-              f"[yaw against time]({sc.name}/yaw_vs_time.png); data: "
-              f"[{sc.name}/towed_block.csv]({sc.name}/towed_block.csv), "
-              f"[{sc.name}/yaw_vs_time.csv]({sc.name}/yaw_vs_time.csv).", ""]
+              figures_line(sc, [link(sc, "yaw_vs_angle.png", "steady yaw against mat angle, with φ"),
+                                link(sc, "yaw_vs_time.png", "yaw against time")],
+                           ("towed_block.csv", "yaw_vs_time.csv")), ""]
     return lines
 
 
