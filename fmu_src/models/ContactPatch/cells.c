@@ -115,30 +115,30 @@ typedef struct {
 
 /* 0.0 - q rather than -q: an open cell reads +0.0, as the point FMU.  A
  * cell's q and energy enter the sums, which stay non-finite once one is;
- * its next.a and next.s enter `nonfinite` as x * 0.0 (0 for a finite x,
- * NaN otherwise). */
-static OC_ALWAYS_INLINE void add_cell(running_sums *R, const oc_step *st, double Rr0, double Rr1) {
+ * whether it presses, the count of pressed cells.  What every step adds. */
+static OC_ALWAYS_INLINE void add_force(running_sums *R, const oc_step *st, double Rr0, double Rr1) {
     const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
     R->T0 += t0;
     R->T1 += t1;
     R->Mz += Rr0 * t1 - Rr1 * t0;
     R->energy += st->next.energy;
+    R->pressed += st->contact != OC_OPEN;
+}
+
+/* add_force, and the step's next.a and next.s into `nonfinite` as x * 0.0
+ * (0 for a finite x, NaN otherwise). */
+static OC_ALWAYS_INLINE void add_cell(running_sums *R, const oc_step *st, double Rr0, double Rr1) {
+    add_force(R, st, Rr0, Rr1);
     R->nonfinite +=
         (st->next.a[0] * 0.0 + st->next.a[1] * 0.0) + (st->next.s[0] * 0.0 + st->next.s[1] * 0.0);
-    R->pressed += st->contact != OC_OPEN;
     R->slipping += st->contact == OC_SLIP;
 }
 
 /* add_cell for an open or stick step of oc_law_step_begin, whose next.a is
  * 0 or the trial, finite (its square passed as normal). */
 static OC_ALWAYS_INLINE void add_begun(running_sums *R, const oc_step *st, double Rr0, double Rr1) {
-    const double t0 = 0.0 - st->q[0], t1 = 0.0 - st->q[1];
-    R->T0 += t0;
-    R->T1 += t1;
-    R->Mz += Rr0 * t1 - Rr1 * t0;
-    R->energy += st->next.energy;
+    add_force(R, st, Rr0, Rr1);
     R->nonfinite += st->next.s[0] * 0.0 + st->next.s[1] * 0.0;
-    R->pressed += st->contact != OC_OPEN;
 }
 
 /* What oc_law_step_begin writes of a step (all of an open or stick step). */
