@@ -136,6 +136,26 @@ def build_parser() -> argparse.ArgumentParser:
     def force(p, what=OWNER_HELP):
         p.add_argument("--force", action="store_true", help=what)
 
+    def command(name, func, reads, help, description):
+        """A subcommand: `func` runs it; `reads` names its arguments that are
+        files it reads (never replaced by what it writes)."""
+        p = sub.add_parser(name, help=help, description=description)
+        p.set_defaults(func=func, reads=reads)
+        return p
+
+    def scenario(p, help):
+        p.add_argument("scenario", metavar="SCENARIO", help=help)
+
+    def written_when(what):
+        return f"output folder ({OUT_RULE}); written only when {what}"
+
+    def scenario_command(name, func, help, description, scenario_help, done):
+        """A command over one scenario file into an output folder (--out) with the common options."""
+        p = command(name, func, ("scenario",), help, description)
+        scenario(p, scenario_help)
+        common(p, written_when(done))
+        return p
+
     def common(p, out_help, scheduler=True):
         p.add_argument("--out", required=True, type=_out_path, metavar="DIR", help=out_help)
         force(p)
@@ -157,27 +177,27 @@ def build_parser() -> argparse.ArgumentParser:
                                 "processes) or tcp://HOST:PORT (an existing scheduler); default: "
                                 "local processes, which start faster for sweeps of this size")
 
-    r = sub.add_parser("run", help="run one scenario file (a sweep over the mat/axis angle in "
-                                   "degrees, or a step-size study)",
-                       description="Run one scenario file and write summary.json, CSV tables, "
-                                   "PNG figures into DIR.")
-    r.add_argument("scenario", metavar="SCENARIO", help="scenario file (TOML; format in "
-                   "docs/reference/file-formats.md); angles in degrees, forces in N, lengths in m")
-    common(r, f"output folder ({OUT_RULE}); written only when the run completes")
-    r.set_defaults(func=cmd_run, reads=("scenario",))
-    p = sub.add_parser("reproduce", help="run every bundled scenario (the paper's and the contact "
-                                         "patch's) and write report.md",
-                       description="Run every scenario of the folder (default: the paper's and the "
-                                   "contact patch's, packaged) and write report.md beside one folder "
-                                   "per scenario into DIR.")
+    scenario_command("run", cmd_run,
+                     help="run one scenario file (a sweep over the mat/axis angle in degrees, or a "
+                          "step-size study)",
+                     description="Run one scenario file and write summary.json, CSV tables, PNG figures "
+                                 "into DIR.",
+                     scenario_help="scenario file (TOML; format in docs/reference/file-formats.md); angles "
+                                   "in degrees, forces in N, lengths in m",
+                     done="the run completes")
+    p = command("reproduce", cmd_reproduce, ("scenarios",),
+                help="run every bundled scenario (the paper's and the contact patch's) and write report.md",
+                description="Run every scenario of the folder (default: the paper's and the contact "
+                            "patch's, packaged) and write report.md beside one folder per scenario into "
+                            "DIR.")
     common(p, f"output folder for report.md, summary.json and one folder per scenario ({OUT_RULE}); "
               "written only when everything completes")
     p.add_argument("--scenarios", default=None, metavar="FOLDER",
                    help="folder of scenario files (*.toml; default: the packaged ones)")
-    p.set_defaults(func=cmd_reproduce, reads=("scenarios",))
-    i = sub.add_parser("identify", help="identify mu1, mu2, the stiffness ratio and the absolute "
-                                        "stiffness [N/m] from measurements",
-                       description="Identify the law's parameters from a measurement folder (mu1, "
+    i = command("identify", cmd_identify, ("data",),
+                help="identify mu1, mu2, the stiffness ratio and the absolute stiffness [N/m] from "
+                     "measurements",
+                description="Identify the law's parameters from a measurement folder (mu1, "
                                    "mu2 [-], eps1/eps2 [-], eps1, eps2 [N/m]) and write "
                                    "identified.json, identified.md, fit.png into DIR.")
     i.add_argument("data", type=Path, metavar="DATA_DIR",
@@ -187,36 +207,34 @@ def build_parser() -> argparse.ArgumentParser:
                         "(run,kind,mat_angle_deg,velocity_m_s), trajectories/RUN.csv (t_s,x1_m,x2_m), "
                         "forces/RUN.csv (t_s,force_N); angles in degrees, forces in N, positions in m, "
                         "times in s, velocity in m/s")
-    common(i, f"output folder ({OUT_RULE}); written only when the fit completes", scheduler=False)
+    common(i, written_when("the fit completes"), scheduler=False)
     i.add_argument("--no-validate", action="store_true",
                    help="skip the validation runs of the identified parameters on the FMU")
-    i.set_defaults(func=cmd_identify, reads=("data",))
-    s = sub.add_parser("ssp", help="write the experiment at one angle as an SSP 1.0 package "
-                                   "(rig FMU + contact FMU) for any SSP-capable simulator",
-                       description="Write SystemStructure.ssd and both FMI 2.0 FMUs (CarriageBlock, "
-                                   "OrthotropicContact) with the scenario's parameters as an .ssp.")
-    s.add_argument("scenario", metavar="SCENARIO", help="sweep scenario file (TOML); angles in "
-                   "degrees, forces in N, lengths in m")
+    s = command("ssp", cmd_ssp, ("scenario",),
+                help="write the experiment at one angle as an SSP 1.0 package (rig FMU + contact FMU) "
+                     "for any SSP-capable simulator",
+                description="Write SystemStructure.ssd and both FMI 2.0 FMUs (CarriageBlock, "
+                            "OrthotropicContact) with the scenario's parameters as an .ssp.")
+    scenario(s, "sweep scenario file (TOML); angles in degrees, forces in N, lengths in m")
     s.add_argument("--angle", type=_angle_deg, required=True, metavar="DEG",
                    help="the mat angle a [deg] (the scenario's geometry sets the law's axes from it)")
     s.add_argument("--out", type=_out_path, required=True, metavar="FILE.ssp",
                    help="the package to write (an SSP there is replaced; any other file only with --force, "
                         "and never the scenario it reads)")
     force(s, "replace the file --out names even if it is no SSP package")
-    s.set_defaults(func=cmd_ssp, reads=("scenario",))
-    x = sub.add_parser("export", help="write both contact FMUs calibrated with an identification's "
-                                      "estimates, an SSV file and an SSP of the rig",
-                       description="Write DIR/fmi2/ and DIR/fmi3/OrthotropicContact.fmu whose parameters' "
-                                   "start values are identified.json's estimates (used by the FMU itself "
-                                   "when an importer sets nothing), with the intervals, the data's SHA-256, "
-                                   "the date and the version in documentation/calibration.html; "
-                                   "DIR/calibration.ssv; and DIR/rig_<angle>.ssp, the rig at --angle on "
-                                   "the calibrated FMU.")
+    x = command("export", cmd_export, ("identification", "scenario"),
+                help="write both contact FMUs calibrated with an identification's estimates, an SSV "
+                     "file and an SSP of the rig",
+                description="Write DIR/fmi2/ and DIR/fmi3/OrthotropicContact.fmu whose parameters' "
+                            "start values are identified.json's estimates (used by the FMU itself when "
+                            "an importer sets nothing), with the intervals, the data's SHA-256, the date "
+                            "and the version in documentation/calibration.html; DIR/calibration.ssv; "
+                            "and DIR/rig_<angle>.ssp, the rig at --angle on the calibrated FMU.")
     x.add_argument("identification", type=Path, metavar="IDENTIFIED.json",
                    help="identified.json written by `orthocontact identify` (its data folder must be "
                         "readable: the export names the data's digest)")
     x.add_argument("--out", type=_out_path, required=True, metavar="DIR",
-                   help=f"output folder ({OUT_RULE}); written only when everything completes")
+                   help=written_when("everything completes"))
     x.add_argument("--angle", type=float, default=45.0, metavar="DEG",
                    help="mat angle [deg] in the measurement's geometry that the FMUs' axes alpha, "
                         "beta are set for and the SSP's rig runs at (default 45)")
@@ -226,27 +244,25 @@ def build_parser() -> argparse.ArgumentParser:
     force(x, "export values the plausibility gate refuses or warns about (said in a warning and in "
              "the FMUs' documentation and model description), and write into --out even if another "
              "command's run is there (its files are replaced; what export reads is never removed)")
-    x.set_defaults(func=cmd_export, reads=("identification", "scenario"))
-    v = sub.add_parser("sensitivity", help="how the rig's unmeasured strip friction and viscosity, "
-                                           "and the velocity, move the peak angle and the identified "
-                                           "eps1/eps2",
-                       description="For a mat scenario: the peak |phi| [deg] against the Teflon "
-                                   "strip's friction mu_strip (0-0.2) at 0.125 and 0.244 m/s (rig and "
-                                   "closed form), the eps1/eps2 the paper's calibration would return "
-                                   "for each, and for a viscous strip c_strip [N s/m] the peak at "
-                                   "0.244 m/s after calibrating at 0.125 m/s; CSV, JSON, PNG into DIR.")
-    v.add_argument("scenario", metavar="SCENARIO", help="a sweep scenario with the experiment's "
-                   "geometry (closed_form = \"mat\"), e.g. scenarios/mat_aged.toml")
-    common(v, f"output folder ({OUT_RULE}); written only when everything completes")
-    v.set_defaults(func=cmd_sensitivity, reads=("scenario",))
-    u = sub.add_parser("uq", help="propagate an identification's uncertainty to the predicted "
-                                  "trajectory angle over a scenario's angles (Dask)",
-                       description="Draw parameter sets from identified.json's estimates and "
-                                   "covariance (only mu, eps > 0), run the rig over the scenario's "
-                                   "angles for each (compiled master, on Dask), and write the "
-                                   "predictive bands of phi [deg] and of the driving force [N] "
-                                   "(median, 2.5 and 97.5 %) as uq_bands.csv, uq.json, uq.png, "
-                                   "and the drawn sets as samples.csv.")
+    scenario_command("sensitivity", cmd_sensitivity,
+                     help="how the rig's unmeasured strip friction and viscosity, and the velocity, move "
+                          "the peak angle and the identified eps1/eps2",
+                     description="For a mat scenario: the peak |phi| [deg] against the Teflon strip's "
+                                 "friction mu_strip (0-0.2) at 0.125 and 0.244 m/s (rig and closed form), "
+                                 "the eps1/eps2 the paper's calibration would return for each, and for a "
+                                 "viscous strip c_strip [N s/m] the peak at 0.244 m/s after calibrating at "
+                                 "0.125 m/s; CSV, JSON, PNG into DIR.",
+                     scenario_help="a sweep scenario with the experiment's geometry (closed_form = "
+                                   "\"mat\"), e.g. scenarios/mat_aged.toml",
+                     done="everything completes")
+    u = command("uq", cmd_uq, ("identification", "scenario"),
+                help="propagate an identification's uncertainty to the predicted trajectory angle over a "
+                     "scenario's angles (Dask)",
+                description="Draw parameter sets from identified.json's estimates and covariance (only "
+                            "mu, eps > 0), run the rig over the scenario's angles for each (compiled "
+                            "master, on Dask), and write the predictive bands of phi [deg] and of the "
+                            "driving force [N] (median, 2.5 and 97.5 %) as uq_bands.csv, uq.json, "
+                            "uq.png, and the drawn sets as samples.csv.")
     u.add_argument("identification", type=Path, metavar="IDENTIFICATION.json",
                    help="identified.json written by `orthocontact identify`")
     u.add_argument("--scenario", required=True, type=Path, metavar="SCENARIO",
@@ -255,7 +271,7 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--samples", required=True, type=_positive_int("parameter sets"), metavar="N",
                    help="parameter sets to draw; rig runs = N x the scenario's angles")
     u.add_argument("--out", required=True, type=_out_path, metavar="DIR",
-                   help=f"output folder ({OUT_RULE}); written only when all runs complete")
+                   help=written_when("all runs complete"))
     force(u)
     u.add_argument("--seed", type=_seed, default=0, metavar="S",
                    help="seed of the draws (default 0): the same seed gives the same files, "
@@ -275,5 +291,4 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--chunk-runs", type=_positive_int("runs"), default=20000, metavar="RUNS",
                    help="most rig runs per task sent to a worker (default 20000; the last tasks are smaller)")
     strict(u)
-    u.set_defaults(func=cmd_uq, reads=("identification", "scenario"))
     return ap
