@@ -74,34 +74,37 @@ def test_contact_params_fields_are_declared_in_the_source_as_the_fmu_has_them():
     assert RULES == contact().enumerations["SlidingRule"]
 
 
-def test_the_patchs_facts_are_its_model_descriptions(fmi_version):
-    md = read_model_description(str(find_fmu(fmi_version=fmi_version, model=PATCH_MODEL)))
-    assert md.coSimulation.modelIdentifier == PATCH_MODEL == models()["patch"]
-    assert PATCH_INPUTS == tuple(v.name for v in md.modelVariables if v.causality == "input")
+# Each model on the cells: its generated facts and its own parameters' rows
+# (the pad's foundation only: the patch's geometry is its own), with the
+# causalities they may have (the patch's cell counts size FMI 3.0 arrays).
+CELL_MODELS = [
+    ("patch", PATCH_MODEL, PATCH_INPUTS, PATCH_FLOAT_OUTPUTS, PATCH_INTEGER_OUTPUTS, PATCH_GEOMETRY,
+     ["length", "width", "n1", "n2"], ("parameter", "structuralParameter")),
+    ("pad", PAD_MODEL, PAD_INPUTS, PAD_FLOAT_OUTPUTS, PAD_INTEGER_OUTPUTS, PAD_FOUNDATION,
+     ["kn", "dn"], ("parameter",)),
+]
+
+
+@pytest.mark.parametrize("key, model, inputs, float_outputs, integer_outputs, rows, names, causalities",
+                         CELL_MODELS, ids=[m[0] for m in CELL_MODELS])
+def test_the_cell_models_facts_are_their_model_descriptions(fmi_version, key, model, inputs, float_outputs,
+                                                           integer_outputs, rows, names, causalities):
+    md = read_model_description(str(find_fmu(fmi_version=fmi_version, model=model)))
+    assert md.coSimulation.modelIdentifier == model == models()[key]
+    assert inputs == tuple(v.name for v in md.modelVariables if v.causality == "input")
     outputs = [v for v in md.modelVariables if v.causality == "output" and v.name not in
-               {a.name for a in manifest(PATCH_MODEL).arrays}]
-    assert PATCH_FLOAT_OUTPUTS == tuple(v.name for v in outputs if v.type in ("Real", "Float64"))
-    assert PATCH_INTEGER_OUTPUTS == tuple(v.name for v in outputs if v.type in ("Integer", "Int32"))
+               {a.name for a in manifest(model).arrays}]
+    assert float_outputs == tuple(v.name for v in outputs if v.type in ("Real", "Float64"))
+    assert integer_outputs == tuple(v.name for v in outputs if v.type in ("Integer", "Int32"))
     by_name = {v.name: v for v in md.modelVariables}
-    assert [row.name for row in PATCH_GEOMETRY] == ["length", "width", "n1", "n2"]
-    for row in PATCH_GEOMETRY:
+    assert [row.name for row in rows] == names
+    for row in rows:
         v = by_name[row.name]
-        assert v.causality in ("parameter", "structuralParameter") and float(v.start) == row.start
+        assert v.causality in causalities and float(v.start) == row.start
+
+
+def test_the_patchs_cell_counts_are_at_most_patch_max_side():
     assert max(row.max for row in PATCH_GEOMETRY if row.type == "Int32") == 32   # PATCH_MAX_SIDE
-
-
-def test_the_pads_facts_are_its_model_descriptions(fmi_version):
-    md = read_model_description(str(find_fmu(fmi_version=fmi_version, model=PAD_MODEL)))
-    assert md.coSimulation.modelIdentifier == PAD_MODEL == models()["pad"]
-    assert PAD_INPUTS == tuple(v.name for v in md.modelVariables if v.causality == "input")
-    outputs = [v for v in md.modelVariables if v.causality == "output" and v.name not in
-               {a.name for a in manifest(PAD_MODEL).arrays}]
-    assert PAD_FLOAT_OUTPUTS == tuple(v.name for v in outputs if v.type in ("Real", "Float64"))
-    assert PAD_INTEGER_OUTPUTS == tuple(v.name for v in outputs if v.type in ("Integer", "Int32"))
-    by_name = {v.name: v for v in md.modelVariables}
-    assert [row.name for row in PAD_FOUNDATION] == ["kn", "dn"]   # the patch's geometry is its own
-    for row in PAD_FOUNDATION:
-        assert by_name[row.name].causality == "parameter" and float(by_name[row.name].start) == row.start
 
 
 def test_contact_params_cross_to_another_process():
