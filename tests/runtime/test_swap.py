@@ -8,6 +8,15 @@ import pytest
 from orthocontact.runtime.swap import can_exchange, exchange, link_tree, merge_into, prune_empty
 
 
+def make_tree(folder, files: dict) -> None:
+    """Writes `files` (path under `folder` -> text) with their folders; an
+    empty `files` makes `folder` alone: tree()'s inverse for plain files."""
+    folder.mkdir(parents=True, exist_ok=True)
+    for rel, text in files.items():
+        (folder / rel).parent.mkdir(parents=True, exist_ok=True)
+        (folder / rel).write_text(text)
+
+
 def tree(folder) -> dict:
     """Every file under `folder` -> its text (a symbolic link -> '-> target')."""
     out = {}
@@ -22,10 +31,8 @@ def tree(folder) -> dict:
 
 def test_two_folders_are_exchanged_in_one_step(tmp_path):
     a, b = tmp_path / "a", tmp_path / "b"
-    (a / "sub").mkdir(parents=True)
-    (a / "sub" / "x").write_text("a's")
-    b.mkdir()
-    (b / "y").write_text("b's")
+    make_tree(a, {"sub/x": "a's"})
+    make_tree(b, {"y": "b's"})
     assert can_exchange(b)
     exchange(a, b)
     assert tree(a) == {"y": "b's"} and tree(b) == {"sub/x": "a's"}
@@ -44,10 +51,7 @@ def test_no_exchange_for_a_link_or_a_mount_point(tmp_path):
 
 def test_a_tree_of_hard_links_skips_what_it_is_told_and_keeps_modes(tmp_path):
     src = tmp_path / "src"
-    (src / "sub").mkdir(parents=True)
-    (src / "keep.txt").write_text("k")
-    (src / "sub" / "gone.csv").write_text("g")
-    (src / "sub" / "stays.csv").write_text("s")
+    make_tree(src, {"keep.txt": "k", "sub/gone.csv": "g", "sub/stays.csv": "s"})
     (src / "to_sub").symlink_to("sub")
     os.chmod(src / "sub", 0o750)
     link_tree(src, tmp_path / "dst", skip={"sub/gone.csv"})
@@ -60,15 +64,8 @@ def test_a_tree_of_hard_links_skips_what_it_is_told_and_keeps_modes(tmp_path):
 @pytest.mark.parametrize("place", ["move", "link"])
 def test_a_merge_replaces_the_files_written_and_keeps_the_rest(tmp_path, place):
     src, dst = tmp_path / "src", tmp_path / "dst"
-    (src / "case4").mkdir(parents=True)
-    (src / "case4" / "summary.json").write_text("new")
-    (src / "report.md").write_text("new report")
-    (src / "was_a_folder").write_text("a file now")
-    (dst / "case4").mkdir(parents=True)
-    (dst / "case4" / "summary.json").write_text("old")
-    (dst / "case4" / "notes.txt").write_text("mine")
-    (dst / "was_a_folder").mkdir()
-    (dst / "was_a_folder" / "x").write_text("x")
+    make_tree(src, {"case4/summary.json": "new", "report.md": "new report", "was_a_folder": "a file now"})
+    make_tree(dst, {"case4/summary.json": "old", "case4/notes.txt": "mine", "was_a_folder/x": "x"})
     merge_into(src, dst, os.replace if place == "move" else os.link)
     assert tree(dst) == {"case4/notes.txt": "mine", "case4/summary.json": "new", "report.md": "new report",
                          "was_a_folder": "a file now"}
@@ -77,18 +74,16 @@ def test_a_merge_replaces_the_files_written_and_keeps_the_rest(tmp_path, place):
 
 def test_a_linked_merge_never_puts_a_folder_where_a_file_is(tmp_path):
     src, dst = tmp_path / "src", tmp_path / "dst"
-    (src / "x").mkdir(parents=True)
-    (src / "x" / "a").write_text("a")
-    dst.mkdir()
-    (dst / "x").write_text("the user's file")
+    make_tree(src, {"x/a": "a"})
+    make_tree(dst, {"x": "the user's file"})
     with pytest.raises(NotADirectoryError):
         merge_into(src, dst, os.link)
     assert (dst / "x").read_text() == "the user's file"
 
 
 def test_folders_emptied_are_pruned_up_to_the_first_that_is_not(tmp_path):
-    (tmp_path / "a" / "b").mkdir(parents=True)
-    (tmp_path / "a" / "keep").write_text("k")
+    make_tree(tmp_path, {"a/keep": "k"})
+    (tmp_path / "a" / "b").mkdir()
     (tmp_path / "c" / "d").mkdir(parents=True)
     prune_empty(tmp_path, ["a/b/gone.csv", "c/d/gone.csv"])
     assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*")) == ["a", "a/keep"]
