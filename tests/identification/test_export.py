@@ -328,20 +328,26 @@ def recordings_in_kn(folder: Path) -> Path:
     return folder
 
 
+def unsettled(rig: str, ramp: float, named: str, lengths: str) -> tuple:
+    """A SLIPS case of a slip that keeps the rig from settling over 5 m of
+    travel (`rig` more lines of rig.toml, ramp.csv's x1_m times `ramp`, 0:
+    no ramp.csv): identify warns "would not settle; <named>", export
+    refuses identified.json naming the elastic lengths ("<lengths> m")."""
+    return (lambda d: reduced_variant(d, append="travel_m = 5.0\n" + rig, ramp=ramp),
+            f"would not settle; {named}", "identified.json", f"the elastic length mu N / eps is {lengths} m")
+
+
 # (the data set, what identify's warning says, the file export's refusal names, what it says)
 SLIPS = {
-    "mm": (lambda d: reduced_variant(d, append="travel_m = 5.0\n", ramp=1e3),
-           "would not settle; ramp.csv's x1_m in mm?",
-           "identified.json", "the elastic length mu N / eps is 0.594 .. 1.14 m"),
+    "mm": unsettled("", 1e3, "ramp.csv's x1_m in mm?", "0.594 .. 1.14"),
     "cm/s": (lambda d: reduced_variant(d, rig=[("velocity_m_s = 0.244", "velocity_m_s = 12.5")]),
              "rig.toml: velocity_m_s = 12.5 m/s: a lab rig's carriage moves at 0.001-2 m/s; cm/s?",
              "rig.toml", "velocity_m_s = 12.5 m/s: a lab rig's carriage moves at 0.001-2 m/s; cm/s?"),
     "kN": (recordings_in_kn, "(m g = 18.39 N, F_int = 0.00498 N): all below the usual 0.01-3 of a "
                              "friction coefficient, and 1000 times each within it; forces in kN?",
            "identified.json", "mu1, mu2 = 0.000408 .. 0.000626 (F_int = 0.00498 N)"),
-    "N/mm": (lambda d: reduced_variant(d, append="travel_m = 5.0\neps2_nominal_N_m = 10.0\n", ramp=0),
-             "would not settle; rig.toml's eps2_nominal_N_m in N/mm?",
-             "identified.json", "the elastic length mu N / eps is 0.596 .. 1.15 m"),
+    "N/mm": unsettled("eps2_nominal_N_m = 10.0\n", 0, "rig.toml's eps2_nominal_N_m in N/mm?",
+                      "0.596 .. 1.15"),
     "rad": (lambda d: reduced_variant(d, rig=[("alpha_offset_deg = 90.0", "alpha_offset_deg = 1.5708")]),
             "rig.toml: alpha_offset_deg = 1.5708: looks like pi/2 in radians",
             "identified.json", "assumptions.alpha_offset_deg = 1.5708: looks like pi/2 in radians"),
