@@ -81,15 +81,9 @@ rm -f "$stamp_file"
 # cross-compiles the FMU binaries for Linux, Windows and macOS.  The
 # package's own dependencies (fmpy, numpy, casadi, matplotlib, dask) come
 # with its install below.
-missing_reqs=$(.venv/bin/python tools/requirements.py build --missing)
-build_reqs=()
-while IFS= read -r req; do
-  if [ -n "$req" ]; then build_reqs+=("$req"); fi
-done <<< "$missing_reqs"
-if [ ${#build_reqs[@]} -gt 0 ]; then
-  echo "bootstrap: build requirements into .venv (${build_reqs[*]}; downloaded the first time)"
-  .venv/bin/python -m pip install -q --disable-pip-version-check "${build_reqs[@]}"
-fi
+# Those not yet satisfied, downloaded the first time; one that cannot be
+# installed ends the set-up.
+.venv/bin/python tools/requirements.py build --install
 echo "bootstrap: building every model's FMUs (FMI 2.0 and 3.0) and installing orthocontact:" \
      "zig cross-compiles the binaries for 5 platforms; the first time zig also builds each" \
      "platform's C runtime (cached in ~/.cache/zig), which takes minutes: the Windows binaries" \

@@ -8,8 +8,14 @@ is declared there only.
     requirements.py test --missing   only those this Python does not satisfy
                                      (every one where `packaging` is not
                                      importable: pip then decides)
+    requirements.py test --install   installs those into this Python (pip); a
+                                     list pip refuses is retried one by one,
+                                     so that the rest still installs; exit 1
+                                     naming each that is not installed
 """
 import argparse
+import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -55,12 +61,37 @@ def missing(requirements: list) -> list:
     return out
 
 
+def install(which: str, requirements: list) -> list:
+    """Installs `requirements` into this Python with pip, all at once or,
+    if pip refuses that, one by one; those not installed, each said on
+    stderr."""
+    if not requirements:
+        return []
+    print(f"requirements.py: {which} requirements into {os.path.relpath(sys.prefix)} "
+          f"({', '.join(requirements)})", flush=True)
+
+    def pip(reqs):
+        return subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--disable-pip-version-check",
+                               *reqs]).returncode == 0
+
+    if pip(requirements):
+        return []
+    failed = [req for req in requirements if not pip([req])]
+    for req in failed:
+        print(f"requirements.py: {req} not installed", file=sys.stderr)
+    return failed
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("which", help="build, or the name of an extra (test)")
     ap.add_argument("--missing", action="store_true", help="only those not satisfied here")
+    ap.add_argument("--install", action="store_true",
+                    help="install those not satisfied here (pip); exit 1 if any is not installed")
     a = ap.parse_args(argv)
     reqs = declared(a.which)
+    if a.install:
+        return 1 if install(a.which, missing(reqs)) else 0
     for line in missing(reqs) if a.missing else reqs:
         print(line)
     return 0

@@ -21,20 +21,8 @@ tools/bootstrap.sh
 # binary and wine64 to run the win64 ones (`make test` only).  A part that
 # cannot be installed is reported by pytest as not run, and fails `make test`
 # and CI (tests/optional_parts.py).
-missing_reqs=$(.venv/bin/python tools/requirements.py test --missing)
-test_reqs=()
-while IFS= read -r req; do
-  if [ -n "$req" ]; then test_reqs+=("$req"); fi
-done <<< "$missing_reqs"
-if [ ${#test_reqs[@]} -gt 0 ]; then
-  echo "run_tests: the test extra into .venv (${test_reqs[*]})"
-  if ! .venv/bin/python -m pip install -q --disable-pip-version-check "${test_reqs[@]}"; then
-    for req in "${test_reqs[@]}"; do   # one by one: the rest still installs
-      .venv/bin/python -m pip install -q --disable-pip-version-check "$req" ||
-        echo "run_tests: $req not installed: its tests will be reported not run"
-    done
-  fi
-fi
+.venv/bin/python tools/requirements.py test --install ||
+  echo "run_tests: the tests needing what is not installed will be reported not run"
 # The linter and import order (pyproject's [tool.ruff]; in the test extra):
 # a finding fails the run before anything is built.
 echo "== ruff check =="

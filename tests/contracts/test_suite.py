@@ -158,6 +158,20 @@ def test_only_the_requirements_not_satisfied_here_are_missing():
         ["pytest>=999", "surely-not-installed-anywhere>=1"]
 
 
+def test_a_requirement_pip_cannot_install_is_named_and_the_rest_still_installs(monkeypatch, capfd):
+    """tools/requirements.py --install, what both set-up scripts call: the
+    list pip refuses is retried one by one (offline: no index, so only the
+    requirement already satisfied installs)."""
+    from requirements import install
+    monkeypatch.setenv("PIP_NO_INDEX", "1")
+    assert install("test", ["pytest>=1", "surely-not-installed-anywhere>=1"]) == \
+        ["surely-not-installed-anywhere>=1"]
+    err = capfd.readouterr().err
+    assert "requirements.py: surely-not-installed-anywhere>=1 not installed" in err
+    assert "pytest>=1 not installed" not in err
+    assert install("test", []) == []
+
+
 # -- no skip but for a missing part --------------------------------------------------
 
 SKIPPING = re.compile(r"pytest\.skip\(|importorskip|skipif|xfail|SkipTest|unittest\.skip")
