@@ -5,88 +5,29 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "glue/fmu_instance.h"
 #include "models/ContactPad/pressure.h"
 
-/* Where each variable of the table lives.  The law's parameters (the
- * table's L rows) live in params under their own names. */
-#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...)                         \
-    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus,                                     \
-            start, lo,           hi,           offsetof(pad_model, params.name),                   \
-            unit},
-#define FMU_SLOT_time offsetof(pad_model, time)
-#define FMU_SLOT_slidingRule offsetof(pad_model, params.rule)
-#define FMU_SLOT_initialSlip offsetof(pad_model, g.initial_slip)
-#define FMU_SLOT_s1Start offsetof(pad_model, g.s_start[0])
-#define FMU_SLOT_s2Start offsetof(pad_model, g.s_start[1])
-#define FMU_SLOT_length offsetof(pad_model, g.length)
-#define FMU_SLOT_width offsetof(pad_model, g.width)
-#define FMU_SLOT_n1 offsetof(pad_model, g.n[0])
-#define FMU_SLOT_n2 offsetof(pad_model, g.n[1])
-#define FMU_SLOT_u1 offsetof(pad_model, g.u[0])
-#define FMU_SLOT_u2 offsetof(pad_model, g.u[1])
-#define FMU_SLOT_theta offsetof(pad_model, g.theta)
+/* Where each of the pad's own variables lives (cells_model.h has the
+ * law's, the cells' and their sums'). */
 #define FMU_SLOT_kn offsetof(pad_model, kn)
 #define FMU_SLOT_dn offsetof(pad_model, dn)
 #define FMU_SLOT_d offsetof(pad_model, d)
 #define FMU_SLOT_phi1 offsetof(pad_model, phi[0])
 #define FMU_SLOT_phi2 offsetof(pad_model, phi[1])
-#define FMU_SLOT_T1 offsetof(pad_model, out.T[0])
-#define FMU_SLOT_T2 offsetof(pad_model, out.T[1])
-#define FMU_SLOT_Mz offsetof(pad_model, out.Mz)
 #define FMU_SLOT_Fn offsetof(pad_model, Fn)
 #define FMU_SLOT_M1 offsetof(pad_model, M[0])
 #define FMU_SLOT_M2 offsetof(pad_model, M[1])
-#define FMU_SLOT_dissipatedEnergy offsetof(pad_model, out.energy)
 #define FMU_SLOT_contactFraction offsetof(pad_model, contact_fraction)
-#define FMU_SLOT_slipFraction offsetof(pad_model, out.slip_fraction)
-#define FMU_SLOT_contactState offsetof(pad_model, out.contact)
 
-enum { FMU_ENUM_TYPES(FMU_ENUM_KIND) PAD_ENUM_KINDS_END };
+/* The Jacobian: rows T1, T2, Mz, Fn, M1, M2, dissipatedEnergy; columns
+ * u1, u2, theta, d, phi1, phi2. */
+enum { P_ROWS = 7, P_COLS = 6 };
+#define MODEL_JAC_ROWS P_ROWS
+#define MODEL_JAC_COLS P_COLS
+#define MODEL_JAC_OUTPUTS "T1, T2, Mz, Fn, M1, M2, dissipatedEnergy"
+#define MODEL_JAC_INPUTS "u1, u2, theta, d, phi1, phi2"
 
-static const fmu_var VARS[PAD_VR_COUNT_PLUS_ONE] = {PAD_VARIABLES(FMU_VAR_ROW, LAW_ROW)};
-
-static fmu_status derivative(const pad_model *m, const unsigned int unknown[], size_t n_unknown,
-                             const unsigned int known[], size_t n_known, const double seed[],
-                             double out[], int adjoint, fmu_msg *msg);
-static fmu_status exit_init(pad_model *m, fmu_msg *msg);
-
-/* ---- FMI 3.0: the cells as arrays (models/ContactPad/table.h's FMU_ARRAYS) --------- */
-
-static size_t array_size(const pad_model *m, unsigned int vr, int *type) {
-    switch (vr) {
-    case PAD_VR_cellT1:
-    case PAD_VR_cellT2:
-    case PAD_VR_cellFn: *type = FMU_T_Float64; break;
-    case PAD_VR_cellState: *type = FMU_T_Int32; break;
-    default: return 0;
-    }
-    return (size_t)m->g.n[0] * (size_t)m->g.n[1];
-}
-
-/* Element [i][j] (row-major, shape (n1, n2)) is cell c = i + n1 j of the
- * shown step (cells_array). */
-static void array_get(const pad_model *m, unsigned int vr, void *out) {
-    const int what = vr == PAD_VR_cellT1   ? CELLS_ARRAY_T1
-                     : vr == PAD_VR_cellT2 ? CELLS_ARRAY_T2
-                     : vr == PAD_VR_cellFn ? CELLS_ARRAY_N
-                                           : CELLS_ARRAY_STATE;
-    cells_array(&m->cells, &m->g, what, out);
-}
-
-static const unsigned int STRUCTURAL[] = {PAD_VR_n1, PAD_VR_n2};
-static const fmu_arrays ARRAYS = {array_size, array_get, STRUCTURAL, 2};
-
-const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER,
-                                       FMU_TOKEN,
-                                       FMU_STATE_TAG,
-                                       VARS,
-                                       PAD_VR_COUNT_PLUS_ONE,
-                                       sizeof(pad_model),
-                                       NULL /* the outputs live in their slots */,
-                                       exit_init,
-                                       derivative,
-                                       &ARRAYS};
+#include "models/ContactPatch/cells_model.h"
 
 /* ---- the foundation ------------------------------------------------------- */
 
@@ -275,11 +216,8 @@ static pad_pose pose_now(const pad_model *m, double h) {
 
 fmu_status fmu_model_update(pad_model *m, int changed, int allow, fmu_msg *msg) {
     oc_law law;
-    const oc_law *use = &m->cells.law;
-    if (changed & FMU_CHANGED_PARAMETERS) {
-        if (cells_law(&m->params, &m->g, &law, msg) != FMU_OK) return FMU_ERR;
-        use = &law;
-    }
+    const oc_law *use = law_for(m, changed, &law, msg);
+    if (!use) return FMU_ERR;
     /* Before the end of initialization the cells start where the inputs or
      * the explicit slip put them, with no rate; afterwards from what was
      * committed, the rate against the pose it was committed at. */
@@ -315,10 +253,6 @@ fmu_status fmu_model_do_step(pad_model *m, double h, fmu_msg *msg) {
 }
 
 /* ---- directional derivatives ------------------------------------------------ */
-
-/* Rows: T1, T2, Mz, Fn, M1, M2, dissipatedEnergy; columns: u1, u2, theta,
- * d, phi1, phi2. */
-enum { P_ROWS = 7, P_COLS = 6 };
 
 static int jac_row(unsigned int vr) {
     switch (vr) {
@@ -439,31 +373,7 @@ static void partials(const pad_model *m, double *Jflat) {
     P[5][2] += Y;
 }
 
-/* J fits the glue's buffer (a negative size fails to compile) */
-typedef char jacobian_fits[P_ROWS * P_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
-static const fmu_jacobian JACOBIAN = {P_ROWS,
-                                      P_COLS,
-                                      jac_row,
-                                      jac_col,
-                                      "T1, T2, Mz, Fn, M1, M2, dissipatedEnergy",
-                                      "u1, u2, theta, d, phi1, phi2",
-                                      partials};
-
-static fmu_status derivative(const pad_model *m, const unsigned int unknown[], size_t n_unknown,
-                             const unsigned int known[], size_t n_known, const double seed[],
-                             double out[], int adjoint, fmu_msg *msg) {
-    return fmu_jacobian_derivative(&JACOBIAN, m, unknown, n_unknown, known, n_known, seed, out,
-                                   adjoint, msg);
-}
-
 /* ---- serialized state: the field list of model.h ------------------------ */
-
-size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
-
-void fmu_model_state_write(const pad_model *m, unsigned char *p) {
-    p = fmu_fields_write(&PAD_HEAD_FIELDS, m, p);
-    cells_state_write(&m->cells, &m->g, p);
-}
 
 /* What the serialized head reads into m, kept to be put back. */
 typedef struct {
@@ -504,34 +414,18 @@ static fmu_status read_cells(pad_model *m, const pad_head *was, const unsigned c
     if (!(m->ref.h >= 0.0) || !(m->commit.h >= 0.0))
         return fmu_fail(msg, "serialized state: a step size h=%g s, %g s below 0", m->ref.h,
                         m->commit.h);
-    /* A master that saves and restores every step restores the parameters
-     * it already has: keep their tensors instead of recomputing them (bit
-     * patterns: a restored state must continue bit for bit). */
     oc_law law;
-    fmu_msg why;
-    if (fmu_fields_same(&OC_PARAMS_FIELDS, &was->params, &m->params) && was->g.n[0] == m->g.n[0] &&
-        was->g.n[1] == m->g.n[1])
-        law = m->cells.law;
-    else if (cells_law(&m->params, &m->g, &law, &why) != FMU_OK)
-        return fmu_fail(msg, "serialized state: %s", why.text);
-    if (cells_state_check(&law, &m->g, cells, msg) != FMU_OK) return FMU_ERR;
+    if (cells_restored_law(&m->cells, &was->params, &was->g, &m->params, &m->g, cells, &law, msg) !=
+        FMU_OK)
+        return FMU_ERR;
     double Nc[PATCH_MAX_CELLS];
     const pad_field F = field_of(m, &m->ref);
     pad_normal S;
     normal_forces(m, &F, Nc, &S);
     double M[2];
     moments_of(m->g.theta, S.mb, M);
-    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1])) {
-        overflow(m, -1, &why);
-        return fmu_fail(msg, "serialized state: %s", why.text);
-    }
-    cells_sums out;
-    const int bad = cells_state_read(&m->cells, &law, &m->g, Nc, cells, &out);
-    if (bad >= 0) {
-        overflow(m, bad, &why);
-        return fmu_fail(msg, "serialized state: %s", why.text);
-    }
-    m->out = out;
+    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1])) return refused_state(m, -1, msg);
+    if (restored_cells(m, &law, Nc, cells, msg) != FMU_OK) return FMU_ERR;
     m->Fn = S.Fn;
     m->M[0] = M[0];
     m->M[1] = M[1];
@@ -543,7 +437,7 @@ static fmu_status read_cells(pad_model *m, const pad_head *was, const unsigned c
  * state puts the head back and changes nothing else. */
 fmu_status fmu_model_state_read(pad_model *m, const unsigned char *p, fmu_msg *msg) {
     const pad_head head = head_of(m);
-    fmu_status st = fmu_fields_read(&PAD_HEAD_FIELDS, m, &p, msg);
+    fmu_status st = fmu_fields_read(&CELLS_HEAD_FIELDS, m, &p, msg);
     if (st == FMU_OK) st = read_cells(m, &head, p, msg);
     if (st != FMU_OK) put_head(m, &head);
     return st;

@@ -25,6 +25,7 @@
 #include "law/law_fields.h"
 #include "models/ContactPad/table.h"
 #include "models/ContactPatch/cells.h"
+#include "models/ContactPatch/cells_fields.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -54,9 +55,9 @@ struct fmu_model {
 typedef struct fmu_model pad_model;
 
 /* The model's part of the serialized state (glue/fmu_fields.h): the head,
- * then every cell's committed state (the cells' own: cells.h).  The shown
- * result is not stored but recomputed from the committed states, the
- * inputs and the rate's reference. */
+ * then every cell's committed state (cells_fields.h).  The shown result is
+ * not stored but recomputed from the committed states, the inputs and the
+ * rate's reference. */
 #define PAD_POSE_FIELDS(member, group)                                                             \
     FMU_F64(pad_model, member.d, "d", group, FINITE, 0),                                           \
         FMU_F64(pad_model, member.phi[0], "phi1", group, FINITE, 0),                               \
@@ -66,35 +67,20 @@ typedef struct fmu_model pad_model;
 static const fmu_field PAD_MODEL_FIELD_LIST[] = {
     FMU_RECORD(pad_model, params, &OC_PARAMS_FIELDS,
                "the law's parameters (eps1, eps2 the whole pad's)"),
-    FMU_U32(pad_model, g.initial_slip, "initialSlip", "the initial slip", RANGE,
-            PAD_VR_initialSlip),
-    FMU_F64(pad_model, g.s_start[0], "s1Start", "the initial slip", RANGE, PAD_VR_s1Start),
-    FMU_F64(pad_model, g.s_start[1], "s2Start", "the initial slip", RANGE, PAD_VR_s2Start),
-    FMU_F64(pad_model, g.length, "length", "the geometry", RANGE, PAD_VR_length),
-    FMU_F64(pad_model, g.width, "width", "the geometry", RANGE, PAD_VR_width),
-    FMU_U32(pad_model, g.n[0], "n1", "the geometry", RANGE, PAD_VR_n1),
-    FMU_U32(pad_model, g.n[1], "n2", "the geometry", RANGE, PAD_VR_n2),
+    CELLS_SETUP_FIELDS,
     FMU_F64(pad_model, kn, "kn", "the foundation", RANGE, PAD_VR_kn),
     FMU_F64(pad_model, dn, "dn", "the foundation", RANGE, PAD_VR_dn),
-    FMU_F64(pad_model, g.u[0], "u1", "the inputs", FINITE, 0),
-    FMU_F64(pad_model, g.u[1], "u2", "the inputs", FINITE, 0),
-    FMU_F64(pad_model, g.theta, "theta", "the inputs", FINITE, 0),
+    CELLS_MOTION_FIELDS,
     FMU_F64(pad_model, d, "d", "the inputs", FINITE, 0),
     FMU_F64(pad_model, phi[0], "phi1", "the inputs", FINITE, 0),
     FMU_F64(pad_model, phi[1], "phi2", "the inputs", FINITE, 0),
-    FMU_U32(pad_model, cells.result_committed, "committed",
-            "the commit flag (1: the shown step is committed)", FLAG, 0),
+    CELLS_COMMITTED_FIELD,
     PAD_POSE_FIELDS(ref, "the pose the shown step's rate is taken against, and over what step "
                          "[s] (0: none)"),
     PAD_POSE_FIELDS(commit, "the shown step's pose and the size [s] of the doStep that committed "
                             "it (while committed)"),
-    FMU_RECORDS(pad_model, cells.start, &OC_STATE_FIELDS, PATCH_MAX_CELLS,
-                "the cells' committed states (cell c = i + n1 j)")};
-enum { PAD_MODEL_FIELDS = sizeof PAD_MODEL_FIELD_LIST / sizeof PAD_MODEL_FIELD_LIST[0] };
-static const fmu_fields FMU_STATE_FIELDS = FMU_FIELDS(PAD_MODEL_FIELD_LIST, pad_model);
-/* The head: all but the cells. */
-static const fmu_fields PAD_HEAD_FIELDS = {PAD_MODEL_FIELD_LIST, PAD_MODEL_FIELDS - 1,
-                                           sizeof(pad_model)};
+    CELLS_STATES_FIELD};
+CELLS_STATE_FIELDS(PAD_MODEL_FIELD_LIST);
 
 #ifdef __cplusplus
 }

@@ -370,6 +370,18 @@ fmu_status cells_state_check(const oc_law *law, const cells_setup *g, const unsi
     return FMU_OK;
 }
 
+fmu_status cells_restored_law(const cells_grid *G, const oc_params *was, const cells_setup *was_g,
+                              const oc_params *params, const cells_setup *g, const unsigned char *p,
+                              oc_law *law, fmu_msg *msg) {
+    fmu_msg why;
+    if (fmu_fields_same(&OC_PARAMS_FIELDS, was, params) && was_g->n[0] == g->n[0] &&
+        was_g->n[1] == g->n[1])
+        *law = G->law;
+    else if (cells_law(params, g, law, &why) != FMU_OK)
+        return fmu_fail(msg, "serialized state: %s", why.text);
+    return cells_state_check(law, g, p, msg);
+}
+
 int cells_state_read(cells_grid *G, const oc_law *law, const cells_setup *g, const double Nc[],
                      const unsigned char *p, cells_sums *S) {
     const cells_source src = {CELLS_FROM_BYTES, NULL, NULL, -1, p};

@@ -151,6 +151,16 @@ void cells_state_write(const cells_grid *G, const cells_setup *g, unsigned char 
  * FMU_ERR with why (msg). */
 fmu_status cells_state_check(const oc_law *law, const cells_setup *g, const unsigned char *p,
                              fmu_msg *msg);
+/* The law serialized cells at p are read with (cells_state_read), and
+ * the cells checked against it (cells_state_check).  A master that saves
+ * and restores every step restores the parameters it already has: while
+ * `params` and the grid g are those G's law was made for (`was`, was_g:
+ * bit patterns, not ==, since -0.0 and +0.0 give tensors that differ in the
+ * sign of zero entries, and a restored state must continue bit for bit)
+ * it is G's, kept; else computed.  FMU_OK, or FMU_ERR with why (msg). */
+fmu_status cells_restored_law(const cells_grid *G, const oc_params *was, const cells_setup *was_g,
+                              const oc_params *params, const cells_setup *g, const unsigned char *p,
+                              oc_law *law, fmu_msg *msg);
 /* Takes checked serialized cells at p as the committed states: the shown
  * step recomputed from them with `law` and Nc into the free buffer, as
  * cells_evaluate; -1, or cells_step's index and nothing changed. */

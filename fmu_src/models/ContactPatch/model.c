@@ -5,81 +5,20 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "glue/fmu_bytes.h"
-#include "glue/fmu_instance.h"
-
-/* Where each variable of the table lives.  The law's parameters (the
- * table's L rows) live in params under their own names. */
-#define LAW_ROW(name, vr, type, caus, var, init, start, lo, hi, unit, ...)                         \
-    [vr] = {#name, FMU_T_##type, FMU_C_##caus, FMU_SET_##caus,                                     \
-            start, lo,           hi,           offsetof(patch_model, params.name),                 \
-            unit},
-#define FMU_SLOT_time offsetof(patch_model, time)
-#define FMU_SLOT_slidingRule offsetof(patch_model, params.rule)
-#define FMU_SLOT_initialSlip offsetof(patch_model, g.initial_slip)
-#define FMU_SLOT_s1Start offsetof(patch_model, g.s_start[0])
-#define FMU_SLOT_s2Start offsetof(patch_model, g.s_start[1])
-#define FMU_SLOT_length offsetof(patch_model, g.length)
-#define FMU_SLOT_width offsetof(patch_model, g.width)
-#define FMU_SLOT_n1 offsetof(patch_model, g.n[0])
-#define FMU_SLOT_n2 offsetof(patch_model, g.n[1])
-#define FMU_SLOT_u1 offsetof(patch_model, g.u[0])
-#define FMU_SLOT_u2 offsetof(patch_model, g.u[1])
-#define FMU_SLOT_theta offsetof(patch_model, g.theta)
+/* Where each of the patch's own variables lives (cells_model.h has the
+ * law's, the cells' and their sums'). */
 #define FMU_SLOT_N offsetof(patch_model, N)
 #define FMU_SLOT_p1 offsetof(patch_model, p[0])
 #define FMU_SLOT_p2 offsetof(patch_model, p[1])
-#define FMU_SLOT_T1 offsetof(patch_model, out.T[0])
-#define FMU_SLOT_T2 offsetof(patch_model, out.T[1])
-#define FMU_SLOT_Mz offsetof(patch_model, out.Mz)
-#define FMU_SLOT_dissipatedEnergy offsetof(patch_model, out.energy)
-#define FMU_SLOT_slipFraction offsetof(patch_model, out.slip_fraction)
-#define FMU_SLOT_contactState offsetof(patch_model, out.contact)
 
-enum { FMU_ENUM_TYPES(FMU_ENUM_KIND) PATCH_ENUM_KINDS_END };
+/* The Jacobian: rows T1, T2, Mz, dissipatedEnergy; columns u1, u2, theta,
+ * N, p1, p2. */
+#define MODEL_JAC_ROWS CELLS_JAC_ROWS
+#define MODEL_JAC_COLS CELLS_JAC_COLS
+#define MODEL_JAC_OUTPUTS "T1, T2, Mz, dissipatedEnergy"
+#define MODEL_JAC_INPUTS "u1, u2, theta, N, p1, p2"
 
-static const fmu_var VARS[PATCH_VR_COUNT_PLUS_ONE] = {PATCH_VARIABLES(FMU_VAR_ROW, LAW_ROW)};
-
-static fmu_status derivative(const patch_model *m, const unsigned int unknown[], size_t n_unknown,
-                             const unsigned int known[], size_t n_known, const double seed[],
-                             double out[], int adjoint, fmu_msg *msg);
-static fmu_status exit_init(patch_model *m, fmu_msg *msg);
-
-/* ---- FMI 3.0: the cells as arrays (models/ContactPatch/table.h's FMU_ARRAYS) --------- */
-
-static size_t array_size(const patch_model *m, unsigned int vr, int *type) {
-    switch (vr) {
-    case PATCH_VR_cellT1:
-    case PATCH_VR_cellT2: *type = FMU_T_Float64; break;
-    case PATCH_VR_cellState: *type = FMU_T_Int32; break;
-    default: return 0;
-    }
-    return (size_t)m->g.n[0] * (size_t)m->g.n[1];
-}
-
-/* Element [i][j] (row-major, shape (n1, n2)) is cell c = i + n1 j of the
- * shown step (cells_array). */
-static void array_get(const patch_model *m, unsigned int vr, void *out) {
-    cells_array(&m->cells, &m->g,
-                vr == PATCH_VR_cellState ? CELLS_ARRAY_STATE
-                : vr == PATCH_VR_cellT1  ? CELLS_ARRAY_T1
-                                         : CELLS_ARRAY_T2,
-                out);
-}
-
-static const unsigned int STRUCTURAL[] = {PATCH_VR_n1, PATCH_VR_n2};
-static const fmu_arrays ARRAYS = {array_size, array_get, STRUCTURAL, 2};
-
-const fmu_model_info FMU_MODEL_INFO = {FMU_MODEL_IDENTIFIER,
-                                       FMU_TOKEN,
-                                       FMU_STATE_TAG,
-                                       VARS,
-                                       PATCH_VR_COUNT_PLUS_ONE,
-                                       sizeof(patch_model),
-                                       NULL /* the outputs live in their slots */,
-                                       exit_init,
-                                       derivative,
-                                       &ARRAYS};
+#include "models/ContactPatch/cells_model.h"
 
 /* ---- the cells' normal forces ------------------------------------------ */
 
@@ -180,11 +119,8 @@ static fmu_status evaluate(patch_model *m, const oc_law *law, const cells_source
 fmu_status fmu_model_update(patch_model *m, int changed, int allow, fmu_msg *msg) {
     if (check_pressure(m, msg) != FMU_OK) return FMU_ERR;
     oc_law law;
-    const oc_law *use = &m->cells.law;
-    if (changed & FMU_CHANGED_PARAMETERS) {
-        if (cells_law(&m->params, &m->g, &law, msg) != FMU_OK) return FMU_ERR;
-        use = &law;
-    }
+    const oc_law *use = law_for(m, changed, &law, msg);
+    if (!use) return FMU_ERR;
     /* Before the end of initialization the cells start where the inputs or
      * the explicit slip put them; afterwards from what was committed. */
     const cells_source src =
@@ -214,7 +150,6 @@ fmu_status fmu_model_do_step(patch_model *m, double h, fmu_msg *msg) {
 
 /* ---- directional derivatives ------------------------------------------------ */
 
-/* Rows: T1, T2, Mz, dissipatedEnergy; columns: u1, u2, theta, N, p1, p2. */
 static int jac_row(unsigned int vr) {
     switch (vr) {
     case PATCH_VR_T1: return 0;
@@ -256,31 +191,7 @@ static void partials(const patch_model *m, double *J) {
     cells_jacobian(&m->cells, &m->g, normal_tangent, m, (double(*)[CELLS_JAC_COLS])J);
 }
 
-/* J fits the glue's buffer (a negative size fails to compile) */
-typedef char jacobian_fits[CELLS_JAC_ROWS * CELLS_JAC_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
-static const fmu_jacobian JACOBIAN = {CELLS_JAC_ROWS,
-                                      CELLS_JAC_COLS,
-                                      jac_row,
-                                      jac_col,
-                                      "T1, T2, Mz, dissipatedEnergy",
-                                      "u1, u2, theta, N, p1, p2",
-                                      partials};
-
-static fmu_status derivative(const patch_model *m, const unsigned int unknown[], size_t n_unknown,
-                             const unsigned int known[], size_t n_known, const double seed[],
-                             double out[], int adjoint, fmu_msg *msg) {
-    return fmu_jacobian_derivative(&JACOBIAN, m, unknown, n_unknown, known, n_known, seed, out,
-                                   adjoint, msg);
-}
-
 /* ---- serialized state: the field list of model.h ------------------------ */
-
-size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
-
-void fmu_model_state_write(const patch_model *m, unsigned char *p) {
-    p = fmu_fields_write(&PATCH_HEAD_FIELDS, m, p);
-    cells_state_write(&m->cells, &m->g, p);
-}
 
 /* What the serialized head reads into m, kept to be put back. */
 typedef struct {
@@ -297,35 +208,20 @@ typedef struct {
 static fmu_status read_cells(patch_model *m, const patch_head *was, const unsigned char *cells,
                              fmu_msg *msg) {
     if (check_pressure(m, msg) != FMU_OK) return FMU_ERR;
-    /* A master that saves and restores every step restores the parameters
-     * it already has: keep their tensors instead of recomputing them.  Bit
-     * patterns, not ==: -0.0 and +0.0 give tensors that differ in the sign
-     * of zero entries, and a restored state must continue bit for bit. */
     oc_law law;
-    fmu_msg why;
-    if (fmu_fields_same(&OC_PARAMS_FIELDS, &was->params, &m->params) && was->g.n[0] == m->g.n[0] &&
-        was->g.n[1] == m->g.n[1])
-        law = m->cells.law;
-    else if (cells_law(&m->params, &m->g, &law, &why) != FMU_OK)
-        return fmu_fail(msg, "serialized state: %s", why.text);
-    if (cells_state_check(&law, &m->g, cells, msg) != FMU_OK) return FMU_ERR;
+    if (cells_restored_law(&m->cells, &was->params, &was->g, &m->params, &m->g, cells, &law, msg) !=
+        FMU_OK)
+        return FMU_ERR;
     double Nc[PATCH_MAX_CELLS];
     normal_forces(m, Nc);
-    cells_sums S;
-    const int bad = cells_state_read(&m->cells, &law, &m->g, Nc, cells, &S);
-    if (bad >= 0) {
-        overflow(m, bad, &why);
-        return fmu_fail(msg, "serialized state: %s", why.text);
-    }
-    m->out = S;
-    return FMU_OK;
+    return restored_cells(m, &law, Nc, cells, msg);
 }
 
 /* Reads the head into m, checked field by field, and the cells; a refused
  * state puts the head back and changes nothing else. */
 fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg *msg) {
     const patch_head head = {m->params, m->g, m->N, {m->p[0], m->p[1]}, m->cells.result_committed};
-    fmu_status st = fmu_fields_read(&PATCH_HEAD_FIELDS, m, &p, msg);
+    fmu_status st = fmu_fields_read(&CELLS_HEAD_FIELDS, m, &p, msg);
     if (st == FMU_OK) st = read_cells(m, &head, p, msg);
     if (st != FMU_OK) {
         m->params = head.params;
