@@ -114,14 +114,7 @@ static const char FMU_DOC_HTML[] =
     X(phi2, 22, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                 \
       "Tilt of the pad about the surface's X2 axis (small; right-handed: +X presses)")
 
-#define PAD_RESULTANT_ROWS(X)                                                                    \
-    X(T1, 23, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
-      "Tangential force of the surface on the body along X1 (sum over the cells)")              \
-    X(T2, 24, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
-      "Tangential force of the surface on the body along X2 (sum over the cells)")              \
-    X(Mz, 25, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
-      "Moment of the surface on the body about the normal through the pad centre, "              \
-      "counterclockwise")                                                                        \
+#define PAD_WRENCH_ROWS(X)                                                                       \
     X(Fn, 26, Float64, output, continuous, calculated, 0.0, 0.0, NO_MAX, "N", "",                \
       "Normal force of the foundation on the body along X3 (>= 0)")                              \
     X(M1, 27, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
@@ -129,38 +122,28 @@ static const char FMU_DOC_HTML[] =
     X(M2, 28, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
       "Moment of the pressure on the body about the pad centre's X2 axis")
 
-#define PAD_STATE_ROWS(X)                                                                        \
-    X(dissipatedEnergy, 29, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J",   \
-      "", "Frictional energy dissipated by all cells over the committed steps")                 \
+#define PAD_CONTACT_ROW(X)                                                                       \
     X(contactFraction, 30, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",      \
-      "Share of the pad's area that presses in this step")                                       \
-    X(slipFraction, 31, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",         \
-      "Share of the pad's area whose cells slip in this step")                                  \
-    X(contactState, 32, Int32, output, discrete, calculated, 0, 0, 3, "", "",                    \
-      "State of the step: 0 open (no cell pressed), 1 every pressed cell sticks, 2 some slip, "  \
-      "3 every pressed cell slips")
+      "Share of the pad's area that presses in this step")
 
 #define PAD_VARIABLES(X, L)                                                                      \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "",                 \
       "Simulation time")                                                                         \
     OC_LAW_ROWS(L, X) PATCH_INITIAL_SLIP_ROWS(X) PATCH_GEOMETRY_ROWS(X) PATCH_MOTION_ROWS(X)     \
-    PAD_FOUNDATION_ROWS(X) PAD_POSE_ROWS(X) PAD_RESULTANT_ROWS(X) PAD_STATE_ROWS(X)
+    PAD_FOUNDATION_ROWS(X) PAD_POSE_ROWS(X) PATCH_RESULTANT_ROWS(X, 23, "pad")                   \
+    PAD_WRENCH_ROWS(X) PATCH_ENERGY_ROW(X, 29) PAD_CONTACT_ROW(X) PATCH_SLIP_ROWS(X, 31, "pad")
 
-/* FMI 3.0 only: the cells' forces and states as arrays of shape (n1, n2),
- * element [i][j] the cell i along length, j along width (row-major, j
- * fastest), and n1, n2 their structural parameters (FMI 2.0 has neither:
- * there n1, n2 are parameters).  Columns: name, value reference, type, unit,
- * the scalar output whose dependencies each element has, description. */
-#define FMU_STRUCTURAL_PARAMETERS "n1 n2"
+/* FMI 3.0 only: the cells' forces, normal forces and states as arrays of
+ * shape (n1, n2), element [i][j] the cell i along length, j along width
+ * (row-major, j fastest), and n1, n2 their structural parameters (FMI 2.0
+ * has neither: there n1, n2 are parameters): models/ContactPatch/cell_rows.h.
+ * Columns: name, value reference, type, unit, the scalar output whose
+ * dependencies each element has, description. */
 #define FMU_ARRAYS(A)                                                                            \
-    A(cellT1, 33, Float64, "N", T1,                                                              \
-      "Tangential force of the surface on the body at each cell along X1 (they sum to T1)")      \
-    A(cellT2, 34, Float64, "N", T2,                                                              \
-      "Tangential force of the surface on the body at each cell along X2 (they sum to T2)")      \
+    PATCH_FORCE_ARRAYS(A, 33)                                                                    \
     A(cellFn, 35, Float64, "N", Fn,                                                              \
       "Normal force of the foundation on the body at each cell (they sum to Fn)")                \
-    A(cellState, 36, Int32, "", contactState,                                                    \
-      "State of each cell in this step: 0 open, 1 stick, 2 slip")
+    PATCH_STATE_ARRAY(A, 36)
 
 #define FMU_VARIABLES(X) PAD_VARIABLES(X, X)
 #define FMU_GROUPED_VARIABLES(X, L) PAD_VARIABLES(X, L)

@@ -2,8 +2,10 @@
  * The rows of a variable table (glue/fmu_table.h) that every model on the
  * cells (models/ContactPatch/cells.h) has: the initial slip, the
  * rectangle's geometry and the tangential motion, value references 8 to
- * 17 after the law's rows.  ContactPatch's and ContactPad's tables list
- * them; what they add follows from 18 on.
+ * 17 after the law's rows; and the sums' rows and the cells' arrays, whose
+ * value references each table gives (the first of a group, the others
+ * following), since its own rows come between.  ContactPatch's and
+ * ContactPad's tables list them; what they add follows from 18 on.
  */
 #ifndef PATCH_CELL_ROWS_H
 #define PATCH_CELL_ROWS_H
@@ -47,6 +49,42 @@
       "Displacement of the patch centre relative to the surface along X2")                       \
     X(theta, 17, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                \
       "Rotation of the body relative to the surface, counterclockwise about the normal")
+
+/* The sums' rows from value reference vr on: the force and moment on the
+ * body, `body` its name in the descriptions ("patch"); its dissipated
+ * energy; the share of it that slips and the step's state. */
+#define PATCH_RESULTANT_ROWS(X, vr, body)                                                        \
+    X(T1, vr, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
+      "Tangential force of the surface on the body along X1 (sum over the cells)")              \
+    X(T2, vr + 1, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",         \
+      "Tangential force of the surface on the body along X2 (sum over the cells)")              \
+    X(Mz, vr + 2, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",       \
+      "Moment of the surface on the body about the normal through the " body " centre, "         \
+      "counterclockwise")
+
+#define PATCH_ENERGY_ROW(X, vr)                                                                  \
+    X(dissipatedEnergy, vr, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J",   \
+      "", "Frictional energy dissipated by all cells over the committed steps")
+
+#define PATCH_SLIP_ROWS(X, vr, body)                                                             \
+    X(slipFraction, vr, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",         \
+      "Share of the " body "'s area whose cells slip in this step")                              \
+    X(contactState, vr + 1, Int32, output, discrete, calculated, 0, 0, 3, "", "",                \
+      "State of the step: 0 open (no cell pressed), 1 every pressed cell sticks, 2 some slip, "  \
+      "3 every pressed cell slips")
+
+/* FMI 3.0 only (a table's FMU_ARRAYS): the cells' tangential forces from
+ * value reference vr on, and their states, with their structural
+ * parameters n1, n2. */
+#define PATCH_FORCE_ARRAYS(A, vr)                                                                \
+    A(cellT1, vr, Float64, "N", T1,                                                              \
+      "Tangential force of the surface on the body at each cell along X1 (they sum to T1)")      \
+    A(cellT2, vr + 1, Float64, "N", T2,                                                          \
+      "Tangential force of the surface on the body at each cell along X2 (they sum to T2)")
+#define PATCH_STATE_ARRAY(A, vr)                                                                 \
+    A(cellState, vr, Int32, "", contactState,                                                    \
+      "State of each cell in this step: 0 open, 1 stick, 2 slip")
+#define FMU_STRUCTURAL_PARAMETERS "n1 n2"
 
 /* The rows' names, for the tables' lists of knowns. */
 #define PATCH_CELL_KNOWNS "initialSlip s1Start s2Start length width n1 n2 u1 u2 theta"

@@ -103,43 +103,18 @@ static const char FMU_DOC_HTML[] =
       "Centre of pressure along the body's axis 2 (0: uniform pressure); while N > 0, "          \
       "|p1|/length + |p2|/width <= 1/6 and p2 = 0 if n2 = 1")
 
-#define PATCH_RESULTANT_ROWS(X)                                                                  \
-    X(T1, 21, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
-      "Tangential force of the surface on the body along X1 (sum over the cells)")              \
-    X(T2, 22, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
-      "Tangential force of the surface on the body along X2 (sum over the cells)")              \
-    X(Mz, 23, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
-      "Moment of the surface on the body about the normal through the patch centre, "            \
-      "counterclockwise")
-
-#define PATCH_STATE_ROWS(X)                                                                      \
-    X(dissipatedEnergy, 24, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J",   \
-      "", "Frictional energy dissipated by all cells over the committed steps")                 \
-    X(slipFraction, 25, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",         \
-      "Share of the patch's area whose cells slip in this step")                                \
-    X(contactState, 26, Int32, output, discrete, calculated, 0, 0, 3, "", "",                    \
-      "State of the step: 0 open (no cell pressed), 1 every pressed cell sticks, 2 some slip, "  \
-      "3 every pressed cell slips")
-
 #define PATCH_VARIABLES(X, L)                                                                    \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "",                 \
       "Simulation time")                                                                         \
     OC_LAW_ROWS(L, X) PATCH_INITIAL_SLIP_ROWS(X) PATCH_GEOMETRY_ROWS(X) PATCH_MOTION_ROWS(X)     \
-    PATCH_LOAD_ROWS(X) PATCH_RESULTANT_ROWS(X) PATCH_STATE_ROWS(X)
+    PATCH_LOAD_ROWS(X) PATCH_RESULTANT_ROWS(X, 21, "patch") PATCH_ENERGY_ROW(X, 24)           \
+    PATCH_SLIP_ROWS(X, 25, "patch")
 
 /* FMI 3.0 only: the cells' forces and states as arrays of shape (n1, n2),
  * element [i][j] the cell i along length, j along width (row-major, j
  * fastest), and n1, n2 their structural parameters (FMI 2.0 has neither:
- * there n1, n2 are parameters).  Columns: name, value reference, type, unit,
- * the scalar output whose dependencies each element has, description. */
-#define FMU_STRUCTURAL_PARAMETERS "n1 n2"
-#define FMU_ARRAYS(A)                                                                            \
-    A(cellT1, 27, Float64, "N", T1,                                                              \
-      "Tangential force of the surface on the body at each cell along X1 (they sum to T1)")      \
-    A(cellT2, 28, Float64, "N", T2,                                                              \
-      "Tangential force of the surface on the body at each cell along X2 (they sum to T2)")      \
-    A(cellState, 29, Int32, "", contactState,                                                    \
-      "State of each cell in this step: 0 open, 1 stick, 2 slip")
+ * there n1, n2 are parameters): models/ContactPatch/cell_rows.h. */
+#define FMU_ARRAYS(A) PATCH_FORCE_ARRAYS(A, 27) PATCH_STATE_ARRAY(A, 29)
 
 #define FMU_VARIABLES(X) PATCH_VARIABLES(X, X)
 #define FMU_GROUPED_VARIABLES(X, L) PATCH_VARIABLES(X, L)
