@@ -14,11 +14,12 @@
 #include "models/ContactPatch/cell_rows.h"
 #include "models/ContactPatch/cells.h"
 
-/* The value references of the cells' rows (cell_rows.h), every table's. */
+/* The value references of the cells' rows (cell_rows.h) and of the law's
+ * sliding rule, every such table's. */
 #define CELLS_VR_ENTRY(name, vr, ...) CELLS_VR_##name = vr,
 enum {
-    PATCH_INITIAL_SLIP_ROWS(CELLS_VR_ENTRY) PATCH_GEOMETRY_ROWS(CELLS_VR_ENTRY)
-        PATCH_MOTION_ROWS(CELLS_VR_ENTRY) CELLS_VR_END
+    OC_LAW_RULE_ROW(CELLS_VR_ENTRY) PATCH_INITIAL_SLIP_ROWS(CELLS_VR_ENTRY)
+        PATCH_GEOMETRY_ROWS(CELLS_VR_ENTRY) PATCH_MOTION_ROWS(CELLS_VR_ENTRY) CELLS_VR_END
 };
 #undef CELLS_VR_ENTRY
 

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cells_tests.h"
 #include "check.h"
 #include "fmi2Functions.h"
 #include "host_support.h"
@@ -80,19 +81,7 @@ static void derivatives_match_differences(void) {
         const double d0 = 20.0 / (kn * L * W);
         const double tilt = (pick(2) ? 4.0 : 0.5) * d0 / L;
         double x[NK] = {0, 0, 0, d0, tilt * (uniform() - 0.5), tilt * (uniform() - 0.5)};
-        fmi2SetReal(c, KNOWN, NK, x);
-        fmi2ExitInitializationMode(c);
-        double t = 0;
-        for (int k = 0; k < 20; ++k, t += 1e-3) {
-            x[0] += 1e-4 * (uniform() - 0.2);
-            x[1] += 4e-5 * (uniform() - 0.5);
-            x[2] += 1e-2 * (uniform() - 0.2);
-            x[3] = d0 * (0.8 + 0.4 * uniform());
-            fmi2SetReal(c, KNOWN, NK, x);
-            fmi2DoStep(c, t, 1e-3, fmi2True);
-        }
-        x[0] += 1e-5;
-        x[2] += 1e-3;
+        random_path(c, KNOWN, NK, x, 20, d0, 0.8, 0.4);
         double y[NU + 2];
         pending(c, x, y);
         const fmi2ValueReference cf = PAD_VR_contactFraction;
@@ -101,19 +90,11 @@ static void derivatives_match_differences(void) {
         lifted += fraction < 1;
         slipping += y[NU] > 0;
         double col[NK][NU];
-        for (int j = 0; j < NK; ++j) {
-            const double seed = 1.0;
-            CHECK(fmi2GetDirectionalDerivative(c, UNKNOWN, NU, &KNOWN[j], 1, &seed, col[j]) ==
-                      fmi2OK,
-                  "derivative column %d", j);
-        }
+        derivative_columns(c, KNOWN, NK, UNKNOWN, NU, &col[0][0]);
         const double H[NK] = {1e-9, 1e-9, 1e-8, 1e-6 * d0, 1e-6 * tilt, 1e-6 * tilt};
         for (int j = 0; j < NK; ++j) {
             double xp[NK], xm[NK], yp[NU + 2], ym[NU + 2];
-            memcpy(xp, x, sizeof x);
-            memcpy(xm, x, sizeof x);
-            xp[j] += H[j];
-            xm[j] -= H[j];
+            central_points(x, NK, j, H[j], xp, xm);
             pending(c, xp, yp);
             pending(c, xm, ym);
             if (yp[NU] != y[NU] || ym[NU] != y[NU] || yp[NU + 1] != y[NU + 1] ||
@@ -134,20 +115,6 @@ static void derivatives_match_differences(void) {
     CHECK(lifted > 15 && slipping > 15, "only %d lifted, %d slipping", lifted, slipping);
     printf("derivatives: %d columns checked, %d of 60 poses lifting, %d slipping\n", checked,
            lifted, slipping);
-}
-
-enum { CAP = 1 << 17 };
-static unsigned char before[CAP], after[CAP];
-
-static size_t serialize(fmi2Component c, unsigned char *buf) {
-    fmi2FMUstate st = NULL;
-    size_t n = 0;
-    if (fmi2GetFMUstate(c, &st) != fmi2OK) return 0;
-    if (fmi2SerializedFMUstateSize(c, st, &n) != fmi2OK || n > CAP ||
-        fmi2SerializeFMUstate(c, st, (fmi2Byte *)buf, n) != fmi2OK)
-        n = 0;
-    fmi2FreeFMUstate(c, &st);
-    return n;
 }
 
 /* In full contact the pressure is linear: Fn = kn A d, and the first
@@ -200,91 +167,17 @@ static void full_contact_is_the_linear_pressure_on_every_grid(void) {
            checked);
 }
 
-static int defined(fmi2Status s) {
-    return s == fmi2OK || s == fmi2Warning || s == fmi2Discard || s == fmi2Error || s == fmi2Fatal;
-}
+/* Half the inputs pressing, the tilts small. */
+static void plausible(double v[NK]) { v[3] = 1e-6 * (uniform() + 0.5), v[4] *= 0.01, v[5] *= 0.01; }
 
-static void random_sequences(void) {
-    rng_state = 0x2545f4914f6cdd1dull;
-    long refused = 0, restored = 0;
-    for (int episode = 0; episode < 40; ++episode) {
-        fmi2Component c = make();
-        double t = 0;
-        for (int k = 0; k < 150; ++k) {
-            const size_t nb = serialize(c, before);
-            fmi2Status s = fmi2OK;
-            switch (pick(9)) {
-            case 0:
-            case 1:
-            case 2: { /* inputs, sometimes hostile */
-                double v[NK];
-                for (int i = 0; i < NK; ++i) v[i] = pick(6) ? (uniform() - 0.5) * 0.02 : hostile();
-                if (pick(2)) v[3] = 1e-6 * (uniform() + 0.5), v[4] *= 0.01, v[5] *= 0.01;
-                s = fmi2SetReal(c, KNOWN, NK, v);
-                break;
-            }
-            case 3: { /* a parameter, any value */
-                const fmi2ValueReference vr = 1 + (fmi2ValueReference)pick(PAD_VR_dn);
-                const double v = pick(3) ? uniform() * 40 : hostile();
-                const fmi2Integer iv = (fmi2Integer)(pick(3) ? pick(40) : (unsigned)next());
-                s = (vr == PAD_VR_n1 || vr == PAD_VR_n2 || vr == PAD_VR_slidingRule ||
-                     vr == PAD_VR_initialSlip)
-                        ? fmi2SetInteger(c, &vr, 1, &iv)
-                        : fmi2SetReal(c, &vr, 1, &v);
-                break;
-            }
-            case 4:
-                s = fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
-                if (s == fmi2OK) s = fmi2EnterInitializationMode(c);
-                break;
-            case 5: s = fmi2ExitInitializationMode(c); break;
-            case 6:
-            case 7:
-                s = fmi2DoStep(c, t, 1e-3 * (1 + pick(3)), fmi2True);
-                if (s == fmi2OK) t += 1e-3;
-                break;
-            default: { /* a state round trip into a fresh instance */
-                const size_t n = serialize(c, before);
-                if (!n) break;
-                fmi2Component d = make();
-                fmi2FMUstate st = NULL;
-                CHECK(fmi2DeSerializeFMUstate(d, (const fmi2Byte *)before, n, &st) == fmi2OK,
-                      "deserialize own state");
-                CHECK(fmi2SetFMUstate(d, st) == fmi2OK, "set own state in a fresh instance");
-                fmi2FreeFMUstate(d, &st);
-                double a[NU], b[NU];
-                const fmi2Status ra = fmi2GetReal(c, UNKNOWN, NU, a),
-                                 rb = fmi2GetReal(d, UNKNOWN, NU, b);
-                CHECK(ra == rb, "restored reads with status %d, original %d", rb, ra);
-                if (ra == fmi2OK) CHECK(memcmp(a, b, sizeof a) == 0, "restored outputs differ");
-                fmi2FreeInstance(d);
-                ++restored;
-                continue;
-            }
-            }
-            CHECK(defined(s), "status %d", s);
-            if (s != fmi2OK && nb) {
-                ++refused;
-                const size_t na = serialize(c, after);
-                CHECK(na == nb && memcmp(before, after, nb) == 0,
-                      "a refused call changed the instance");
-            }
-            double y[NU];
-            if (fmi2GetReal(c, UNKNOWN, NU, y) == fmi2OK)
-                for (int i = 0; i < NU; ++i)
-                    CHECK(isfinite(y[i]), "output %d = %g read with OK", i, y[i]);
-        }
-        fmi2FreeInstance(c);
-    }
-    CHECK(refused > 100 && restored > 100, "refused %ld, restored %ld", refused, restored);
-    printf("random sequences: %ld calls refused unchanged, %ld states restored\n", refused,
-           restored);
-}
+/* Steps of 1 to 3 ms: the damping's rate over varied steps. */
+static double step_size(void) { return 1e-3 * (1 + pick(3)); }
 
 int main(void) {
     rng_state = 0x9e3779b97f4a7c15ull;
     derivatives_match_differences();
     full_contact_is_the_linear_pressure_on_every_grid();
-    random_sequences();
+    const cells_random M = {make, KNOWN, NK, UNKNOWN, NU, plausible, PAD_VR_dn, step_size};
+    random_sequences(&M);
     return oc_report();
 }

@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cells_tests.h"
 #include "check.h"
 #include "fmi2Functions.h"
 #include "host_support.h"
@@ -62,36 +63,16 @@ static void derivatives_match_differences(void) {
         /* off the axis only where the grid has more than one cell across it */
         x[4] = iv[0] > 1 ? (uniform() - 0.5) * pv[2] / 7 : 0.0;
         x[5] = iv[1] > 1 ? (uniform() - 0.5) * pv[3] / 7 : 0.0;
-        fmi2SetReal(c, KNOWN, 6, x);
-        fmi2ExitInitializationMode(c);
-        double t = 0;
-        for (int k = 0; k < 30; ++k, t += 1e-3) {
-            x[0] += 1e-4 * (uniform() - 0.2);
-            x[1] += 4e-5 * (uniform() - 0.5);
-            x[2] += 1e-2 * (uniform() - 0.2);
-            x[3] = 10 + 20 * uniform();
-            fmi2SetReal(c, KNOWN, 6, x);
-            fmi2DoStep(c, t, 1e-3, fmi2True);
-        }
-        x[0] += 1e-5;
-        x[2] += 1e-3;
+        random_path(c, KNOWN, 6, x, 30, 1.0, 10, 20);
         double y[5];
         pending(c, x, y);
         episodes_slipping += y[4] > 0;
         double col[6][4]; /* column j: d(T1, T2, Mz, energy)/d(known j) */
-        for (int j = 0; j < 6; ++j) {
-            const double seed = 1.0;
-            CHECK(fmi2GetDirectionalDerivative(c, UNKNOWN, 4, &KNOWN[j], 1, &seed, col[j]) ==
-                      fmi2OK,
-                  "derivative column %d", j);
-        }
+        derivative_columns(c, KNOWN, 6, UNKNOWN, 4, &col[0][0]);
         static const double H[6] = {1e-9, 1e-9, 1e-8, 1e-6, 1e-8, 1e-8};
         for (int j = 0; j < 6; ++j) {
             double xp[6], xm[6], yp[5], ym[5];
-            memcpy(xp, x, sizeof x);
-            memcpy(xm, x, sizeof x);
-            xp[j] += H[j];
-            xm[j] -= H[j];
+            central_points(x, 6, j, H[j], xp, xm);
             pending(c, xp, yp);
             pending(c, xm, ym);
             if (yp[4] != y[4] || ym[4] != y[4]) continue; /* a cell switched: no derivative */
@@ -186,20 +167,6 @@ static void ref_step(const oc_law *law, const ref_setup *g, const oc_state *from
     y[3] = E;
     y[4] = (double)slipping / (double)n;
     *state = pressed == 0 ? 0 : slipping == 0 ? 1 : slipping == pressed ? 3 : 2;
-}
-
-enum { CAP = 1 << 17 };
-static unsigned char before[CAP], after[CAP];
-
-static size_t serialize(fmi2Component c, unsigned char *buf) {
-    fmi2FMUstate st = NULL;
-    size_t n = 0;
-    if (fmi2GetFMUstate(c, &st) != fmi2OK) return 0;
-    if (fmi2SerializedFMUstateSize(c, st, &n) != fmi2OK || n > CAP ||
-        fmi2SerializeFMUstate(c, st, (fmi2Byte *)buf, n) != fmi2OK)
-        n = 0;
-    fmi2FreeFMUstate(c, &st);
-    return n;
 }
 
 /* 1 if the committed cell states the FMU serialized (the last
@@ -497,92 +464,17 @@ static void normal_forces_have_resultant_n_and_first_moment_n_p(void) {
     printf("normal forces: resultant N and first moment N p to 1e-12 on %d grids\n", checked);
 }
 
-static int defined(fmi2Status s) {
-    return s == fmi2OK || s == fmi2Warning || s == fmi2Discard || s == fmi2Error || s == fmi2Fatal;
-}
+/* Half the inputs pressing. */
+static void plausible(double v[6]) { v[3] = 5 + 20 * uniform(); }
 
-static void random_sequences(void) {
-    rng_state = 0x2545f4914f6cdd1dull;
-    long refused = 0, restored = 0;
-    for (int episode = 0; episode < 40; ++episode) {
-        fmi2Component c = make();
-        double t = 0;
-        for (int k = 0; k < 150; ++k) {
-            const size_t nb = serialize(c, before);
-            fmi2Status s = fmi2OK;
-            switch (pick(9)) {
-            case 0:
-            case 1:
-            case 2: { /* inputs, sometimes hostile */
-                double v[6];
-                for (int i = 0; i < 6; ++i) v[i] = pick(6) ? (uniform() - 0.5) * 0.02 : hostile();
-                if (pick(2)) v[3] = 5 + 20 * uniform();
-                s = fmi2SetReal(c, KNOWN, 6, v);
-                break;
-            }
-            case 3: { /* a parameter, any value */
-                const fmi2ValueReference vr = 1 + (fmi2ValueReference)pick(PATCH_VR_p2);
-                const double v = pick(3) ? uniform() * 40 : hostile();
-                const fmi2Integer iv = (fmi2Integer)(pick(3) ? pick(40) : (unsigned)next());
-                s = (vr == PATCH_VR_n1 || vr == PATCH_VR_n2 || vr == PATCH_VR_slidingRule ||
-                     vr == PATCH_VR_initialSlip)
-                        ? fmi2SetInteger(c, &vr, 1, &iv)
-                        : fmi2SetReal(c, &vr, 1, &v);
-                break;
-            }
-            case 4:
-                s = fmi2SetupExperiment(c, fmi2False, 0, 0, fmi2False, 0);
-                if (s == fmi2OK) s = fmi2EnterInitializationMode(c);
-                break;
-            case 5: s = fmi2ExitInitializationMode(c); break;
-            case 6:
-            case 7:
-                s = fmi2DoStep(c, t, 1e-3, fmi2True);
-                if (s == fmi2OK) t += 1e-3;
-                break;
-            default: { /* a state round trip into a fresh instance */
-                const size_t n = serialize(c, before);
-                if (!n) break;
-                fmi2Component d = make();
-                fmi2FMUstate st = NULL;
-                CHECK(fmi2DeSerializeFMUstate(d, (const fmi2Byte *)before, n, &st) == fmi2OK,
-                      "deserialize own state");
-                CHECK(fmi2SetFMUstate(d, st) == fmi2OK, "set own state in a fresh instance");
-                fmi2FreeFMUstate(d, &st);
-                double a[4], b[4];
-                const fmi2Status ra = fmi2GetReal(c, UNKNOWN, 4, a),
-                                 rb = fmi2GetReal(d, UNKNOWN, 4, b);
-                CHECK(ra == rb, "restored reads with status %d, original %d", rb, ra);
-                if (ra == fmi2OK) CHECK(memcmp(a, b, sizeof a) == 0, "restored outputs differ");
-                fmi2FreeInstance(d);
-                ++restored;
-                continue;
-            }
-            }
-            CHECK(defined(s), "status %d", s);
-            if (s != fmi2OK && nb) {
-                ++refused;
-                const size_t na = serialize(c, after);
-                CHECK(na == nb && memcmp(before, after, nb) == 0,
-                      "a refused call changed the instance");
-            }
-            double y[4];
-            if (fmi2GetReal(c, UNKNOWN, 4, y) == fmi2OK)
-                for (int i = 0; i < 4; ++i)
-                    CHECK(isfinite(y[i]), "output %d = %g read with OK", i, y[i]);
-        }
-        fmi2FreeInstance(c);
-    }
-    CHECK(refused > 100 && restored > 100, "refused %ld, restored %ld", refused, restored);
-    printf("random sequences: %ld calls refused unchanged, %ld states restored\n", refused,
-           restored);
-}
+static double step_size(void) { return 1e-3; }
 
 int main(void) {
     rng_state = 0x9e3779b97f4a7c15ull;
     derivatives_match_differences();
     step_matches_the_plain_per_cell_step();
     normal_forces_have_resultant_n_and_first_moment_n_p();
-    random_sequences();
+    const cells_random M = {make, KNOWN, 6, UNKNOWN, 4, plausible, PATCH_VR_p2, step_size};
+    random_sequences(&M);
     return oc_report();
 }
