@@ -7,6 +7,7 @@
 #include "check.h"
 #include "fmi2Functions.h"
 #include "host_support.h"
+#include "initial_slip.h"
 #include "models/OrthotropicContact/table.h"
 
 static fmi2Component make(const char *name) {
@@ -210,11 +211,7 @@ static void test_instances_and_state(void) {
     fmi2FreeInstance(b);
 }
 
-/* Absolute positions wired from t0 (inputs set in initialization mode): by
- * default the contact starts unloaded there, for every rule; the explicit
- * initial slip 0 gives the behaviour of the earlier versions, a full slide
- * (8.55 J for the default coupled rule), bit for bit what inputs
- * set only after initialization give. */
+/* initial_slip.h's first step, through the FMI 2.0 calls. */
 static void first_step(int rule, int initial, double s0, int inputs_in_init, double y[5],
                        int *state) {
     fmi2Component c = make("initial");
@@ -238,24 +235,6 @@ static void first_step(int rule, int initial, double s0, int inputs_in_init, dou
     CHECK(fmi2GetReal(c, out, 5, y) == fmi2OK && fmi2GetInteger(c, &vr_state, 1, state) == fmi2OK,
           "read");
     fmi2FreeInstance(c);
-}
-
-static void test_initial_slip(void) {
-    for (int rule = 1; rule <= 3; ++rule) {
-        double y[5], old[5], expl[5];
-        int state, old_state, expl_state;
-        first_step(rule, 1, 0.0, 1, y, &state);
-        CHECK(state == 1 && y[0] == 0 && y[1] == 0 && y[2] == 1.0 && y[3] == 0.5 && y[4] == 0,
-              "rule %d, atInputs: state %d T (%g, %g) s (%g, %g) energy %g", rule, state, y[0],
-              y[1], y[2], y[3], y[4]);
-        first_step(rule, 2, 1.0, 1, y, &state); /* explicit, at the inputs: the same */
-        CHECK(state == 1 && y[0] == 0 && y[4] == 0, "rule %d, explicit s = u", rule);
-        first_step(rule, 1, 0.0, 0, old, &old_state); /* inputs only after initialization */
-        first_step(rule, 2, 0.0, 1, expl, &expl_state);
-        CHECK(old_state == 2 && expl_state == 2 && memcmp(old, expl, sizeof old) == 0,
-              "rule %d: explicit s = 0 differs from the start at u = 0", rule);
-        if (rule == 2) CHECK(fabs(expl[4] - 8.55) < 0.005, "8.55 J, got %.4f", expl[4]);
-    }
 }
 
 /* A range in the refusal names the variable's unit: alpha = 90 is degrees
@@ -318,6 +297,6 @@ int main(void) {
     test_range_message_names_the_unit();
     test_instances_and_state();
     test_state_handles();
-    test_initial_slip();
+    check_initial_slip(first_step);
     return oc_report();
 }

@@ -7,6 +7,7 @@
 #include "check.h"
 #include "fmi3Functions.h"
 #include "host_support.h"
+#include "initial_slip.h"
 #include "models/OrthotropicContact/table.h"
 
 static fmi3Instance make(const char *name) {
@@ -149,9 +150,10 @@ static void test_state_into_fresh_instance(void) {
     fmi3FreeInstance(b);
 }
 
-/* As test_fmi2_glue.c's test_initial_slip, through the FMI 3.0 calls. */
-static void first_step(int64_t rule, int64_t initial, double s0, int inputs_in_init, double y[5],
+/* initial_slip.h's first step, through the FMI 3.0 calls. */
+static void first_step(int rule_int, int initial_int, double s0, int inputs_in_init, double y[5],
                        int *state) {
+    const int64_t rule = rule_int, initial = initial_int;
     fmi3Instance c = make("initial");
     const fmi3ValueReference vr_rule = OC_VR_slidingRule, vr_init = OC_VR_initialSlip;
     const fmi3ValueReference vr_s[2] = {OC_VR_s1Start, OC_VR_s2Start};
@@ -177,21 +179,6 @@ static void first_step(int64_t rule, int64_t initial, double s0, int inputs_in_i
           "read");
     *state = st;
     fmi3FreeInstance(c);
-}
-
-static void test_initial_slip(void) {
-    for (int rule = 1; rule <= 3; ++rule) {
-        double y[5], old[5], expl[5];
-        int state, old_state, expl_state;
-        first_step(rule, 1, 0.0, 1, y, &state);
-        CHECK(state == 1 && y[0] == 0 && y[1] == 0 && y[2] == 1.0 && y[3] == 0.5 && y[4] == 0,
-              "rule %d, atInputs: state %d energy %g", rule, state, y[4]);
-        first_step(rule, 1, 0.0, 0, old, &old_state);
-        first_step(rule, 2, 0.0, 1, expl, &expl_state);
-        CHECK(old_state == 2 && expl_state == 2 && memcmp(old, expl, sizeof old) == 0,
-              "rule %d: explicit s = 0 differs from the start at u = 0", rule);
-        if (rule == 2) CHECK(fabs(expl[4] - 8.55) < 0.005, "8.55 J, got %.4f", expl[4]);
-    }
 }
 
 /* An importer may list required intermediate variables (fmusim
@@ -278,6 +265,6 @@ int main(void) {
     test_state_into_fresh_instance();
     test_uint64_and_state_handles();
     test_intermediate_variables_requested();
-    test_initial_slip();
+    check_initial_slip(first_step);
     return oc_report();
 }
