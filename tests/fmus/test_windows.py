@@ -130,8 +130,12 @@ def script(model: str, version: int, token: str, turned: bool) -> str:
 
 
 def zig_cc(target: str, out: Path, *libs: str) -> Path:
-    """The host for `target`, with the project's zig."""
-    subprocess.run([sys.executable, "-m", "ziglang", "cc", "-target", target, "-std=c99", "-O1", "-s",
+    """The host for `target`, with the project's zig.  The optimization and
+    sanitizer flags are those the FMUs' binaries were cross-built with
+    (CMakeLists.txt), so that zig reuses the target's C runtime it built
+    then; other flags make it build that runtime again."""
+    subprocess.run([sys.executable, "-m", "ziglang", "cc", "-target", target, "-std=c99", "-O2",
+                    "-fno-sanitize=undefined", "-s",
                     "-I", str(HEADERS), str(HOST), *libs, "-o", str(out)],
                    check=True, capture_output=True, timeout=900)
     return out
