@@ -43,14 +43,16 @@ def test_independent_simulators_noise_free_data_give_the_truth(reference_data):
         assert fit.values[k] == pytest.approx(v, rel=1e-6), k
 
 
-def test_intervals_are_honest_coverage_over_200_replicates(reference_data):
+def test_intervals_are_honest_coverage_over_100_replicates(reference_data):
     """The fast version of benchmarks/bench_coverage.py (400 replicates x 3
-    truths, 92-98 %): one truth, 200 replicates, a wider band (90-99 %) for
-    the smaller sample; noise added per replicate to the independent
-    simulator's data."""
+    truths, 92-98 %): one truth, 100 replicates, noise added per replicate to
+    the independent simulator's data.  Each parameter's 95 % interval covers
+    the truth in 88 to 99 of them: a true 95 % coverage falls below 88 with
+    probability 0.15 %, and covers all 100 with probability 0.6 % (an
+    interval too wide to say anything)."""
     truth, d = reference_data
     hits = dict.fromkeys(truth, 0)
-    n = 200
+    n = 100
     for i in range(n):
         rng = np.random.default_rng(1000 + i)
         # noise on the second column of each, in this order
@@ -61,9 +63,7 @@ def test_intervals_are_honest_coverage_over_200_replicates(reference_data):
         for k in truth:
             lo, hi = fit.ci95[k]
             hits[k] += lo <= truth[k] <= hi
-    coverage = {k: v / n for k, v in hits.items()}
-    for c in coverage.values():
-        assert 0.90 <= c <= 0.99, coverage
+    assert all(88 <= h < n for h in hits.values()), hits
 
 
 # -- coverage on the small design of raw recordings (tools/make_recordings.py) --
