@@ -100,7 +100,7 @@ SLOW = {
     "reproduction/test_pushed_outputs.py": {   # the bundled push, 16 runs and 4 again on FMI 3.0
         "test_the_bundled_push_shows_full_contact_lift_off_and_tipping_at_the_thresholds",
     },
-    "experiment/test_scenario.py": {   # 80 scenarios drawn from the schema, each through `orthocontact run`
+    "experiment/test_scenario.py": {   # 48 scenarios drawn from the schema, each through `orthocontact run`
         "test_every_scenario_the_schema_accepts_ends_in_a_result_or_one_line",
     },
     "contracts/test_docs_numbers.py": {   # uq on the example, as the guide has it

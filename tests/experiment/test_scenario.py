@@ -265,7 +265,7 @@ def test_a_list_of_runs_with_a_repeat_is_one_line(tmp_path, scenario, old, new, 
 
 BELOW_ONE_STEP = 10.0
 SIZE_CAPS = {"rig steps": 2e4, "twist steps": 1500, "tow steps": 400}
-PROPERTY_EXAMPLES = 20   # per kind
+PROPERTY_EXAMPLES = 12   # per kind
 
 
 def _toml(v) -> str:
