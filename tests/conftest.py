@@ -96,6 +96,9 @@ def identified(tmp_path_factory):
 def pytest_collection_modifyitems(config, items):
     from tiers import mark_slow
     mark_slow(config, items)
+    # The slow tests first (in their files' order): spread over the workers
+    # while the fast ones fill the gaps, not one long test alone at the end.
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
 
 
 def deg(x):

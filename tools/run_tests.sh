@@ -81,10 +81,12 @@ done
 # pytest's configuration: pyproject.toml.  Its summary lists the optional
 # parts; every one is required in `make test` (and wherever CI=true).
 # One worker process per core (pytest-xdist, in the test extra), or as many
-# as OC_TEST_WORKERS says (0: pytest's own process, one test after another).
+# as OC_TEST_WORKERS says (0: pytest's own process, one test after another);
+# an idle worker takes tests queued for the other (worksteal), and the slow
+# tests are queued first (conftest.py).
 workers=()
 if .venv/bin/python -c "import xdist" 2>/dev/null; then
-  workers=(-n "${OC_TEST_WORKERS:-auto}")
+  workers=(-n "${OC_TEST_WORKERS:-auto}" --dist worksteal)
 fi
 if [ $fast = 1 ]; then
   echo "== pytest, fast tier (-m 'not slow') =="
