@@ -245,18 +245,41 @@ static const char *name_or_unknown(unsigned int vr) {
     return x ? x->name : "unknown";
 }
 
+/* vr's position in list[0..n), -1 if it is not there */
+static int index_of(const unsigned int *list, int n, unsigned int vr) {
+    for (int i = 0; i < n; ++i)
+        if (list[i] == vr) return i;
+    return -1;
+}
+
+/* "T1, T2, ...": the names of list[0..n), for a message */
+static const char *names_of(const unsigned int *list, int n, char *buf, size_t size) {
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < n && used < size; ++i) {
+        const int w =
+            snprintf(buf + used, size - used, "%s%s", i ? ", " : "", name_or_unknown(list[i]));
+        if (w < 0) break;
+        used += (size_t)w;
+    }
+    return buf;
+}
+
 fmu_status fmu_jacobian_derivative(const fmu_jacobian *jac, const fmu_model *m,
                                    const unsigned int unknown[], size_t n_unknown,
                                    const unsigned int known[], size_t n_known, const double seed[],
                                    double out[], int adjoint, fmu_msg *msg) {
+    char names[256];
     for (size_t j = 0; j < n_known; ++j)
-        if (jac->col(known[j]) < 0)
+        if (index_of(jac->inputs, jac->cols, known[j]) < 0)
             return fmu_fail(msg, "known vr %u (%s) is not an input %s", known[j],
-                            name_or_unknown(known[j]), jac->inputs);
+                            name_or_unknown(known[j]),
+                            names_of(jac->inputs, jac->cols, names, sizeof names));
     for (size_t i = 0; i < n_unknown; ++i)
-        if (jac->row(unknown[i]) < 0)
+        if (index_of(jac->outputs, jac->rows, unknown[i]) < 0)
             return fmu_fail(msg, "unknown vr %u (%s) is not an output %s", unknown[i],
-                            name_or_unknown(unknown[i]), jac->outputs);
+                            name_or_unknown(unknown[i]),
+                            names_of(jac->outputs, jac->rows, names, sizeof names));
     const size_t n_seed = adjoint ? n_unknown : n_known;
     for (size_t k = 0; k < n_seed; ++k)
         if (!isfinite(seed[k])) return fmu_fail(msg, "seed %zu is not finite", k);
@@ -264,7 +287,9 @@ fmu_status fmu_jacobian_derivative(const fmu_jacobian *jac, const fmu_model *m,
     jac->partials(m, J);
     const size_t n_out = adjoint ? n_known : n_unknown, cols = (size_t)jac->cols;
     /* every index was checked above */
-#define JAC(row_vr, col_vr) J[(size_t)jac->row(row_vr) * cols + (size_t)jac->col(col_vr)]
+#define JAC(row_vr, col_vr)                                                                        \
+    J[(size_t)index_of(jac->outputs, jac->rows, row_vr) * cols +                                   \
+      (size_t)index_of(jac->inputs, jac->cols, col_vr)]
     for (size_t k = 0; k < n_out; ++k) {
         double acc = 0.0;
         if (adjoint)

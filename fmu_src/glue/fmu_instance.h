@@ -159,17 +159,15 @@ int fmu_state_deserialize(fmu_instance *I, const char *fn, const unsigned char *
                           void **state);
 
 /* A model's derivative hook (fmu_model_info.derivative) over a dense matrix
- * of partial derivatives J (`rows` x `cols`, row-major): row(vr) is an
- * output's row, col(vr) an input's column, -1 for any other variable;
- * `outputs` and `inputs` list them for the messages ("T1, T2").  Checks
- * every value reference and seed, then has partials(m, J) fill J and
- * forms out = J seed (adjoint: J^T seed) over the rows of `unknown` and the
- * columns of `known`, refusing a result that overflows. */
+ * of partial derivatives J (`rows` x `cols`, row-major): `outputs` lists the
+ * value references of its rows in order, `inputs` those of its columns
+ * (the messages name them from the table).  Checks every value reference
+ * and seed, then has partials(m, J) fill J and forms out = J seed
+ * (adjoint: J^T seed) over the rows of `unknown` and the columns of
+ * `known`, refusing a result that overflows. */
 typedef struct {
     int rows, cols;
-    int (*row)(unsigned int vr);
-    int (*col)(unsigned int vr);
-    const char *outputs, *inputs;
+    const unsigned int *outputs, *inputs;
     void (*partials)(const fmu_model *m, double *J);
 } fmu_jacobian;
 enum { FMU_JACOBIAN_MAX = 64 }; /* rows x cols at most */

@@ -24,8 +24,9 @@
 enum { P_ROWS = 7, P_COLS = 6 };
 #define MODEL_JAC_ROWS P_ROWS
 #define MODEL_JAC_COLS P_COLS
-#define MODEL_JAC_OUTPUTS "T1, T2, Mz, Fn, M1, M2, dissipatedEnergy"
-#define MODEL_JAC_INPUTS "u1, u2, theta, d, phi1, phi2"
+#define MODEL_JAC_OUTPUTS                                                                          \
+    PAD_VR_T1, PAD_VR_T2, PAD_VR_Mz, PAD_VR_Fn, PAD_VR_M1, PAD_VR_M2, PAD_VR_dissipatedEnergy
+#define MODEL_JAC_INPUTS PAD_VR_u1, PAD_VR_u2, PAD_VR_theta, PAD_VR_d, PAD_VR_phi1, PAD_VR_phi2
 
 #include "models/ContactPatch/cells_model.h"
 
@@ -253,31 +254,6 @@ fmu_status fmu_model_do_step(pad_model *m, double h, fmu_msg *msg) {
 }
 
 /* ---- directional derivatives ------------------------------------------------ */
-
-static int jac_row(unsigned int vr) {
-    switch (vr) {
-    case PAD_VR_T1: return 0;
-    case PAD_VR_T2: return 1;
-    case PAD_VR_Mz: return 2;
-    case PAD_VR_Fn: return 3;
-    case PAD_VR_M1: return 4;
-    case PAD_VR_M2: return 5;
-    case PAD_VR_dissipatedEnergy: return 6;
-    default: return -1;
-    }
-}
-
-static int jac_col(unsigned int vr) {
-    switch (vr) {
-    case PAD_VR_u1: return 0;
-    case PAD_VR_u2: return 1;
-    case PAD_VR_theta: return 2;
-    case PAD_VR_d: return 3;
-    case PAD_VR_phi1: return 4;
-    case PAD_VR_phi2: return 5;
-    default: return -1;
-    }
-}
 
 /* A cell of the shown step's foundation: its centre, its field, its
  * pressed part's moments. */

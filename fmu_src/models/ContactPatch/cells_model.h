@@ -7,10 +7,11 @@
  *   FMU_SLOT_<name>  the slots of its table's own rows (those of the law's,
  *                    the cells' and the outputs in cells_sums are here);
  *   MODEL_JAC_ROWS, MODEL_JAC_COLS, MODEL_JAC_OUTPUTS, MODEL_JAC_INPUTS
- *                    its Jacobian's size and its rows' and columns' names.
+ *                    its Jacobian's size and its rows' and columns' value
+ *                    references, in order.
  * It defines in turn (static, in this order) overflow (why a step was
  * refused: cells_step's index `bad`), exit_init (glue/fmu_model.h's hook),
- * jac_row, jac_col and partials (glue/fmu_instance.h's fmu_jacobian).
+ * and partials (glue/fmu_instance.h's fmu_jacobian).
  *
  * Defined here: VARS, the FMI 3.0 arrays of its table's FMU_ARRAYS (each
  * row's name the array cells_array gives: cellT1, cellT2, cellFn,
@@ -54,8 +55,6 @@ static const fmu_var VARS[] = {FMU_GROUPED_VARIABLES(FMU_VAR_ROW, LAW_ROW)};
 
 static fmu_status overflow(const struct fmu_model *m, int bad, fmu_msg *msg);
 static fmu_status exit_init(struct fmu_model *m, fmu_msg *msg);
-static int jac_row(unsigned int vr);
-static int jac_col(unsigned int vr);
 static void partials(const struct fmu_model *m, double *J);
 
 /* ---- FMI 3.0: the cells as arrays (the table's FMU_ARRAYS) ------------------ */
@@ -98,8 +97,13 @@ static const fmu_arrays ARRAYS = {array_size, array_get, STRUCTURAL, 2};
 
 /* J fits the glue's buffer (a negative size fails to compile) */
 typedef char jacobian_fits[MODEL_JAC_ROWS * MODEL_JAC_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
-static const fmu_jacobian JACOBIAN = {MODEL_JAC_ROWS,    MODEL_JAC_COLS,   jac_row, jac_col,
-                                      MODEL_JAC_OUTPUTS, MODEL_JAC_INPUTS, partials};
+static const unsigned int JAC_OUTPUTS[] = {MODEL_JAC_OUTPUTS}, JAC_INPUTS[] = {MODEL_JAC_INPUTS};
+typedef char jacobian_listed[sizeof JAC_OUTPUTS / sizeof *JAC_OUTPUTS == MODEL_JAC_ROWS &&
+                                     sizeof JAC_INPUTS / sizeof *JAC_INPUTS == MODEL_JAC_COLS
+                                 ? 1
+                                 : -1];
+static const fmu_jacobian JACOBIAN = {MODEL_JAC_ROWS, MODEL_JAC_COLS, JAC_OUTPUTS, JAC_INPUTS,
+                                      partials};
 
 static fmu_status derivative(const struct fmu_model *m, const unsigned int unknown[],
                              size_t n_unknown, const unsigned int known[], size_t n_known,

@@ -15,8 +15,9 @@
  * N, p1, p2. */
 #define MODEL_JAC_ROWS CELLS_JAC_ROWS
 #define MODEL_JAC_COLS CELLS_JAC_COLS
-#define MODEL_JAC_OUTPUTS "T1, T2, Mz, dissipatedEnergy"
-#define MODEL_JAC_INPUTS "u1, u2, theta, N, p1, p2"
+#define MODEL_JAC_OUTPUTS PATCH_VR_T1, PATCH_VR_T2, PATCH_VR_Mz, PATCH_VR_dissipatedEnergy
+#define MODEL_JAC_INPUTS                                                                           \
+    PATCH_VR_u1, PATCH_VR_u2, PATCH_VR_theta, PATCH_VR_N, PATCH_VR_p1, PATCH_VR_p2
 
 #include "models/ContactPatch/cells_model.h"
 
@@ -149,28 +150,6 @@ fmu_status fmu_model_do_step(patch_model *m, double h, fmu_msg *msg) {
 }
 
 /* ---- directional derivatives ------------------------------------------------ */
-
-static int jac_row(unsigned int vr) {
-    switch (vr) {
-    case PATCH_VR_T1: return 0;
-    case PATCH_VR_T2: return 1;
-    case PATCH_VR_Mz: return 2;
-    case PATCH_VR_dissipatedEnergy: return 3;
-    default: return -1;
-    }
-}
-
-static int jac_col(unsigned int vr) {
-    switch (vr) {
-    case PATCH_VR_u1: return 0;
-    case PATCH_VR_u2: return 1;
-    case PATCH_VR_theta: return 2;
-    case PATCH_VR_N: return 3;
-    case PATCH_VR_p1: return 4;
-    case PATCH_VR_p2: return 5;
-    default: return -1;
-    }
-}
 
 /* Cell c's dN_c/d(theta, N, p1, p2) = (0, nu, N w c0 xi / length, N w c1 eta
  * / width) for N_c = N nu(p), nu = w (1 + k0 xi + k1 eta). */

@@ -145,25 +145,14 @@ OC_HOT fmu_status fmu_model_do_step(oc_model *m, double h, fmu_msg *msg) {
     return FMU_OK;
 }
 
-static int jac_row(unsigned int vr) {
-    switch (vr) {
-    case OC_VR_T1: return 0;
-    case OC_VR_T2: return 1;
-    case OC_VR_s1: return 2;
-    case OC_VR_s2: return 3;
-    case OC_VR_dissipatedEnergy: return 4;
-    default: return -1;
-    }
-}
-
-static int jac_col(unsigned int vr) {
-    switch (vr) {
-    case OC_VR_u1: return 0;
-    case OC_VR_u2: return 1;
-    case OC_VR_N: return 2;
-    default: return -1;
-    }
-}
+/* The Jacobian's rows and columns, in their order in oc_law_jacobian */
+static const unsigned int JAC_OUTPUTS[] = {OC_VR_T1, OC_VR_T2, OC_VR_s1, OC_VR_s2,
+                                           OC_VR_dissipatedEnergy};
+static const unsigned int JAC_INPUTS[] = {OC_VR_u1, OC_VR_u2, OC_VR_N};
+typedef char jacobian_listed[sizeof JAC_OUTPUTS / sizeof *JAC_OUTPUTS == OC_JAC_ROWS &&
+                                     sizeof JAC_INPUTS / sizeof *JAC_INPUTS == OC_JAC_COLS
+                                 ? 1
+                                 : -1];
 
 static void partials(const oc_model *m, double *J) {
     oc_law_jacobian(&m->law, &m->start, m->u, m->N, &m->steps[m->shown], (double(*)[OC_JAC_COLS])J);
@@ -171,9 +160,7 @@ static void partials(const oc_model *m, double *J) {
 
 /* J fits the glue's buffer (a negative size fails to compile) */
 typedef char jacobian_fits[OC_JAC_ROWS * OC_JAC_COLS <= FMU_JACOBIAN_MAX ? 1 : -1];
-static const fmu_jacobian JACOBIAN = {
-    OC_JAC_ROWS, OC_JAC_COLS, jac_row, jac_col, "T1, T2, s1, s2, dissipatedEnergy",
-    "u1, u2, N", partials};
+static const fmu_jacobian JACOBIAN = {OC_JAC_ROWS, OC_JAC_COLS, JAC_OUTPUTS, JAC_INPUTS, partials};
 
 static fmu_status derivative(const oc_model *m, const unsigned int unknown[], size_t n_unknown,
                              const unsigned int known[], size_t n_known, const double seed[],
