@@ -65,8 +65,18 @@ struct fmu_fields {
 #define FMU_FIELDS(array, S)                                                                       \
     { array, sizeof array / sizeof array[0], sizeof(S) }
 
-/* Bytes the list takes. */
-size_t fmu_fields_size(const fmu_fields *list);
+/* Bytes the list takes (inline: the model-description generator, which
+ * links no glue, states the size too). */
+static inline size_t fmu_fields_size(const fmu_fields *list) {
+    size_t n = 0;
+    for (unsigned int i = 0; i < list->n; ++i) {
+        const fmu_field *f = &list->field[i];
+        n += f->type == FMU_FIELD_F64   ? 8
+             : f->type == FMU_FIELD_U32 ? 4
+                                        : f->count * fmu_fields_size(f->record);
+    }
+    return n;
+}
 /* Writes s's fields at p; returns the end. */
 unsigned char *fmu_fields_write(const fmu_fields *list, const void *s, unsigned char *p);
 /* Reads the fields at *p into s, checking each as its list says, and

@@ -751,17 +751,6 @@ OC_HOT fmu_status fmu_do_step(fmu_instance *I, double t, double h, fmu_msg *msg)
 
 /* ---- a model's serialized fields (fmu_fields.h) -------------------------- */
 
-size_t fmu_fields_size(const fmu_fields *list) {
-    size_t n = 0;
-    for (unsigned int i = 0; i < list->n; ++i) {
-        const fmu_field *f = &list->field[i];
-        n += f->type == FMU_FIELD_F64   ? 8
-             : f->type == FMU_FIELD_U32 ? 4
-                                        : f->count * fmu_fields_size(f->record);
-    }
-    return n;
-}
-
 unsigned char *fmu_fields_write(const fmu_fields *list, const void *s, unsigned char *p) {
     for (unsigned int i = 0; i < list->n; ++i) {
         const fmu_field *f = &list->field[i];

@@ -805,18 +805,6 @@ static void manifest(FILE *f) {
 }
 
 #ifdef FMU_MODEL_HEADER
-/* Bytes a field list takes (fmu_fields_size's, which the glue has). */
-static size_t fields_bytes(const fmu_fields *list) {
-    size_t n = 0;
-    for (unsigned int i = 0; i < list->n; ++i) {
-        const fmu_field *x = &list->field[i];
-        n += x->type == FMU_FIELD_F64   ? 8
-             : x->type == FMU_FIELD_U32 ? 4
-                                        : x->count * fields_bytes(x->record);
-    }
-    return n;
-}
-
 /* A record's fields as {"name": ..., "type": ...} items, a nested record's
  * flattened into them. */
 static void field_items(FILE *f, const fmu_fields *list, int *first) {
@@ -839,7 +827,7 @@ static void field_items(FILE *f, const fmu_fields *list, int *first) {
 static void state_layout(FILE *f) {
     static const char TAG[4] = FMU_STATE_TAG;
     fprintf(f, "  \"state\": {\"bytes\": %zu, \"format\": %d, \"tag\": \"%.4s\", \"header\": ",
-            FMU_STATE_HEADER_BYTES + fields_bytes(&FMU_STATE_FIELDS), FMU_STATE_FORMAT, TAG);
+            FMU_STATE_HEADER_BYTES + fmu_fields_size(&FMU_STATE_FIELDS), FMU_STATE_FORMAT, TAG);
     json_str(f, FMU_STATE_HEADER_LAYOUT);
     fprintf(f, ", \"headerBytes\": %d, \"parts\": [", FMU_STATE_HEADER_BYTES);
     const fmu_fields *L = &FMU_STATE_FIELDS;
