@@ -242,7 +242,7 @@ def test_the_building_guide_and_the_readme_quote_the_benchmark_tables():
     assert max(float(per_points("100", p)) for p in ("stick", "slip")) < 0.5
     assert "100 cells for under half of 100 point FMUs' cost" in features
     reproduce = _rows(_section(BENCH, "`make reproduce`"))
-    assert len(reproduce) == 1 and f"measured {reproduce[0][1]} on a quiet machine" in building
+    assert len(reproduce) == 1 and f"measured {reproduce[0][1]} on the machine" in building
     uq = _rows(_section(BENCH, "Uncertainty propagation"))
     assert len(uq) == 1 and f"measured {uq[0][1]} on a quiet machine" in building
     assert float(uq[0][1].split("–")[1].split()[0]) < 30 and "10⁶ rig runs in under 30 s" in features
