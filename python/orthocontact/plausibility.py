@@ -40,7 +40,9 @@ QUANTITIES = {
     "velocity_m_s": Quantity("m/s", (0.0, 20.0), (1e-3, 2.0),
                              "a lab rig's carriage moves at 0.001-2 m/s",
                              ((0.01, "cm/s"), (0.001, "mm/s"))),
-    "mass_kg": Quantity("kg", (0.0, 1000.0), (0.01, 100.0), "a block on a lab rig weighs 0.01-100 kg",
+    # below a milligram no block can be on a rig, and a smaller mass underflows
+    # what the harnesses derive from it (a patch's inertia, a pad's tolerances)
+    "mass_kg": Quantity("kg", (1e-6, 1000.0), (0.01, 100.0), "a block on a lab rig weighs 0.01-100 kg",
                         ((0.001, "g"),)),
     "g": Quantity("m/s^2", (1.0, 30.0), (9.76, 9.84), "gravity on Earth is 9.76-9.84 m/s^2",
                   ((0.01, "cm/s^2"),)),

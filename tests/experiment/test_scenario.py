@@ -196,6 +196,12 @@ def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
     ("twist", "length_m = 0.05", "length_m = 1e-320",
      "patch.length_m: length = 1e-320 m is outside [1e-100, 1e+100] m, the FMU's range"),
     ("twist", "n1 = 12", "n1 = 3.0", "patch.n1: n1 must be an integer, got 3.0"),
+    # inside the gate's hard range when it was (0, 1000] kg: the body's inertia (twist) and the
+    # push's tolerances (pushed_block) underflowed to 0, a traceback (tools/cli_fuzz.py --seed 13)
+    ("twist", "mass_kg = 1.875", "mass_kg = 1e-320", "rig.mass_kg = 9.99989e-321 kg: a block on a lab rig "
+     "weighs 0.01-100 kg"),
+    ("pushed_block", "mass_kg = 1.875", "mass_kg = 1e-320", "rig.mass_kg = 9.99989e-321 kg: a block on a "
+     "lab rig weighs 0.01-100 kg"),
     # the law's values, likewise against the FMU's table (ContactParams raised a ValueError before)
     ("twist", "mu2 = 0.625\n", "mu2 = 1e-320\n", "law.mu2: mu2 = 1e-320 [-] is outside [1e-150, 1e+150], the "
      "FMU's range"),
