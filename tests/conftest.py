@@ -96,9 +96,11 @@ def identified(tmp_path_factory):
 def pytest_collection_modifyitems(config, items):
     from tiers import mark_slow
     mark_slow(config, items)
-    # The slow tests first (in their files' order): spread over the workers
-    # while the fast ones fill the gaps, not one long test alone at the end.
-    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+    # The files with a slow test first, each kept whole (a module-scoped
+    # fixture is made once): the long tests spread over the workers while
+    # the fast ones fill the gaps, not one long test alone at the end.
+    slow_files = {item.path for item in items if item.get_closest_marker("slow") is not None}
+    items.sort(key=lambda item: item.path not in slow_files)
 
 
 def deg(x):
