@@ -23,7 +23,7 @@ from paths import TESTS
 
 SLOW = {
     "identification/test_job.py": "*",         # identification: FMU data, CLI runs
-    "identification/test_estimators.py": "*",  # coverage over 200 replicates; 120 sets of raw recordings
+    "identification/test_estimators.py": "*",  # coverage over 100 replicates; 120 sets of raw recordings
     "identification/test_report.py": {   # identifies the bundled recordings
         "test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs",
         "test_identify_prints_every_estimate_with_its_unit_and_positive_intervals",

@@ -296,7 +296,7 @@ def pad_points(mode):
 
 POINTS = {MODEL_IDENTIFIER: contact_points, RIG_MODEL_IDENTIFIER: rig_points, "ContactPatch": patch_points,
           "ContactPad": pad_points}
-CELLS = ("ContactPatch", "ContactPad")   # every integer n1, n2 tried: tests of their own
+CELLS = ("ContactPatch", "ContactPad")   # n1, n2 at five values each: tests of their own
 
 
 @pytest.mark.parametrize("model", [m for m in models().values() if m not in CELLS])
