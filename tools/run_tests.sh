@@ -93,5 +93,6 @@ if [ $fast = 1 ]; then
   .venv/bin/python -m pytest -q -m "not slow" "${workers[@]}" "$@"
 else
   echo "== pytest =="
-  .venv/bin/python -m pytest -q --require-parts "${workers[@]}" "$@"
+  # the 20 slowest beside the result: where the suite's minutes go, in CI's log too
+  .venv/bin/python -m pytest -q --require-parts --durations=20 "${workers[@]}" "$@"
 fi
