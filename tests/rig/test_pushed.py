@@ -94,7 +94,9 @@ def test_a_push_beyond_the_small_tilts_is_refused_naming_the_tilt():
 
 
 @pytest.mark.parametrize("kw, word", [(dict(mass_kg=0.0), "mass_kg"), (dict(height_m=-0.01), "height_m"),
-                                      (dict(g=math.inf), "g"), (dict(height_m=True), "height_m")])
+                                      (dict(g=math.inf), "g"), (dict(height_m=True), "height_m"),
+                                      # > 0, but its tolerances underflow (a division by 0 before)
+                                      (dict(mass_kg=1e-320), "mass_kg = 1e-320 gives a weight")])
 def test_a_bad_block_is_refused_naming_it(kw, word):
     args = dict(mass_kg=MASS, g=G_STANDARD, pad=PatchGeometry(L, W, 2, 2), foundation=Foundation(KN),
                 height_m=0.0)

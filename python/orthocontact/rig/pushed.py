@@ -79,6 +79,12 @@ class PushedBlock:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
                 raise ValueError(f"PushedBlock: {name} must be a finite number > 0, got {v!r}")
+        # push() scales its residuals by RESIDUAL_TOL of the weight (and of its
+        # moment over the pad): a weight so small that they underflow cannot be solved for
+        W = self.weight
+        if not RESIDUAL_TOL * W * max(self.pad.length, self.pad.width) > 0:
+            raise ValueError(f"PushedBlock: mass_kg = {self.mass_kg!r} gives a weight of {W!r} N, too small "
+                             f"to solve for (the push's tolerances, {RESIDUAL_TOL:g} of it, underflow to 0)")
         h = self.height_m
         if isinstance(h, bool) or not isinstance(h, (int, float)) or not math.isfinite(h) or h < 0:
             raise ValueError(f"PushedBlock: height_m must be a finite number >= 0, got {h!r}")
