@@ -39,8 +39,15 @@ def friction_tensor(mu1: float, mu2: float, beta: float) -> np.ndarray:
 
 def rotated_diagonal(d1, d2, t):
     """Entries (r11, r12, r22) of Q(t) diag(d1, d2) Q(t)^T.  Plain arithmetic
-    on d1, d2, so that d1, d2 may be casadi symbols; t a number or an array."""
-    c, s = (np.cos(t), np.sin(t)) if isinstance(t, np.ndarray) else (math.cos(t), math.sin(t))
+    on d1, d2, so that d1, d2 may be casadi symbols; t a number, an array or
+    a casadi symbol (the fit's model maps one function over its points)."""
+    if isinstance(t, np.ndarray):
+        c, s = np.cos(t), np.sin(t)
+    elif isinstance(t, (int, float, np.floating)):
+        c, s = math.cos(t), math.sin(t)
+    else:
+        import casadi as ca
+        c, s = ca.cos(t), ca.sin(t)
     return d1 * c * c + d2 * s * s, (d1 - d2) * s * c, d1 * s * s + d2 * c * c
 
 

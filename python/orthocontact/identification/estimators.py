@@ -8,6 +8,7 @@ ellipse, eq. 1 at 0 and 90 deg); steady angle eq. (10)/(23) from the tensors;
 stick branch of the ramp F_int + k x1 with k = 1/(B^-1)_11.  Units: N, m, deg."""
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass, field
@@ -17,10 +18,12 @@ import numpy as np
 from .. import closed_forms as cf
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
+from . import fit_model
 from .measurements import MeasurementSet, friction_axis_key
 from .noise_model import between_run_tau2, tau_summary, variance_parts
+from .solver import WeightedSolver, covariance
 from .statistics import positive_ci, satterthwaite, t975
-from .strip_model import strip_regimes, strip_steady_state
+from .strip_model import strip_regimes
 
 
 def eq1(data: MeasurementSet) -> dict | None:
@@ -129,6 +132,15 @@ class JointFit:
     between_runs: dict = field(default_factory=dict)  # group -> tau, the run-to-run scatter
     within_run: dict = field(default_factory=dict)    # group -> rms of the within-run errors
     between_runs_dof: dict = field(default_factory=dict)  # group -> dof of its tau^2 (inf: the prior)
+    solves: tuple = ()               # each solve's status, iterations, step left (solver.Solve.as_json)
+    reweighting_rounds: int = 0      # solves of the last fit until the noise model settled
+    convergence: dict = field(default_factory=dict)  # what converged: solver, noise_model, strip_regimes
+
+    @property
+    def converged(self) -> bool:
+        """The last solve met IPOPT's tolerance with no step left, the noise
+        model settled, and the strip's regimes are those at the solution."""
+        return bool(self.convergence) and all(self.convergence.values())
 
 
 def identifiability(data: MeasurementSet) -> tuple[list, dict]:
@@ -184,174 +196,93 @@ def _eq25_geometry(rig: RigSetup) -> bool:
     return cf.eq25_lambdas(1.0, 1.0, 1.0, 1.0, rig.beta_minus_alpha) is not None
 
 
-def _stick_mask(data: MeasurementSet, mu1, mu2) -> np.ndarray:
-    """Ramp points on the stick branch: below 90% of the sliding force."""
-    rig = data.rig
-    F = data.ramp[:, 1] - rig.f_int_N
-    if mu1 is not None:
-        _, beta = rig.axes(rig.ramp_angle_deg)
-        plateau = cf.steady_drive_force(mu1, mu2, beta, 0.0, rig.mass_kg, rig.g)
-    else:
-        top = np.sort(F)[-max(3, len(F) // 4):]
-        plateau = float(np.median(top))
-    return (F < 0.9 * plateau) & (data.ramp[:, 0] > 0)
+# The reweighting (noise_model) ends when no group's variance moves by more than this share
+TAU2_TOLERANCE = 1e-4
+MAX_ROUNDS = 30
+MAX_REGIME_FITS = 4
+# No value is known better than this share of its group's largest: the weights' floor,
+# which noise-free data reach (the data's own rounding is above it).
+RELATIVE_FLOOR = 1e-10
+# Each group's noise before its residuals tell: 0.05 N, 0.5 deg, 1 % of eps2.
+PRIOR_SD = {"forces": 0.05, "angles": 0.5, "ramp": 0.05, "carriage": 0.05}
+
+
+@dataclass(frozen=True)
+class Weighting:
+    """The noise model's state: each value's between-run tau^2 and
+    within-run se^2, per group, and the groups whose tau^2 stays the prior."""
+    tau2: dict
+    se2: dict
+    floor: dict
+    assumed: tuple
+
+    def weights(self, names) -> np.ndarray:
+        return np.concatenate([1.0 / np.maximum(self.tau2[g] + self.se2[g], self.floor[g]) for g in names])
 
 
 def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
-    """_joint_fit_once; with the strip, again from its result until the
-    regimes of motion (strip_regimes) the model was built for are those of
-    the fitted values (at most 4 fits)."""
-    fit = _joint_fit_once(data, start)
-    for _ in range(3):
-        if "mu1" not in fit.values or "eps_ratio" not in fit.values:
-            break
-        new = dict(start, **fit.values)
-        if strip_regimes(data, new) == strip_regimes(data, start):
-            break
-        start = new
-        fit = _joint_fit_once(data, start)
-    return fit
-
-
-def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     """Weighted nonlinear least squares of all data present over the
-    identifiable parameters (casadi/IPOPT), each group weighted by its own
-    noise, estimated from its residuals (three rounds); covariance
-    (J^T W J)^-1 at the optimum (Gauss-Newton)."""
-    import casadi as ca
-    rig = data.rig
+    identifiable parameters, each group weighted by its own noise,
+    re-estimated from its residuals until it settles; covariance
+    (J^T W J)^-1 at the optimum (Gauss-Newton).  With the strip's Coulomb
+    friction, fitted again from its own result until the regimes of motion
+    (strip_regimes) the model was built for are those at the solution."""
     free, why = identifiability(data)
     if not free:
         raise InputError(f"{data.folder}: expected data that determine at least one parameter: "
                          + "; ".join(f"{k}: {v}" for k, v in why.items()))
-    scale = {"mu1": 1.0, "mu2": 1.0, "eps_ratio": 1.0, "l1_l2_ratio": 1.0,
-             "eps2": max(start.get("eps2", 1e4), 1e-9), "c_strip": 10.0,
-             "f_int": max(start.get("f_int", 1.0), 1e-3)}
-    c_known = rig.c_strip or 0.0
-    viscous = "c_strip" in free or c_known > 0
-    # A viscous strip makes each steady angle the root of an equation
-    # (closed_forms.steady_tan_phi_with_strip): casadi's rootfinder, which
-    # needs the matrix graph (MX); the scalar graph (SX) is faster otherwise.
-    x = (ca.MX if viscous else ca.SX).sym("x", len(free))
-    sym = {n: x[i] * scale[n] for i, n in enumerate(free)}
-    val = lambda n: sym[n] if n in sym else start.get(n, 1.0)  # noqa: E731 (symbol if fitted, else start)
-    f_int = val("f_int") if "f_int" in free else rig.f_int_N
-    groups, se2 = {}, {}
-    if data.forces is not None and "mu1" in free:
-        res = []
-        for (a, f), v in zip(data.forces, data.velocities_of_forces()):
-            al, beta = rig.axes(a)
-            if (rig.mu_strip > 0 or viscous) and "eps_ratio" in free:
-                # the strip's lateral force turns the push off the friction
-                # ellipse's X1 point wherever the block drifts
-                F = f_int + strip_steady_state(val, start, rig, al, beta, v,
-                                               "c_strip" in free, c_known)[1]
-            else:
-                F = f_int + cf.steady_drive_force(val("mu1"), val("mu2"), beta, 0.0, rig.mass_kg, rig.g)
-            res.append(f - F)
-        groups["forces"] = (ca.vertcat(*res), 2)
-        se2["forces"] = data.force_se
-    if "f_int" in free:
-        groups["carriage"] = (ca.vertcat(*[F - f_int for F in data.carriage[:, 0]]), 1)
-        se2["carriage"] = data.carriage[:, 1]
-    if data.angles is not None and ("eps_ratio" in free or "l1_l2_ratio" in free):
-        res = []
-        strip = rig.mu_strip > 0 or viscous
-        for (a, phi), v in zip(data.angles, data.velocities_of_angles()):
-            al, be = rig.axes(a)
-            if "eps_ratio" in free and strip:
-                tp = strip_steady_state(val, start, rig, al, be, v, "c_strip" in free, c_known)[0]
-            elif "eps_ratio" in free:
-                tp = cf.steady_tan_phi(val("mu1"), val("mu2"), val("eps_ratio"), 1.0, al, be, rig.rule)
-            else:
-                tp = cf.eq25_tan_phi(val("l1_l2_ratio"), 1.0, al)
-            res.append(phi - ca.atan(tp) * 180 / math.pi)
-        groups["angles"] = (ca.vertcat(*res), 1 + ("c_strip" in free))
-        se2["angles"] = data.angle_se
-    stick = np.zeros(0, dtype=bool)
-    if data.ramp is not None and "eps2" in free:
-        stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
-        if stick.sum() < 2:
-            raise InputError(f"{data.folder / 'ramp.csv'}: expected at least 2 points on the stick "
-                             f"branch (below 90% of the sliding force), got {int(stick.sum())}")
-        al, _ = rig.axes(rig.ramp_angle_deg)
-        k = cf.stick_stiffness_x1(val("eps_ratio") * val("eps2"), val("eps2"), al)
-        res = [F - (f_int + k * x1) for x1, F in data.ramp[stick]]
-        groups["ramp"] = (ca.vertcat(*res), 1)
-    if data.stiffness is not None and "eps2" in free:
-        res = [k - cf.stick_stiffness_x1(val("eps_ratio") * val("eps2"), val("eps2"), rig.axes(a)[0])
-               for a, k, _ in data.stiffness]
-        groups["stiffness"] = (ca.vertcat(*res), 1)
-        se2["stiffness"] = data.stiffness[:, 2]
+    solves = []
+    for _ in range(MAX_REGIME_FITS):
+        model = fit_model.build(data, start, free)
+        x, weighting, rounds, settled = _reweighted_fit(model, data, start, solves)
+        values = dict(start, **model.values(x))
+        regimes_kept = strip_regimes(data, values) == strip_regimes(data, start)
+        if regimes_kept:
+            break
+        start = values
+    converged = {"solver": solves[-1].converged, "noise_model": settled, "strip_regimes": regimes_kept}
+    return _fit_result(model, data, x, weighting, why, solves, rounds, converged)
 
-    names = list(groups)
-    r_all = ca.vertcat(*[groups[g][0] for g in names])
-    J_all = ca.jacobian(r_all, x)
-    sizes = [groups[g][0].numel() for g in names]
-    w = type(x).sym("w", sum(sizes))
-    obj = ca.dot(w, r_all * r_all)
-    solver = ca.nlpsol("joint", "ipopt", {"x": x, "p": w, "f": 0.5 * obj},
-                       {"ipopt.print_level": 0, "print_time": False, "ipopt.tol": 1e-14,
-                        "ipopt.sb": "yes", "ipopt.max_iter": 500})
-    fres = ca.Function("res", [x], [r_all, J_all])
-    x0 = np.array([start.get(n, 1.0) / scale[n] for n in free])
-    # noise_model: each value's variance is its group's between-run tau^2 plus its within-run
-    # se^2.  A group with no residual dof (two forces for mu1, mu2) keeps its prior, flagged.
-    # One between-run variance per velocity: a tracker's drift shows as drift / velocity.
-    components = {} if data.angle_se is None else {
-        "angles": data.velocities_of_angles(), "forces": data.velocities_of_forces()}
-    se2 = {g: (np.zeros(n) if se2.get(g) is None else np.asarray(se2[g], float) ** 2)
-           for g, n in zip(names, sizes)}
-    prior = {"forces": 0.05**2, "angles": 0.5**2, "ramp": 0.05**2, "carriage": 0.05**2,
-             "stiffness": (0.01 * start.get("eps2", 1e4)) ** 2}
-    tau2 = {g: np.full(n, prior[g]) for g, n in zip(names, sizes)}
-    floor = 1e-24
-    assumed = [g for g, n in zip(names, sizes) if n - groups[g][1] <= 0]
-    for _round in range(4):
-        wdiag = np.concatenate([1.0 / np.maximum(tau2[g] + se2[g], floor) for g in names])
-        sol = solver(x0=x0, p=wdiag, lbx=1e-9, ubx=1e9)
-        x0 = np.array(sol["x"]).ravel()
-        r, _ = fres(x0)
-        r = np.array(r).ravel()
-        parts = np.split(r, np.cumsum(sizes)[:-1])
-        for g, part in zip(names, parts):
-            if g not in assumed:
-                tau2[g] = between_run_tau2(part, se2[g], groups[g][1], components.get(g))
-    r, J = fres(x0)
-    r, J = np.array(r).ravel(), np.array(J)
-    wdiag = np.concatenate([1.0 / np.maximum(tau2[g] + se2[g], floor) for g in names])
-    sigma = {g: math.sqrt(float(np.mean(tau2[g] + se2[g]))) for g in names}
+
+def _reweighted_fit(model: fit_model.FitModel, data: MeasurementSet, start: dict, solves: list):
+    """(x, Weighting, rounds, settled) of the solve-and-reweight loop: each
+    group's tau^2 from its residuals (noise_model) until it moves by less
+    than TAU2_TOLERANCE of its variance; every solve appended to `solves`."""
+    names = [g.name for g in model.groups]
+    prior = {**PRIOR_SD, "stiffness": 0.01 * start.get("eps2", 1e4)}
+    assumed = tuple(g.name for g in model.groups if g.size - g.charged <= 0)
+    weighting = Weighting(tau2={g.name: np.full(g.size, prior[g.name] ** 2) for g in model.groups},
+                          se2={g.name: g.se2 for g in model.groups},
+                          floor={g.name: (RELATIVE_FLOOR * g.magnitude) ** 2 for g in model.groups},
+                          assumed=assumed)
+    solver = WeightedSolver(model)
+    x, settled = model.x_of(start), False
+    rounds = 0
+    while rounds < MAX_ROUNDS:
+        rounds += 1
+        w = weighting.weights(names)
+        solves.append(solver.solve(x, w))
+        x = solves[-1].x
+        parts = model.split(model.evaluate(x)[0])
+        tau2 = {g.name: weighting.tau2[g.name] if g.name in assumed else
+                between_run_tau2(parts[g.name], g.se2, g.charged, g.components) for g in model.groups}
+        new = dataclasses.replace(weighting, tau2=tau2)
+        moved = np.max(np.abs(1.0 / new.weights(names) - 1.0 / w) * w)
+        weighting = new
+        if moved <= TAU2_TOLERANCE:
+            settled = True
+            break
+    return x, weighting, rounds, settled
+
+
+def _fit_result(model, data, x, weighting: Weighting, why: dict, solves: list, rounds: int,
+                converged: dict) -> JointFit:
+    """The JointFit at the solution x: covariance, intervals, noise summary."""
+    free, groups = list(model.free), model.groups
+    names, sizes = [g.name for g in groups], model.sizes
+    r, J = model.evaluate(x)
+    wdiag = weighting.weights(names)
     info = J.T @ (wdiag[:, None] * J)
-    cov_scaled = np.linalg.pinv(info)
-    S = np.diag([scale[n] for n in free])
-    cov = S @ cov_scaled @ S
-    values = {n: float(x0[i] * scale[n]) for i, n in enumerate(free)}
-    dof = len(r) - len(free)
-    # A parameter's variance is a sum of the variance components'
-    # contributions (cov J' W Sigma_c W J cov): each group's between-run
-    # tau^2, estimated from its residuals with the group's degrees of freedom,
-    # and its within-run se^2, known (the run's own line fit or mean).  Its
-    # interval takes the Welch-Satterthwaite dof of that sum: the forces'
-    # for mu1, mu2, the two ramp runs' one dof for the part of eps2's
-    # variance that is run-to-run scatter, none for the part that is the
-    # tracked speed's known error.  A group whose tau is the prior is known.
-    group_dof = {g: (math.inf if g in assumed else n - groups[g][1]) for g, n in zip(names, sizes)}
-    parts = variance_parts(S @ cov_scaled, J * wdiag[:, None], sizes,
-                           [(tau2[g], group_dof[g]) for g in names], [se2[g] for g in names])
-    grads = {n: np.eye(len(free))[i] for i, n in enumerate(free)}
-    if "eps2" in free and "eps_ratio" in free:
-        i, j = free.index("eps_ratio"), free.index("eps2")
-        values["eps1"] = values["eps_ratio"] * values["eps2"]
-        grad = np.zeros(len(free))
-        grad[i], grad[j] = values["eps2"], values["eps_ratio"]
-        grads["eps1"] = grad
-    stderr, param_dof, ci = {}, {}, {}
-    for n, gvec in grads.items():
-        stderr[n] = math.sqrt(max(float(gvec @ cov @ gvec), 0.0))
-        param_dof[n] = nu = satterthwaite(gvec, parts)[1]
-        # every fitted quantity is positive by nature (the solver's bounds keep it so): its
-        # interval on the log scale, which a linear one left for c_strip (below 0)
-        ci[n] = positive_ci(values[n], stderr[n], t975(max(nu, 1.0)))
     # Identifiability is about the shape of the information, not its scale:
     # judge the correlation form, which weights and units do not distort.
     dscale = np.sqrt(np.maximum(np.diag(info), 1e-300))
@@ -359,12 +290,41 @@ def _joint_fit_once(data: MeasurementSet, start: dict) -> JointFit:
     if not np.isfinite(cond) or cond > 1e14:
         raise InputError(f"{data.folder}: expected data that separate {', '.join(free)} "
                          f"(information matrix singular, condition {cond:.1e})")
-    parts = np.split(r, np.cumsum(sizes)[:-1])
-    return JointFit(free=free, values=values, cov=cov, stderr=stderr, ci95=ci, dof=dof, sigma=sigma,
-                    residuals=dict(zip(names, parts)), not_identifiable=why, stick_points=int(stick.sum()),
-                    sigma_assumed=assumed, param_dof=param_dof, between_runs_dof=group_dof,
-                    between_runs={g: tau_summary(tau2[g], components.get(g)) for g in names},
-                    within_run={g: math.sqrt(float(np.mean(se2[g]))) for g in names})
+    cov_scaled = covariance(info)
+    S = np.diag(model.scale)
+    cov = S @ cov_scaled @ S
+    values = model.values(x)
+    tau2, se2 = weighting.tau2, weighting.se2
+    # A parameter's variance is a sum of the variance components'
+    # contributions (cov J' W Sigma_c W J cov): each group's between-run
+    # tau^2, estimated from its residuals with the group's degrees of freedom,
+    # and its within-run se^2, known (the run's own line fit or mean).  Its
+    # interval takes the Welch-Satterthwaite dof of that sum.  A group whose tau is the prior is known.
+    group_dof = {g.name: (math.inf if g.name in weighting.assumed else g.size - g.charged) for g in groups}
+    parts = variance_parts(S @ cov_scaled, J * wdiag[:, None], sizes,
+                           [(tau2[g], group_dof[g]) for g in names], [se2[g] for g in names])
+    grads = {n: np.eye(len(free))[i] for i, n in enumerate(free)}
+    if "eps2" in free and "eps_ratio" in free:
+        i, j = free.index("eps_ratio"), free.index("eps2")
+        values["eps1"] = values["eps_ratio"] * values["eps2"]
+        grads["eps1"] = np.zeros(len(free))
+        grads["eps1"][i], grads["eps1"][j] = values["eps2"], values["eps_ratio"]
+    stderr, param_dof, ci = {}, {}, {}
+    for n, gvec in grads.items():
+        stderr[n] = math.sqrt(max(float(gvec @ cov @ gvec), 0.0))
+        param_dof[n] = nu = satterthwaite(gvec, parts)[1]
+        # every fitted quantity is positive by nature (the solver's bounds keep it so): its
+        # interval on the log scale, which a linear one left for c_strip (below 0)
+        ci[n] = positive_ci(values[n], stderr[n], t975(max(nu, 1.0)))
+    components = {g.name: g.components for g in groups}
+    return JointFit(free=free, values=values, cov=cov, stderr=stderr, ci95=ci, dof=len(r) - len(free),
+                    sigma={g: math.sqrt(float(np.mean(tau2[g] + se2[g]))) for g in names},
+                    residuals=model.split(r), not_identifiable=why, stick_points=int(model.stick.sum()),
+                    sigma_assumed=list(weighting.assumed), param_dof=param_dof, between_runs_dof=group_dof,
+                    between_runs={g: tau_summary(tau2[g], components[g]) for g in names},
+                    within_run={g: math.sqrt(float(np.mean(se2[g]))) for g in names},
+                    solves=tuple(s.as_json() for s in solves), reweighting_rounds=rounds,
+                    convergence=converged)
 
 
 def start_values(data: MeasurementSet) -> dict:
@@ -389,7 +349,7 @@ def start_values(data: MeasurementSet) -> dict:
         k = float(np.mean(data.stiffness[:, 1]))
         start["eps2"] = max(k / cf.stick_stiffness_x1(start["eps_ratio"], 1.0, al), 1e-9)
     if data.ramp is not None:
-        stick = _stick_mask(data, start.get("mu1"), start.get("mu2"))
+        stick = fit_model.stick_mask(data, start.get("mu1"), start.get("mu2"))
         if stick.sum() >= 2:
             xs, F = data.ramp[stick, 0], data.ramp[stick, 1] - rig.f_int_N
             k = float(xs @ F / (xs @ xs))

@@ -22,7 +22,9 @@ def between_run_variance(r: np.ndarray, se2: np.ndarray, dof: float) -> float:
         raise ValueError("between_run_variance: needs residual degrees of freedom")
 
     def q(t2):
-        return float(np.sum(r2 / (t2 + se2)))
+        # a value with no within-run error and no residual adds nothing (not 0/0)
+        with np.errstate(divide="ignore"):
+            return float(np.sum(np.where(r2 == 0, 0.0, r2 / np.maximum(t2 + se2, 0.0))))
     if np.all(se2 == 0):
         return float(r2.sum() / dof)
     if q(0.0) <= dof:

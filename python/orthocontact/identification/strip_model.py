@@ -4,6 +4,10 @@ as casadi expressions of the fitted parameters, and the regimes of motion
 (which way the block drifts, or held) that model is built for."""
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
 from .. import closed_forms as cf
 from ..experiment.rig_setup import RigSetup
 from .measurements import MeasurementSet
@@ -14,7 +18,7 @@ def strip_regimes(data: MeasurementSet, values: dict) -> tuple:
     strip at `values` (0: the strip holds the block), the regime the fit's
     model is built for."""
     rig = data.rig
-    if rig.mu_strip == 0 and not rig.c_strip and "c_strip" not in values:
+    if rig.mu_strip == 0:   # the sign enters only through the strip's Coulomb friction
         return ()
     N, c = rig.normal_force, values.get("c_strip", rig.c_strip or 0.0)
     pts = [] if data.forces is None else [(a, v) for (a, _), v in
@@ -30,36 +34,45 @@ def strip_regimes(data: MeasurementSet, values: dict) -> tuple:
     return tuple(out)
 
 
-def strip_steady_state(val, start: dict, rig: RigSetup, alpha: float, beta: float, velocity: float,
-                       c_free: bool, c_known: float):
+def strip_steady_states(val, start: dict, rig: RigSetup, points: list, c_free: bool, c_known: float):
     """(tan(phi), q1 [N]) of steady sliding with the strip (closed_forms.
-    steady_strip_state_array) as casadi expressions of the fitted
-    parameters: the root of the lateral force (closed_forms.
-    strip_lateral_force) in the slope, by casadi's Newton rootfinder from
-    the slope at the start values.  q1 is the push, so the driving force is
-    F_int + q1.  The sign of the lateral motion is the one at the start values
-    (fixed during the fit); where the strip holds the block there,
-    tan(phi) = 0 and the push is that of slip along X1."""
+    steady_strip_state_array) at each point (mat angle [deg], velocity
+    [m/s]), as casadi expressions of the fitted parameters: the root of the
+    lateral force (closed_forms.strip_lateral_force) in the slope, by one
+    casadi Newton rootfinder mapped over the points, from the slope at the
+    start values.  q1 is the push, so the driving force is F_int + q1.  The
+    sign of each point's lateral motion is the one at the start values
+    (fixed during the fit; strip_regimes tells whether the fitted values
+    keep it); where the strip holds the block there, tan(phi) = 0 and the
+    push is that of slip along X1."""
     import casadi as ca
-    mu1, mu2, ratio = val("mu1"), val("mu2"), val("eps_ratio")
-    c = val("c_strip") if c_free else c_known
     N = rig.normal_force
-    t_start = cf.steady_tan_phi_with_strip(start["mu1"], start["mu2"], start.get("eps_ratio", 1.0) * 1e4,
-                                           1e4, alpha, beta, rig.rule, rig.mu_strip,
-                                           start.get("c_strip", c_known), velocity, N)
-    sign = 0.0 if t_start == 0 else (1.0 if t_start > 0 else -1.0)
-    # eps enters the direction only through eps1/eps2: eps2 = 1 N/m here
-    h = cf.slip_force_tensor(mu1, mu2, ratio, 1.0, alpha, beta, rig.rule)
-    f = cf.friction_entries(mu1, mu2, beta)
+    c = val("c_strip") if c_free else c_known
+    params = ca.vertcat(val("mu1"), val("mu2"), val("eps_ratio"), c)
+    rows = []
+    for a, v in points:
+        alpha, beta = rig.axes(a)
+        t0 = cf.steady_tan_phi_with_strip(start["mu1"], start["mu2"], start.get("eps_ratio", 1.0) * 1e4,
+                                          1e4, alpha, beta, rig.rule, rig.mu_strip,
+                                          start.get("c_strip", c_known), v, N)
+        rows.append((alpha, beta, v, 0.0 if t0 == 0 else math.copysign(1.0, t0), t0))
+    p, d, t = ca.MX.sym("p", 4), ca.MX.sym("d", 5), ca.MX.sym("t")
 
-    def balance(t):
-        return cf.strip_lateral_force(h, f, t, sign, rig.mu_strip, c * velocity, N)
-    if sign == 0:
-        return 0.0, balance(0.0)[1]
-    sym = ca.MX if any(isinstance(x, ca.MX) for x in (*h, c)) else ca.SX
-    ts = sym.sym("t")
-    args = ca.vertcat(*ca.symvar(ca.vertcat(mu1, mu2, ratio, c)))
-    res = ca.Function("strip_lateral_force", [ts, args], [balance(ts)[0]])
-    rf = ca.rootfinder("strip_slope", "newton", res, {"abstol": 1e-14 * N})
-    t = rf(t_start, args)
-    return t, balance(t)[1]
+    def balance(slope):
+        # eps enters the direction only through eps1/eps2: eps2 = 1 N/m here
+        h = cf.slip_force_tensor(p[0], p[1], p[2], 1.0, d[0], d[1], rig.rule)
+        return cf.strip_lateral_force(h, cf.friction_entries(p[0], p[1], d[1]), slope, d[3], rig.mu_strip,
+                                      p[3] * d[2], N)
+    residual = ca.Function("strip_lateral_force", [t, ca.vertcat(p, d)], [balance(t)[0]])
+    root = ca.rootfinder("strip_slope", "newton", residual, {"abstol": 1e-14 * N})
+    one = ca.Function("strip_steady_state", [p, d], [root(d[4], ca.vertcat(p, d))])
+    moving = [i for i, row in enumerate(rows) if row[3] != 0]
+    slopes = one.map(len(moving))(ca.repmat(params, 1, len(moving)), np.array([rows[i] for i in moving]).T) \
+        if moving else []
+    tan_phi = [0.0] * len(rows)
+    for k, i in enumerate(moving):
+        tan_phi[i] = slopes[k]
+    held = ca.Function("strip_push", [t, p, d], [balance(t)[1]])
+    push = held.map(len(rows))(ca.horzcat(*[ca.MX(x) if isinstance(x, float) else x for x in tan_phi]),
+                               ca.repmat(params, 1, len(rows)), np.array(rows).T)
+    return tan_phi, [push[i] for i in range(len(rows))]
