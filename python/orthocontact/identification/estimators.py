@@ -19,6 +19,7 @@ from .. import closed_forms as cf
 from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
 from . import fit_model
+from .lack_of_fit import lack_of_fit
 from .measurements import MeasurementSet, friction_axis_key
 from .noise_model import between_run_tau2, tau_summary, variance_parts
 from .solver import WeightedSolver, covariance
@@ -135,6 +136,7 @@ class JointFit:
     solves: tuple = ()               # each solve's status, iterations, step left (solver.Solve.as_json)
     reweighting_rounds: int = 0      # solves of the last fit until the noise model settled
     convergence: dict = field(default_factory=dict)  # what converged: solver, noise_model, strip_regimes
+    lack_of_fit: dict = field(default_factory=dict)  # group -> lack_of_fit.LackOfFit (groups with replicates)
 
     @property
     def converged(self) -> bool:
@@ -317,6 +319,8 @@ def _fit_result(model, data, x, weighting: Weighting, why: dict, solves: list, r
         # interval on the log scale, which a linear one left for c_strip (below 0)
         ci[n] = positive_ci(values[n], stderr[n], t975(max(nu, 1.0)))
     components = {g.name: g.components for g in groups}
+    tests = {g.name: lack_of_fit(g.name, part, g.cells, g.charged, g.components)
+             for g, part in zip(groups, model.split(r).values()) if g.cells is not None}
     return JointFit(free=free, values=values, cov=cov, stderr=stderr, ci95=ci, dof=len(r) - len(free),
                     sigma={g: math.sqrt(float(np.mean(tau2[g] + se2[g]))) for g in names},
                     residuals=model.split(r), not_identifiable=why, stick_points=int(model.stick.sum()),
@@ -324,7 +328,7 @@ def _fit_result(model, data, x, weighting: Weighting, why: dict, solves: list, r
                     between_runs={g: tau_summary(tau2[g], components[g]) for g in names},
                     within_run={g: math.sqrt(float(np.mean(se2[g]))) for g in names},
                     solves=tuple(s.as_json() for s in solves), reweighting_rounds=rounds,
-                    convergence=converged)
+                    convergence=converged, lack_of_fit={g: t for g, t in tests.items() if t is not None})
 
 
 def start_values(data: MeasurementSet) -> dict:

@@ -41,6 +41,7 @@ class Group:
     se2: np.ndarray
     magnitude: float          # the largest |value| (1 where all are 0): the scale of its noise floor
     components: np.ndarray | None = None
+    cells: tuple | None = None    # each value's run conditions (replicates share them); None: no replicates
 
 
 @dataclass(frozen=True)
@@ -126,22 +127,24 @@ def _group_residuals(data: MeasurementSet, val, free: list, sliding: dict, stick
     rig, parts = data.rig, []
     f_int = val("f_int") if "f_int" in free else rig.f_int_N
 
-    def add(name, residuals, charged, measured, se=None, components=None):
+    def add(name, residuals, charged, measured, se=None, components=None, cells=None):
         se2 = np.zeros(len(residuals)) if se is None else np.asarray(se, float) ** 2
         top = float(np.max(np.abs(measured)))
-        parts.append((Group(name, len(residuals), charged, se2, top if top > 0 else 1.0, components),
+        parts.append((Group(name, len(residuals), charged, se2, top if top > 0 else 1.0, components, cells),
                       ca.vertcat(*residuals)))
     by_velocity = data.angle_se is not None     # raw recordings: a tracker's drift shows as drift / velocity
     if data.forces is not None and "mu1" in free:
         add("forces", [f - (f_int + q1) for (_, f), q1 in zip(data.forces, sliding["push"])], 2,
-            data.forces[:, 1], data.force_se, data.velocities_of_forces() if by_velocity else None)
+            data.forces[:, 1], data.force_se, data.velocities_of_forces() if by_velocity else None,
+            tuple(zip(data.forces[:, 0], data.velocities_of_forces())))
     if "f_int" in free:
         add("carriage", [F - f_int for F in data.carriage[:, 0]], 1, data.carriage[:, 0], data.carriage[:, 1])
     if data.angles is not None and ("eps_ratio" in free or "l1_l2_ratio" in free):
         phi = [ca.atan(t) * 180 / math.pi for t in sliding["tan_phi"]]
         add("angles", [measured - model for (_, measured), model in zip(data.angles, phi)],
             1 + ("c_strip" in free), data.angles[:, 1], data.angle_se,
-            data.velocities_of_angles() if by_velocity else None)
+            data.velocities_of_angles() if by_velocity else None,
+            tuple(zip(data.angles[:, 0], data.velocities_of_angles())))
     if data.ramp is not None and "eps2" in free:
         alpha = rig.axes(rig.ramp_angle_deg)[0]
         k = cf.stick_stiffness_x1(val("eps_ratio") * val("eps2"), val("eps2"), alpha)
@@ -150,7 +153,7 @@ def _group_residuals(data: MeasurementSet, val, free: list, sliding: dict, stick
         k = [cf.stick_stiffness_x1(val("eps_ratio") * val("eps2"), val("eps2"), rig.axes(a)[0])
              for a in data.stiffness[:, 0]]
         add("stiffness", [measured - model for measured, model in zip(data.stiffness[:, 1], k)], 1,
-            data.stiffness[:, 1], data.stiffness[:, 2])
+            data.stiffness[:, 1], data.stiffness[:, 2], cells=tuple(data.stiffness[:, 0]))
     return parts
 
 
