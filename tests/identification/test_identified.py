@@ -31,6 +31,11 @@ def made_by_hand(**changes) -> identified.IdentifiedFile:
                                            mass_kg=1.875, g=9.806, f_int_N=5.0, ramp_angle_deg=0.0,
                                            mu_strip=0.0, c_strip_N_s_m=0.0,
                                            phi_convention="counterclockwise", ci="95%"),
+        fit=identified.FitRecord(converged=True, convergence={"solver": True, "noise_model": True},
+                                 reweighting_rounds=3,
+                                 solves=({"status": "Solve_Succeeded", "iterations": 5,
+                                          "step_left_se": 1e-9, "converged": True},),
+                                 lack_of_fit={}),
         reduction=identified.ReductionSummary(runs={"slide": 4, "carriage": 0, "ramp": 0}, left_out=(),
                                               flagged={}, table="reduction.csv",
                                               figures=("reduction_30deg.png",), scenario=None))

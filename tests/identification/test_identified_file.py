@@ -71,7 +71,7 @@ def test_raw_recordings_validated_and_with_the_fmu_hold_to_the_schema_too(tmp_pa
         read_identified(tmp_path / "bad.json")
 
 
-@pytest.mark.parametrize("version", [None, 0, 2, "1", True])
+@pytest.mark.parametrize("version", [None, 0, 1, 3, "2", True])
 def test_a_file_of_another_schema_version_is_one_line(identified, tmp_path, version):
     d = json.loads(identified.read_text())
     if version is None:

@@ -125,7 +125,8 @@ def cmd_identify(args) -> int:
     with staged_output(args.out, args.cmd, args.force) as stage:
         from ..fmu.files import find_fmu
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
-                              fmu_path=str(find_fmu(fmi_version=args.fmi)), recordings=recordings)
+                              fmu_path=str(find_fmu(fmi_version=args.fmi)), recordings=recordings,
+                              force=args.force)
     print(identify.summary_text(result))
     for line in result.warnings:
         warn(line)

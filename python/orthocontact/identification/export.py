@@ -50,6 +50,7 @@ class Calibration:
     digest: str              # SHA-256 over the data files' listing (measurements.data_digest)
     data_files: dict = dataclasses.field(default_factory=dict)   # path under data_folder -> SHA-256
     f_int_N: float = 0.0     # F_int [N] as the identification used it: estimated or rig.toml's
+    fit_problems: tuple = ()  # why the fit's estimates cannot be trusted (identified.FitRecord.problems)
 
 
 def _value(f: IdentifiedFile, name: str) -> float:
@@ -88,7 +89,8 @@ def calibration_of(f: IdentifiedFile) -> Calibration:
         raise InputError(f"{path}: {e}") from None
     return Calibration(path=path, law=law, intervals=intervals, eps2_identified=eps2_identified, rig=rig,
                        c_strip=float(c_strip), data_folder=folder, digest=f.provenance.digest,
-                       data_files=f.provenance.files, f_int_N=float(f_int))
+                       data_files=f.provenance.files, f_int_N=float(f_int),
+                       fit_problems=tuple(f.fit.problems()))
 
 
 def contact_start_values(cal: Calibration, angle_deg: float) -> dict:
@@ -205,7 +207,9 @@ def plausible_calibration(cal: Calibration, sc: Scenario, angle_deg: float, scen
     ramp = "ramp.csv's x1_m" if "ramp.csv" in cal.data_files else "the ramp runs' positions"
     slip = (f"eps1, eps2 in N/mm ({ramp} in mm)?" if cal.eps2_identified else
             "rig.toml's eps2_nominal_N_m in N/mm?")
-    also = [plausibility.force_unit_check((law.mu1, law.mu2), cal.f_int_N, where, "mu1, mu2"),
+    # a fit that did not converge or a law that does not describe the data: before any single value
+    also = [plausibility.Finding("error", f"{where}{line}") for line in cal.fit_problems]
+    also += [plausibility.force_unit_check((law.mu1, law.mu2), cal.f_int_N, where, "mu1, mu2"),
             plausibility.elastic_length_check(law.mu1, law.mu2, law.eps1, law.eps2, data_rig.normal_force,
                                               data_rig.travel_m, where, slip)]
     carried = {"mass_kg": rig.mass_kg, "g": rig.g, "f_int_N": rig.f_int_N,

@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-SCHEMA_VERSION = 1    # identified.schema.json's; the reader refuses another
+SCHEMA_VERSION = 2    # identified.schema.json's; the reader refuses another (2: the fit's record)
 
 # Always in the file, each a value or the reason why not; the others when fitted.
 REPORTED = ("mu1", "mu2", "eps_ratio", "eps1", "eps2")
@@ -119,6 +119,41 @@ class ReductionSummary:
 
 
 @dataclass(frozen=True)
+class FitRecord:
+    """How the joint fit ended: converged (every part of `convergence`:
+    solver, the last solve met IPOPT's tolerance with no Gauss-Newton step
+    left; noise_model, the reweighting settled; strip_regimes, the strip's
+    regimes are those at the solution), each solve's status, iterations and
+    step left [standard errors], the lack-of-fit test of each group with
+    replicates (lack_of_fit.LackOfFit.as_json), and whether identify wrote
+    it with --force."""
+    converged: bool
+    convergence: dict
+    reweighting_rounds: int
+    solves: tuple
+    lack_of_fit: dict
+    forced: bool = False
+
+    def problems(self) -> list:
+        """One line for each reason the fit's estimates cannot be trusted:
+        what did not converge, each group the law does not describe."""
+        out = []
+        if not self.converged:
+            last = self.solves[-1] if self.solves else {}
+            parts = ", ".join(k for k, ok in self.convergence.items() if not ok) or "solver"
+            step = last.get("step_left_se", math.nan)
+            out.append(f"the joint fit did not converge ({parts}; the last solve: {last.get('status')}, "
+                       f"{last.get('iterations')} iterations, a step of {step:.2g} standard errors left)")
+        out += [t["line"] for t in self.lack_of_fit.values() if t.get("rejected")]
+        return out
+
+    def as_json(self) -> dict:
+        return {"converged": self.converged, "convergence": dict(self.convergence),
+                "reweighting_rounds": self.reweighting_rounds, "solves": [dict(s) for s in self.solves],
+                "lack_of_fit": {g: dict(t) for g, t in self.lack_of_fit.items()}, "forced": self.forced}
+
+
+@dataclass(frozen=True)
 class IdentifiedFile:
     """identified.json as typed fields.  estimates: every name of REPORTED,
     and those of FITTED_TOO that were fitted; covariance: the law's
@@ -146,6 +181,7 @@ class IdentifiedFile:
     validation_fmu: dict | None
     data: DataRecord
     assumptions: Assumptions
+    fit: FitRecord
     reduction: ReductionSummary | None = None
     path: Path | None = dataclasses.field(default=None, compare=False)
     provenance: object = dataclasses.field(default=None, compare=False)   # identified_file.DataProvenance
@@ -168,7 +204,8 @@ class IdentifiedFile:
                    noise_estimate=self.noise_estimate, noise_model=self.noise_model, intervals=self.intervals)
         if self.noise_assumed:
             out["noise_assumed"] = list(self.noise_assumed)
-        out.update(fit_residuals=self.fit_residuals, dof=self.dof, covariance=_cov_json(self.covariance))
+        out.update(fit=self.fit.as_json(), fit_residuals=self.fit_residuals, dof=self.dof,
+                   covariance=_cov_json(self.covariance))
         if self.covariance_joint is not None:
             out["covariance_joint"] = _cov_json(self.covariance_joint)
         p = self.points

@@ -273,6 +273,7 @@ def from_json(path, d: dict) -> identified.IdentifiedFile:
     intervals = d.get("intervals")
     if not isinstance(intervals, str):
         top.fail("intervals", "a string", intervals)
+    fit = _fit_record(top.sub("fit"))
     return identified.IdentifiedFile(
         estimates=estimates, max_rule=top.obj("max_rule"), eq40=top.obj("eq40"), eq41=top.obj("eq41"),
         eq1=top.obj("eq1"), noise_estimate=dict(noise.d), noise_model=top.obj("noise_model", optional=False),
@@ -281,8 +282,29 @@ def from_json(path, d: dict) -> identified.IdentifiedFile:
         covariance=_covariance(path, "covariance", d.get("covariance")),
         covariance_joint=None if joint is None else _covariance(path, "covariance_joint", joint),
         points=points, ramp_stick_points=top.integer("ramp_stick_points"),
-        validation_fmu=top.obj("validation_fmu"), data=record, assumptions=assumptions,
+        validation_fmu=top.obj("validation_fmu"), data=record, assumptions=assumptions, fit=fit,
         reduction=reduction, path=path)
+
+
+def _fit_record(fields) -> identified.FitRecord:
+    """identified.json's "fit": how the joint fit ended (identified.FitRecord)."""
+    d = fields.d
+    if not isinstance(d.get("converged"), bool) or not isinstance(d.get("forced", False), bool):
+        fields.fail("converged", "true or false", d.get("converged"))
+    convergence, solves, tests = d.get("convergence"), d.get("solves"), d.get("lack_of_fit")
+    if not (isinstance(convergence, dict) and all(isinstance(v, bool) for v in convergence.values())):
+        fields.fail("convergence", "{part: true or false}", convergence)
+    if not (isinstance(solves, list) and solves and all(isinstance(x, dict) for x in solves)):
+        fields.fail("solves", "a list of the solves' outcomes", solves)
+    if not (isinstance(tests, dict) and all(isinstance(t, dict) and isinstance(t.get("rejected"), bool)
+                                            and isinstance(t.get("line"), str) for t in tests.values())):
+        fields.fail("lack_of_fit", "{group: its test}", tests)
+    if d["converged"] != all(convergence.values()):
+        fields.fail("converged", f"{str(all(convergence.values())).lower()} (as its convergence says)",
+                    d["converged"])
+    return identified.FitRecord(converged=d["converged"], convergence=dict(convergence),
+                                reweighting_rounds=fields.integer("reweighting_rounds"), solves=tuple(solves),
+                                lack_of_fit=dict(tests), forced=d.get("forced", False))
 
 
 def _float(s):

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import plausibility
+from ..errors import InputError
 from ..experiment.rig_setup import RigSetup
 from ..fmu.params import ContactParams
 from . import identified
@@ -135,6 +136,7 @@ class Identification:
     validation: dict | None
     start: dict
     warnings: tuple = ()     # one line each: identified values that are unusual (plausible_values)
+    forced: bool = False     # written with --force although the fit did not converge
 
     def identified_file(self, reduction: identified.ReductionSummary | None = None
                         ) -> identified.IdentifiedFile:
@@ -228,11 +230,22 @@ class Identification:
                 ci="95%, on the log scale, Student t with each parameter's Welch-Satterthwaite "
                    "degrees of freedom over the data groups' noise estimates, "
                    "Gauss-Newton covariance with per-group noise estimates"),
-            reduction=reduction)
+            fit=self.fit_record(), reduction=reduction)
+
+    def fit_record(self) -> identified.FitRecord:
+        return fit_record(self.fit, self.forced)
 
     def as_json(self) -> dict:
         """identified.json's object (IdentifiedFile.as_json)."""
         return self.identified_file().as_json()
+
+
+def fit_record(fit: JointFit, forced: bool = False) -> identified.FitRecord:
+    """How the joint fit ended, as identified.json records it."""
+    return identified.FitRecord(converged=fit.converged, convergence=dict(fit.convergence),
+                                reweighting_rounds=fit.reweighting_rounds, solves=tuple(fit.solves),
+                                lack_of_fit={g: t.as_json() for g, t in fit.lack_of_fit.items()},
+                                forced=forced)
 
 
 # The identified values the gate judges, by their key in plausibility.QUANTITIES.
@@ -260,18 +273,27 @@ def plausible_values(data: MeasurementSet, values: dict) -> list[str]:
 
 
 def identify(data: MeasurementSet, validate: bool = True, workers=None,
-             fmu_path=None) -> Identification:
-    """The fit, the paper's formulas beside it and the FMU's validation; the
-    fitted values pass the plausibility gate before the validation runs
-    (InputError: nothing is written)."""
+             fmu_path=None, force: bool = False) -> Identification:
+    """The fit, the paper's formulas beside it and the FMU's validation; a
+    fit that did not converge is refused unless `force`, and the fitted
+    values pass the plausibility gate before the validation runs
+    (InputError: nothing is written).  A group the fitted law does not
+    describe (lack_of_fit) is a warning here and refused by export."""
     start = start_values(data)
     fit = joint_fit(data, start)
+    if not fit.converged and not force:
+        raise InputError(f"{data.folder}: {fit_record(fit).problems()[0]}; refused: identified.json not "
+                         "written (`orthocontact identify --force` writes it, marked not converged, and "
+                         "export refuses it)")
     warnings = plausible_values(data, fit.values)
+    warnings += [f"{data.folder}: {t.line()}; `orthocontact export` refuses this fit"
+                 for t in fit.lack_of_fit.values() if t.rejected]
     mu1, mu2 = fit.values.get("mu1"), fit.values.get("mu2")
     mr = max_rule(data, mu1, mu2)
     e40 = eq40_fit(data, mu1, mu2)
     val = validate_with_fmu(data, fit.values, workers, fmu_path) if validate else None
-    return Identification(data, fit, eq1(data), mr, e40, val, start, tuple(warnings))
+    return Identification(data, fit, eq1(data), mr, e40, val, start, tuple(warnings),
+                          forced=not fit.converged)
 
 
 def load_folder(folder):
@@ -294,12 +316,12 @@ def load_folder(folder):
 
 
 def run(data: MeasurementSet, out: Path, validate: bool = True, workers=None,
-        fmu_path=None, recordings=None) -> Identification:
+        fmu_path=None, recordings=None, force: bool = False) -> Identification:
     """identify() and write identified.json, fit.png, identified.md into
     out; with recordings (load_folder's second value) also the reduction's
     table and figures."""
     from .report import fit_figure, markdown_text
-    res = identify(data, validate, workers, fmu_path)
+    res = identify(data, validate, workers, fmu_path, force)
     summary = None
     if recordings is not None:
         from .reduction_output import reduction_summary, write_figures, write_rig_scenario, write_table

@@ -3,8 +3,8 @@
 and a Gauss-Newton Hessian, the parameters scaled by their information so
 that the problem IPOPT sees is O(1) whatever the noise level (its Hessian
 has a unit diagonal at the start: the correlation form), and the result
-checked: IPOPT's own return status, and the Gauss-Newton step left at the
-solution measured in standard errors.
+checked: IPOPT's own return status (ACCEPTED, or AT_PRECISION), and the
+Gauss-Newton step left at the solution measured in standard errors.
 
 Why scaled: with noise-free data the weights reach 1e20 and more; unscaled,
 no double-precision point meets IPOPT's tolerance and it stops with
@@ -20,6 +20,9 @@ from .fit_model import FitModel
 
 # IPOPT's statuses that say it met its tolerance (the acceptable level too)
 ACCEPTED = ("Solve_Succeeded", "Solved_To_Acceptable_Level")
+# IPOPT's status when no double-precision step improves x: noise-free data, whose
+# weights put the tolerance below rounding.  Converged only if the step left is nil.
+AT_PRECISION = "Search_Direction_Becomes_Too_Small"
 # A solve converged when the Gauss-Newton step still to go is below this
 # many standard errors of each parameter: nothing a reader of the interval sees.
 STEP_TOLERANCE_SE = 1e-3
@@ -41,7 +44,7 @@ class Solve:
 
     @property
     def converged(self) -> bool:
-        return self.status in ACCEPTED and self.step_se <= STEP_TOLERANCE_SE
+        return self.status in (*ACCEPTED, AT_PRECISION) and self.step_se <= STEP_TOLERANCE_SE
 
     def as_json(self) -> dict:
         return {"status": self.status, "iterations": self.iterations,

@@ -1,0 +1,120 @@
+"""The joint fit's own verdict on itself: every solve's status recorded, a
+fit that did not converge refused by identify (unless --force) and by
+export, and a law that does not describe the recordings (lack of fit)
+refused by export, naming the group and the likely cause."""
+import json
+import math
+
+import numpy as np
+import pytest
+
+from cli_run import one_error_line, run_cli
+from orthocontact import closed_forms as cf
+from orthocontact.cli.main import main
+from orthocontact.experiment.rig_setup import RigSetup
+from orthocontact.identification import solver
+from orthocontact.identification.lack_of_fit import lack_of_fit
+from orthocontact.identification.measurements import write_measurements
+from orthocontact.identification.statistics import f_survival, incomplete_beta
+from paths import SCENARIOS
+
+
+def test_the_f_distribution_against_its_closed_forms():
+    # dof1 = 2: P(F > x) = (1 + 2x/dof2)^(-dof2/2); I_x(a, b) for whole a, b: a binomial tail
+    for F, d2 in ((0.5, 3), (4.0, 20), (30.0, 7)):
+        assert f_survival(F, 2, d2) == pytest.approx((1 + 2 * F / d2) ** (-d2 / 2), rel=1e-12)
+    for a, b, x in ((2, 3, 0.4), (5, 1, 0.9), (3, 7, 0.05)):
+        n = a + b - 1
+        tail = sum(math.comb(n, j) * x**j * (1 - x) ** (n - j) for j in range(a, n + 1))
+        assert incomplete_beta(a, b, x) == pytest.approx(tail, rel=1e-12)
+
+
+@pytest.mark.parametrize("sd, top", [({0.1: 1.0}, 0.065), ({0.1: 2.0, 0.2: 0.5}, 0.08)])
+def test_lack_of_fit_holds_its_size_where_the_model_describes_the_replicates(sd, top):
+    """Data a two-parameter line describes, 7 angles x 4 replicates at each
+    velocity, fitted by weighted least squares: P(p < 0.05) is 0.05 with
+    one velocity (the test is exact: 0.05 +- 0.005 over 2000 draws); with
+    two velocities' pooled variances it is approximate, a little liberal
+    (0.068 measured here)."""
+    rng = np.random.default_rng(4)
+    cells = [(a, v) for a in range(7) for v in sd for _ in range(4)]
+    X = np.array([[1.0, a] for a, _ in cells])
+    w = np.array([1 / sd[v] ** 2 for _, v in cells])
+    p = []
+    for _ in range(2000):
+        y = X @ [1.0, 0.3] + rng.normal(0, [sd[v] for _, v in cells])
+        beta = np.linalg.solve(X.T @ (w[:, None] * X), X.T @ (w * y))
+        p.append(lack_of_fit("forces", y - X @ beta, cells, 2, [v for _, v in cells]).p_value)
+    assert 0.035 < np.mean(np.array(p) < 0.05) < top
+
+
+def test_the_bundled_recordings_converge_and_the_law_describes_them(tmp_path):
+    assert main(["identify", str(SCENARIOS / "example_recordings"), "--out", str(tmp_path / "id"),
+                 "--no-validate"]) == 0
+    fit = json.loads((tmp_path / "id" / "identified.json").read_text())["fit"]
+    assert fit["converged"] is True and not fit["forced"]
+    assert fit["convergence"] == {"solver": True, "noise_model": True, "strip_regimes": True}
+    last = fit["solves"][-1]
+    assert last["status"] in solver.ACCEPTED and last["step_left_se"] < solver.STEP_TOLERANCE_SE
+    assert len(fit["solves"]) == fit["reweighting_rounds"] < 10
+    assert set(fit["lack_of_fit"]) == {"forces", "angles"}
+    assert not any(t["rejected"] for t in fit["lack_of_fit"].values())
+
+
+def test_a_fit_that_did_not_converge_is_refused_unless_forced_and_never_exported(tmp_path, monkeypatch,
+                                                                                 capsys):
+    """IPOPT given one iteration stops at Maximum_Iterations_Exceeded: identify
+    refuses in one line, writes nothing; with --force it writes the fit marked
+    not converged, and export refuses it (with --force, says so in the FMUs)."""
+    data = SCENARIOS / "example_recordings"
+    monkeypatch.setitem(solver.IPOPT_OPTIONS, "ipopt.max_iter", 1)
+    assert main(["identify", str(data), "--out", str(tmp_path / "refused"), "--no-validate"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "the joint fit did not converge" in err[0], err
+    assert "Maximum_Iterations_Exceeded" in err[0] and "--force" in err[0]
+    assert not (tmp_path / "refused").exists()
+    assert main(["identify", str(data), "--out", str(tmp_path / "id"), "--no-validate", "--force"]) == 0
+    identified = tmp_path / "id" / "identified.json"
+    fit = json.loads(identified.read_text())["fit"]
+    assert fit["converged"] is False and fit["forced"] is True
+    assert fit["solves"][-1]["status"] == "Maximum_Iterations_Exceeded"
+    p = run_cli(["export", identified, "--out", tmp_path / "export"], tmp_path, timeout=300)
+    one_error_line(p, "the joint fit did not converge", "refused (`orthocontact export --force`")
+    assert not (tmp_path / "export").exists()
+
+
+def _forces_with_a_wrong_f_int(folder, f_int_in_toml):
+    """Reduced data of the aged mat, three runs at each of seven mat angles
+    (forces with 0.05 N of scatter, angles with 0.2 deg), F_int = 5 N in
+    truth, rig.toml saying f_int_in_toml."""
+    rig = RigSetup(mass_kg=1.875, f_int_N=f_int_in_toml)
+    rng = np.random.default_rng(11)
+    grid = [a for a in (0, 15, 30, 45, 60, 75, 90) for _ in range(3)]
+    forces = [(a, 5.0 + cf.steady_drive_force(0.408, 0.625, rig.axes(a)[1], 0.0, 1.875, rig.g)
+               + rng.normal(0, 0.05)) for a in grid]
+    angles = [(a, cf.steady_phi_deg(0.408, 0.625, 1.251, 1.0, *rig.axes(a), rig.rule) + rng.normal(0, 0.2))
+              for a in grid if 0 < a < 90]
+    write_measurements(folder, rig, forces=np.array(forces), angles=np.array(angles))
+    return folder
+
+
+def test_forces_the_law_cannot_describe_are_refused_by_export_naming_the_group(tmp_path):
+    """F_int typed in kN in rig.toml (0.005): every mu is plausible, but the
+    forces follow no friction ellipse; identify warns, export refuses."""
+    data = _forces_with_a_wrong_f_int(tmp_path / "data", 0.005)
+    p = run_cli(["identify", data, "--out", tmp_path / "id", "--no-validate"], tmp_path, timeout=300)
+    assert p.returncode == 0, p.stderr
+    assert "forces: the fitted law does not describe the recordings (lack of fit" in p.stderr
+    fit = json.loads((tmp_path / "id" / "identified.json").read_text())["fit"]
+    assert fit["converged"] and fit["lack_of_fit"]["forces"]["rejected"]
+    p = run_cli(["export", tmp_path / "id" / "identified.json", "--out", tmp_path / "export"], tmp_path,
+                timeout=300)
+    one_error_line(p, "forces: the fitted law does not describe the recordings",
+                   "likely cause: the driving forces do not follow the friction ellipse",
+                   "refused (`orthocontact export --force`")
+    assert not (tmp_path / "export").exists()
+    # the same data with rig.toml's F_int right: no lack of fit, exported
+    data = _forces_with_a_wrong_f_int(tmp_path / "right", 5.0)
+    assert run_cli(["identify", data, "--out", tmp_path / "id2", "--no-validate"], tmp_path).returncode == 0
+    fit = json.loads((tmp_path / "id2" / "identified.json").read_text())["fit"]
+    assert not fit["lack_of_fit"]["forces"]["rejected"]
