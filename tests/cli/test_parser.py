@@ -25,7 +25,8 @@ def test_bad_workers_names_the_option(tmp_path, value):
 def test_every_command_and_argument_has_help():
     parser = build_parser()
     sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
-    assert set(sub.choices) == {"run", "reproduce", "identify", "ssp", "uq", "sensitivity", "export"}
+    assert set(sub.choices) == {"run", "reproduce", "identify", "ssp", "uq", "sensitivity", "export",
+                                 "design"}
     for name, p in sub.choices.items():
         for action in p._actions:
             assert action.help, f"{name}: {action.option_strings or action.dest} has no help"

@@ -1,4 +1,4 @@
-"""The subcommands: run, reproduce, identify, sensitivity, uq, ssp, export."""
+"""The subcommands: run, reproduce, identify, sensitivity, uq, ssp, export, design."""
 from __future__ import annotations
 
 import contextlib
@@ -259,4 +259,24 @@ def cmd_export(args) -> int:
     print(f"predicted trajectory angle at {args.angle:g} deg: {res['predicted_phi_deg']:.4f} deg")
     print(f"wrote {args.out}/fmi2/OrthotropicContact.fmu, fmi3/OrthotropicContact.fmu, calibration.ssv, "
           f"{res['ssp'].name}")
+    return 0
+
+
+def cmd_design(args) -> int:
+    from ..identification import design, design_inputs, design_output
+    from ..identification.design_search import stderr_say
+    noise = (args.sigma_force, args.sigma_angle, args.sigma_ramp)
+    prior = design_inputs.prior_from_identified(args.prior, not args.no_strip, noise) if args.prior else \
+        design_inputs.paper_prior(not args.no_strip, design_inputs.noise_of(*noise))
+    velocities = design.velocities_of(prior, args.velocity_min, args.velocity_max, args.velocity_step)
+    fixed = tuple(design_inputs.read_plan(args.fixed)) if args.fixed else ()
+    space = design.Space(design.angles_of(prior, args.angle_step), velocities, args.runs, args.ramp_samples,
+                         args.carriage_runs, fixed)
+    result = design.plan(prior, space, args.criterion, say=stderr_say)
+    for line in result.warnings:
+        warn(line)
+    with staged_output(args.out, args.cmd, args.force) as stage:
+        design_output.write_outputs(result, stage)
+    print(design_output.summary_text(result))
+    print(f"wrote {args.out}/plan.csv, design.json, design.md, design.png")
     return 0

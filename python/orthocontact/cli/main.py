@@ -8,6 +8,7 @@
                                                   the identification's uncertainty
   orthocontact ssp SCENARIO --angle DEG --out FILE.ssp   the experiment as an SSP
   orthocontact sensitivity --out DIR              the rig's unmeasured strip terms
+  orthocontact design --runs N --out DIR          plan the lab's runs (experiment design)
 (`orthocontact COMMAND --help`: each command's arguments.)
 
 Exit status:

@@ -4,7 +4,16 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .commands import cmd_export, cmd_identify, cmd_reproduce, cmd_run, cmd_sensitivity, cmd_ssp, cmd_uq
+from .commands import (
+    cmd_design,
+    cmd_export,
+    cmd_identify,
+    cmd_reproduce,
+    cmd_run,
+    cmd_sensitivity,
+    cmd_ssp,
+    cmd_uq,
+)
 
 
 def _number(convert, expected, in_range, expected_in_range=None):
@@ -28,6 +37,7 @@ def _positive_int(what):
 
 
 _positive_float = _number(float, "a number > 0", lambda x: 0 < x < float("inf"), "a finite number > 0")
+_count = _number(int, "a whole number >= 0", lambda n: n >= 0)
 # nan and inf fail the range too
 _angle_deg = _number(float, "an angle in degrees", lambda x: -360.0 <= x <= 360.0,
                      "a finite angle in [-360, 360] degrees")
@@ -291,4 +301,62 @@ def build_parser() -> argparse.ArgumentParser:
     u.add_argument("--chunk-runs", type=_positive_int("runs"), default=20000, metavar="RUNS",
                    help="most rig runs per task sent to a worker (default 20000; the last tasks are smaller)")
     strict(u)
+    design_command(command, force, written_when)
     return ap
+
+
+def design_command(command, force, written_when) -> None:
+    """orthocontact design: its arguments."""
+    d = command("design", cmd_design, ("prior", "fixed"),
+                help="plan the lab's runs: the D-optimal (or A-optimal) mat angles and velocities of the "
+                     "slide runs, ramp samples and carriage runs for the law's parameters",
+                description="Plan the rig's runs before going to the lab: at a prior (the paper's aged mat "
+                            "and rig, or an identification) choose the slide runs (mat angle in degrees x "
+                            "velocity in m/s), ramp samples and carriage runs whose Fisher information is "
+                            "largest (D: det M; A: the sum of the relative variances), from the joint fit's "
+                            "own model; write plan.csv, design.json (predicted standard errors, the "
+                            "paper's design beside it, the efficiency, the equivalence theorem's check), "
+                            "design.png and design.md into DIR.")
+    d.add_argument("--runs", type=_positive_int("slide runs"), required=True, metavar="N",
+                   help="slide runs to plan (each gives a driving force [N] and a trajectory angle [deg])")
+    d.add_argument("--out", type=_out_path, required=True, metavar="DIR",
+                   help=written_when("the design completes"))
+    force(d)
+    d.add_argument("--criterion", choices=("D", "A"), default="D",
+                   help="D (default): the largest det of the information; A: the smallest sum of the "
+                        "parameters' relative variances (sd / prior value)^2")
+    d.add_argument("--sigma-force", type=_positive_float, default=None, metavar="REL",
+                   help="noise of a driving force as a share of the force (0.01: 1 %%); default 0.01, or "
+                        "the --prior identification's force noise [N]")
+    d.add_argument("--sigma-angle", type=_positive_float, default=None, metavar="DEG",
+                   help="noise of a trajectory angle [deg]; default 1.0, or the --prior identification's "
+                        "(at each velocity where it has one)")
+    d.add_argument("--sigma-ramp", type=_positive_float, default=0.05, metavar="N",
+                   help="noise of a ramp sample's force [N] (default 0.05)")
+    d.add_argument("--no-strip", action="store_true",
+                   help="a rig without the Teflon strip's viscosity: the law is rate-independent, so the "
+                        "runs' velocity does not matter (the prior's rig velocity, 0.244 m/s for the "
+                        "paper's); "
+                        "only mu1, mu2, eps1/eps2 (and eps2 with --ramp-samples) are designed")
+    d.add_argument("--prior", type=Path, default=None, metavar="IDENTIFIED.json",
+                   help="identified.json of an earlier identification: the design is optimal at its "
+                        "estimates, on its rig, with its noise (unless --sigma-* say otherwise); default: "
+                        "the paper's aged mat (mu1 0.408, mu2 0.625, eps1/eps2 1.251, eps2 1e4 N/m, F_int "
+                        "5 N) on its rig (1.875 kg), with a strip of 10 N s/m unless --no-strip")
+    d.add_argument("--fixed", type=Path, default=None, metavar="PLAN.csv",
+                   help="runs already made (a plan.csv or a recording folder's runs.csv: kind, "
+                        "mat_angle_deg, velocity_m_s): the next --runs given those (sequential design)")
+    d.add_argument("--ramp-samples", type=_count, default=0, metavar="K",
+                   help="samples of a ramp run (a slow pull through the stick branch) to place on its "
+                        "travel x1 [m]; designs eps2 [N/m] too (default 0: no ramp)")
+    d.add_argument("--carriage-runs", type=_count, default=0, metavar="C",
+                   help="carriage runs to plan (the carriage alone: F_int [N], then estimated with the "
+                        "rest as a nuisance parameter); default 0: F_int known, as the prior's")
+    d.add_argument("--angle-step", type=_positive_float, default=1.0, metavar="DEG",
+                   help="the candidate mat angles' step [deg] over 0-90 (default 1.0)")
+    d.add_argument("--velocity-min", type=_positive_float, default=0.05, metavar="M/S",
+                   help="the lowest carriage velocity [m/s] a slide run may use, with a strip (default 0.05)")
+    d.add_argument("--velocity-max", type=_positive_float, default=0.5, metavar="M/S",
+                   help="the highest carriage velocity [m/s] a slide run may use, with a strip (default 0.5)")
+    d.add_argument("--velocity-step", type=_positive_float, default=0.05, metavar="M/S",
+                   help="the candidate velocities' step [m/s] between them (default 0.05)")
