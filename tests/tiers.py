@@ -28,6 +28,12 @@ SLOW = {
         "test_the_recordings_fit_figure_draws_the_fitted_model_through_the_runs",
         "test_identify_prints_every_estimate_with_its_unit_and_positive_intervals",
     },
+    "identification/test_design.py": {   # 200 joint fits; the others: CLI runs and plans, 4-8 s
+        "test_the_joint_fits_spread_over_noisy_rig_runs_is_the_predicted_sd",
+        "test_the_next_runs_given_those_made_complete_the_best_design",
+        "test_a_prior_from_an_identification_brings_its_estimates_rig_and_noise",
+        "test_a_criterion_minimises_the_relative_variances",
+    },
     "identification/test_strip_model.py": {
         "test_strip_viscosity_estimated_from_two_velocities_through_the_cli",
         "test_known_strip_is_an_input_and_one_velocity_cannot_give_the_viscosity",
