@@ -22,6 +22,7 @@ import numpy as np
 from .. import plausibility
 from ..errors import InputError
 from .recordings import Recordings, Run
+from .samples import line_fit, longest_true, mean_se, speed
 
 CRUISE_TOL = 0.03        # |speed / cruise speed - 1| inside the cruise
 SEGMENTS = 8             # the cruise's pieces for finding where the path settled
@@ -49,6 +50,10 @@ class RunReduction:
     stiffness_N_m: float = math.nan
     stiffness_se_N_m: float = math.nan
     samples: int = 0
+    # ramp: the force's step as the carriage starts (the stick line at zero
+    # travel less the force at rest): the carriage's F_int, measured apart
+    # from the carriage runs (consistency.py compares them)
+    start_step_N: float = math.nan
     flags: list = field(default_factory=list)   # "outlier", "not_steady", "dropout", ...
 
     @property
@@ -56,47 +61,8 @@ class RunReduction:
         return "not_steady" not in self.flags
 
 
-def line_fit(x, y):
-    """(intercept, slope, standard error of the slope) of least squares."""
-    x, y = np.asarray(x, float), np.asarray(y, float)
-    mx = x.mean()
-    sxx = float(((x - mx) ** 2).sum())
-    b = float(((x - mx) * (y - y.mean())).sum() / sxx)
-    a = float(y.mean() - b * mx)
-    r = y - a - b * x
-    s2 = float(r @ r) / max(len(x) - 2, 1)
-    return a, b, math.sqrt(s2 / sxx)
-
-
-def _mean_se(v):
-    v = np.asarray(v, float)
-    return float(v.mean()), float(v.std(ddof=1) / math.sqrt(len(v))) if len(v) > 1 else math.inf
-
-
 def _where(run: Run, path=None) -> str:
     return f"{path or run.trajectory_path}: run {run.name}"
-
-
-def _longest_true(mask: np.ndarray) -> tuple[int, int]:
-    """[start, end) of the longest stretch of True."""
-    best, start = (0, 0), None
-    for i, m in enumerate(np.r_[mask, False]):
-        if m and start is None:
-            start = i
-        elif not m and start is not None:
-            if i - start > best[1] - best[0]:
-                best = (start, i)
-            start = None
-    return best
-
-
-def _speed(t, x):
-    # central differences over about a 40th of the run: the tracker's noise
-    # then moves the speed by well under the cruise tolerance
-    k = max(2, len(t) // 40)
-    v = np.full(len(t), np.nan)
-    v[k:-k] = (x[2 * k:] - x[:-2 * k]) / (t[2 * k:] - t[:-2 * k])
-    return v
 
 
 def _check_units(run: Run, speed_ref: float):
@@ -127,7 +93,7 @@ def _tracked(run: Run, warnings: list):
 def reduce_slide(run: Run, warnings: list) -> RunReduction:
     out = RunReduction(run.name, run.kind, run.mat_angle_deg, run.velocity_m_s)
     t, x1, x2, step, gaps, missing = _tracked(run, warnings)
-    v = _speed(t, x1)
+    v = speed(t, x1)
     fin = np.isfinite(v)
     speed_ref = float(np.percentile(np.abs(v[fin]), 90))
     _check_units(run, speed_ref)
@@ -136,7 +102,7 @@ def reduce_slide(run: Run, warnings: list) -> RunReduction:
         warnings.append(f"{_where(run)}: the tracked cruise speed {vc:.4g} m/s is "
                         f"{100 * (vc / run.velocity_m_s - 1):+.0f} % off velocity_m_s = {run.velocity_m_s:g} "
                         f"(runs.csv line {run.line}), which the fit uses")
-    lo, hi = _longest_true(fin & (np.abs(v / vc - 1) < CRUISE_TOL))
+    lo, hi = longest_true(fin & (np.abs(v / vc - 1) < CRUISE_TOL))
     if hi - lo < 4 * SEGMENTS:
         raise InputError(f"{_where(run)}: never moves at a steady speed: {hi - lo} samples within "
                          f"{100 * CRUISE_TOL:g}% of {vc:.4g} m/s, expected at least {4 * SEGMENTS}")
@@ -178,7 +144,7 @@ def reduce_slide(run: Run, warnings: list) -> RunReduction:
     if tf[0] > t0 or tf[-1] < t1:
         raise InputError(f"{_where(run, run.forces_path)}: the force log ({tf[0]:.3f}-{tf[-1]:.3f} s) is "
                          f"shorter than the travel: the steady window is {t0:.3f}-{t1:.3f} s")
-    out.force_N, out.force_se_N = _mean_se(F[(tf >= t0) & (tf <= t1)])
+    out.force_N, out.force_se_N = mean_se(F[(tf >= t0) & (tf <= t1)])
     return out
 
 
@@ -190,18 +156,18 @@ def reduce_carriage(run: Run, warnings: list) -> RunReduction:
     if p95 - p5 < 10 * noise:
         raise InputError(f"{_where(run, run.forces_path)}: expected the carriage's motion (a plateau "
                          f"of F_int above the force at rest), the force stays within {p95 - p5:.3g} N")
-    lo, hi = _longest_true(F > 0.5 * (p5 + p95))
+    lo, hi = longest_true(F > 0.5 * (p5 + p95))
     trim = (hi - lo) // 6
     sel = slice(lo + trim, hi - trim)
     out.window_s = (float(t[lo + trim]), float(t[hi - trim - 1]))
-    out.force_N, out.force_se_N = _mean_se(F[sel])
+    out.force_N, out.force_se_N = mean_se(F[sel])
     out.samples = hi - lo - 2 * trim
     return out
 
 
 def reduce_ramp(run: Run, warnings: list) -> RunReduction:
     out = RunReduction(run.name, run.kind, run.mat_angle_deg, run.velocity_m_s)
-    t, x1, _, _, _, _ = _tracked(run, warnings)
+    t, x1, _, step, _, _ = _tracked(run, warnings)
     x0 = float(np.median(x1[:5]))
     # the pull's first 70 %, cut by time (a cut on the noisy x1 itself
     # would drop the samples with positive noise near it and bias the speed)
@@ -265,15 +231,24 @@ def reduce_ramp(run: Run, warnings: list) -> RunReduction:
     by_travel = (xm >= x_lo) & (xm <= x_hi) & (np.arange(len(xm)) <= last + 5)
     if by_travel.sum() >= 5:
         stick = by_travel
-    _, k, se_fit = line_fit(xm[stick], Fm[stick])
+    c, k, se_fit = line_fit(xm[stick], Fm[stick])
     # The travel is v (t - t0) with the tracked speed v, so the stiffness
     # carries v's relative error: on a tracker's noise it is the larger part
     # of the run's error, not run-to-run scatter.
     se = math.hypot(se_fit, abs(k) * v_se / v)
     out.stiffness_N_m, out.stiffness_se_N_m, out.samples = k, se, int(stick.sum())
+    out.start_step_N = _start_step(tf, F, t0, c, step)
     out.window_s = (float(tf[moving][stick][0]), float(tf[moving][stick][-1]))
     out.window_x1_m = (float(xm[stick][0]), float(xm[stick][-1]))
     return out
+
+
+def _start_step(tf, F, t0: float, intercept: float, step_s: float) -> float:
+    """The stick line's force at zero travel [N] less the median force at
+    rest (the samples more than two tracker steps `step_s` before the
+    carriage starts at t0 [s]); nan with fewer than 5 samples at rest."""
+    rest = F[tf < t0 - 2 * step_s]
+    return intercept - float(np.median(rest)) if len(rest) >= 5 else math.nan
 
 
 @dataclass
@@ -320,12 +295,19 @@ def _flag_outliers(runs, value, se, what, unit, warnings):
                                 "runs.csv to leave it out)")
 
 
+def reduce_run(run: Run, warnings: list) -> RunReduction:
+    """One run reduced by its kind (reduce_slide, reduce_carriage,
+    reduce_ramp), on its own: no check against the set's other runs."""
+    return {"slide": reduce_slide, "carriage": reduce_carriage, "ramp": reduce_ramp}[run.kind](run, warnings)
+
+
 def reduce_recordings(rec: Recordings) -> Reduction:
+    """Every run reduced, outlying runs flagged; raises InputError (one
+    line)."""
     warnings = []
     out = []
     for run in rec.runs:
-        fn = {"slide": reduce_slide, "carriage": reduce_carriage, "ramp": reduce_ramp}[run.kind]
-        out.append(fn(run, warnings))
+        out.append(reduce_run(run, warnings))
     slides = [r for r in out if r.kind == "slide" and r.used]
     _flag_outliers(slides, lambda r: r.phi_deg, lambda r: r.phi_se_deg, "phi", "deg", warnings)
     _flag_outliers(slides, lambda r: r.force_N, lambda r: r.force_se_N, "driving force", "N", warnings)
