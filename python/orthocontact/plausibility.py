@@ -187,6 +187,18 @@ def scale_slip(ratio: float, slips=LENGTH_SLIPS) -> str | None:
     return None
 
 
+# Time and force columns typed in another unit: the factor a time comes out
+# too large by; N per unit of a force (kN, daN: too small; gram-force, mN: too large).
+TIME_SLIPS = ((1e3, "ms"), (1e6, "us"))
+FORCE_SLIPS = ((1e3, "kN"), (10.0, "daN"), (9.80665e-3, "gram-force"), (1e-3, "mN"))
+
+
+def slip(ratio: float, slips) -> tuple[float, str] | None:
+    """(factor, unit) of `slips` (LENGTH_SLIPS, TIME_SLIPS, FORCE_SLIPS)
+    within a factor 2 of `ratio`: the unit a column was likely typed in."""
+    return next(((f, u) for f, u in slips if 0.5 * f < ratio < 2 * f), None)
+
+
 @dataclass(frozen=True)
 class Finding:
     """One implausible value: level "error" (it cannot be right) or
