@@ -11,6 +11,8 @@ within-run standard error:
 
 Errors (InputError) and warnings name the run and its file.  Outlying runs
 (far from the median of their angle and velocity) are flagged, and kept.
+reduce_recordings checks the set's streams against each other before and
+after (consistency.py: clocks, signs, units).
 Units: s, m, N, deg."""
 from __future__ import annotations
 
@@ -21,6 +23,7 @@ import numpy as np
 
 from .. import plausibility
 from ..errors import InputError
+from .consistency import check_reduced, check_streams
 from .recordings import Recordings, Run
 from .samples import line_fit, longest_true, mean_se, speed
 
@@ -302,12 +305,15 @@ def reduce_run(run: Run, warnings: list) -> RunReduction:
 
 
 def reduce_recordings(rec: Recordings) -> Reduction:
-    """Every run reduced, outlying runs flagged; raises InputError (one
-    line)."""
+    """Every run reduced, the set's streams checked against each other
+    before and after (consistency.py), outlying runs flagged; raises
+    InputError (one line)."""
     warnings = []
     out = []
+    check_streams(rec)
     for run in rec.runs:
         out.append(reduce_run(run, warnings))
+    check_reduced(rec, out, warnings)
     slides = [r for r in out if r.kind == "slide" and r.used]
     _flag_outliers(slides, lambda r: r.phi_deg, lambda r: r.phi_se_deg, "phi", "deg", warnings)
     _flag_outliers(slides, lambda r: r.force_N, lambda r: r.force_se_N, "driving force", "N", warnings)
