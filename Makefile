@@ -34,10 +34,12 @@ crosscheck: setup
 # installed package's manifests and FMUs: hence setup, which rebuilds what changed)
 # and docs/reference/cli.md (from the parser); tests/contracts/test_reference_docs.py
 # fails while either differs from what this writes.  Also the contact patch's
-# and pad's guides' figures (tools/make_patch_figures.py, from the bundled scenarios).
+# and pad's guides' figures (tools/make_patch_figures.py, from the bundled scenarios)
+# and the experiment design's (tools/make_design_figure.py).
 docs: setup
 	.venv/bin/python tools/make_reference.py
 	.venv/bin/python tools/make_patch_figures.py
+	.venv/bin/python tools/make_design_figure.py
 
 # Regenerates python/orthocontact/fmu/generated.py (ContactParams, the law's and
 # the patch's rows) from the variable tables, through the installed manifests:

@@ -56,7 +56,8 @@ FIGURES = {"docs/coverage.png": "benchmarks/bench_coverage.py",
            "docs/figures/patch_yaw_vs_angle.png": "tools/make_patch_figures.py",
            "docs/figures/pad_pressure_cells.png": "tools/make_patch_figures.py",
            "docs/figures/pad_regimes.png": "tools/make_patch_figures.py",
-           "docs/figures/pad_phi_vs_angle.png": "tools/make_patch_figures.py"}
+           "docs/figures/pad_phi_vs_angle.png": "tools/make_patch_figures.py",
+           "docs/figures/design_aged_5.png": "tools/make_design_figure.py"}
 
 
 @dataclass

@@ -326,8 +326,8 @@ def design_command(command, force, written_when) -> None:
                    help="D (default): the largest det of the information; A: the smallest sum of the "
                         "parameters' relative variances (sd / prior value)^2")
     d.add_argument("--sigma-force", type=_positive_float, default=None, metavar="REL",
-                   help="noise of a driving force as a share of the force (0.01: 1 %%); default 0.01, or "
-                        "the --prior identification's force noise [N]")
+                   help="noise of a driving force as a share of the force (0.01 for one percent); default "
+                        "0.01, or the --prior identification's force noise [N]")
     d.add_argument("--sigma-angle", type=_positive_float, default=None, metavar="DEG",
                    help="noise of a trajectory angle [deg]; default 1.0, or the --prior identification's "
                         "(at each velocity where it has one)")
@@ -340,9 +340,10 @@ def design_command(command, force, written_when) -> None:
                         "only mu1, mu2, eps1/eps2 (and eps2 with --ramp-samples) are designed")
     d.add_argument("--prior", type=Path, default=None, metavar="IDENTIFIED.json",
                    help="identified.json of an earlier identification: the design is optimal at its "
-                        "estimates, on its rig, with its noise (unless --sigma-* say otherwise); default: "
-                        "the paper's aged mat (mu1 0.408, mu2 0.625, eps1/eps2 1.251, eps2 1e4 N/m, F_int "
-                        "5 N) on its rig (1.875 kg), with a strip of 10 N s/m unless --no-strip")
+                        "estimates, on its rig, with its noise (unless --sigma-force, --sigma-angle say "
+                        "otherwise); default: the paper's aged mat (mu1 0.408, mu2 0.625, eps1/eps2 1.251, "
+                        "eps2 1e4 N/m, F_int 5 N) on its rig (1.875 kg), with a strip of 10 N s/m unless "
+                        "--no-strip")
     d.add_argument("--fixed", type=Path, default=None, metavar="PLAN.csv",
                    help="runs already made (a plan.csv or a recording folder's runs.csv: kind, "
                         "mat_angle_deg, velocity_m_s): the next --runs given those (sequential design)")
@@ -353,7 +354,8 @@ def design_command(command, force, written_when) -> None:
                    help="carriage runs to plan (the carriage alone: F_int [N], then estimated with the "
                         "rest as a nuisance parameter); default 0: F_int known, as the prior's")
     d.add_argument("--angle-step", type=_positive_float, default=1.0, metavar="DEG",
-                   help="the candidate mat angles' step [deg] over 0-90 (default 1.0)")
+                   help="the candidate mat angles' step [deg] over 0-90 (0-180 where the prior's axes' "
+                        "offsets are not multiples of 90 deg) (default 1.0)")
     d.add_argument("--velocity-min", type=_positive_float, default=0.05, metavar="M/S",
                    help="the lowest carriage velocity [m/s] a slide run may use, with a strip (default 0.05)")
     d.add_argument("--velocity-max", type=_positive_float, default=0.5, metavar="M/S",
