@@ -168,9 +168,11 @@ def reduce_carriage(run: Run, warnings: list) -> RunReduction:
     return out
 
 
-def reduce_ramp(run: Run, warnings: list) -> RunReduction:
-    out = RunReduction(run.name, run.kind, run.mat_angle_deg, run.velocity_m_s)
-    t, x1, _, step, _, _ = _tracked(run, warnings)
+def _ramp_start(run: Run, t, x1) -> tuple:
+    """(t0 [s], v [m/s], v's standard error, the fitted samples' last time
+    [s]) of a ramp run's tracked start of motion: a hinge fit
+    x1(t) = x0 + v max(0, t - t0) over the pull's first 70 %, then the speed
+    from the samples after its first fifth."""
     x0 = float(np.median(x1[:5]))
     # the pull's first 70 %, cut by time (a cut on the noisy x1 itself
     # would drop the samples with positive noise near it and bias the speed)
@@ -202,11 +204,18 @@ def reduce_ramp(run: Run, warnings: list) -> RunReduction:
     else:
         moved = te > t0
         v_se = line_fit(te[moved], xe[moved])[2] if moved.sum() >= 3 else math.inf
+    return t0, v, v_se, float(te[-1])
+
+
+def reduce_ramp(run: Run, warnings: list) -> RunReduction:
+    out = RunReduction(run.name, run.kind, run.mat_angle_deg, run.velocity_m_s)
+    t, x1, _, step, _, _ = _tracked(run, warnings)
+    t0, v, v_se, t_end = _ramp_start(run, t, x1)
     _check_units(run, v)
     out.speed_m_s = float(v)
     tf, F = run.forces[:, 0], run.forces[:, 1]
     xf = v * np.maximum(tf - t0, 0.0)      # the force's samples on the tracked travel
-    moving = (tf > t0) & (tf <= te[-1])
+    moving = (tf > t0) & (tf <= t_end)
     if moving.sum() < 10:
         raise InputError(f"{_where(run, run.forces_path)}: the force log ({tf[0]:.3f}-{tf[-1]:.3f} s) "
                          f"does not cover the pull (from {t0:.3f} s)")
