@@ -170,6 +170,8 @@ def test_with_a_strip_the_runs_go_to_the_extreme_velocities_and_the_ramp_to_its_
     # on the axes (0, 90 deg) the block slides straight: no lateral speed, no viscous force, any velocity
     off_axes = {r.velocity_m_s for r in d.runs() if r.kind == "slide" and r.mat_angle_deg % 90}
     assert off_axes == {0.05, 0.5}
+    # and the plan makes them at the candidate velocity nearest the rig's 0.244 m/s
+    assert {r.velocity_m_s for r in d.runs() if r.kind == "slide" and not r.mat_angle_deg % 90} == {0.2}
     # F_int known: eps2 = slope alone, best at the stick branch's end
     assert set(d.ramp_x1_m()) == {max(design.ramp_positions(prior))}
     assert d.equivalence.holds and d.efficiency() > 1.0 and d.warnings == ()

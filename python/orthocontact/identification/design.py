@@ -307,7 +307,7 @@ def plan(prior: Prior, space: Space, criterion: str, say=None) -> Design:
     budget = (space.slides,) + ((space.ramp_samples,) if space.ramp_samples else ())
     problem = Problem(cand.info, cand.kind, budget, cand.information_of(made), cand.designed, criterion)
     weights, equivalence = approximate(problem, say=say)
-    counts = exact(problem, weights)
+    counts = consolidated(cand, exact(problem, weights), prior.rig.velocity_m_s)
     M = problem.information(counts)
     if not np.isfinite(problem.loss(M)):
         raise InputError(f"--runs {space.slides}: expected enough slide runs to determine "
@@ -316,6 +316,26 @@ def plan(prior: Prior, space: Space, criterion: str, say=None) -> Design:
     return Design(criterion, prior, space, cand, counts, weights, equivalence, M,
                   problem.information(runs * weights), baseline_of(prior, space, cand, made, problem),
                   problem, cand.warnings + tuple(identification_warnings(prior, space, cand, counts)))
+
+
+def consolidated(cand: Candidates, counts: np.ndarray, velocity_m_s: float) -> np.ndarray:
+    """The runs moved, at each mat angle, between velocities whose runs tell
+    the same (the same information: on the tensors' axes the block slides
+    straight, and the strip's viscosity has no lateral speed to resist)
+    onto the one nearest the rig's velocity [m/s]: a plan a lab makes at
+    one speed where any would do.  The information is unchanged."""
+    counts = counts.copy()
+    for i in np.flatnonzero(counts * (cand.kind == SLIDE)):
+        tol = 1e-12 * np.abs(cand.info[i]).max()
+        same = [j for j, r in enumerate(cand.runs) if cand.kind[j] == SLIDE
+                and r.mat_angle_deg == cand.runs[i].mat_angle_deg
+                and np.allclose(cand.info[j], cand.info[i], rtol=1e-9, atol=tol)]
+        best = min(same, key=lambda j: (abs(cand.runs[j].velocity_m_s - velocity_m_s),
+                                        cand.runs[j].velocity_m_s))
+        if best != i:
+            counts[best] += counts[i]
+            counts[i] = 0
+    return counts
 
 
 def identification_warnings(prior: Prior, space: Space, cand: Candidates, counts) -> list[str]:
