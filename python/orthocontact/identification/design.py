@@ -24,7 +24,7 @@ from .. import plausibility
 from ..errors import InputError
 from . import fit_model
 from .design_inputs import PAPER_VELOCITIES, RAMP_VELOCITY_M_S, Prior, Run, baseline_runs, grouped, lab_order
-from .design_search import Equivalence, Problem, approximate, exact
+from .design_search import Equivalence, Problem, Status, approximate, exact, ticking
 from .estimators import identifiability
 from .measurements import MeasurementSet
 
@@ -297,24 +297,47 @@ def baseline_of(prior: Prior, space: Space, cand: Candidates, made: list, proble
                     M if np.isfinite(problem.loss(M)) else None, text)
 
 
+def made_runs(prior: Prior, space: Space) -> list[Run]:
+    """The runs whose information the plan adds to: those already made (but
+    ramps: their samples' positions unknown) and the carriage runs."""
+    made = [r for r in space.fixed if r.kind != "ramp"]
+    return made + [Run("carriage", 0.0, prior.rig.velocity_m_s)] * space.carriage_runs
+
+
+def problem_of(prior: Prior, space: Space, cand: Candidates, criterion: str) -> Problem:
+    """The search's problem: slides and ramp samples, each group its budget."""
+    budget = (space.slides,) + ((space.ramp_samples,) if space.ramp_samples else ())
+    return Problem(cand.info, cand.kind, budget, cand.information_of(made_runs(prior, space)), cand.designed,
+                   criterion)
+
+
+def search(prior: Prior, space: Space, cand: Candidates, criterion: str, status: Status):
+    """(weights, Equivalence, counts): the approximate optimum, then whole runs."""
+    problem = problem_of(prior, space, cand, criterion)
+    weights, equivalence = approximate(problem, status=status)
+    status.text = f"whole runs by exchange among {len(cand.runs)} candidates"
+    return weights, equivalence, consolidated(cand, exact(problem, weights), prior.rig.velocity_m_s)
+
+
 def plan(prior: Prior, space: Space, criterion: str, say=None) -> Design:
     """The optimal design of `space` at `prior` by `criterion` (D or A):
-    the approximate optimum, then whole runs (design_search.exact)."""
+    the approximate optimum, then whole runs (design_search.exact);
+    `say(text)` is given a progress line every design_search.HEARTBEAT_S."""
     velocities = PAPER_VELOCITIES if prior.rate_dependent else (prior.rig.velocity_m_s,)
-    cand = candidates(prior, space, baseline_runs(space.slides, prior.peak_angle_deg(), velocities))
-    made = [r for r in space.fixed if r.kind != "ramp"]
-    made += [Run("carriage", 0.0, prior.rig.velocity_m_s)] * space.carriage_runs
-    budget = (space.slides,) + ((space.ramp_samples,) if space.ramp_samples else ())
-    problem = Problem(cand.info, cand.kind, budget, cand.information_of(made), cand.designed, criterion)
-    weights, equivalence = approximate(problem, say=say)
-    counts = consolidated(cand, exact(problem, weights), prior.rig.velocity_m_s)
+    n = len(space.angles_deg) * len(space.velocities_m_s)
+    status = Status(f"the fit's model at {n} candidate slide runs")
+    with ticking(say, status):
+        cand = candidates(prior, space, baseline_runs(space.slides, prior.peak_angle_deg(), velocities))
+        weights, equivalence, counts = search(prior, space, cand, criterion, status)
+    problem = problem_of(prior, space, cand, criterion)
     M = problem.information(counts)
     if not np.isfinite(problem.loss(M)):
         raise InputError(f"--runs {space.slides}: expected enough slide runs to determine "
                          f"{', '.join(cand.names)} (each gives a force and an angle)")
-    runs = np.asarray(budget, float)[cand.kind]
+    runs = np.asarray(problem.budget, float)[cand.kind]
+    baseline = baseline_of(prior, space, cand, made_runs(prior, space), problem)
     return Design(criterion, prior, space, cand, counts, weights, equivalence, M,
-                  problem.information(runs * weights), baseline_of(prior, space, cand, made, problem),
+                  problem.information(runs * weights), baseline,
                   problem, cand.warnings + tuple(identification_warnings(prior, space, cand, counts)))
 
 

@@ -13,8 +13,10 @@ Candidates come in groups (slide runs, ramp samples), each with its own
 number of runs.  No units here: the caller's."""
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
+import threading
 import time
 from dataclasses import dataclass
 
@@ -108,19 +110,18 @@ def group_ratios(problem: Problem, weights: np.ndarray, d: np.ndarray) -> np.nda
 
 
 def approximate(problem: Problem, tolerance: float = 1e-3, max_iterations: int = 50000,
-                say=None) -> tuple[np.ndarray, Equivalence]:
+                status: Status | None = None) -> tuple[np.ndarray, Equivalence]:
     """The approximate optimum: each group's weights (summing to 1, times
     its number of runs) by the multiplicative algorithm, w_c <- w_c (d_c /
     average)^k, until the equivalence theorem holds to tolerance / 10 (or
-    max_iterations); `say(text)` is given a progress line at least every
-    HEARTBEAT_S seconds."""
+    max_iterations); `status` says the iteration (ticking prints it)."""
     sizes = np.bincount(problem.group, minlength=len(problem.budget)).astype(float)
     weights = 1.0 / sizes[problem.group]
     runs = np.asarray(problem.budget, float)[problem.group]
     if not np.isfinite(problem.loss(problem.information(runs * weights))):
         raise InputError("expected candidate runs that determine every parameter: even all of them at "
                          "once leave the information matrix singular")
-    k, t_said, iteration = EXPONENT[problem.criterion], time.monotonic(), 0
+    k, iteration = EXPONENT[problem.criterion], 0
     for iteration in range(1, max_iterations + 1):
         ratio = group_ratios(problem, weights, problem.sensitivity(problem.information(runs * weights)))
         if ratio.max() <= 1.0 + tolerance / 10:
@@ -129,9 +130,9 @@ def approximate(problem: Problem, tolerance: float = 1e-3, max_iterations: int =
         total = np.zeros(len(problem.budget))
         np.add.at(total, problem.group, weights)
         weights = weights / total[problem.group]
-        if say is not None and time.monotonic() - t_said >= HEARTBEAT_S:
-            t_said = time.monotonic()
-            say(f"approximate design: iteration {iteration}, max sensitivity ratio {ratio.max():.5f}")
+        if status is not None:
+            status.text = (f"approximate design: iteration {iteration}, max sensitivity ratio "
+                           f"{ratio.max():.5f}")
     return weights, Equivalence(float(ratio.max()), tolerance, iteration)
 
 
@@ -194,6 +195,33 @@ def exact(problem: Problem, weights: np.ndarray) -> np.ndarray:
     starts = [rounded(problem, weights), greedy(problem)]
     found = [exchange(problem, c) for c in starts]
     return min(found, key=lambda c: problem.loss(problem.information(c)))
+
+
+@dataclass
+class Status:
+    """What a design's search is doing now, for its progress lines."""
+    text: str = ""
+
+
+@contextlib.contextmanager
+def ticking(say, status: Status):
+    """say(status.text with the time so far) every HEARTBEAT_S while the
+    block runs, whatever its stages (the fit model's build over the
+    candidates, the approximate design, the exchange); nothing where say
+    is None."""
+    if say is None:
+        yield
+        return
+    stop, t0 = threading.Event(), time.monotonic()
+
+    def beat():
+        while not stop.wait(HEARTBEAT_S):
+            say(f"{status.text} ({time.monotonic() - t0:.0f} s, running)")
+    threading.Thread(target=beat, daemon=True, name="design heartbeat").start()
+    try:
+        yield
+    finally:
+        stop.set()
 
 
 def stderr_say(text: str) -> None:
