@@ -7,6 +7,7 @@ the strip and the ramp, and bad input through the command line."""
 import json
 import math
 from collections import Counter
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -108,7 +109,7 @@ def monte_carlo(angles, sd, replicates, seed=1):
         forces[:, 1] += rng.normal(0, sd[0] * forces[:, 1])
         phi = clean["angles"].copy()
         phi[:, 1] += rng.normal(0, sd[1], len(phi))
-        data = MeasurementSet(folder=design_inputs.Path("mc"), rig=rig, forces=forces, angles=phi)
+        data = MeasurementSet(folder=Path("mc"), rig=rig, forces=forces, angles=phi)
         fit = joint_fit(data, start_values(data))
         estimates.append([fit.values[n] for n in ("mu1", "mu2", "eps_ratio")])
     return dict(zip(("mu1", "mu2", "eps_ratio"), np.std(estimates, axis=0, ddof=1)))
