@@ -212,6 +212,7 @@ def test_a_criterion_minimises_the_relative_variances(tmp_path):
     (["--runs", "5", "--fixed", "bad.csv"], "bad.csv: line 2: kind"),
     (["--runs", "5", "--prior", "missing.json"], "missing.json"),
     (["--runs", "1", "--no-strip"], "--runs 1: expected enough slide runs"),
+    (["--runs", "5", "--angle-step", "0.001", "--velocity-step", "0.001"], "at most 50000 candidate"),
 ])
 def test_bad_input_is_one_line_and_exit_2(tmp_path, args, says):
     (tmp_path / "bad.csv").write_text("kind,mat_angle_deg,velocity_m_s\nslid,30,0.244\n")

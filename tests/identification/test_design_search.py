@@ -119,6 +119,7 @@ def test_the_algorithm_says_its_iteration():
 
 def test_work_that_counts_no_steps_says_it_is_running(monkeypatch):
     said = []
+    monkeypatch.setattr(ds, "FIRST_S", 0.05)
     monkeypatch.setattr(ds, "HEARTBEAT_S", 0.05)
     with ds.ticking(said.append, ds.Status("building")):
         time.sleep(0.3)

@@ -319,10 +319,26 @@ def search(prior: Prior, space: Space, cand: Candidates, criterion: str, status:
     return weights, equivalence, consolidated(cand, exact(problem, weights), prior.rig.velocity_m_s)
 
 
+# The most candidate slide runs a design takes: the fit model's build costs about 1 ms
+# each (16606 with a strip: 22 s in all), so this is a minute or two.
+MAX_CANDIDATES = 50_000
+
+
+def check_size(space: Space) -> None:
+    """Refuses (InputError, before any work) a grid of more than
+    MAX_CANDIDATES slide runs: a step that small is usually a typo."""
+    n = len(space.angles_deg) * len(space.velocities_m_s)
+    if n > MAX_CANDIDATES:
+        raise InputError(f"--angle-step, --velocity-step: expected at most {MAX_CANDIDATES} candidate slide "
+                         f"runs (a minute or two), got {len(space.angles_deg)} mat angles x "
+                         f"{len(space.velocities_m_s)} velocities = {n}: raise the steps")
+
+
 def plan(prior: Prior, space: Space, criterion: str, say=None) -> Design:
     """The optimal design of `space` at `prior` by `criterion` (D or A):
     the approximate optimum, then whole runs (design_search.exact);
     `say(text)` is given a progress line every design_search.HEARTBEAT_S."""
+    check_size(space)
     velocities = PAPER_VELOCITIES if prior.rate_dependent else (prior.rig.velocity_m_s,)
     n = len(space.angles_deg) * len(space.velocities_m_s)
     status = Status(f"the fit's model at {n} candidate slide runs")

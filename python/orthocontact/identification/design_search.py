@@ -30,7 +30,8 @@ CRITERIA = ("D", "A")
 EXPONENT = {"D": 1.0, "A": 0.5}
 # An information matrix in correlation form whose determinant is below this is singular.
 SINGULAR = 1e-12
-HEARTBEAT_S = 10.0
+# Progress lines as the rig's runs give them (runs.progress): the first within 2 s, then every 10 s.
+FIRST_S, HEARTBEAT_S = 2.0, 10.0
 
 
 @dataclass(frozen=True)
@@ -205,18 +206,20 @@ class Status:
 
 @contextlib.contextmanager
 def ticking(say, status: Status):
-    """say(status.text with the time so far) every HEARTBEAT_S while the
-    block runs, whatever its stages (the fit model's build over the
-    candidates, the approximate design, the exchange); nothing where say
-    is None."""
+    """say(status.text with the time so far) FIRST_S after the start and
+    every HEARTBEAT_S after while the block runs, whatever its stages (the
+    fit model's build over the candidates, the approximate design, the
+    exchange); nothing where say is None."""
     if say is None:
         yield
         return
     stop, t0 = threading.Event(), time.monotonic()
 
     def beat():
-        while not stop.wait(HEARTBEAT_S):
+        wait = FIRST_S
+        while not stop.wait(wait):
             say(f"{status.text} ({time.monotonic() - t0:.0f} s, running)")
+            wait = HEARTBEAT_S
     threading.Thread(target=beat, daemon=True, name="design heartbeat").start()
     try:
         yield
