@@ -43,9 +43,10 @@ def test_paper_calibration_numbers(tmp_path):
     # with two forces the ellipse fit is eq. (1) exactly
     assert res.fit.values["mu1"] == pytest.approx(res.eq1["mu1"], rel=1e-9)
     assert round(res.max_rule["l1_l2_ratio"], 3) == 0.817
-    # eq. (39) with the unrounded mu of these forces gives 1.253; the paper's
-    # 1.251 is eq. (39) with its rounded mu1 = 0.408, mu2 = 0.625
-    mu1, mu2 = res.eq1["mu1"], res.eq1["mu2"]
+    # eq. (39) with the unrounded mu of these forces (the fit's, which the maximum
+    # rule is given) gives 1.253; the paper's 1.251 is eq. (39) with its rounded
+    # mu1 = 0.408, mu2 = 0.625
+    mu1, mu2 = res.fit.values["mu1"], res.fit.values["mu2"]
     assert res.max_rule["eps_ratio"] == pytest.approx(res.max_rule["l1_l2_ratio"] * mu2 / mu1, rel=1e-12)
     assert round(res.max_rule["eps_ratio"], 3) == 1.253
     assert abs(0.625 / 0.408 * res.max_rule["l1_l2_ratio"] - 1.251) < 1e-3  # 1.2516, printed 1.251

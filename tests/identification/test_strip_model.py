@@ -17,7 +17,7 @@ from orthocontact.identification.strip_model import strip_regimes
 
 TRUTH = ContactParams(0.408, 0.625, 12510.0, 10000.0)
 TV = {"mu1": 0.408, "mu2": 0.625, "eps_ratio": 1.251, "eps2": 1e4, "eps1": 12510.0}
-FA, AA = [0, 15, 30, 45, 60, 75, 90], list(range(10, 90, 10))
+FA, AA = [0, 15, 30, 45, 60, 75, 90], list(range(5, 90, 5))
 
 
 def _strip_data(mu_strip, c_strip, velocities):

@@ -146,7 +146,7 @@ def test_the_identifications_validation_runs_the_fitted_strip(tmp_path):
     tasks, meta = [], []
     for v in (0.125, 0.244):
         h = rig.harness(step_s=1e-3, travel_m=0.2, velocity_m_s=v, c_strip=20.0)
-        for a in range(10, 90, 10):
+        for a in range(5, 90, 10):
             tasks.append((rig.params_at(truth, a), h))
             meta.append(("angle", a, v))
     h = rig.harness(step_s=1e-3, travel_m=0.2, c_strip=20.0)

@@ -137,6 +137,7 @@ class JointFit:
     reweighting_rounds: int = 0      # solves of the last fit until the noise model settled
     convergence: dict = field(default_factory=dict)  # what converged: solver, noise_model, strip_regimes
     lack_of_fit: dict = field(default_factory=dict)  # group -> lack_of_fit.LackOfFit (groups with replicates)
+    weights: dict = field(default_factory=dict)      # group -> each value's final weight 1/(tau^2 + se^2)
 
     @property
     def converged(self) -> bool:
@@ -222,13 +223,14 @@ class Weighting:
         return np.concatenate([1.0 / np.maximum(self.tau2[g] + self.se2[g], self.floor[g]) for g in names])
 
 
-def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
+def joint_fit(data: MeasurementSet, start: dict, on_solve=None) -> JointFit:
     """Weighted nonlinear least squares of all data present over the
     identifiable parameters, each group weighted by its own noise,
     re-estimated from its residuals until it settles; covariance
     (J^T W J)^-1 at the optimum (Gauss-Newton).  With the strip's Coulomb
     friction, fitted again from its own result until the regimes of motion
-    (strip_regimes) the model was built for are those at the solution."""
+    (strip_regimes) the model was built for are those at the solution.
+    on_solve: called after each solve (a progress line's count)."""
     free, why = identifiability(data)
     if not free:
         raise InputError(f"{data.folder}: expected data that determine at least one parameter: "
@@ -236,7 +238,7 @@ def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
     solves = []
     for _ in range(MAX_REGIME_FITS):
         model = fit_model.build(data, start, free)
-        x, weighting, rounds, settled = _reweighted_fit(model, data, start, solves)
+        x, weighting, rounds, settled = _reweighted_fit(model, data, start, solves, on_solve)
         values = dict(start, **model.values(x))
         regimes_kept = strip_regimes(data, values) == strip_regimes(data, start)
         if regimes_kept:
@@ -246,7 +248,8 @@ def joint_fit(data: MeasurementSet, start: dict) -> JointFit:
     return _fit_result(model, data, x, weighting, why, solves, rounds, converged)
 
 
-def _reweighted_fit(model: fit_model.FitModel, data: MeasurementSet, start: dict, solves: list):
+def _reweighted_fit(model: fit_model.FitModel, data: MeasurementSet, start: dict, solves: list,
+                    on_solve=None):
     """(x, Weighting, rounds, settled) of the solve-and-reweight loop: each
     group's tau^2 from its residuals (noise_model) until it moves by less
     than TAU2_TOLERANCE of its variance; every solve appended to `solves`."""
@@ -264,6 +267,8 @@ def _reweighted_fit(model: fit_model.FitModel, data: MeasurementSet, start: dict
         rounds += 1
         w = weighting.weights(names)
         solves.append(solver.solve(x, w))
+        if on_solve is not None:
+            on_solve()
         x = solves[-1].x
         parts = model.split(model.evaluate(x)[0])
         tau2 = {g.name: weighting.tau2[g.name] if g.name in assumed else
@@ -328,7 +333,8 @@ def _fit_result(model, data, x, weighting: Weighting, why: dict, solves: list, r
                     between_runs={g: tau_summary(tau2[g], components[g]) for g in names},
                     within_run={g: math.sqrt(float(np.mean(se2[g]))) for g in names},
                     solves=tuple(s.as_json() for s in solves), reweighting_rounds=rounds,
-                    convergence=converged, lack_of_fit={g: t for g, t in tests.items() if t is not None})
+                    convergence=converged, lack_of_fit={g: t for g, t in tests.items() if t is not None},
+                    weights=model.split(wdiag))
 
 
 def start_values(data: MeasurementSet) -> dict:

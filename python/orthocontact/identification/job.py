@@ -279,8 +279,13 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
     values pass the plausibility gate before the validation runs
     (InputError: nothing is written).  A group the fitted law does not
     describe (lack_of_fit) is a warning here and refused by export."""
+    from ..runs.progress import Heartbeat
     start = start_values(data)
-    fit = joint_fit(data, start)
+    beat = Heartbeat("joint fit", unit="solves")   # a line at 2 s and every 10 s while it runs
+    try:
+        fit = joint_fit(data, start, beat.update)
+    finally:
+        beat.close()
     if not fit.converged and not force:
         raise InputError(f"{data.folder}: {fit_record(fit).problems()[0]}; refused: identified.json not "
                          "written (`orthocontact identify --force` writes it, marked not converged, and "

@@ -28,8 +28,10 @@ AT_PRECISION = "Search_Direction_Becomes_Too_Small"
 STEP_TOLERANCE_SE = 1e-3
 BOUNDS = (1e-9, 1e9)            # every parameter positive, in the fit's units
 IPOPT_OPTIONS = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.tol": 1e-10,
-                 "ipopt.acceptable_tol": 1e-6, "ipopt.acceptable_iter": 3, "ipopt.max_iter": 200,
-                 "ipopt.nlp_scaling_method": "none", "ipopt.mu_init": 1e-8}
+                 "ipopt.acceptable_tol": 1e-3, "ipopt.acceptable_iter": 2, "ipopt.max_iter": 200,
+                 "ipopt.nlp_scaling_method": "none", "ipopt.mu_init": 1e-8,
+                 # the bounds exactly: a relaxed one let c_strip end at -9e-8 N s/m (x2 flipped)
+                 "ipopt.bound_relax_factor": 0.0}
 
 
 @dataclass(frozen=True)

@@ -49,13 +49,18 @@ def strip_steady_states(val, start: dict, rig: RigSetup, points: list, c_free: b
     N = rig.normal_force
     c = val("c_strip") if c_free else c_known
     params = ca.vertcat(val("mu1"), val("mu2"), val("eps_ratio"), c)
-    rows = []
-    for a, v in points:
-        alpha, beta = rig.axes(a)
-        t0 = cf.steady_tan_phi_with_strip(start["mu1"], start["mu2"], start.get("eps_ratio", 1.0) * 1e4,
-                                          1e4, alpha, beta, rig.rule, rig.mu_strip,
-                                          start.get("c_strip", c_known), v, N)
-        rows.append((alpha, beta, v, 0.0 if t0 == 0 else math.copysign(1.0, t0), t0))
+    angles = np.array([a for a, _ in points], float)
+    velocities = np.array([v for _, v in points], float)
+    alpha, beta = rig.axes(angles)
+    t0 = np.zeros(len(points))
+    for v in np.unique(velocities):     # the start's slopes, one array per velocity
+        m = velocities == v
+        ratio = start.get("eps_ratio", 1.0)
+        t0[m] = cf.steady_tan_phi_with_strip_array(start["mu1"], start["mu2"], ratio * 1e4, 1e4, alpha[m],
+                                                   beta[m], rig.rule, rig.mu_strip,
+                                                   start.get("c_strip", c_known), v, N)
+    rows = [(al, be, v, 0.0 if t == 0 else math.copysign(1.0, t), t)
+            for al, be, v, t in zip(alpha, beta, velocities, t0)]
     p, d, t = ca.MX.sym("p", 4), ca.MX.sym("d", 5), ca.MX.sym("t")
 
     def balance(slope):

@@ -64,15 +64,16 @@ class Progress:
 
 class Heartbeat(Progress):
     """Progress of work whose run count is not known ahead (a sweep's
-    refinement and recordings): only the lines at 2 s and every 10 s after,
-    with the runs done so far."""
+    refinement and recordings, a fit's solves): only the lines at 2 s and
+    every 10 s after, with the steps done so far (`unit`: what they are)."""
 
-    def __init__(self, label: str, enabled: bool = True):
+    def __init__(self, label: str, enabled: bool = True, unit: str = "runs"):
         super().__init__(1 << 62, label, enabled)
+        self.unit = unit
 
     def _show(self, still=False):
         self._said = time.time()
-        print(f"{self.label}: {self.done} runs done ({time.time() - self.t0:.1f}s, running)",
+        print(f"{self.label}: {self.done} {self.unit} done ({time.time() - self.t0:.1f}s, running)",
               file=sys.stderr, flush=True)
 
     def update(self, n: int = 1):
