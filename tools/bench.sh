@@ -36,6 +36,9 @@ echo "== Masters: rig runs/s, compiled vs fmpy (target: >= 20x) =="
 .venv/bin/python benchmarks/bench_masters.py
 echo "== make reproduce's command, wall time (target: <= 5 s) =="
 .venv/bin/python benchmarks/bench_reproduce.py
+echo "== identification: the joint fit against scipy's least_squares, same data (target: <= 2x) =="
+.venv/bin/python tools/requirements.py test --install >/dev/null   # scipy: the peer
+.venv/bin/python benchmarks/bench_fit.py
 echo "== uncertainty propagation, 10^6 rig runs on Dask (target: <= 30 s) =="
 .venv/bin/python benchmarks/bench_uq.py
 echo "== identification intervals: coverage on independent data (target: 92-98 %) =="
