@@ -117,6 +117,7 @@ class Workspace:
                    "--scheduler", "none", "--out", self.out()],
             "ssp": [str(self.case4), "--angle", "40", "--out", self.out() + ".ssp"],
             "sensitivity": [str(SCENARIOS / "mat_aged.toml"), "--out", self.out()],
+            "design": ["--runs", "3", "--no-strip", "--out", self.out()],
         }[command]
 
     def paths(self) -> list:

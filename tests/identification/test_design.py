@@ -53,7 +53,7 @@ def independent_sd(angles_deg, sigma_rel=0.01, sigma_deg=1.0, theta=AGED) -> dic
 
 @pytest.fixture(scope="module")
 def acceptance(tmp_path_factory):
-    """The issue's command, run once: (its process, its output folder)."""
+    """The acceptance command, run once: (its process, its output folder)."""
     cwd = tmp_path_factory.mktemp("design")
     p = run_cli(ACCEPTANCE + ["--out", "D"], cwd)
     assert p.returncode == 0, p.stderr

@@ -54,7 +54,7 @@ class Candidates:
     """Every run a design may choose and each one's information per run,
     in the design's units (each parameter by its prior value: `unit`).
     names: the model's parameters; designed: the indices of those planned
-    for; kind: SLIDE or RAMP per candidate, with its run, a ramp sample's
+    for; run_kind: SLIDE or RAMP per candidate, with its run, a ramp sample's
     x1 [m] (nan for slides) and its model value (driving force [N], phi
     [deg]; a ramp sample: force [N], nan); slide_info: the information of
     a slide run at each (mat angle [deg], velocity [m/s]) the design
@@ -64,7 +64,7 @@ class Candidates:
     designed: tuple
     unit: np.ndarray
     runs: tuple
-    kind: np.ndarray
+    run_kind: np.ndarray
     x1_m: np.ndarray
     model: np.ndarray
     info: np.ndarray
@@ -225,14 +225,14 @@ class Design:
         """The new runs, in lab order: the carriage runs, the slides, one
         ramp run if ramp samples are planned."""
         c, v = self.candidates, self.prior.rig.velocity_m_s
-        slides = [r for r, n, k in zip(c.runs, self.counts, c.kind) if k == SLIDE for _ in range(n)]
+        slides = [r for r, n, k in zip(c.runs, self.counts, c.run_kind) if k == SLIDE for _ in range(n)]
         ramp = [Run("ramp", self.prior.rig.ramp_angle_deg, RAMP_VELOCITY_M_S)] * (self.space.ramp_samples > 0)
         return lab_order([Run("carriage", 0.0, v)] * self.space.carriage_runs + slides + ramp)
 
     def ramp_x1_m(self) -> list:
         """x1 [m] of each planned ramp sample, ascending."""
         c = self.candidates
-        return [float(x) for x, n, k in zip(c.x1_m, self.counts, c.kind) if k == RAMP for _ in range(n)]
+        return [float(x) for x, n, k in zip(c.x1_m, self.counts, c.run_kind) if k == RAMP for _ in range(n)]
 
     def sd(self, M) -> dict:
         """The designed parameters' predicted standard errors [their units] at M."""
@@ -278,7 +278,7 @@ def baseline_of(prior: Prior, space: Space, cand: Candidates, made: list, proble
     velocities = PAPER_VELOCITIES if prior.rate_dependent else (prior.rig.velocity_m_s,)
     paper = baseline_runs(space.slides, prior.peak_angle_deg(), velocities)
     M = cand.information_of(made + paper)
-    ramp = np.flatnonzero(cand.kind == RAMP)
+    ramp = np.flatnonzero(cand.run_kind == RAMP)
     spread = [] if not len(ramp) else ramp[np.round(np.linspace(0, len(ramp) - 1,
                                                                 space.ramp_samples)).astype(int)]
     for i in spread:
@@ -307,8 +307,8 @@ def made_runs(prior: Prior, space: Space) -> list[Run]:
 def problem_of(prior: Prior, space: Space, cand: Candidates, criterion: str) -> Problem:
     """The search's problem: slides and ramp samples, each group its budget."""
     budget = (space.slides,) + ((space.ramp_samples,) if space.ramp_samples else ())
-    return Problem(cand.info, cand.kind, budget, cand.information_of(made_runs(prior, space)), cand.designed,
-                   criterion)
+    made = cand.information_of(made_runs(prior, space))
+    return Problem(cand.info, cand.run_kind, budget, made, cand.designed, criterion)
 
 
 def search(prior: Prior, space: Space, cand: Candidates, criterion: str, status: Status):
@@ -350,7 +350,7 @@ def plan(prior: Prior, space: Space, criterion: str, say=None) -> Design:
     if not np.isfinite(problem.loss(M)):
         raise InputError(f"--runs {space.slides}: expected enough slide runs to determine "
                          f"{', '.join(cand.names)} (each gives a force and an angle)")
-    runs = np.asarray(problem.budget, float)[cand.kind]
+    runs = np.asarray(problem.budget, float)[cand.run_kind]
     baseline = baseline_of(prior, space, cand, made_runs(prior, space), problem)
     return Design(criterion, prior, space, cand, counts, weights, equivalence, M,
                   problem.information(runs * weights), baseline,
@@ -364,9 +364,9 @@ def consolidated(cand: Candidates, counts: np.ndarray, velocity_m_s: float) -> n
     onto the one nearest the rig's velocity [m/s]: a plan a lab makes at
     one speed where any would do.  The information is unchanged."""
     counts = counts.copy()
-    for i in np.flatnonzero(counts * (cand.kind == SLIDE)):
+    for i in np.flatnonzero(counts * (cand.run_kind == SLIDE)):
         tol = 1e-12 * np.abs(cand.info[i]).max()
-        same = [j for j, r in enumerate(cand.runs) if cand.kind[j] == SLIDE
+        same = [j for j, r in enumerate(cand.runs) if cand.run_kind[j] == SLIDE
                 and r.mat_angle_deg == cand.runs[i].mat_angle_deg
                 and np.allclose(cand.info[j], cand.info[i], rtol=1e-9, atol=tol)]
         best = min(same, key=lambda j: (abs(cand.runs[j].velocity_m_s - velocity_m_s),

@@ -62,7 +62,7 @@ def design_json(d: Design) -> dict:
     c, prior, space = d.candidates, d.prior, d.space
     sd, base = d.sd(d.M), d.baseline
     support = [{"kind": c.runs[i].kind, "mat_angle_deg": c.runs[i].mat_angle_deg,
-                "velocity_m_s": c.runs[i].velocity_m_s, "x1_m": None if c.kind[i] == SLIDE else c.x1_m[i],
+                "velocity_m_s": c.runs[i].velocity_m_s, "x1_m": None if c.run_kind[i] == SLIDE else c.x1_m[i],
                 "weight": float(d.weights[i])} for i in np.argsort(-d.weights) if d.weights[i] >= 1e-3]
     nuisance = {n: v for n, v in c.sd(d.M).items() if n not in sd}
     rig = prior.rig
@@ -107,9 +107,9 @@ def figure(d: Design, path: Path) -> None:
     ramp = d.space.ramp_samples > 0
     fig, axes = plt.subplots(2 if ramp else 1, 1, figsize=(7.5, 6.5 if ramp else 4.2), squeeze=False)
     ax = axes[0, 0]
-    slides = c.kind == SLIDE
-    velocities = sorted({r.velocity_m_s for r, n, k in zip(c.runs, d.counts, c.kind) if n and k == SLIDE} |
-                        {min(d.space.velocities_m_s), max(d.space.velocities_m_s)})
+    slides = c.run_kind == SLIDE
+    in_plan = {r.velocity_m_s for r, n, k in zip(c.runs, d.counts, c.run_kind) if n and k == SLIDE}
+    velocities = sorted(in_plan | {min(d.space.velocities_m_s), max(d.space.velocities_m_s)})
     ax.plot([], [], color="0.3", label="approximate optimum")
     ax.plot([], [], color="0.3", ls="--", label="the plan")
     for k, v in enumerate(velocities):
@@ -134,7 +134,7 @@ def figure(d: Design, path: Path) -> None:
 
 def ramp_axes(ax, d: Design, approx, planned) -> None:
     c = d.candidates
-    at = c.kind == RAMP
+    at = c.run_kind == RAMP
     ax.plot(1e3 * c.x1_m[at], approx[at], "C0", label="approximate optimum")
     ax.plot(1e3 * c.x1_m[at], planned[at], "C0--", label="the plan")
     for i in np.flatnonzero(at & (d.counts > 0)):
