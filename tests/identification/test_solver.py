@@ -21,7 +21,8 @@ def test_the_bundled_recordings_converge_and_the_law_describes_them(tmp_path):
                  "--no-validate"]) == 0
     fit = json.loads((tmp_path / "id" / "identified.json").read_text())["fit"]
     assert fit["converged"] is True and not fit["forced"]
-    assert fit["convergence"] == {"solver": True, "noise_model": True, "strip_regimes": True}
+    assert fit["convergence"] == {"solver": True, "noise_model": True, "strip_regimes": True,
+                                  "strip_roots": True}
     last = fit["solves"][-1]
     assert last["status"] in solver.ACCEPTED and last["step_left_se"] < solver.STEP_TOLERANCE_SE
     assert len(fit["solves"]) == fit["reweighting_rounds"] < 10

@@ -135,14 +135,14 @@ class JointFit:
     between_runs_dof: dict = field(default_factory=dict)  # group -> dof of its tau^2 (inf: the prior)
     solves: tuple = ()               # each solve's status, iterations, step left (solver.Solve.as_json)
     reweighting_rounds: int = 0      # solves of the last fit until the noise model settled
-    convergence: dict = field(default_factory=dict)  # what converged: solver, noise_model, strip_regimes
+    convergence: dict = field(default_factory=dict)  # what converged: solver, noise_model, strip_*
     lack_of_fit: dict = field(default_factory=dict)  # group -> lack_of_fit.LackOfFit (groups with replicates)
     weights: dict = field(default_factory=dict)      # group -> each value's final weight 1/(tau^2 + se^2)
 
     @property
     def converged(self) -> bool:
         """The last solve met IPOPT's tolerance with no step left, the noise
-        model settled, and the strip's regimes are those at the solution."""
+        model settled, and the strip's regimes and roots are those at the solution."""
         return bool(self.convergence) and all(self.convergence.values())
 
 
@@ -229,7 +229,8 @@ def joint_fit(data: MeasurementSet, start: dict, on_solve=None) -> JointFit:
     re-estimated from its residuals until it settles; covariance
     (J^T W J)^-1 at the optimum (Gauss-Newton).  With the strip's Coulomb
     friction, fitted again from its own result until the regimes of motion
-    (strip_regimes) the model was built for are those at the solution.
+    (strip_regimes) the model was built for are those at the solution, and
+    with the strip until its Newton steps reach the steady states there.
     on_solve: called after each solve (a progress line's count)."""
     free, why = identifiability(data)
     if not free:
@@ -241,10 +242,12 @@ def joint_fit(data: MeasurementSet, start: dict, on_solve=None) -> JointFit:
         x, weighting, rounds, settled = _reweighted_fit(model, data, start, solves, on_solve)
         values = dict(start, **model.values(x))
         regimes_kept = strip_regimes(data, values) == strip_regimes(data, start)
-        if regimes_kept:
+        roots = model.strip_roots_converged(x, data.rig.normal_force)
+        if regimes_kept and roots:
             break
-        start = values
-    converged = {"solver": solves[-1].converged, "noise_model": settled, "strip_regimes": regimes_kept}
+        start = values      # the strip's model again, built at the solution
+    converged = {"solver": solves[-1].converged, "noise_model": settled, "strip_regimes": regimes_kept,
+                 "strip_roots": roots}
     return _fit_result(model, data, x, weighting, why, solves, rounds, converged)
 
 

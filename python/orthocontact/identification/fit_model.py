@@ -24,6 +24,8 @@ from ..errors import InputError
 from .measurements import MeasurementSet
 from .strip_model import strip_steady_states
 
+# The strip's steady states hold where the lateral force left is below this share of N
+ROOT_TOLERANCE = 1e-12
 # The fitted parameters' units in the fit: eps2 and F_int by their start values.
 SCALES = {"mu1": 1.0, "mu2": 1.0, "eps_ratio": 1.0, "l1_l2_ratio": 1.0, "c_strip": 10.0}
 
@@ -55,6 +57,13 @@ class FitModel:
     function: object          # casadi Function x -> (r, dr/dx)
     residual: object          # casadi Function x -> r (the objective needs no Jacobian)
     stick: np.ndarray         # the ramp's points on the stick branch (empty without ramp.csv)
+    strip_force_left: object  # casadi Function x -> the lateral force [N] the strip's Newton steps leave
+
+    def strip_roots_converged(self, x, normal_force: float) -> bool:
+        """Whether the strip's unrolled Newton steps reached the root at x:
+        the lateral force left under ROOT_TOLERANCE of the normal force."""
+        left = np.array(self.strip_force_left(x)).ravel()
+        return bool(np.all(np.abs(left) <= ROOT_TOLERANCE * normal_force))
 
     def evaluate(self, x) -> tuple[np.ndarray, np.ndarray]:
         """(r, J) as numpy arrays at the fit's x."""
@@ -100,8 +109,7 @@ def build(data: MeasurementSet, start: dict, free: list) -> FitModel:
     scale = {**SCALES, "eps2": max(start.get("eps2", 1e4), 1e-9), "f_int": max(start.get("f_int", 1.0), 1e-3)}
     c_known = rig.c_strip or 0.0
     strip = "eps_ratio" in free and (rig.mu_strip > 0 or "c_strip" in free or c_known > 0)
-    # the strip's steady states are roots (casadi's rootfinder): the matrix graph (MX)
-    x = (ca.MX if strip else ca.SX).sym("x", len(free))
+    x = ca.SX.sym("x", len(free))
     sym = {n: x[i] * scale[n] for i, n in enumerate(free)}
 
     def val(n):
@@ -116,8 +124,10 @@ def build(data: MeasurementSet, start: dict, free: list) -> FitModel:
     parts = _group_residuals(data, val, free, sliding, stick)
     r = ca.vertcat(*[residuals for _, residuals in parts])
     function = ca.Function("fit_residuals", [x], [r, ca.jacobian(r, x)])
+    force_left = ca.vertcat(*sliding["left"]) if sliding["left"] else ca.SX(0, 1)
+    left = ca.Function("strip_force_left", [x], [force_left])
     return FitModel(tuple(free), np.array([scale[n] for n in free]), tuple(g for g, _ in parts), function,
-                    ca.Function("fit_residual", [x], [r]), stick)
+                    ca.Function("fit_residual", [x], [r]), stick, left)
 
 
 def _group_residuals(data: MeasurementSet, val, free: list, sliding: dict, stick: np.ndarray) -> list:
@@ -159,7 +169,8 @@ def _group_residuals(data: MeasurementSet, val, free: list, sliding: dict, stick
 
 def _steady_sliding(data: MeasurementSet, val, start: dict, free: list, strip: bool, c_known: float) -> dict:
     """The model's push q1 [N] at each force and tan(phi) at each angle:
-    with the strip, one rootfinder per distinct (mat angle, velocity);
+    with the strip, Newton's steps unrolled per distinct (mat angle, velocity)
+    and the lateral force they leave (strip_model.strip_steady_states);
     without, the closed forms (eq. 1's friction ellipse, eq. 10/23's angle;
     angles alone: eq. 25 in l1/l2)."""
     rig = data.rig
@@ -168,10 +179,10 @@ def _steady_sliding(data: MeasurementSet, val, start: dict, free: list, strip: b
     angles = [] if data.angles is None else list(zip(data.angles[:, 0], data.velocities_of_angles()))
     if strip:
         points = sorted({(float(a), float(v)) for a, v in forces + angles})
-        tan_phi, push = strip_steady_states(val, start, rig, points, "c_strip" in free, c_known)
+        tan_phi, push, left = strip_steady_states(val, start, rig, points, "c_strip" in free, c_known)
         at = {p: i for i, p in enumerate(points)}
         return {"push": [push[at[(float(a), float(v))]] for a, v in forces],
-                "tan_phi": [tan_phi[at[(float(a), float(v))]] for a, v in angles]}
+                "tan_phi": [tan_phi[at[(float(a), float(v))]] for a, v in angles], "left": left}
     push = [cf.steady_drive_force(val("mu1"), val("mu2"), rig.axes(a)[1], 0.0, rig.mass_kg, rig.g)
             for a, _ in forces]
     if "eps_ratio" in free:
@@ -179,4 +190,4 @@ def _steady_sliding(data: MeasurementSet, val, start: dict, free: list, strip: b
                    for a, _ in angles]
     else:
         tan_phi = [cf.eq25_tan_phi(val("l1_l2_ratio"), 1.0, rig.axes(a)[0]) for a, _ in angles]
-    return {"push": push, "tan_phi": tan_phi}
+    return {"push": push, "tan_phi": tan_phi, "left": []}

@@ -122,9 +122,10 @@ class ReductionSummary:
 class FitRecord:
     """How the joint fit ended: converged (every part of `convergence`:
     solver, the last solve met IPOPT's tolerance with no Gauss-Newton step
-    left; noise_model, the reweighting settled; strip_regimes, the strip's
-    regimes are those at the solution), each solve's status, iterations and
-    step left [standard errors], the lack-of-fit test of each group with
+    left; noise_model, the reweighting settled; strip_regimes, strip_roots:
+    the strip's regimes and steady states are those at the solution), each
+    solve's status, iterations and step left [standard errors], the
+    lack-of-fit test of each group with
     replicates (lack_of_fit.LackOfFit.as_json), and whether identify wrote
     it with --force."""
     converged: bool

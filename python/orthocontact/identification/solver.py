@@ -94,8 +94,8 @@ class WeightedSolver:
         lam_f, lam_g = ca.MX.sym("lam_f"), ca.MX.sym("lam_g", 0)
         hessian = ca.Function("nlp_hess_l", [z, ca.vertcat(w, d), lam_f, lam_g],
                               [ca.triu(lam_f * ca.mtimes(Jz.T, Jz * ca.repmat(w, 1, p)) / n)])
-        # the gradient J' W r from the model's own Jacobian: reverse mode through the
-        # strip's mapped rootfinders would cost most of a solve
+        # the gradient J' W r from the model's own Jacobian, already built: no
+        # reverse mode through the strip's unrolled Newton steps
         gradient = ca.Function("nlp_grad_f", [z, ca.vertcat(w, d)], [objective, ca.mtimes(Jz.T, w * r) / n])
         problem = {"x": z, "p": ca.vertcat(w, d), "f": 0.5 * ca.dot(w, r_alone * r_alone) / n}
         self.nlp = ca.nlpsol("joint_fit", "ipopt", problem,

@@ -34,50 +34,61 @@ def strip_regimes(data: MeasurementSet, values: dict) -> tuple:
     return tuple(out)
 
 
+# Newton steps from the start values' slope: quadratic convergence reaches rounding in
+# four for the steps a fit takes; the force left says at the solution whether it did
+# (FitModel.strip_roots_converged), and the fit is made again from there if not.
+NEWTON_STEPS = 4
+
+
 def strip_steady_states(val, start: dict, rig: RigSetup, points: list, c_free: bool, c_known: float):
-    """(tan(phi), q1 [N]) of steady sliding with the strip (closed_forms.
-    steady_strip_state_array) at each point (mat angle [deg], velocity
-    [m/s]), as casadi expressions of the fitted parameters: the root of the
-    lateral force (closed_forms.strip_lateral_force) in the slope, by one
-    casadi Newton rootfinder mapped over the points, from the slope at the
-    start values.  q1 is the push, so the driving force is F_int + q1.  The
-    sign of each point's lateral motion is the one at the start values
-    (fixed during the fit; strip_regimes tells whether the fitted values
-    keep it); where the strip holds the block there, tan(phi) = 0 and the
-    push is that of slip along X1."""
+    """(tan(phi), q1 [N], the lateral force left [N], 0 where held) of steady sliding with
+    the strip (closed_forms.steady_strip_state_array) at each point (mat
+    angle [deg], velocity [m/s]), as casadi expressions of the fitted
+    parameters: NEWTON_STEPS Newton steps on the lateral force
+    (closed_forms.strip_lateral_force) in the slope, unrolled from the slope
+    at the start values, so that the fit's Jacobian is exact algebra
+    (scalar graph) and the root's derivative that of the implicit function
+    once the steps have converged: the force left at the last step tells.
+    q1 is the push, so the driving force is F_int + q1.  The sign of each
+    point's lateral motion is the one at the start values (fixed during the
+    fit; strip_regimes tells whether the fitted values keep it); where the
+    strip holds the block there, tan(phi) = 0 and the push is that of slip
+    along X1."""
     import casadi as ca
     N = rig.normal_force
     c = val("c_strip") if c_free else c_known
-    params = ca.vertcat(val("mu1"), val("mu2"), val("eps_ratio"), c)
+    mu1, mu2, ratio = val("mu1"), val("mu2"), val("eps_ratio")
     angles = np.array([a for a, _ in points], float)
     velocities = np.array([v for _, v in points], float)
     alpha, beta = rig.axes(angles)
     t0 = np.zeros(len(points))
+    eps1, c0 = start.get("eps_ratio", 1.0) * 1e4, start.get("c_strip", c_known)
     for v in np.unique(velocities):     # the start's slopes, one array per velocity
         m = velocities == v
-        ratio = start.get("eps_ratio", 1.0)
-        t0[m] = cf.steady_tan_phi_with_strip_array(start["mu1"], start["mu2"], ratio * 1e4, 1e4, alpha[m],
-                                                   beta[m], rig.rule, rig.mu_strip,
-                                                   start.get("c_strip", c_known), v, N)
-    rows = [(al, be, v, 0.0 if t == 0 else math.copysign(1.0, t), t)
-            for al, be, v, t in zip(alpha, beta, velocities, t0)]
-    p, d, t = ca.MX.sym("p", 4), ca.MX.sym("d", 5), ca.MX.sym("t")
+        t0[m] = cf.steady_tan_phi_with_strip_array(start["mu1"], start["mu2"], eps1, 1e4, alpha[m], beta[m],
+                                                   rig.rule, rig.mu_strip, c0, v, N)
+    # one Newton step and the balance as functions of (slope, parameters, point), inlined per point
+    t, p, d = ca.SX.sym("t"), ca.SX.sym("p", 4), ca.SX.sym("d", 4)
 
     def balance(slope):
         # eps enters the direction only through eps1/eps2: eps2 = 1 N/m here
         h = cf.slip_force_tensor(p[0], p[1], p[2], 1.0, d[0], d[1], rig.rule)
         return cf.strip_lateral_force(h, cf.friction_entries(p[0], p[1], d[1]), slope, d[3], rig.mu_strip,
                                       p[3] * d[2], N)
-    residual = ca.Function("strip_lateral_force", [t, ca.vertcat(p, d)], [balance(t)[0]])
-    root = ca.rootfinder("strip_slope", "newton", residual, {"abstol": 1e-14 * N})
-    one = ca.Function("strip_steady_state", [p, d], [root(d[4], ca.vertcat(p, d))])
-    moving = [i for i, row in enumerate(rows) if row[3] != 0]
-    slopes = one.map(len(moving))(ca.repmat(params, 1, len(moving)), np.array([rows[i] for i in moving]).T) \
-        if moving else []
-    tan_phi = [0.0] * len(rows)
-    for k, i in enumerate(moving):
-        tan_phi[i] = slopes[k]
-    held = ca.Function("strip_push", [t, p, d], [balance(t)[1]])
-    push = held.map(len(rows))(ca.horzcat(*[ca.MX(x) if isinstance(x, float) else x for x in tan_phi]),
-                               ca.repmat(params, 1, len(rows)), np.array(rows).T)
-    return tan_phi, [push[i] for i in range(len(rows))]
+    lateral, q1 = balance(t)
+    newton = ca.Function("strip_newton_step", [t, p, d], [t - lateral / ca.jacobian(lateral, t)])
+    state = ca.Function("strip_balance", [t, p, d], [lateral, q1])
+    params = ca.vertcat(mu1, mu2, ratio, c)
+    tan_phi, push, left = [], [], []
+    for al, be, v, slope in zip(alpha, beta, velocities, t0):
+        point = ca.DM([al, be, v, 0.0 if slope == 0 else math.copysign(1.0, slope)])
+        slope = float(slope)
+        if point[3] != 0:
+            for _ in range(NEWTON_STEPS):
+                slope = newton(slope, params, point)
+        force_left, push_x1 = state(slope, params, point)
+        tan_phi.append(slope)
+        push.append(push_x1)
+        # a held block is no root: the strip's friction takes what is left (strip_regimes)
+        left.append(force_left if point[3] != 0 else 0.0)
+    return tan_phi, push, left
