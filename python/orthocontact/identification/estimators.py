@@ -239,7 +239,7 @@ def joint_fit(data: MeasurementSet, start: dict, on_solve=None) -> JointFit:
     solves = []
     for _ in range(MAX_REGIME_FITS):
         model = fit_model.build(data, start, free)
-        x, weighting, rounds, settled = _reweighted_fit(model, data, start, solves, on_solve)
+        x, weighting, rounds, settled = _reweighted_fit(model, start, solves, on_solve)
         values = dict(start, **model.values(x))
         regimes_kept = strip_regimes(data, values) == strip_regimes(data, start)
         roots = model.strip_roots_converged(x, data.rig.normal_force)
@@ -251,8 +251,7 @@ def joint_fit(data: MeasurementSet, start: dict, on_solve=None) -> JointFit:
     return _fit_result(model, data, x, weighting, why, solves, rounds, converged)
 
 
-def _reweighted_fit(model: fit_model.FitModel, data: MeasurementSet, start: dict, solves: list,
-                    on_solve=None):
+def _reweighted_fit(model: fit_model.FitModel, start: dict, solves: list, on_solve=None):
     """(x, Weighting, rounds, settled) of the solve-and-reweight loop: each
     group's tau^2 from its residuals (noise_model) until it moves by less
     than TAU2_TOLERANCE of its variance; every solve appended to `solves`."""
