@@ -166,9 +166,9 @@ def build_parser() -> argparse.ArgumentParser:
         common(p, written_when(done))
         return p
 
-    def common(p, out_help, scheduler=True):
+    def common(p, out_help, scheduler=True, force_help=OWNER_HELP):
         p.add_argument("--out", required=True, type=_out_path, metavar="DIR", help=out_help)
-        force(p)
+        force(p, force_help)
         p.add_argument("--workers", type=_workers, default=None, metavar="N",
                        help="worker processes for sweeps (default: the number of cores, at most 8; "
                             "refused above 4 per core or what the free memory holds, about 128 MB "
@@ -217,7 +217,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "(run,kind,mat_angle_deg,velocity_m_s), trajectories/RUN.csv (t_s,x1_m,x2_m), "
                         "forces/RUN.csv (t_s,force_N); angles in degrees, forces in N, positions in m, "
                         "times in s, velocity in m/s")
-    common(i, written_when("the fit completes"), scheduler=False)
+    common(i, written_when("the fit completes"), scheduler=False,
+           force_help="write a fit that did not converge (marked so in identified.json; export refuses "
+                      "it), and " + OWNER_HELP)
     i.add_argument("--no-validate", action="store_true",
                    help="skip the validation runs of the identified parameters on the FMU")
     s = command("ssp", cmd_ssp, ("scenario",),
@@ -251,7 +253,8 @@ def build_parser() -> argparse.ArgumentParser:
     x.add_argument("--scenario", type=Path, default=None, metavar="SCENARIO",
                    help="sweep scenario file (TOML) whose rig the SSP uses (default: the data's "
                         "rig.toml)")
-    force(x, "export values the plausibility gate refuses or warns about (said in a warning and in "
+    force(x, "export values the plausibility gate refuses or warns about, a fit that did not converge or "
+             "data the fitted law does not describe (lack of fit) (each said in a warning and in "
              "the FMUs' documentation and model description), and write into --out even if another "
              "command's run is there (its files are replaced; what export reads is never removed)")
     scenario_command("sensitivity", cmd_sensitivity,
