@@ -145,8 +145,9 @@ class FitRecord:
             step = last.get("step_left_se", math.nan)
             out.append(f"the joint fit did not converge ({parts}; the last solve: {last.get('status')}, "
                        f"{last.get('iterations')} iterations, a step of {step:.2g} standard errors left)")
-        out += [t["line"] for t in self.lack_of_fit.values() if t.get("rejected")]
-        return out
+        rejected = [t for t in self.lack_of_fit.values() if t.get("rejected")]
+        # the least likely group first: its cause is the likelier one
+        return out + [t["line"] for t in sorted(rejected, key=lambda t: t["p_value"])]
 
     def as_json(self) -> dict:
         return {"converged": self.converged, "convergence": dict(self.convergence),

@@ -292,7 +292,10 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
                          "export refuses it)")
     warnings = plausible_values(data, fit.values)
     warnings += [f"{data.folder}: {t.line()}; `orthocontact export` refuses this fit"
-                 for t in fit.lack_of_fit.values() if t.rejected]
+                 for t in sorted(fit.lack_of_fit.values(), key=lambda t: t.p_value) if t.rejected]
+    held = fit.solves[-1].get("at_bound", []) if fit.solves else []
+    warnings += [f"{data.folder}: {n} is held at its lower bound (0: the data ask for less); its "
+                 "interval assumes an interior minimum and is not meaningful" for n in held]
     mu1, mu2 = fit.values.get("mu1"), fit.values.get("mu2")
     mr = max_rule(data, mu1, mu2)
     e40 = eq40_fit(data, mu1, mu2)

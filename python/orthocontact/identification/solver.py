@@ -43,6 +43,7 @@ class Solve:
     status: str
     iterations: int
     step_se: float
+    at_bound: tuple = ()     # the parameters their lower bound holds (a viscosity at 0, say)
 
     @property
     def converged(self) -> bool:
@@ -50,7 +51,8 @@ class Solve:
 
     def as_json(self) -> dict:
         return {"status": self.status, "iterations": self.iterations,
-                "step_left_se": float(self.step_se), "converged": self.converged}
+                "step_left_se": float(self.step_se), "converged": self.converged,
+                "at_bound": list(self.at_bound)}
 
 
 def information(J: np.ndarray, w: np.ndarray) -> np.ndarray:
@@ -68,13 +70,28 @@ def covariance(M: np.ndarray) -> np.ndarray:
     return np.linalg.pinv(M / np.outer(d, d)) / np.outer(d, d)
 
 
-def gauss_newton_step_se(r: np.ndarray, J: np.ndarray, w: np.ndarray) -> float:
-    """The largest |Gauss-Newton step| still to go at (r, J), in standard
-    errors of each parameter (0: a stationary point)."""
-    cov = covariance(information(J, w))
-    step = cov @ (J.T @ (w * r))
+def gauss_newton_step_se(r: np.ndarray, J: np.ndarray, w: np.ndarray,
+                         room: np.ndarray | None = None) -> tuple[float, np.ndarray]:
+    """(the largest |Gauss-Newton step| still to go at (r, J) in standard
+    errors of each parameter, 0 at a stationary point; which parameters
+    their lower bound holds).  room: each parameter's distance to its lower
+    bound (None: unbounded).  A parameter whose step would take it through
+    its bound is held there (the bound's Karush-Kuhn-Tucker condition: an
+    interior-point solver stops just short of it): the step is the others'."""
+    held = np.zeros(J.shape[1], dtype=bool)
+    room = np.full(J.shape[1], np.inf) if room is None else room
+    while True:
+        free = ~held
+        cov = covariance(information(J[:, free], w))
+        step = -cov @ (J[:, free].T @ (w * r))      # r = data - model: the descent is -J'Wr
+        push = np.zeros(len(held))
+        push[free] = step
+        newly = ~held & (push < -room)
+        if not newly.any():
+            break
+        held |= newly
     se = np.sqrt(np.maximum(np.diag(cov), 1e-300))
-    return float(np.max(np.abs(step) / se)) if len(step) else 0.0
+    return (float(np.max(np.abs(step) / se)) if len(step) else 0.0), held
 
 
 class WeightedSolver:
@@ -111,4 +128,6 @@ class WeightedSolver:
         stats = self.nlp.stats()
         x = np.array(sol["x"]).ravel() / d
         r, J = self.model.evaluate(x)
-        return Solve(x, stats["return_status"], int(stats["iter_count"]), gauss_newton_step_se(r, J, w))
+        step_se, held = gauss_newton_step_se(r, J, w, x - BOUNDS[0])
+        return Solve(x, stats["return_status"], int(stats["iter_count"]), step_se,
+                     tuple(n for n, h in zip(self.model.free, held) if h))
