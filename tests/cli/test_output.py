@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from cli_run import CMD, case4_named, leftovers, one_error_line, timed_run
+from cli_run import CMD, MAT_SWEEP, case4_named, leftovers, one_error_line, timed_run
 from cli_run import run_cli as run
 from orthocontact.cli.main import main
 from orthocontact.cli.output import (
@@ -240,7 +240,8 @@ def test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_sta
         os.kill(live.pid, signal.SIGSTOP)   # in progress, its lock held
         theirs = partials()
         killed = start(SCENARIOS / "mat_aged.toml")
-        _until(lambda: len(partials()) == 2)
+        # its folder with its lock: killed before that, a run leaves a folder without one
+        _until(lambda: len(partials()) == 2 and all((p / LOCK).exists() for p in partials()))
         os.kill(killed.pid, signal.SIGKILL)
         killed.wait(timeout=30)
         left = [p for p in partials() if p not in theirs]
@@ -534,3 +535,25 @@ def test_where_no_exchange_can_be_made_the_files_move_one_by_one(tmp_path, monke
     assert _is_second_run(out)
     assert out.is_symlink() == (why == "a symbolic link")
     assert sorted(leftovers(tmp_path)) == sorted(["out"] + (["target"] if why == "a symbolic link" else []))
+
+
+def test_an_output_the_user_edited_is_never_overwritten_by_the_same_command(tmp_path):
+    """The same `run` again into its folder after sweep.csv was edited:
+    refused in one line naming the file, the edit and every other file as
+    they were; with --force the run replaces it.  Before, the edit was gone
+    with exit 0."""
+    sc = tmp_path / "m.toml"
+    sc.write_text(MAT_SWEEP)
+    out = tmp_path / "out"
+    assert run(["run", sc, "--out", out], tmp_path).returncode == 0
+    edited = (out / "sweep.csv").read_text() + "# my note\n"
+    (out / "sweep.csv").write_text(edited)
+    before = {n: (out / n).read_bytes() for n in files_under(out)}
+    p = run(["run", sc, "--out", out], tmp_path)
+    # after the run's progress lines (the check needs the files it would write): one error line
+    errors = [x for x in p.stderr.splitlines() if x.startswith("orthocontact: error: ")]
+    assert p.returncode == 2 and len(errors) == 1 and errors[0] == p.stderr.strip().splitlines()[-1]
+    assert "sweep.csv changed since `orthocontact run`" in errors[0] and "--force to replace it" in errors[0]
+    assert {n: (out / n).read_bytes() for n in files_under(out)} == before
+    assert run(["run", sc, "--out", out, "--force"], tmp_path).returncode == 0
+    assert (out / "sweep.csv").read_text() != edited

@@ -21,6 +21,7 @@ from ..errors import InputError
 from ..output.manifest import (
     MANIFEST,
     Manifest,
+    file_names,
     new_manifest,
     outdated,
     owner_of,
@@ -64,18 +65,28 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
         read_manifest(out)   # its list decides what the run removes: a bad one is refused now
 
 
-def check_owner(out: Path, command: str | None, force: bool = False, reads=(), option: str = "--out") -> None:
+def check_owner(out: Path, command: str | None, force: bool = False, reads=(), option: str = "--out",
+                writes=()) -> None:
     """Refuses (InputError, one line naming the owner and --force) to write
     the results of `orthocontact COMMAND` into `out` unless it is new, empty
     (but for a killed run's scratch folders) or holds an earlier run of the
     same command: not a folder of another command's run, nor one holding
     files no orthocontact run wrote, nor one holding a file or folder of
-    `reads` (what the command reads).  `force` lets each through: the
-    commit then replaces the other run's files and keeps what is read."""
+    `reads` (what the command reads); nor, once the run is done, its own
+    earlier run's folder where a file that run wrote has changed since (the
+    user's edit) and `writes` (the new run's files) would overwrite it.
+    `force` lets each through: the commit then replaces the other run's
+    files and keeps what is read."""
     out = Path(out)
     inside = [r for r in (Path(r) for r in reads) if _holds(out, r)]
     owner = owner_of(out)
     mine = owner is not None and owner[1].command == command and owner[0] == out.absolute()
+    if mine and writes and not force:
+        edited = [n for n in outdated(out, owner[1], keep=())[1] if n in writes]
+        if edited:
+            raise InputError(f"{option} {out}: {', '.join(edited)} changed since {owner[1].describe()} "
+                             "wrote it (an edit of yours?), and this run would write it again: move it "
+                             f"out of {out} to keep it, or pass --force to replace it; nothing written")
     if force or (mine and not inside):
         return
     by = f"`orthocontact {command}`" if command else "this command"
@@ -205,7 +216,8 @@ def staged_output(out: Path, command: str | None = None, force: bool = False):
         raise
     try:
         reads = paths_being_read()
-        check_owner(out, command, force, reads)   # another command may have written there meanwhile
+        # another command may have written there meanwhile; an edited earlier output is refused
+        check_owner(out, command, force, reads, writes=set(file_names(stage)))
         commit_run(stage, out, command, reads)
     except BaseException:   # a commit the system refused (disk full) leaves nothing either
         held.remove()

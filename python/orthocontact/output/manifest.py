@@ -50,12 +50,17 @@ def file_sha256(path: Path) -> str:
     return h.hexdigest()
 
 
-def listing(folder: Path) -> dict:
+def file_names(folder: Path) -> list[str]:
     """Every file under `folder` (subfolders included, the manifest left
-    out): POSIX path under the folder -> SHA-256."""
+    out), as its POSIX path under the folder, sorted."""
     folder = Path(folder)
-    return {p.relative_to(folder).as_posix(): file_sha256(p)
-            for p in sorted(folder.rglob("*")) if p.is_file() and p.name != MANIFEST}
+    return [p.relative_to(folder).as_posix() for p in sorted(folder.rglob("*"))
+            if p.is_file() and p.name != MANIFEST]
+
+
+def listing(folder: Path) -> dict:
+    """Every file under `folder` (file_names) -> its SHA-256."""
+    return {name: file_sha256(Path(folder) / name) for name in file_names(folder)}
 
 
 def new_manifest(folder: Path, command: str | None, version: str) -> Manifest:
