@@ -3,7 +3,6 @@ designs known in closed form: straight-line and quadratic regression on
 [-1, 1] (D- and A-optimal at the ends, the quadratic's at -1, 0, 1 with
 weight 1/3 each), and the equivalence theorem's check."""
 import math
-import time
 
 import numpy as np
 import pytest
@@ -115,18 +114,3 @@ def test_the_algorithm_says_its_iteration():
     status = ds.Status()
     ds.approximate(regression(2, budget=(6,)), tolerance=1e-9, max_iterations=50, status=status)
     assert status.text.startswith("approximate design: iteration 50, max sensitivity ratio 1.0")
-
-
-def test_work_that_counts_no_steps_says_it_is_running(monkeypatch):
-    said = []
-    monkeypatch.setattr(ds, "FIRST_S", 0.05)
-    monkeypatch.setattr(ds, "HEARTBEAT_S", 0.05)
-    with ds.ticking(said.append, ds.Status("building")):
-        time.sleep(0.3)
-    time.sleep(0.1)
-    n = len(said)
-    assert n >= 2 and all(s.startswith("building (") and s.endswith("s, running)") for s in said)
-    time.sleep(0.2)
-    assert len(said) == n      # stopped with the block
-    with ds.ticking(None, ds.Status("quiet")):
-        pass

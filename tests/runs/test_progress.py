@@ -75,3 +75,22 @@ def test_a_heartbeat_counts_runs_and_speaks_only_when_due(capsys):
         h.update()
     assert h.done == 4 and capsys.readouterr().err == ""
     assert 1 <= default_workers() <= 8
+
+
+def test_status_lines_say_the_stage_until_the_block_ends(monkeypatch):
+    """Work of several stages (a design's search) says what it is doing
+    FIRST_S after the start and every HEARTBEAT_S after, and stops with
+    its block; nothing where say is None."""
+    from orthocontact.runs.progress import status_lines
+    said, stage = [], ["building"]
+    monkeypatch.setattr(Progress, "FIRST_S", 0.05)
+    monkeypatch.setattr(Progress, "HEARTBEAT_S", 0.05)
+    with status_lines(said.append, lambda: stage[0]):
+        time.sleep(0.3)
+    time.sleep(0.1)
+    n = len(said)
+    assert n >= 2 and all(s.startswith("building (") and s.endswith("s, running)") for s in said)
+    time.sleep(0.2)
+    assert len(said) == n      # stopped with the block
+    with status_lines(None, lambda: "quiet"):
+        pass

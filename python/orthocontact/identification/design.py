@@ -22,9 +22,10 @@ import numpy as np
 from .. import closed_forms as cf
 from .. import plausibility
 from ..errors import InputError
+from ..runs.progress import status_lines
 from . import fit_model
 from .design_inputs import PAPER_VELOCITIES, RAMP_VELOCITY_M_S, Prior, Run, baseline_runs, grouped, lab_order
-from .design_search import Equivalence, Problem, Status, approximate, exact, ticking
+from .design_search import Equivalence, Problem, Status, approximate, exact
 from .estimators import identifiability
 from .measurements import MeasurementSet
 
@@ -337,12 +338,12 @@ def check_size(space: Space) -> None:
 def plan(prior: Prior, space: Space, criterion: str, say=None) -> Design:
     """The optimal design of `space` at `prior` by `criterion` (D or A):
     the approximate optimum, then whole runs (design_search.exact);
-    `say(text)` is given a progress line every design_search.HEARTBEAT_S."""
+    `say(text)` is given a progress line as runs.progress.status_lines says."""
     check_size(space)
     velocities = PAPER_VELOCITIES if prior.rate_dependent else (prior.rig.velocity_m_s,)
     n = len(space.angles_deg) * len(space.velocities_m_s)
     status = Status(f"the fit's model at {n} candidate slide runs")
-    with ticking(say, status):
+    with status_lines(say, lambda: status.text):
         cand = candidates(prior, space, baseline_runs(space.slides, prior.peak_angle_deg(), velocities))
         weights, equivalence, counts = search(prior, space, cand, criterion, status)
     problem = problem_of(prior, space, cand, criterion)

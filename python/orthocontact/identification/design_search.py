@@ -13,11 +13,8 @@ Candidates come in groups (slide runs, ramp samples), each with its own
 number of runs.  No units here: the caller's."""
 from __future__ import annotations
 
-import contextlib
 import math
 import sys
-import threading
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,8 +27,6 @@ CRITERIA = ("D", "A")
 EXPONENT = {"D": 1.0, "A": 0.5}
 # An information matrix in correlation form whose determinant is below this is singular.
 SINGULAR = 1e-12
-# Progress lines as the rig's runs give them (runs.progress): the first within 2 s, then every 10 s.
-FIRST_S, HEARTBEAT_S = 2.0, 10.0
 
 
 @dataclass(frozen=True)
@@ -115,7 +110,7 @@ def approximate(problem: Problem, tolerance: float = 1e-3, max_iterations: int =
     """The approximate optimum: each group's weights (summing to 1, times
     its number of runs) by the multiplicative algorithm, w_c <- w_c (d_c /
     average)^k, until the equivalence theorem holds to tolerance / 10 (or
-    max_iterations); `status` says the iteration (ticking prints it)."""
+    max_iterations); `status` says the iteration (runs.progress.status_lines prints it)."""
     sizes = np.bincount(problem.group, minlength=len(problem.budget)).astype(float)
     weights = 1.0 / sizes[problem.group]
     runs = np.asarray(problem.budget, float)[problem.group]
@@ -202,29 +197,6 @@ def exact(problem: Problem, weights: np.ndarray) -> np.ndarray:
 class Status:
     """What a design's search is doing now, for its progress lines."""
     text: str = ""
-
-
-@contextlib.contextmanager
-def ticking(say, status: Status):
-    """say(status.text with the time so far) FIRST_S after the start and
-    every HEARTBEAT_S after while the block runs, whatever its stages (the
-    fit model's build over the candidates, the approximate design, the
-    exchange); nothing where say is None."""
-    if say is None:
-        yield
-        return
-    stop, t0 = threading.Event(), time.monotonic()
-
-    def beat():
-        wait = FIRST_S
-        while not stop.wait(wait):
-            say(f"{status.text} ({time.monotonic() - t0:.0f} s, running)")
-            wait = HEARTBEAT_S
-    threading.Thread(target=beat, daemon=True, name="design heartbeat").start()
-    try:
-        yield
-    finally:
-        stop.set()
 
 
 def stderr_say(text: str) -> None:

@@ -1,7 +1,9 @@
 """Progress of many rig runs on stderr: a bar (a line per 10% when not a
-terminal), and a heartbeat for work whose run count is not known ahead."""
+terminal), a heartbeat for work whose run count is not known ahead, and
+status lines for work of several stages."""
 from __future__ import annotations
 
+import contextlib
 import sys
 import threading
 import time
@@ -85,3 +87,25 @@ class Heartbeat(Progress):
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+@contextlib.contextmanager
+def status_lines(say, text):
+    """say(text() with the time so far) Progress.FIRST_S after the start and
+    every Progress.HEARTBEAT_S after while the block runs, whatever stage it
+    is in (text() says which); nothing where say is None."""
+    if say is None:
+        yield
+        return
+    stop, t0 = threading.Event(), time.monotonic()
+
+    def beat():
+        wait = Progress.FIRST_S
+        while not stop.wait(wait):
+            say(f"{text()} ({time.monotonic() - t0:.0f} s, running)")
+            wait = Progress.HEARTBEAT_S
+    threading.Thread(target=beat, daemon=True, name="status lines").start()
+    try:
+        yield
+    finally:
+        stop.set()
