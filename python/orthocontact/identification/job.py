@@ -136,7 +136,6 @@ class Identification:
     validation: dict | None
     start: dict
     warnings: tuple = ()     # one line each: identified values that are unusual (plausible_values)
-    forced: bool = False     # written with --force although the fit did not converge
 
     def identified_file(self, reduction: identified.ReductionSummary | None = None
                         ) -> identified.IdentifiedFile:
@@ -233,19 +232,21 @@ class Identification:
             fit=self.fit_record(), reduction=reduction)
 
     def fit_record(self) -> identified.FitRecord:
-        return fit_record(self.fit, self.forced)
+        return fit_record(self.fit)
 
     def as_json(self) -> dict:
         """identified.json's object (IdentifiedFile.as_json)."""
         return self.identified_file().as_json()
 
 
-def fit_record(fit: JointFit, forced: bool = False) -> identified.FitRecord:
-    """How the joint fit ended, as identified.json records it."""
+def fit_record(fit: JointFit) -> identified.FitRecord:
+    """How the joint fit ended, as identified.json records it: a fit that
+    did not converge is written only by identify --force (identify), so
+    `forced` is its not converging."""
     return identified.FitRecord(converged=fit.converged, convergence=dict(fit.convergence),
                                 reweighting_rounds=fit.reweighting_rounds, solves=tuple(fit.solves),
                                 lack_of_fit={g: t.as_json() for g, t in fit.lack_of_fit.items()},
-                                forced=forced)
+                                forced=not fit.converged)
 
 
 # The identified values the gate judges, by their key in plausibility.QUANTITIES.
@@ -300,8 +301,7 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
     mr = max_rule(data, mu1, mu2)
     e40 = eq40_fit(data, mu1, mu2)
     val = validate_with_fmu(data, fit.values, workers, fmu_path) if validate else None
-    return Identification(data, fit, eq1(data), mr, e40, val, start, tuple(warnings),
-                          forced=not fit.converged)
+    return Identification(data, fit, eq1(data), mr, e40, val, start, tuple(warnings))
 
 
 def load_folder(folder):
