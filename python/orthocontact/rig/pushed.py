@@ -146,6 +146,106 @@ class _Tips(Exception):
     """The push's moment cannot be held: the run's result, not an error."""
 
 
+class _Equilibrium:
+    """A step's equilibrium on the pad FMU (module docstring): the scaled
+    residuals and their Jacobian at a carriage position u1 [m] and pose x,
+    Newton on them, the lateral balance that starts it, and the
+    continuation through intermediate carriage positions."""
+
+    def __init__(self, fmu: PadFMU, block: PushedBlock):
+        g, W = block.pad, block.weight
+        self.fmu, self.W, self.h, self.length = fmu, W, float(block.height_m), g.length
+        self.force_tol, self.moment_tol = RESIDUAL_TOL * W, RESIDUAL_TOL * W * max(g.length, g.width)
+
+    def residual(self, u1, x):
+        self.fmu.set_inputs(u1, x[0], 0.0, x[1], x[2], x[3])
+        T1, T2, Mz, Fn, M1, M2 = self.fmu.load()
+        h, force_tol, moment_tol = self.h, self.force_tol, self.moment_tol
+        R = np.array([T2 / force_tol, (Fn - self.W) / force_tol, (M1 + h * T2) / moment_tol,
+                      (M2 - h * T1) / moment_tol])
+        return R, (T1, T2, Mz, Fn, M1, M2)
+
+    def jacobian(self):
+        J = np.array(self.fmu.jacobian(UNKNOWNS, ("T1", "T2", "Fn", "M1", "M2")))
+        dT1, dT2, dFn, dM1, dM2 = J
+        h, force_tol, moment_tol = self.h, self.force_tol, self.moment_tol
+        return np.array([dT2 / force_tol, dFn / force_tol, (dM1 + h * dT2) / moment_tol,
+                         (dM2 - h * dT1) / moment_tol])
+
+    def equilibrium(self, u1, x):
+        """Newton from x at carriage position u1, backtracking on the residual."""
+        R, w = self.residual(u1, x)
+        it = 0
+        while np.max(np.abs(R)) > 1.0:
+            if it == NEWTON_ITERATIONS:
+                raise _NotConverged(f"{np.max(np.abs(R)):.3g}")
+            dx = np.linalg.solve(self.jacobian(), -R)
+            step, norm = 1.0, np.max(np.abs(R))
+            while True:   # backtracking: a step that does not reduce the residual is halved
+                trial = x + step * dx
+                R_new, w_new = self.residual(u1, trial)
+                if np.max(np.abs(R_new)) < norm or step < 1e-6:
+                    break
+                step *= 0.5
+            x, R, w = trial, R_new, w_new
+            it += 1
+        return x, w, it
+
+    def lateral(self, u1, x):
+        """x with u2 such that T2 = 0 at x's pose (Newton in u2 alone, at most
+        NEWTON_ITERATIONS steps), and T1 / Fn there; _Tips if the push's
+        moment needs the pressure's centre beyond the leading edge, h |T1|
+        >= Fn length/2: T1 / Fn under lateral equilibrium is the friction
+        the pressure's shape hardly changes (not at all in full slip)."""
+        x = x.copy()
+        for _ in range(NEWTON_ITERATIONS):
+            R, w = self.residual(u1, x)
+            if abs(R[0]) <= 1.0:
+                break
+            x[0] -= w[1] / self.fmu.jacobian(("u2",), ("T2",))[0][0]
+        T1, Fn = w[0], w[3]
+        if Fn > 0 and self.h * abs(T1) >= 0.5 * Fn * self.length:
+            raise _Tips
+        return x
+
+    def continued(self, u0, u1, x, depth=0):
+        """equilibrium at u1, through the midpoint of (u0, u1) where it does not converge."""
+        try:
+            return self.equilibrium(u1, x)
+        except _NotConverged as e:
+            if depth == CONTINUATION_DEPTH:
+                raise PushNotSolved(f"the push at travel {u1:.6g} m (height {self.h:g} m): Newton did not "
+                                    f"reach equilibrium (residual {e} tolerances)") from None
+            xm, _, im = self.continued(u0, 0.5 * (u0 + u1), x, depth + 1)
+            x1, w1, i1 = self.continued(0.5 * (u0 + u1), u1, xm, depth + 1)
+            return x1, w1, im + i1
+
+
+# What a push records at each step solved: PushResult's arrays.
+RECORDED = ("x1", "x2", "d", "phi1", "phi2", "T1", "T2", "Mz", "M1", "M2", "Fn",
+            "contact_fraction", "slip_fraction", "iterations")
+
+
+def _check_tilt(u1: float, x, h: float) -> None:
+    """PushNotSolved where the pose x tilts the block beyond MAX_TILT_RAD."""
+    if max(abs(x[2]), abs(x[3])) > MAX_TILT_RAD:
+        raise PushNotSolved(f"the push at travel {u1:.6g} m (height {h:g} m) tilts the block by "
+                            f"{math.degrees(max(abs(x[2]), abs(x[3]))):.3g} deg, beyond the small "
+                            f"tilts the pad models ({math.degrees(MAX_TILT_RAD):.3g} deg)")
+
+
+def _record(rec: dict, u1: float, x, w, out: dict, it: int) -> None:
+    """Appends a solved step to rec: travel, pose, wrench, the FMU's
+    fractions and Newton's iterations."""
+    for key, v in zip(("x1", "x2", "d", "phi1", "phi2"), (u1, *x)):
+        rec[key].append(float(v))
+    for key, v in zip(("T1", "T2", "Mz", "Fn", "M1", "M2"), w):
+        rec[key].append(float(v))
+    rec["contact_fraction"].append(out["contactFraction"])
+    rec["slip_fraction"].append(out["slipFraction"])
+    rec["iterations"].append(it)
+
+
 def push(params: ContactParams, block: PushedBlock, travel_m: float, step_m: float,
          fmi_version: int = 2, fmu_path=None, cells: bool = False) -> PushResult:
     """Pushes the block over travel_m [m] in carriage steps of step_m [m]
@@ -159,101 +259,27 @@ def push(params: ContactParams, block: PushedBlock, travel_m: float, step_m: flo
     travel, h_step = _positive("travel_m", travel_m), _positive("step_m", step_m)
     n = int(math.ceil(travel / h_step - 1e-9))
     g, W = block.pad, block.weight
-    h = float(block.height_m)
-    kn = block.foundation.kn
-    force_tol, moment_tol = RESIDUAL_TOL * W, RESIDUAL_TOL * W * max(g.length, g.width)
-    x = np.array([0.0, W / (kn * g.length * g.width), 0.0, 0.0])   # settled, level
-    rec = {k: [] for k in ("x1", "x2", "d", "phi1", "phi2", "T1", "T2", "Mz", "M1", "M2", "Fn",
-                           "contact_fraction", "slip_fraction", "iterations")}
+    x = np.array([0.0, W / (block.foundation.kn * g.length * g.width), 0.0, 0.0])   # settled, level
+    rec = {k: [] for k in RECORDED}
     regime, tipped, last_cells = None, None, (None, None)
     with PadFMU(fmu_path, "pushed", fmi_version) as fmu:
         fmu.initialize(params, g, block.foundation, (0.0, x[0], 0.0, x[1], x[2], x[3]))
-
-        def residual(u1, x):
-            fmu.set_inputs(u1, x[0], 0.0, x[1], x[2], x[3])
-            T1, T2, Mz, Fn, M1, M2 = fmu.load()
-            R = np.array([T2 / force_tol, (Fn - W) / force_tol, (M1 + h * T2) / moment_tol,
-                          (M2 - h * T1) / moment_tol])
-            return R, (T1, T2, Mz, Fn, M1, M2)
-
-        def jacobian():
-            J = np.array(fmu.jacobian(UNKNOWNS, ("T1", "T2", "Fn", "M1", "M2")))
-            dT1, dT2, dFn, dM1, dM2 = J
-            return np.array([dT2 / force_tol, dFn / force_tol, (dM1 + h * dT2) / moment_tol,
-                             (dM2 - h * dT1) / moment_tol])
-
-        def equilibrium(u1, x):
-            """Newton from x at carriage position u1, backtracking on the residual."""
-            R, w = residual(u1, x)
-            it = 0
-            while np.max(np.abs(R)) > 1.0:
-                if it == NEWTON_ITERATIONS:
-                    raise _NotConverged(f"{np.max(np.abs(R)):.3g}")
-                dx = np.linalg.solve(jacobian(), -R)
-                step, norm = 1.0, np.max(np.abs(R))
-                while True:   # backtracking: a step that does not reduce the residual is halved
-                    trial = x + step * dx
-                    R_new, w_new = residual(u1, trial)
-                    if np.max(np.abs(R_new)) < norm or step < 1e-6:
-                        break
-                    step *= 0.5
-                x, R, w = trial, R_new, w_new
-                it += 1
-            return x, w, it
-
-        def lateral(u1, x):
-            """x with u2 such that T2 = 0 at x's pose (Newton in u2 alone, at most
-            NEWTON_ITERATIONS steps), and T1 / Fn there; _Tips if the push's
-            moment needs the pressure's centre beyond the leading edge, h |T1|
-            >= Fn length/2: T1 / Fn under lateral equilibrium is the friction
-            the pressure's shape hardly changes (not at all in full slip)."""
-            x = x.copy()
-            for _ in range(NEWTON_ITERATIONS):
-                R, w = residual(u1, x)
-                if abs(R[0]) <= 1.0:
-                    break
-                x[0] -= w[1] / fmu.jacobian(("u2",), ("T2",))[0][0]
-            T1, Fn = w[0], w[3]
-            if Fn > 0 and h * abs(T1) >= 0.5 * Fn * g.length:
-                raise _Tips
-            return x
-
-        def continued(u0, u1, x, depth=0):
-            """equilibrium at u1, through the midpoint of (u0, u1) where it does not converge."""
-            try:
-                return equilibrium(u1, x)
-            except _NotConverged as e:
-                if depth == CONTINUATION_DEPTH:
-                    raise PushNotSolved(f"the push at travel {u1:.6g} m (height {h:g} m): Newton did not "
-                                        f"reach equilibrium (residual {e} tolerances)") from None
-                xm, _, im = continued(u0, 0.5 * (u0 + u1), x, depth + 1)
-                x1, w1, i1 = continued(0.5 * (u0 + u1), u1, xm, depth + 1)
-                return x1, w1, im + i1
-
+        solver = _Equilibrium(fmu, block)
         u_prev = 0.0
         for k in range(1, n + 1):
             u1 = min(k * h_step, travel)
             try:
-                x, w, it = continued(u_prev, u1, lateral(u1, x))
+                x, w, it = solver.continued(u_prev, u1, solver.lateral(u1, x))
             except _Tips:
                 regime, tipped = TIPS, u1
                 break
-            if max(abs(x[2]), abs(x[3])) > MAX_TILT_RAD:
-                raise PushNotSolved(f"the push at travel {u1:.6g} m (height {h:g} m) tilts the block by "
-                                    f"{math.degrees(max(abs(x[2]), abs(x[3]))):.3g} deg, beyond the small "
-                                    f"tilts the pad models ({math.degrees(MAX_TILT_RAD):.3g} deg)")
+            _check_tilt(u1, x, solver.h)
             u_prev = u1
             out = fmu.outputs()
             if cells and k == n:
                 last_cells = (np.array(fmu.cell_normal_forces()), np.array(fmu.cell_states()))
             fmu.do_step(1.0)
-            for key, v in zip(("x1", "x2", "d", "phi1", "phi2"), (u1, *x)):
-                rec[key].append(float(v))
-            for key, v in zip(("T1", "T2", "Mz", "Fn", "M1", "M2"), w):
-                rec[key].append(float(v))
-            rec["contact_fraction"].append(out["contactFraction"])
-            rec["slip_fraction"].append(out["slipFraction"])
-            rec["iterations"].append(it)
+            _record(rec, u1, x, w, out, it)
     if regime is None:
         regime = FULL_CONTACT if rec["contact_fraction"] and rec["contact_fraction"][-1] == 1.0 else LIFT_OFF
     arrays = {k: np.array(v) for k, v in rec.items()}
