@@ -15,7 +15,7 @@ The public API (docs/reference/python-api.md):
 
 Subpackages by layer, lowest first (tests/contracts/test_structure.py keeps every
 import going down):
-    errors, plausibility  -- one-line errors; the plausible ranges of inputs with a unit
+    errors, version, plausibility -- one-line errors; the version; the plausible ranges of inputs
     runtime        -- a command's processes and folders: scratch, workers, signals
     fmu            -- the law's parameters, the installed FMUs, an FMU instance through fmpy
     closed_forms   -- the paper's closed forms; the rig's steady state with its strip
@@ -27,27 +27,11 @@ import going down):
     uq, reproduction -- uncertainty propagation; the paper reproduced, sensitivity
     cli            -- the `orthocontact` command
 """
-
-
-
-def _version() -> str:
-    """The version of the file VERSION: read from it in a source tree (an
-    editable install, or the package run from the repository), else the
-    installed package's metadata, which the build took from it."""
-    from pathlib import Path
-    source_tree = Path(__file__).resolve().parents[2]
-    if (source_tree / "pyproject.toml").is_file() and (source_tree / "VERSION").is_file():
-        return (source_tree / "VERSION").read_text().strip()
-    from importlib.metadata import version
-    return version("orthocontact")
-
-
-__version__ = _version()
-
-from .experiment.scenario import load as load_scenario  # noqa: E402
-from .fmu import ContactFMU, ContactParams, find_fmu  # noqa: E402
-from .rig import Rig, RigResult  # noqa: E402
-from .rig import run as run_rig  # noqa: E402
+from .experiment.scenario import load as load_scenario
+from .fmu import ContactFMU, ContactParams, find_fmu
+from .rig import Rig, RigResult
+from .rig import run as run_rig
+from .version import __version__
 
 
 def load_measurements(folder):

@@ -33,8 +33,8 @@ def test_version_file_holds_one_version_and_nothing_else_states_one():
     assert re.search(r'^input = "VERSION"', pyproject, re.M)
     cmake = (ROOT / "CMakeLists.txt").read_text()
     assert "project(orthocontact VERSION ${OC_VERSION}" in cmake
-    init = (PKG / "__init__.py").read_text()
-    assert not re.search(r'__version__\s*=\s*["\']', init)
+    for module in ("__init__.py", "version.py"):
+        assert not re.search(r'__version__\s*=\s*["\']', (PKG / module).read_text()), module
 
 
 def test_package_fmus_documentation_crosscheck_and_cli_agree():

@@ -242,7 +242,7 @@ def commit_run(stage: Path, out: Path, command: str | None, reads=()) -> None:
     new content in one step, manifest included (swap_in); where that cannot
     be done, file by file with the manifest last (a reader that finds it
     finds its files)."""
-    from .. import __version__
+    from ..version import __version__
     out = Path(out)
     owner = owner_of(out)
     run = new_manifest(stage, command, __version__)

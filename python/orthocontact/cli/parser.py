@@ -69,9 +69,9 @@ def _version_text() -> str:
     """The package's version and every installed FMU with the `version` its
     model description states; an FMU of another version is named as such (a
     stale install), not passed over."""
-    from .. import __version__
     from ..fmu.files import find_fmu, model_description
     from ..fmu.variables import models
+    from ..version import __version__
     lines = [f"orthocontact {__version__}"]
     for model in models().values():
         for v in (2, 3):

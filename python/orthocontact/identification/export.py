@@ -251,7 +251,7 @@ def export(cal: Calibration, out: Path, angle_deg: float, sc: Scenario | None = 
     (rig_scenario; default: the data's rig); returns what was written.
     forced: the findings exported with --force (plausible_calibration),
     said in the documentation and the description."""
-    from .. import __version__
+    from ..version import __version__
     check_angle(angle_deg)
     sc = sc or rig_scenario(cal)
     values = contact_start_values(cal, angle_deg)
