@@ -38,7 +38,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 SIX = ("mu1", "mu2", "eps1", "eps2", "alpha", "beta")
 GAP = 3  # lines between two consecutive names of one place
-CODE = re.compile(r"\.(py|c|h|sh|toml|cmake)$|(^|/)(CMakeLists\.txt|Makefile)$")
+CODE = re.compile(r"\.(py|c|h|inc|sh|toml|cmake)$|(^|/)(CMakeLists\.txt|Makefile)$")
 ASIDE = (  # (category, path pattern), first match wins; the rest is "code"
     ("table", r"^fmu_src/models/\w+/table\.h$|^fmu_src/law/law_table\.h$"),
     ("closed forms", r"^python/orthocontact/closed_forms/"),
@@ -99,7 +99,7 @@ def _hash_code(text: str) -> str:
 def code_of(path: str, text: str) -> str:
     if path.endswith(".py"):
         return _python_code(text)
-    if path.endswith((".c", ".h")):
+    if path.endswith((".c", ".h", ".inc")):
         return _c_code(text)
     return _hash_code(text)
 

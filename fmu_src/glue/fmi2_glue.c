@@ -13,13 +13,13 @@
 
 #define INST(c) ((fmu_instance *)(c))
 
-/* What FMI 3.0 defines alike (glue/fmi_both.h) */
+/* What FMI 3.0 defines alike (glue/fmi_both.inc) */
 #define FMI_PREFIX fmi2
 #define FMI_INSTANCE fmi2Component
 #define FMI_STATE state
 #define FMI_DESERIALIZE DeSerialize
 #define FMI_CONFIG 0
-#include "glue/fmi_both.h"
+#include "glue/fmi_both.inc"
 
 /* The logger formats its message printf-style: a literal '%' is doubled. */
 static void log_fmi2(fmu_instance *I, int status, const char *category, const char *text) {
@@ -162,7 +162,7 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
                                 &msg, __func__));
 }
 
-/* Types of which this FMU has no variables (glue/fmi_both.h), one a row. */
+/* Types of which this FMU has no variables (glue/fmi_both.inc), one a row. */
 #define NO_VARIABLES(TYPE)                                                                         \
     fmi2Status fmi2Get##TYPE(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,           \
                              fmi2##TYPE value[]) {                                                 \
@@ -271,7 +271,7 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
 NO_STATUS(Integer)
 NO_STATUS(String)
 
-/* ---- Model Exchange: the functions glue/fmi_both.h does not define ---- */
+/* ---- Model Exchange: the functions glue/fmi_both.inc does not define ---- */
 
 fmi2Status fmi2EnterEventMode(fmi2Component c) { return unsupported(c, __func__, NO_ME); }
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *e) {

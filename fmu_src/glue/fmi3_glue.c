@@ -18,13 +18,13 @@
 
 #define INST(c) ((fmu_instance *)(c))
 
-/* What FMI 2.0 defines alike (glue/fmi_both.h) */
+/* What FMI 2.0 defines alike (glue/fmi_both.inc) */
 #define FMI_PREFIX fmi3
 #define FMI_INSTANCE fmi3Instance
 #define FMI_STATE State
 #define FMI_DESERIALIZE Deserialize
 #define FMI_CONFIG FMU_CONFIG
-#include "glue/fmi_both.h"
+#include "glue/fmi_both.inc"
 
 typedef struct {
     fmi3InstanceEnvironment env;
@@ -429,7 +429,7 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean *discreteStatesN
     return unsupported(c, __func__, NO_EVENTS);
 }
 
-/* Model Exchange: the functions glue/fmi_both.h does not define */
+/* Model Exchange: the functions glue/fmi_both.inc does not define */
 FMI_NO_ME_ARRAY(GetContinuousStateDerivatives, fmi3Float64)
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance c, size_t *n) {
     (void)n;

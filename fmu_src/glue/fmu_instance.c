@@ -120,34 +120,32 @@ fmu_status fmu_model_check_range(unsigned int vr, double value, const char *cont
                     x ? x->min : NAN, x ? x->max : NAN, unit_sep(x), unit_of(x));
 }
 
-/* The values set by one call, saved on the stack up to this many (the body
- * of both setters: glue/set_batch.h). */
+/* The values set by one call, saved on the stack up to this many (the
+ * setters: glue/set_batch.inc). */
 enum { SAVED_ON_STACK = 16 };
 
-OC_HOT fmu_status fmu_model_set_float64(fmu_model *m, const unsigned int vr[], size_t n,
-                                        const double v[], int allow, fmu_msg *msg) {
-    double stack[SAVED_ON_STACK]; /* the old values (more: on the heap) */
+#define SET_ATTR OC_HOT
+#define SET_NAME fmu_model_set_float64
+#define SET_VALUES const double v[]
 #define SET_CTYPE double
 #define SET_SLOT SLOT_D
 #define SET_VALUE v[i]
 #define SET_TYPE_OK x->type == FMU_T_Float64
 #define SET_KIND x->type
-#include "glue/set_batch.h"
-}
+#include "glue/set_batch.inc"
 
-fmu_status fmu_model_set_int(fmu_model *m, const unsigned int vr[], size_t n, const void *v,
-                             size_t width, int kinds, int allow, fmu_msg *msg) {
-    int stack[SAVED_ON_STACK]; /* the old values (more: on the heap) */
-    /* In [min, max] (checked before the write): the int slot holds it.  A
-     * UInt64 is read unsigned, so that 2^64 - 1 is refused as itself. */
+/* In [min, max] (checked before the write): the int slot holds it.  A
+ * UInt64 is read unsigned, so that 2^64 - 1 is refused as itself. */
+#define SET_ATTR
+#define SET_NAME fmu_model_set_int
+#define SET_VALUES const void *v, size_t width, int kinds
 #define SET_CTYPE int
 #define SET_SLOT SLOT_I
 #define SET_VALUE                                                                                  \
     (kinds & FMU_UINT64) ? (double)((const uint64_t *)v)[i] : (double)fmu_int_at(v, width, i)
 #define SET_TYPE_OK kind_of(x, vr[i], kinds) & kinds
 #define SET_KIND kind_of(x, vr[i], kinds)
-#include "glue/set_batch.h"
-}
+#include "glue/set_batch.inc"
 
 static fmu_status not_of_type(unsigned int vr, int kinds, fmu_msg *msg) {
     const fmu_var *x = var_of(vr);

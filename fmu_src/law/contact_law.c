@@ -7,7 +7,7 @@
  *      (law/arith.h)
  *   2. The parameters and the tensors they fix (B, F, the yield coordinates)
  *   3. Slip by the implicit rules: the plastic multiplier on the yield surface
- *      (its solve: law/slip_solve.h, over the lanes of law/lanes.h)
+ *      (its solve: law/slip_solve.inc, over the lanes of law/lanes.h)
  *   4. Slip by the paper's explicit eq. (20)
  *   5. One step: trial, stick test, return map, commit; many steps at once
  *   6. The consistent tangent
@@ -185,7 +185,7 @@ int oc_law_init(oc_law *out, const oc_params *p) {
 
 /* ==== 3. Slip by the implicit rules: the plastic multiplier on the yield surface ==== */
 
-/* The slip solve (law/slip_solve.h: what it solves and how), over the lanes
+/* The slip solve (law/slip_solve.inc: what it solves and how), over the lanes
  * of law/lanes.h: for one cell (dgamma1_*, oc_law_step's) and, where the
  * batch's cells go two to a vector, for two (dgamma2_*).  Its second
  * inclusion also gives the batch's lanes (slip_lanes), which solve and
@@ -198,10 +198,10 @@ static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *
                                               const double p[2], double inv_np, double w0,
                                               double w1, double inv_wmax);
 #define OC_SLIP_LANES 1
-#include "law/slip_solve.h"
+#include "law/slip_solve.inc"
 #ifdef OC_VECTOR_LANES
 #define OC_SLIP_LANES 2
-#include "law/slip_solve.h"
+#include "law/slip_solve.inc"
 #endif
 
 /* One cell's solve (dgamma1_*, section 3's opening comment): y, and p (and
@@ -251,7 +251,7 @@ static double solve_dgamma_far(const double a[2], const double sh[2], double rho
 }
 
 /* The fast solve's gate, once: it needs W <= kappa / rho^2 < 1e40 at the
- * root (law/slip_solve.h), which the law's part (fast_law, the same for
+ * root (law/slip_solve.inc), which the law's part (fast_law, the same for
  * every cell) and the trial's part (fast_trial: not far outside the yield
  * surface, and of normal size to scale) guarantee.  Otherwise the far
  * solve. */
@@ -510,7 +510,7 @@ void oc_law_step_finish(const oc_law *L, const oc_unfinished pending[], int n) {
         c->sc = pow2_root_inverse(sq); /* trial_scale's, sq being normal */
     }
     /* 2: the slipping cells OC_LANES at a time, in the batch's lanes
-     * (law/slip_solve.h's slip_lanes). */
+     * (law/slip_solve.inc's slip_lanes). */
     for (int first = 0; first < n_slip; first += OC_LANES) {
         const int lanes = n_slip - first < OC_LANES ? n_slip - first : OC_LANES;
         if (lanes == 1) { /* nothing to interleave: the cell's own step, in registers */

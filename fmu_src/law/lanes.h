@@ -1,5 +1,5 @@
 /*
- * The lanes the implicit slip solve (law/slip_solve.h) is written over:
+ * The lanes the implicit slip solve (law/slip_solve.inc) is written over:
  * one cell's numbers in a double (lane1_*), or two cells' in a vector of
  * two doubles (lane2_*, GCC/Clang vector extensions: SSE2 on x86-64, NEON
  * on aarch64; no intrinsics, no -march), each vector operation beside its
