@@ -12,9 +12,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cells/cells_fields.h"
 #include "check.h"
 #include "fmi2Functions.h"
-#include "models/ContactPatch/cells_fields.h"
 #include "random_values.h"
 
 enum { CAP = 1 << 17 };

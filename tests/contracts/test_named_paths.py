@@ -31,7 +31,7 @@ NOT_IN_THE_TREE = {
 # A file name with one of these extensions, or a folder path ending in a
 # slash; not part of a longer token or of a placeholder (<run>/x.csv,
 # {name}/x, *.csv).
-EXT = r"(?:py|c|h|md|toml|json|csv|sh|txt|xml|html|cmake)"
+EXT = r"(?:py|c|h|inc|md|toml|json|csv|sh|txt|xml|html|cmake)"
 FILE = re.compile(r"(?<![\w./<>{}*$-])((?:[\w.-]+/)*[\w-][\w.-]*\." + EXT + r")(?![\w/])")
 FOLDER = re.compile(r"(?<![\w./<>{}*$-])((?:[\w.-]*[A-Za-z][\w.-]*/)+)(?=[\s)\]`'\",;:]|\.\s|\.$|$)")
 
@@ -53,7 +53,7 @@ def split(path: str, text: str) -> tuple[str, list[tuple[int, str]]]:
             if tok.type not in (tokenize.COMMENT, tokenize.NL):
                 prev = tok.type
         return " ".join(s for _, s in code), notes
-    if path.endswith((".c", ".h")):
+    if path.endswith((".c", ".h", ".inc")):
         pattern = r'"(?:\\.|[^"\\\n])*"|/\*.*?\*/|//[^\n]*'
     else:   # shell, CMake, Make, TOML
         pattern = r'"(?:\\.|[^"\\\n])*"|(?:(?<=\s)|^)#[^\n]*'
@@ -75,7 +75,7 @@ def named_paths(comment: str) -> list[str]:
 def scanned(tree: list[str]) -> dict[str, str]:
     """{path: text} of the files whose comments are checked."""
     return {f: (ROOT / f).read_text(errors="replace") for f in tree
-            if (f.startswith(SCOPE) and f.endswith((".py", ".c", ".h", ".sh", ".cmake", ".toml")))
+            if (f.startswith(SCOPE) and f.endswith((".py", ".c", ".h", ".inc", ".sh", ".cmake", ".toml")))
             or f in TOP}
 
 

@@ -7,7 +7,7 @@
 
 #include "models/ContactPad/pressure.h"
 
-/* Where each of the pad's own variables lives (cells_model.h has the
+/* Where each of the pad's own variables lives (cells/cells_model.inc has the
  * law's, the cells' and their sums'). */
 #define FMU_SLOT_kn offsetof(pad_model, kn)
 #define FMU_SLOT_dn offsetof(pad_model, dn)
@@ -28,7 +28,7 @@ enum { P_ROWS = 7, P_COLS = 6 };
     PAD_VR_T1, PAD_VR_T2, PAD_VR_Mz, PAD_VR_Fn, PAD_VR_M1, PAD_VR_M2, PAD_VR_dissipatedEnergy
 #define MODEL_JAC_INPUTS PAD_VR_u1, PAD_VR_u2, PAD_VR_theta, PAD_VR_d, PAD_VR_phi1, PAD_VR_phi2
 
-#include "models/ContactPatch/cells_model.h"
+#include "cells/cells_model.inc"
 
 /* ---- the foundation ------------------------------------------------------- */
 

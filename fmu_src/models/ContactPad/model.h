@@ -1,7 +1,7 @@
 /*
  * The contact pad as a model of the shared FMI glue (fmu_model.h): the
  * variables of models/ContactPad/table.h, the patch's cells
- * (models/ContactPatch/cells.h) pressed by a Winkler foundation under the
+ * (cells/cells.h) pressed by a Winkler foundation under the
  * pad's pose (models/ContactPad/pressure.h), and the serialized state.
  *
  * Step semantics as the patch's: setting inputs computes every cell's
@@ -19,13 +19,13 @@
 #ifndef PAD_MODEL_H
 #define PAD_MODEL_H
 
+#include "cells/cells.h"
+#include "cells/cells_fields.h"
 #include "glue/fmu_fields.h"
 #include "glue/fmu_model.h"
 #include "law/contact_law.h"
 #include "law/law_fields.h"
 #include "models/ContactPad/table.h"
-#include "models/ContactPatch/cells.h"
-#include "models/ContactPatch/cells_fields.h"
 
 #ifdef __cplusplus
 extern "C" {

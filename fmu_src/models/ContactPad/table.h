@@ -1,6 +1,6 @@
 /*
  * The one table of the ContactPad FMU (glue/fmu_table.h says what a table
- * holds): the contact patch's cells (models/ContactPatch/cells.h: a
+ * holds): the contact patch's cells (cells/cells.h: a
  * rectangle length x width of a rigid body, n1 x n2 cells each the law at
  * its centre with its own slip; the law's rows and the cells' rows are the
  * patch's) on a Winkler foundation, whose pressure follows the pad's pose:
@@ -24,9 +24,9 @@
 #ifndef PAD_VARIABLES_H
 #define PAD_VARIABLES_H
 
+#include "cells/cell_rows.h"
 #include "glue/fmu_table.h"
 #include "law/law_table.h"
-#include "models/ContactPatch/cell_rows.h"
 
 /* A table's rows and lists keep their own layout. */
 /* clang-format off */
@@ -43,7 +43,7 @@
     "Schweizerhof 2007) with its own slip, pressed by the foundation under the pad's pose; "   \
     "the six-component wrench from the body's displacement, rotation, approach and tilts"
 #define FMU_SOURCES(S)                                                                          \
-    S(law/contact_law.c) S(models/ContactPatch/cells.c) S(models/ContactPad/pressure.c)         \
+    S(law/contact_law.c) S(cells/cells.c) S(models/ContactPad/pressure.c)                       \
     S(models/ContactPad/model.c) S(glue/fmu_instance.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/ContactPad/model.h"
@@ -98,7 +98,7 @@ static const char FMU_DOC_HTML[] =
     D(contactState, PAD_INPUTS, PAD_KNOWNS_NO_RULE)
 
 /* The variables: time, the law's rows (value references 1 to 7), the cells'
- * rows (8 to 17: models/ContactPatch/cell_rows.h), then: */
+ * rows (8 to 17: cells/cell_rows.h), then: */
 #define PAD_FOUNDATION_ROWS(X)                                                                   \
     X(kn, 18, Float64, parameter, fixed, exact, 1e7, 1e-100, 1e100, "N/m3", "",                  \
       "Foundation stiffness: pressure per unit approach")                                        \
@@ -136,7 +136,7 @@ static const char FMU_DOC_HTML[] =
 /* FMI 3.0 only: the cells' forces, normal forces and states as arrays of
  * shape (n1, n2), element [i][j] the cell i along length, j along width
  * (row-major, j fastest), and n1, n2 their structural parameters (FMI 2.0
- * has neither: there n1, n2 are parameters): models/ContactPatch/cell_rows.h.
+ * has neither: there n1, n2 are parameters): cells/cell_rows.h.
  * Columns: name, value reference, type, unit, the scalar output whose
  * dependencies each element has, description. */
 #define FMU_ARRAYS(A)                                                                            \

@@ -5,7 +5,7 @@
 #include <stddef.h>
 #include <string.h>
 
-/* Where each of the patch's own variables lives (cells_model.h has the
+/* Where each of the patch's own variables lives (cells/cells_model.inc has the
  * law's, the cells' and their sums'). */
 #define FMU_SLOT_N offsetof(patch_model, N)
 #define FMU_SLOT_p1 offsetof(patch_model, p[0])
@@ -19,7 +19,7 @@
 #define MODEL_JAC_INPUTS                                                                           \
     PATCH_VR_u1, PATCH_VR_u2, PATCH_VR_theta, PATCH_VR_N, PATCH_VR_p1, PATCH_VR_p2
 
-#include "models/ContactPatch/cells_model.h"
+#include "cells/cells_model.inc"
 
 /* ---- the cells' normal forces ------------------------------------------ */
 

@@ -13,12 +13,12 @@
 #ifndef PATCH_MODEL_H
 #define PATCH_MODEL_H
 
+#include "cells/cells.h"
+#include "cells/cells_fields.h"
 #include "glue/fmu_fields.h"
 #include "glue/fmu_model.h"
 #include "law/contact_law.h"
 #include "law/law_fields.h"
-#include "models/ContactPatch/cells.h"
-#include "models/ContactPatch/cells_fields.h"
 #include "models/ContactPatch/table.h"
 
 #ifdef __cplusplus

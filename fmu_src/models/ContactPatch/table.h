@@ -5,7 +5,7 @@
  * (law/contact_law.h) at its centre with its own slip state; the law's rows
  * (law/law_table.h) are the patch's.
  *
- * Geometry (models/ContactPatch/cells.h and model.c say how each number is
+ * Geometry (cells/cells.h and model.c say how each number is
  * formed):
  *   - a cell centre r = (xi length, eta width) in body coordinates, xi, eta
  *     the midpoints of n1 (n2) equal parts of [-1/2, 1/2];
@@ -27,9 +27,9 @@
 #ifndef PATCH_VARIABLES_H
 #define PATCH_VARIABLES_H
 
+#include "cells/cell_rows.h"
 #include "glue/fmu_table.h"
 #include "law/law_table.h"
-#include "models/ContactPatch/cell_rows.h"
 
 /* A table's rows and lists keep their own layout. */
 /* clang-format off */
@@ -45,7 +45,7 @@
     "the coupled orthotropic adhesion-friction law (Konyukhov and Schweizerhof 2007) at its "  \
     "centre with its own slip; force and torque from the body's displacement and rotation"
 #define FMU_SOURCES(S)                                                                          \
-    S(law/contact_law.c) S(models/ContactPatch/cells.c) S(models/ContactPatch/model.c)          \
+    S(law/contact_law.c) S(cells/cells.c) S(models/ContactPatch/model.c)                        \
     S(glue/fmu_instance.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/ContactPatch/model.h"
@@ -92,7 +92,7 @@ static const char FMU_DOC_HTML[] =
     D(contactState, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)
 
 /* The variables: time, the law's rows (value references 1 to 7), the cells'
- * rows (8 to 17: models/ContactPatch/cell_rows.h), then: */
+ * rows (8 to 17: cells/cell_rows.h), then: */
 #define PATCH_LOAD_ROWS(X)                                                                       \
     X(N, 18, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                         \
       "Total normal force pressing the body on the surface (N <= 0: open contact)")              \
@@ -113,7 +113,7 @@ static const char FMU_DOC_HTML[] =
 /* FMI 3.0 only: the cells' forces and states as arrays of shape (n1, n2),
  * element [i][j] the cell i along length, j along width (row-major, j
  * fastest), and n1, n2 their structural parameters (FMI 2.0 has neither:
- * there n1, n2 are parameters): models/ContactPatch/cell_rows.h. */
+ * there n1, n2 are parameters): cells/cell_rows.h. */
 #define FMU_ARRAYS(A) PATCH_FORCE_ARRAYS(A, 27) PATCH_STATE_ARRAY(A, 29)
 
 #define FMU_VARIABLES(X) PATCH_VARIABLES(X, X)

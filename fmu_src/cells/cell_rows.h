@@ -1,14 +1,14 @@
 /*
  * The rows of a variable table (glue/fmu_table.h) that every model on the
- * cells (models/ContactPatch/cells.h) has: the initial slip, the
+ * cells (cells/cells.h) has: the initial slip, the
  * rectangle's geometry and the tangential motion, value references 8 to
  * 17 after the law's rows; and the sums' rows and the cells' arrays, whose
  * value references each table gives (the first of a group, the others
  * following), since its own rows come between.  ContactPatch's and
  * ContactPad's tables list them; what they add follows from 18 on.
  */
-#ifndef PATCH_CELL_ROWS_H
-#define PATCH_CELL_ROWS_H
+#ifndef CELLS_CELL_ROWS_H
+#define CELLS_CELL_ROWS_H
 
 /* A table's rows and lists keep their own layout. */
 /* clang-format off */

@@ -1,4 +1,4 @@
-#include "models/ContactPatch/cells.h"
+#include "cells/cells.h"
 
 #include <math.h>
 #include <stddef.h>

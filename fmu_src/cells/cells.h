@@ -21,12 +21,12 @@
  * first n1 n2 are used, cell c = i + n1 j for i < n1 along length, j < n2
  * along width.
  */
-#ifndef PATCH_CELLS_H
-#define PATCH_CELLS_H
+#ifndef CELLS_CELLS_H
+#define CELLS_CELLS_H
 
+#include "cells/cell_rows.h"
 #include "glue/fmu_model.h"
 #include "law/contact_law.h"
-#include "models/ContactPatch/cell_rows.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -34,7 +34,7 @@ extern "C" {
 
 enum { PATCH_MAX_CELLS = PATCH_MAX_SIDE * PATCH_MAX_SIDE };
 
-/* The values of the parameter initialSlip (models/ContactPatch/cell_rows.h). */
+/* The values of the parameter initialSlip (cells/cell_rows.h). */
 enum { PATCH_INITIAL_AT_INPUTS = 1, PATCH_INITIAL_EXPLICIT = 2 };
 
 /* What the cells' kinematics follow from: the geometry, the initial slip

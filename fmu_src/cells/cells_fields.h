@@ -6,13 +6,13 @@
  * own, in its table's order, the cells' states last (CELLS_STATES_FIELD),
  * and makes its FMU_STATE_FIELDS and head with CELLS_STATE_FIELDS.
  */
-#ifndef PATCH_CELLS_FIELDS_H
-#define PATCH_CELLS_FIELDS_H
+#ifndef CELLS_CELLS_FIELDS_H
+#define CELLS_CELLS_FIELDS_H
 
+#include "cells/cell_rows.h"
+#include "cells/cells.h"
 #include "glue/fmu_fields.h"
 #include "law/law_fields.h"
-#include "models/ContactPatch/cell_rows.h"
-#include "models/ContactPatch/cells.h"
 
 /* The value references of the cells' rows (cell_rows.h) and of the law's
  * sliding rule, every such table's. */
