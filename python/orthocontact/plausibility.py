@@ -77,6 +77,15 @@ QUANTITIES = {
     "pin_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a tow's pin is 1 mm-1 m ahead of the block's centre",
                       ((0.001, "mm"), (0.01, "cm"))),
     "rate_deg_s": Quantity("deg/s", (0.0, 1e4), (1e-2, 1e3), "a twist turns at 0.01-1000 deg/s"),
+    # the pad (scenario kind pushed_block): its Winkler foundation, a layer's modulus over its
+    # thickness (a gel's 1 kPa over 10 cm is 1e4, steel's 200 GPa over 1 mm 2e14), and the push's
+    # heights above the contact and carriage step
+    "kn_N_m3": Quantity("N/m^3", (1e3, 1e16), (1e4, 1e15),
+                        "a pad's foundation (a layer's modulus over its thickness) is 1e4-1e15 N/m^3"),
+    "heights_m": Quantity("m", (0.0, 10.0), (0.0, 1.0), "a push's height above the contact is 0-1 m",
+                          ((0.001, "mm"), (0.01, "cm")), zero_allowed=True),
+    "step_m": Quantity("m", (0.0, 1.0), (1e-6, 1e-2), "a push's carriage step is 1e-6-1e-2 m",
+                       ((0.001, "mm"), (0.01, "cm"))),
 }
 
 

@@ -84,7 +84,7 @@ def test_a_height_held_only_by_a_large_tilt_is_refused_in_one_line(tmp_path):
 
 
 @pytest.mark.parametrize("old,new,says", [
-    ("kn_N_m3 = 1.0e8", "kn_N_m3 = 1.0e200", ["pad.kn_N_m3: kn = 1e+200 N/m3 is outside"]),
+    ("kn_N_m3 = 1.0e8", "kn_N_m3 = 1.0e200", ["pad.kn_N_m3 = 1e+200 N/m^3: a pad's foundation"]),
     ("n1 = 8", "n1 = 40", ["pad.n1: expected a number <= 32, got 40"]),
     ("heights_m = [0.0,", "heights_m = [-0.01,", ["push.heights_m"]),
     ("[push]\n", "[pushx]\n", ["pushx: expected a known table",
@@ -94,3 +94,32 @@ def test_a_bad_pushed_block_scenario_is_a_line_per_problem(tmp_path, old, new, s
     bad = scenario_variant(BUNDLED, old, new, tmp_path / "s.toml")
     p = run_cli(["run", bad, "--out", tmp_path / "out"], cwd=tmp_path)
     error_lines(p, *says)
+
+
+@pytest.mark.parametrize("old,new,says", [
+    # one step over the whole travel left no angle to fit (NaN), marked checked and ok
+    ("step_m = 2.0e-4", "step_m = 5.0e-3", ["push.step_m: the trajectory angle is fitted over the last 50% "
+                                            "of the travel (0.0025 m) through at least 3 steps",
+                                            "leaves 1: step_m <= 0.00125 m"]),
+    # heights typed in mm ran, tipping "at 90 m"
+    ("heights_m = [0.0, 0.02, 0.05, 0.09]", "heights_m = [0, 20, 50, 90]",
+     ["push.heights_m[1] = 20 m: a push's height above the contact is 0-1 m; mm?"]),
+    # a foundation that sinks the block by 2,270 km was blamed on the heights
+    ("kn_N_m3 = 1.0e8", "kn_N_m3 = 1e-3", ["pad.kn_N_m3 = 0.001 N/m^3: a pad's foundation (a layer's "
+                                           "modulus over its thickness) is 1e4-1e15 N/m^3"]),
+])
+def test_a_push_that_cannot_be_measured_or_right_is_refused_naming_its_key(tmp_path, old, new, says):
+    bad = scenario_variant(BUNDLED, old, new, tmp_path / "s.toml")
+    p = run_cli(["run", bad, "--out", tmp_path / "out"], cwd=tmp_path)
+    one_error_line(p, *says)
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_value_that_is_not_a_number_is_off_its_closed_form():
+    """The check itself: NaN (a trajectory with no slope to fit) cannot
+    pass, and two values equal to every digit shown say their difference."""
+    assert "cannot be checked" in pushed_outputs.off_closed_form("phi", float("nan"), 11.5, 1e-3, "deg")
+    assert "cannot be checked" in pushed_outputs.off_closed_form("phi", None, 11.5, 1e-3, "deg")
+    assert pushed_outputs.off_closed_form("d", 1.0 + 1e-9, 1.0, 1e-6, "m") is None
+    line = pushed_outputs.off_closed_form("phi2", 0.01601724, 0.01601721, 1e-8, "rad")
+    assert "off by 3e-08" in line

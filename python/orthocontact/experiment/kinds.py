@@ -32,6 +32,7 @@ from ..fmu.files import MODEL_IDENTIFIER, find_fmu
 from ..fmu.pad import PAD_MODEL, foundation_problem
 from ..fmu.params import RULES
 from ..fmu.patch import GEOMETRY, PATCH_MODEL, geometry_problem, geometry_range
+from ..rig.pushed import fit_steps_problem
 from .keys import ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, list_of, number
 
 # The pieces of a kind written above this layer: what registers each, and
@@ -231,7 +232,20 @@ def pad_geometry(path, values: dict, problems: Problems) -> None:
         problems.add(f"{path}: pad.kn_N_m3: {problem}")
 
 
-kind("pushed_block", model=PAD_MODEL, carriage=False, check=pad_geometry, tables={"pad": PAD, "push": {
-    "heights_m": (list_of(NON_NEGATIVE, unique=True), REQUIRED),
-    "angles_deg": (list_of(ANGLE_DEG, unique=True), [0.0, 30.0, 60.0, 90.0]),
-    "travel_m": (POSITIVE, REQUIRED), "step_m": (POSITIVE, 1e-4)}})
+def pushed_block_problems(path, values: dict, problems: Problems) -> None:
+    """The pad's (pad_geometry) and the push's: a step that leaves the
+    trajectory angle something to measure (rig.pushed.fit_steps_problem)."""
+    pad_geometry(path, values, problems)
+    push = values["push"]
+    if "travel_m" in push and "step_m" in push:
+        problem = fit_steps_problem(push["travel_m"], push["step_m"])
+        if problem is not None:
+            problems.add(f"{path}: push.step_m: {problem}")
+
+
+PUSH = {"heights_m": (list_of(NON_NEGATIVE, unique=True), REQUIRED),
+        "angles_deg": (list_of(ANGLE_DEG, unique=True), [0.0, 30.0, 60.0, 90.0]),
+        "travel_m": (POSITIVE, REQUIRED), "step_m": (POSITIVE, 1e-4)}
+
+kind("pushed_block", model=PAD_MODEL, carriage=False, check=pushed_block_problems,
+     tables={"pad": PAD, "push": PUSH})

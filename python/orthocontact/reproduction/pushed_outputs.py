@@ -45,7 +45,6 @@ from ..runs.sweep import closed_form_phi_deg_array
 PHI_TOL_DEG = 1e-3
 POSE_TOL = 1e-6
 THRESHOLD_MARGIN = 1e-6
-FIT_FROM = 0.5
 
 
 def friction_along_x1(params) -> float:
@@ -108,22 +107,35 @@ def elastic_length(sc: Scenario, want: dict) -> float:
     return max(law.mu1, law.mu2) * pad["kn_N_m3"] * peak * area / min(law.eps1, law.eps2)
 
 
+def off_closed_form(name: str, value, want, tol: float, unit: str) -> str | None:
+    """The phrase for a value off its closed form by more than tol, or one
+    that is not a finite number (it cannot be checked, so it is not ok); None
+    if within tol.  The difference is printed, not the two values alone: they
+    can agree to every digit shown."""
+    if value is None or want is None or not (math.isfinite(value) and math.isfinite(want)):
+        return f"{name} {value} {unit} cannot be checked against the closed form's {want} {unit}"
+    if abs(value - want) <= tol:
+        return None
+    return (f"{name} {value:.6g} {unit}, closed form {want:.6g} {unit}: off by {value - want:.3g}, "
+            f"more than {tol:.3g}")
+
+
 def _check(run: dict, want: dict, settled: bool) -> list[str]:
     """What is off a run's closed forms, one phrase each: its regime, and
-    once settled (the friction at its limit) its angle and pose."""
+    once settled (the friction at its limit) its angle and pose; a value
+    that is not a number is off (off_closed_form)."""
     off = []
     if not want["near_threshold"] and run["regime"] != want["regime"]:
         off.append(f"regime {run['regime']} where the closed form has {want['regime']}")
     if run["regime"] == TIPS or want["regime"] == TIPS or not settled:
         return off
-    if abs(run["phi_deg"] - run["phi_closed_deg"]) > PHI_TOL_DEG:
-        off.append(f"phi {run['phi_deg']:.6f} deg, closed form {run['phi_closed_deg']:.6f} deg")
     L = run["length_m"]
-    if abs(run["d_m"] - want["d_m"]) > POSE_TOL * max(abs(want["d_m"]), abs(want["phi2_rad"]) * L):
-        off.append(f"d {run['d_m']:.6g} m, closed form {want['d_m']:.6g} m")
-    if abs(run["phi2_rad"] - want["phi2_rad"]) > POSE_TOL * max(abs(want["phi2_rad"]), want["d_m"] / L):
-        off.append(f"phi2 {run['phi2_rad']:.6g} rad, closed form {want['phi2_rad']:.6g} rad")
-    return off
+    d_tol = POSE_TOL * max(abs(want["d_m"]), abs(want["phi2_rad"]) * L)
+    phi2_tol = POSE_TOL * max(abs(want["phi2_rad"]), want["d_m"] / L)
+    found = [off_closed_form("phi", run["phi_deg"], run["phi_closed_deg"], PHI_TOL_DEG, "deg"),
+             off_closed_form("d", run["d_m"], want["d_m"], d_tol, "m"),
+             off_closed_form("phi2", run["phi2_rad"], want["phi2_rad"], phi2_tol, "rad")]
+    return off + [x for x in found if x is not None]
 
 
 def pushed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
@@ -151,7 +163,7 @@ def pushed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
             run = {"height_m": h, "angle_deg": a, "length_m": b.pad.length, "regime": res.regime,
                    "regime_closed": want["regime"], "mu": want["mu"], "e_closed_m": want["e_m"],
                    "tipped_at_m": res.tipped_at_m,
-                   "phi_deg": math.degrees(math.atan(res.trajectory_tan_phi(FIT_FROM))),
+                   "phi_deg": math.degrees(math.atan(res.trajectory_tan_phi(pushed.FIT_FROM))),
                    "phi_closed_deg": of_law(steady_phi_deg, p, p.alpha, p.beta),
                    "d_m": float(res.d[last]) if solved else None, "d_closed_m": want["d_m"],
                    "phi2_rad": float(res.phi2[last]) if solved else None,
@@ -160,11 +172,11 @@ def pushed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
                    "contact_fraction": float(res.contact_fraction[last]) if solved else None,
                    "contact_fraction_closed": want["contact_fraction"],
                    "newton_iterations": int(res.iterations.sum())}
-            if res.regime == TIPS:
+            if res.regime == TIPS or not math.isfinite(run["phi_deg"]):
                 run["phi_deg"] = None
             run["elastic_length_m"] = elastic_length(sc, want)
-            settled = not FIT_FROM * pu["travel_m"] < ELASTIC_LENGTHS * run["elastic_length_m"]
-            run["phi_checked"] = settled and res.regime != TIPS
+            settled = not pushed.FIT_FROM * pu["travel_m"] < ELASTIC_LENGTHS * run["elastic_length_m"]
+            run["phi_checked"] = settled and run["phi_deg"] is not None
             if not settled:
                 unsettled.append(run)
             problems = _check(run, want, settled)
@@ -191,9 +203,9 @@ def pushed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
         warning = f"{sc.name}: the push is off its closed forms: " + "; ".join(off)
     elif unsettled:
         worst = max(r["elastic_length_m"] for r in unsettled)
+        start = pushed.FIT_FROM * pu["travel_m"]
         warning = (f"{sc.name}: the trajectory angle and the pose were not checked at {len(unsettled)} "
-                   f"pushes: the fit "
-                   f"starts at {FIT_FROM * pu['travel_m']:g} m, within {ELASTIC_LENGTHS:g} elastic lengths "
+                   f"pushes: the fit starts at {start:g} m, within {ELASTIC_LENGTHS:g} elastic lengths "
                    f"of the most loaded cell (up to {worst:.3g} m) of the start; push further "
                    f"(push.travel_m >= {2 * ELASTIC_LENGTHS * worst:.3g} m)")
     L = sc.pad["length_m"]

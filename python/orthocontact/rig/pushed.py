@@ -57,6 +57,13 @@ CONTINUATION_DEPTH = 8
 # The largest tilt [rad] a step may reach: the pad's approach d + phi2 X -
 # phi1 Y is the first order of sin(phi) (relative error phi^2/6: 4e-4 here).
 MAX_TILT_RAD = 0.05
+# The trajectory's slope is fitted over the travel from FIT_FROM of it on,
+# through at least FIT_STEPS solved steps: fewer leave no slope to measure.
+# Three, not the carriage's MIN_FIT_STEPS (rig.checks): each step here is
+# an equilibrium, on the steady path once settled, with no dynamics to
+# average out.
+FIT_FROM = 0.5
+FIT_STEPS = 3
 
 
 class PushNotSolved(InputError):
@@ -123,13 +130,30 @@ class PushResult:
     cell_normal: np.ndarray | None = None
     cell_state: np.ndarray | None = None
 
-    def trajectory_tan_phi(self, fit_from: float = 0.5) -> float:
+    def trajectory_tan_phi(self, fit_from: float = FIT_FROM) -> float:
         """The steady slope dx2/dx1 of the path: a line fitted over the part
-        of the travel from fit_from of it on (NaN for a run that tipped)."""
-        if self.regime == TIPS or len(self.x1) < 2:
+        of the travel from fit_from of it on; NaN for a run that tipped or
+        has fewer than FIT_STEPS steps there (no slope to measure)."""
+        if self.regime == TIPS or len(self.x1) == 0:
             return math.nan
         keep = self.x1 >= fit_from * self.x1[-1]
+        if np.count_nonzero(keep) < FIT_STEPS:
+            return math.nan
         return float(np.polyfit(self.x1[keep], self.x2[keep], 1)[0])
+
+
+def fit_steps_problem(travel_m: float, step_m: float) -> str | None:
+    """Why a push over travel_m [m] in steps of step_m [m] leaves no
+    trajectory angle to measure (fewer than FIT_STEPS steps from FIT_FROM of
+    the travel on), in words naming the largest step that does; None if it
+    leaves one."""
+    steps = math.floor((1.0 - FIT_FROM) * travel_m / step_m + 1e-9) + 1
+    if steps >= FIT_STEPS:
+        return None
+    largest = (1.0 - FIT_FROM) * travel_m / (FIT_STEPS - 1)
+    return (f"the trajectory angle is fitted over the last {1.0 - FIT_FROM:.0%} of the travel "
+            f"({(1.0 - FIT_FROM) * travel_m:g} m) through at least {FIT_STEPS} steps; step_m = {step_m:g} m "
+            f"leaves {steps}: step_m <= {largest:.3g} m")
 
 
 def _positive(name: str, v) -> float:
