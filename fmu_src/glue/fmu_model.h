@@ -10,7 +10,11 @@
  *     variable, FMU_SLOT_<name> (an offsetof), and builds its row array
  *     with FMU_VAR_ROW, so a variable without a slot does not compile.
  *   - FMU_MODEL_INFO: identity, the rows, and its hooks (below).
- *   - fmu_model_update, fmu_model_do_step and the serialized state.
+ *   - fmu_model_do_step, and those of fmu_model_update and the serialized
+ *     state's writer and reader it has: glue/fmu_model_defaults.inc, which
+ *     its model.c includes last, writes the others and the state's size
+ *     from its field list (FMU_STATE_FIELDS) and its header's flags
+ *     FMU_HAS_UPDATE, FMU_HAS_STATE_WRITE, FMU_HAS_STATE_READ.
  * The glue does the rest once for every model: variable lookup by value
  * reference (an array index), type, causality, phase, range and
  * settability checks, atomic batches, start values, getters.
@@ -136,7 +140,7 @@ typedef struct fmu_arrays {
 } fmu_arrays;
 extern const fmu_model_info FMU_MODEL_INFO;
 
-/* ---- what each model implements ----------------------------------------- */
+/* ---- what each model implements (or glue/fmu_model_defaults.inc for it) -- */
 
 /* Every output is a finite number whenever a call returns OK: the outputs
  * of refresh (above) the glue checks through it; those that update,
@@ -148,7 +152,8 @@ extern const fmu_model_info FMU_MODEL_INFO;
  * derive what follows from them, or fail with the reason, in which case the
  * glue restores the slots and the model must have changed nothing else.
  * `allow` is the phase's FMU_ALLOW_*: FMU_ALLOW_PARAMETERS set means
- * initialization has not ended. */
+ * initialization has not ended.  The glue's (no FMU_HAS_UPDATE): nothing
+ * to derive. */
 fmu_status fmu_model_update(fmu_model *m, int changed, int allow, fmu_msg *msg);
 
 /* Advances the model by h [s] (> 0, finite).  The glue keeps the time: it
@@ -160,7 +165,9 @@ fmu_status fmu_model_do_step(fmu_model *m, double h, fmu_msg *msg);
  * field, little-endian (fmu_bytes.h).  Reading validates every field and
  * changes `m` only on success; the glue then sets the state's time and asks
  * refresh (on a copy when the model has refresh, so that a refused state
- * changes nothing). */
+ * changes nothing).  The glue's size is its field list's, and so are its
+ * writer and reader unless the model has its own (FMU_HAS_STATE_WRITE,
+ * FMU_HAS_STATE_READ). */
 size_t fmu_model_state_size(void);
 void fmu_model_state_write(const fmu_model *m, unsigned char *buf);
 fmu_status fmu_model_state_read(fmu_model *m, const unsigned char *buf, fmu_msg *msg);

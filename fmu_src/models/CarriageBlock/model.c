@@ -50,15 +50,6 @@ const fmu_model_info FMU_MODEL_INFO = {
     FMU_MODEL_IDENTIFIER,     FMU_TOKEN, FMU_STATE_TAG, VARS, RIG_VR_COUNT_PLUS_ONE,
     sizeof(struct fmu_model), refresh,   NULL,          NULL, NULL /* no arrays */};
 
-/* Every value the glue checked against the table is admissible. */
-fmu_status fmu_model_update(fmu_model *m, int changed, int allow, fmu_msg *msg) {
-    (void)m;
-    (void)changed;
-    (void)allow;
-    (void)msg;
-    return FMU_OK;
-}
-
 /* One step with T held: the rig's lateral step (rig_core.h), refused
  * unchanged if the motion overflows.  x2 and v2 are the outputs this keeps;
  * the rest follow from the time (already the step's end) through refresh. */
@@ -74,17 +65,6 @@ fmu_status fmu_model_do_step(fmu_model *m, double h, fmu_msg *msg) {
     return FMU_OK;
 }
 
-/* ---- serialized state: the field list of model.h ------------------------ */
-
-size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
-
-void fmu_model_state_write(const fmu_model *m, unsigned char *p) {
-    fmu_fields_write(&FMU_STATE_FIELDS, m, p);
-}
-
-fmu_status fmu_model_state_read(fmu_model *m, const unsigned char *p, fmu_msg *msg) {
-    struct fmu_model t = *m;
-    if (fmu_fields_read(&FMU_STATE_FIELDS, &t, &p, msg) != FMU_OK) return FMU_ERR;
-    *m = t;
-    return FMU_OK;
-}
+/* The rest is the glue's: no update (every value the glue checked against
+ * the table is admissible), the serialized state of model.h's field list. */
+#include "glue/fmu_model_defaults.inc"

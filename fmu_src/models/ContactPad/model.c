@@ -418,3 +418,5 @@ fmu_status fmu_model_state_read(pad_model *m, const unsigned char *p, fmu_msg *m
     if (st != FMU_OK) put_head(m, &head);
     return st;
 }
+
+#include "glue/fmu_model_defaults.inc"

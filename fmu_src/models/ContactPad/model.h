@@ -81,6 +81,12 @@ static const fmu_field PAD_MODEL_FIELD_LIST[] = {
                             "it (while committed)"),
     CELLS_STATES_FIELD};
 CELLS_STATE_FIELDS(PAD_MODEL_FIELD_LIST);
+/* What model.c writes itself (glue/fmu_model_defaults.inc the rest): its
+ * update, its state's writer (cells/cells_model.inc: the cells where its
+ * steps left them) and reader. */
+#define FMU_HAS_UPDATE 1
+#define FMU_HAS_STATE_WRITE 1
+#define FMU_HAS_STATE_READ 1
 
 #ifdef __cplusplus
 }

@@ -212,3 +212,5 @@ fmu_status fmu_model_state_read(patch_model *m, const unsigned char *p, fmu_msg 
     }
     return st;
 }
+
+#include "glue/fmu_model_defaults.inc"

@@ -171,12 +171,8 @@ static fmu_status derivative(const oc_model *m, const unsigned int unknown[], si
 
 /* ---- serialized state: the field list of model.h ------------------------ */
 
-size_t fmu_model_state_size(void) { return fmu_fields_size(&FMU_STATE_FIELDS); }
-
-void fmu_model_state_write(const oc_model *m, unsigned char *p) {
-    fmu_fields_write(&FMU_STATE_FIELDS, m, p);
-}
-
+/* Its reader (FMU_HAS_STATE_READ): the glue's writer and size
+ * (glue/fmu_model_defaults.inc, at the end). */
 fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *msg) {
     oc_model t;
     memset(&t, 0, sizeof t);
@@ -204,3 +200,5 @@ fmu_status fmu_model_state_read(oc_model *m, const unsigned char *p, fmu_msg *ms
     *m = t;
     return FMU_OK;
 }
+
+#include "glue/fmu_model_defaults.inc"

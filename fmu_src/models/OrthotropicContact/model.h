@@ -70,6 +70,10 @@ static const fmu_field OC_MODEL_FIELD_LIST[] = {
     FMU_U32(oc_model, result_committed, "committed",
             "the commit flag (1: the shown step is committed)", FLAG, 0)};
 static const fmu_fields FMU_STATE_FIELDS = FMU_FIELDS(OC_MODEL_FIELD_LIST, oc_model);
+/* What model.c writes itself (glue/fmu_model_defaults.inc the rest): its
+ * update, and its state's reader, which derives the law and the shown step. */
+#define FMU_HAS_UPDATE 1
+#define FMU_HAS_STATE_READ 1
 
 #ifdef __cplusplus
 }
