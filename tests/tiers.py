@@ -43,7 +43,7 @@ SLOW = {
         # an identify and two exports per unit slip: 3-5 s each
         "test_a_unit_slip_identify_warns_about_is_refused_by_export_unless_forced",
     },
-    "cli/test_output.py": {"test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs",
+    "output/test_folder.py": {"test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs",
                            "test_reproduce_into_the_same_folder_leaves_no_scenario_of_the_earlier_run",
                            "test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_stays"},
     "test_textfiles.py": {   # every file format and case through identify, run and uq
@@ -65,7 +65,7 @@ SLOW = {
     "runs/test_progress.py": {   # runs long enough for their progress lines
         "test_the_sweeps_refinement_and_recordings_say_they_are_running",
         "test_a_long_run_says_how_far_it_is_within_2_s_and_stops_on_ctrl_c"},
-    "cli/test_interrupts.py": {"test_a_dask_run_signalled_after_writing_everything_reports_success",
+    "runtime/test_interrupts.py": {"test_a_dask_run_signalled_after_writing_everything_reports_success",
                                "test_ctrl_c_on_uq_is_one_line_and_leaves_nothing"},   # uq runs to interrupt
     "runtime/test_temp.py": {"test_ctrl_c_on_reproduce_leaves_no_unpacked_fmu",
                              "test_a_killed_commands_folder_goes_with_the_next_command"},

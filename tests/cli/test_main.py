@@ -124,7 +124,7 @@ def test_python_and_numpy_warnings_are_at_most_one_line_each(capsys):
     import numpy as np
 
     from orthocontact.cli.main import show_warning
-    from orthocontact.cli.output import forget_warnings, warnings_said
+    from orthocontact.output.lines import forget_warnings, warnings_said
     forget_warnings()
     with warnings.catch_warnings():
         warnings.simplefilter("always")

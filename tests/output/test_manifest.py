@@ -1,7 +1,6 @@
 """An output folder's manifest (orthocontact.output.manifest): it lists what a
-run wrote with each file's SHA-256, an earlier run's files are removed and
-nothing else, and outputs read together must come from one run as it wrote
-them."""
+run wrote with each file's SHA-256, and outputs read together must come from
+one run as it wrote them (what a new run removes: tests/output/test_folder.py)."""
 import hashlib
 import json
 
@@ -14,7 +13,6 @@ from orthocontact.output.manifest import (
     new_manifest,
     one_run,
     read_manifest,
-    remove_earlier,
     write_manifest,
     written_by,
 )
@@ -56,35 +54,6 @@ def test_a_manifest_orthocontact_did_not_write_is_refused(tmp_path, files, says)
     with pytest.raises(InputError, match=says) as e:
         read_manifest(tmp_path)
     assert "\n" not in str(e.value) and str(tmp_path / MANIFEST) in str(e.value)
-
-
-def test_an_earlier_runs_files_go_the_users_and_changed_ones_stay(tmp_path):
-    old = a_run(tmp_path, {"reduction.csv": b"1\n", "figs/a.png": b"png", "figs/b.png": b"png2",
-                           "identified.md": b"# old\n", "shared.json": b"old"})
-    (tmp_path / "my_notes.txt").write_text("mine")
-    (tmp_path / "figs" / "mine.png").write_bytes(b"my figure")
-    (tmp_path / "identified.md").write_text("# old, with my notes\n")
-    kept = remove_earlier(tmp_path, old, keep={"shared.json": "x"})
-    assert kept == ["identified.md"]
-    assert sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*")) == [
-        MANIFEST, "figs", "figs/mine.png", "identified.md", "my_notes.txt", "shared.json"]
-    old2 = a_run(tmp_path / "sub", {"x/y/z.csv": b"1"})
-    remove_earlier(tmp_path / "sub", old2, keep={})
-    assert sorted(p.name for p in (tmp_path / "sub").iterdir()) == [MANIFEST]   # emptied folders go
-
-
-def test_nothing_is_removed_through_a_symbolic_link(tmp_path):
-    outside = tmp_path / "outside"
-    outside.mkdir()
-    (outside / "a.csv").write_bytes(b"1")
-    out = tmp_path / "out"
-    out.mkdir()
-    old = a_run(out, {"sub/a.csv": b"1"})
-    (out / "sub" / "a.csv").unlink()
-    (out / "sub").rmdir()
-    (out / "sub").symlink_to(outside)
-    remove_earlier(out, old, keep={})
-    assert (outside / "a.csv").read_bytes() == b"1"
 
 
 def test_outputs_of_one_run_pass_and_mixed_or_changed_ones_are_named(tmp_path):

@@ -9,8 +9,9 @@ from pathlib import Path
 from ..errors import InputError
 from ..experiment.kinds import RunOptions, fmu_for, kind_of, require_mat_angles
 from ..experiment.scenario import load
+from ..output.folder import staged_output
+from ..output.lines import warn
 from ..output.manifest import one_run
-from .output import staged_output, warn
 
 
 def load_scenario(path, yes: bool | None = None):

@@ -38,9 +38,10 @@ import warnings
 from pathlib import Path
 
 from ..errors import InputError
+from ..output.folder import check_output_file, check_output_folder, check_owner
+from ..output.lines import forget_warnings, warn, warnings_said
+from ..runtime.interrupts import install_signal_handlers, interrupted, quiet_interrupts, written
 from ..textfiles import files_read
-from .interrupts import install_signal_handlers, interrupted, quiet_interrupts, written
-from .output import check_output_file, check_output_folder, check_owner, forget_warnings, warn, warnings_said
 from .parser import build_parser
 
 __all__ = ["main", "entry", "InputError", "OS_ERROR"]

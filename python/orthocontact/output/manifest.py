@@ -2,10 +2,12 @@
 
 `<out>/.orthocontact-manifest.json` names the command, a run id, the date,
 the package version and every file the run wrote (its path under the folder,
-subfolders included, and its SHA-256).  With it a new run into the folder
-removes its predecessor's files and nothing else, and a command that reads
-another's outputs (uq and export read identified.json, uq a rig_scenario.toml)
-can tell that they all come from one run and are as that run wrote them."""
+subfolders included, and its SHA-256).  With it a command that reads
+another's outputs (uq and export read identified.json, uq a
+rig_scenario.toml) can tell that they all come from one run and are as that
+run wrote them (written_by, one_run); what a new run into the folder does
+with it (removes its predecessor's files and nothing else, keeps those
+edited since) is the output folder's logic, output.folder."""
 from __future__ import annotations
 
 import hashlib
@@ -17,7 +19,6 @@ from datetime import datetime, timezone
 from pathlib import Path, PurePosixPath
 
 from ..errors import InputError
-from ..runtime.swap import prune_empty
 
 MANIFEST = ".orthocontact-manifest.json"
 
@@ -109,58 +110,6 @@ def read_manifest(folder: Path) -> Manifest | None:
     if not isinstance(d.get("run_id"), str) or not d["run_id"]:
         raise InputError(f"{path}: run_id: expected the run's id")
     return Manifest(d.get("command"), d["run_id"], str(d.get("date")), str(d.get("version")), dict(files))
-
-
-def owner_of(folder: Path) -> tuple[Path, Manifest] | None:
-    """The run whose outputs `folder` holds, with the folder of its manifest:
-    the folder's own manifest, else the nearest enclosing folder's whose
-    list names a file under `folder` (reproduce's <out>/<scenario>/ is
-    reproduce's); None if no run wrote there.  InputError as read_manifest."""
-    folder = Path(folder).absolute()
-    m = read_manifest(folder) if folder.is_dir() else None
-    if m is not None:
-        return folder, m
-    for parent in folder.parents:
-        if not (parent / MANIFEST).is_file():
-            continue
-        m = read_manifest(parent)
-        under = folder.relative_to(parent).as_posix() + "/"
-        if any(name.startswith(under) for name in m.files):
-            return parent, m
-    return None
-
-
-def outdated(folder: Path, old: Manifest, keep) -> tuple[list[str], list[str]]:
-    """What a new run does with the files `old` lists in `folder` that are
-    not in `keep` (the new run's paths): (those it removes, still as `old`
-    recorded them; those it leaves because they changed since, the user's
-    now).  Files that are gone, not regular, outside the folder or behind a
-    symbolic link are in neither."""
-    folder = Path(folder)
-    root = folder.resolve()
-    gone, changed = [], []
-    for name, sha in sorted(old.files.items()):
-        if name in keep:
-            continue
-        p = folder / name
-        if p.is_symlink() or not p.is_file() or root not in p.resolve().parents:
-            continue
-        (gone if file_sha256(p) == sha else changed).append(name)
-    return gone, changed
-
-
-def remove_earlier(folder: Path, old: Manifest, keep) -> list[str]:
-    """Removes from `folder` the files `old` lists that are not in `keep`
-    (the new run's paths) and are still as `old` recorded them, and the
-    subfolders this empties; returns the listed files left because they
-    changed since (the user's now).  Nothing else is touched, and nothing
-    through a symbolic link."""
-    folder = Path(folder)
-    gone, changed = outdated(folder, old, keep)
-    for name in gone:
-        (folder / name).unlink()
-    prune_empty(folder, gone)
-    return changed
 
 
 def written_by(path) -> Manifest | None:

@@ -1,4 +1,4 @@
-"""Interrupts (orthocontact.cli.interrupts), through the real command in a
+"""A command's interrupts (orthocontact.runtime.interrupts), through the real command in a
 subprocess: a signal to the main process or one swallowed by a finalizer
 stops every worker and leaves nothing behind; one after the output was
 written leaves it and reports success."""
@@ -50,7 +50,8 @@ def test_an_interrupt_swallowed_by_a_finalizer_still_stops_and_writes_nothing(tm
     """Python reports a KeyboardInterrupt raised inside __del__ as "Exception
     ignored" and runs on (this happened to the CLI, in ContactFMU.__del__);
     the run must still end as interrupted, with nothing committed."""
-    from orthocontact.cli import interrupts, output
+    from orthocontact.output import folder as output
+    from orthocontact.runtime import interrupts
 
     class SignalledDuringFinalization:
         def __del__(self):
@@ -119,7 +120,8 @@ def test_ctrl_c_on_uq_is_one_line_and_leaves_nothing(tmp_path, identified, after
 def test_an_interrupt_after_the_commit_is_noted_not_raised(tmp_path):
     """In process: once staged_output has begun its commit, SIGTERM no
     longer raises; the folder is complete and named as written."""
-    from orthocontact.cli import interrupts, output
+    from orthocontact.output import folder as output
+    from orthocontact.runtime import interrupts
 
     old = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
     try:

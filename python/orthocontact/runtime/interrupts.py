@@ -1,4 +1,4 @@
-"""Interrupts: Ctrl-C, SIGINT and SIGTERM end a command as interrupted
+"""A command's interrupts: Ctrl-C, SIGINT and SIGTERM end a command as interrupted
 (exit 130, nothing written), even when the signal lands in a finalizer; once
 the command has begun to commit its results, an interrupt is noted, not
 raised, so that a complete output folder is reported as written (exit 0 or

@@ -1,10 +1,11 @@
-"""Where a command's results go: output paths checked before any work, a
-staging folder committed only when everything is written, the folder's
-owner (output.manifest: a command writes into a new or empty folder, or one
-of an earlier run of its own, whose files it replaces; another command's
-folder, or one holding a file the command reads, only with --force, and
-what the command reads is never removed), and the warning lines that
---strict counts."""
+"""The output folder, its logic in one place: where the results go, checked
+before any work (check_output_folder, check_output_file); whose it is
+(owner_of, check_owner: --force for another command's folder or one holding
+what the command reads, which is never removed); the staging folder,
+committed whole once everything is written (staged_output, commit_run,
+swap_in); the files edited since their run (outdated: kept, never
+overwritten without --force).  The manifest, its record, and outputs read
+back as their run wrote them (written_by, one_run): output.manifest."""
 from __future__ import annotations
 
 import contextlib
@@ -12,28 +13,18 @@ import dataclasses
 import errno
 import os
 import shutil
-import sys
 import tempfile
 import zipfile
 from pathlib import Path
 
 from ..errors import InputError
-from ..output.manifest import (
-    MANIFEST,
-    Manifest,
-    file_names,
-    new_manifest,
-    outdated,
-    owner_of,
-    read_manifest,
-    remove_earlier,
-    write_manifest,
-)
 from ..runtime.folders import locked_folder
+from ..runtime.interrupts import hold_interrupts, interrupted, results_written
 from ..runtime.processes import signals_held
 from ..runtime.swap import UNSUPPORTED, can_exchange, exchange, link_tree, merge_into, prune_empty
 from ..textfiles import paths_being_read
-from .interrupts import hold_interrupts, interrupted, results_written
+from .lines import note, warn
+from .manifest import MANIFEST, Manifest, file_names, file_sha256, new_manifest, read_manifest, write_manifest
 
 # What the system answers a write it refuses: permission, a read-only file
 # system, a full disk or quota, an I/O error.
@@ -54,13 +45,7 @@ def check_output_folder(out: Path, option: str = "--out") -> None:
         probe = probe.parent
     if probe != out and not probe.is_dir():
         raise InputError(f"{option} {out}: {probe} is a file, so no folder can be made under it")
-    # access() says yes to root everywhere, /proc included: try instead.
-    try:
-        tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=probe).cleanup()
-    except OSError as e:
-        if e.errno in REFUSALS:   # the system's refusal: its own exit status (cli.main)
-            raise OSError(e.errno, e.strerror, str(probe)) from None
-        raise InputError(f"{option} {out}: {probe} is not writable ({e.strerror})") from None
+    try_writing(probe, option, out)
     if out.is_dir():
         read_manifest(out)   # its list decides what the run removes: a bad one is refused now
 
@@ -137,11 +122,6 @@ def _prefix(home: Path, out: Path) -> str:
     return "" if rel == "." else rel + "/"
 
 
-def note(line: str) -> None:
-    """One line on stderr that is no warning (--strict does not count it)."""
-    print(f"orthocontact: {line}", file=sys.stderr, flush=True)
-
-
 def check_output_file(out: Path, option: str = "--out", reads=(), force: bool = False,
                       kind: str = "an SSP package", marker: str = "SystemStructure.ssd") -> None:
     """Raises InputError, naming the user's path, unless a file can be written
@@ -158,12 +138,20 @@ def check_output_file(out: Path, option: str = "--out", reads=(), force: bool = 
                          "--force to replace it")
     if not out.parent.is_dir():
         raise InputError(f"{option} {out}: the folder {out.parent} does not exist")
+    try_writing(out.parent, option, out)
+
+
+def try_writing(probe: Path, option: str, out: Path) -> None:
+    """Makes and removes a folder in `probe` (access() says yes to root
+    everywhere, /proc included: try instead): InputError naming the user's
+    `option` and `out` where it cannot, OSError naming `probe` where the
+    system refuses the write (REFUSALS: the command's exit 74)."""
     try:
-        tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=out.parent).cleanup()
+        tempfile.TemporaryDirectory(prefix=".orthocontact-probe-", dir=probe).cleanup()
     except OSError as e:
         if e.errno in REFUSALS:   # the system's refusal: its own exit status (cli.main)
-            raise OSError(e.errno, e.strerror, str(out.parent)) from None
-        raise InputError(f"{option} {out}: {out.parent} is not writable ({e.strerror})") from None
+            raise OSError(e.errno, e.strerror, str(probe)) from None
+        raise InputError(f"{option} {out}: {probe} is not writable ({e.strerror})") from None
 
 
 def _is_zip_with(path: Path, member: str) -> bool:
@@ -320,19 +308,53 @@ def swap_in(stage: Path, out: Path, run: Manifest, gone) -> bool:
     return True
 
 
-_warnings: list[str] = []
+def owner_of(folder: Path) -> tuple[Path, Manifest] | None:
+    """The run whose outputs `folder` holds, with the folder of its manifest:
+    the folder's own manifest, else the nearest enclosing folder's whose
+    list names a file under `folder` (reproduce's <out>/<scenario>/ is
+    reproduce's); None if no run wrote there.  InputError as read_manifest."""
+    folder = Path(folder).absolute()
+    m = read_manifest(folder) if folder.is_dir() else None
+    if m is not None:
+        return folder, m
+    for parent in folder.parents:
+        if not (parent / MANIFEST).is_file():
+            continue
+        m = read_manifest(parent)
+        under = folder.relative_to(parent).as_posix() + "/"
+        if any(name.startswith(under) for name in m.files):
+            return parent, m
+    return None
 
 
-def warnings_said() -> int:
-    """How many warnings this command has printed."""
-    return len(_warnings)
+def outdated(folder: Path, old: Manifest, keep) -> tuple[list[str], list[str]]:
+    """What a new run does with the files `old` lists in `folder` that are
+    not in `keep` (the new run's paths): (those it removes, still as `old`
+    recorded them; those it leaves because they changed since, the user's
+    now).  Files that are gone, not regular, outside the folder or behind a
+    symbolic link are in neither."""
+    folder = Path(folder)
+    root = folder.resolve()
+    gone, changed = [], []
+    for name, sha in sorted(old.files.items()):
+        if name in keep:
+            continue
+        p = folder / name
+        if p.is_symlink() or not p.is_file() or root not in p.resolve().parents:
+            continue
+        (gone if file_sha256(p) == sha else changed).append(name)
+    return gone, changed
 
 
-def forget_warnings() -> None:
-    _warnings.clear()
-
-
-def warn(line: str) -> None:
-    """One warning line on stderr; --strict turns any into exit status 1."""
-    _warnings.append(line)
-    print(f"orthocontact: warning: {line}", file=sys.stderr, flush=True)
+def remove_earlier(folder: Path, old: Manifest, keep) -> list[str]:
+    """Removes from `folder` the files `old` lists that are not in `keep`
+    (the new run's paths) and are still as `old` recorded them, and the
+    subfolders this empties; returns the listed files left because they
+    changed since (the user's now).  Nothing else is touched, and nothing
+    through a symbolic link."""
+    folder = Path(folder)
+    gone, changed = outdated(folder, old, keep)
+    for name in gone:
+        (folder / name).unlink()
+    prune_empty(folder, gone)
+    return changed

@@ -1,4 +1,4 @@
-"""Where a command's results go (orthocontact.cli.output): bad output paths
+"""The output folder (orthocontact.output.folder): bad output paths
 refused before any work, a staging folder committed only when everything
 is written, files the command does not write left alone, an earlier run's
 files removed (the folder's manifest)."""
@@ -15,16 +15,10 @@ import pytest
 from cli_run import CMD, MAT_SWEEP, case4_named, leftovers, one_error_line, timed_run
 from cli_run import run_cli as run
 from orthocontact.cli.main import main
-from orthocontact.cli.output import (
-    check_output_file,
-    check_output_folder,
-    forget_warnings,
-    staged_output,
-    warn,
-    warnings_said,
-)
 from orthocontact.errors import InputError
-from orthocontact.output.manifest import MANIFEST, file_sha256
+from orthocontact.output.folder import check_output_file, check_output_folder, remove_earlier, staged_output
+from orthocontact.output.lines import forget_warnings, warnings_said
+from orthocontact.output.manifest import MANIFEST, file_sha256, read_manifest
 from orthocontact.runtime.folders import LOCK
 from paths import SCENARIOS
 
@@ -189,17 +183,6 @@ def test_identify_twice_into_one_folder_leaves_only_the_second_runs_outputs(tmp_
     assert p.returncode == 0, p.stderr
     assert files_under(out) == [MANIFEST, "fit.png", "identified.json", "identified.md", "my_notes.txt"]
     assert (out / "my_notes.txt").read_text() == "mine"
-
-
-def test_warnings_are_counted_for_strict(capsys):
-    forget_warnings()
-    warn("angles.csv: a value looks like radians")
-    warn("second")
-    assert warnings_said() == 2
-    assert capsys.readouterr().err.splitlines() == [
-        "orthocontact: warning: angles.csv: a value looks like radians", "orthocontact: warning: second"]
-    forget_warnings()
-    assert warnings_said() == 0
 
 
 # -- a killed run's staging folder: the next run into its --out removes it ------------
@@ -447,7 +430,7 @@ def test_a_full_disk_at_any_step_of_the_commit_leaves_out_as_it_was(tmp_path, mo
     nothing is left beside it."""
     import errno
 
-    import orthocontact.cli.output as output
+    import orthocontact.output.folder as output
     out = tmp_path / "out"
     before = _earlier_run(out)
     real = {"link": os.link, "write_manifest": output.write_manifest, "exchange": output.exchange}[step]
@@ -467,7 +450,7 @@ def test_a_full_disk_at_any_step_of_the_commit_leaves_out_as_it_was(tmp_path, mo
 def test_a_full_disk_as_a_new_out_is_written_leaves_no_out(tmp_path, monkeypatch):
     import errno
 
-    import orthocontact.cli.output as output
+    import orthocontact.output.folder as output
 
     def full(folder, m):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), str(folder))
@@ -480,7 +463,7 @@ def test_a_full_disk_as_a_new_out_is_written_leaves_no_out(tmp_path, monkeypatch
 KILL_AT = """
 import os, signal, sys
 from pathlib import Path
-import orthocontact.cli.output as output
+import orthocontact.output.folder as output
 step = sys.argv[2]
 real = getattr(output, step.split()[-1])
 def at(*a, **k):
@@ -519,7 +502,7 @@ def test_where_no_exchange_can_be_made_the_files_move_one_by_one(tmp_path, monke
     a symbolic link (its target is written, the link stays)."""
     import errno
 
-    import orthocontact.cli.output as output
+    import orthocontact.output.folder as output
     out = tmp_path / "out"
     _earlier_run(out)
     if why == "no exchange":
@@ -557,3 +540,43 @@ def test_an_output_the_user_edited_is_never_overwritten_by_the_same_command(tmp_
     assert {n: (out / n).read_bytes() for n in files_under(out)} == before
     assert run(["run", sc, "--out", out, "--force"], tmp_path).returncode == 0
     assert (out / "sweep.csv").read_text() != edited
+
+
+# -- an earlier run's files: removed but for those changed since, never through a link --
+
+def committed(out: Path, files: dict):
+    """`out` as a run of identify leaves it: `files` (path -> bytes) and its manifest."""
+    with staged_output(out, "identify") as stage:
+        for name, data in files.items():
+            (stage / name).parent.mkdir(parents=True, exist_ok=True)
+            (stage / name).write_bytes(data)
+    return read_manifest(out)
+
+
+def test_an_earlier_runs_files_go_the_users_and_changed_ones_stay(tmp_path):
+    out = tmp_path / "out"
+    old = committed(out, {"reduction.csv": b"1\n", "figs/a.png": b"png", "figs/b.png": b"png2",
+                          "identified.md": b"# old\n", "shared.json": b"old"})
+    (out / "my_notes.txt").write_text("mine")
+    (out / "figs" / "mine.png").write_bytes(b"my figure")
+    (out / "identified.md").write_text("# old, with my notes\n")
+    kept = remove_earlier(out, old, keep={"shared.json": "x"})
+    assert kept == ["identified.md"]
+    assert sorted(p.relative_to(out).as_posix() for p in out.rglob("*")) == [
+        MANIFEST, "figs", "figs/mine.png", "identified.md", "my_notes.txt", "shared.json"]
+    old2 = committed(out / "sub", {"x/y/z.csv": b"1"})
+    remove_earlier(out / "sub", old2, keep={})
+    assert sorted(p.name for p in (out / "sub").iterdir()) == [MANIFEST]   # emptied folders go
+
+
+def test_nothing_is_removed_through_a_symbolic_link(tmp_path):
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    (outside / "a.csv").write_bytes(b"1")
+    out = tmp_path / "out"
+    old = committed(out, {"sub/a.csv": b"1"})
+    (out / "sub" / "a.csv").unlink()
+    (out / "sub").rmdir()
+    (out / "sub").symlink_to(outside)
+    remove_earlier(out, old, keep={})
+    assert (outside / "a.csv").read_bytes() == b"1"
