@@ -11,18 +11,22 @@
  *   FMU_SOURCES(S): its sources under fmu_src/ besides the version's glue
  *     (CMake's fmu_add reads the list; the headers of their folders ship
  *     with them);
- *   FMU_VARIABLES(X): its variables, one row each, in the order of the
- *     model descriptions, value reference 0 the independent variable time;
- *     a row is X(name, vr, type, causality, variability, initial, start,
- *     min, max, unit, displayUnit, description):
+ *   its rows, ROWS(X, L): its variables, one row each, in the order of
+ *     the model descriptions, value reference 0 the independent variable
+ *     time; a row is X(name, vr, type, causality, variability, initial,
+ *     start, min, max, unit, displayUnit, description), the law's rows
+ *     (law/law_table.h) L(...) alike:
  *       type: Float64, Int32 or the name of an enumeration type of
  *             FMU_ENUM_TYPES (an Integer with min/max in FMI 2.0, an
  *             Enumeration in FMI 3.0);
  *       initial: exact or calculated ("calculated" entries have no start);
  *       min, max: numbers (NO_MIN / NO_MAX for none); the model refuses
  *             values outside them;
- *     FMU_GROUPED_VARIABLES(X, G) and FMU_GROUP may mark a group of rows
- *     (the law's parameters, law/law_table.h), which the manifest names;
+ *     its tail, last: FMU_TABLE_ROWS the name of ROWS, FMU_VR_PREFIX its
+ *     value references' prefix, then glue/fmu_table_tail.inc, which
+ *     defines FMU_VARIABLES(X), FMU_GROUPED_VARIABLES(X, L) with FMU_GROUP
+ *     (the law's rows, which the manifest names) and the value references'
+ *     enumerators;
  *   FMU_DEPENDENCIES(D): what each output depends on, D(output, step
  *     mode, initialization), each a list of the knowns it is computed from,
  *     "name" (no particular structure) or "name:kind"; gen_model_description
@@ -36,7 +40,7 @@
  *   for the generator only (#ifdef FMU_GENERATOR), FMU_DOC_HTML: the
  *     model's part of documentation/index.html.
  * Its rows are grouped in macros of a few rows each (the inputs, the
- * outputs, ...), FMU_VARIABLES listing the groups in order.
+ * outputs, ...), ROWS listing the groups in order.
  */
 #ifndef FMU_TABLE_H
 #define FMU_TABLE_H

@@ -97,14 +97,17 @@ static const char FMU_DOC_HTML[] =
     X(driveForce, 14, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",   \
       "Driving force the sensor reads: fInt plus the push -T1")
 
-#define FMU_VARIABLES(X)                                                                       \
+/* Its rows (L would mark the law's: the rig has none). */
+#define RIG_VARIABLES(X, L)                                                                    \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "",               \
       "Simulation time")                                                                       \
     RIG_PARAMETER_ROWS(X) RIG_INPUT_ROWS(X) RIG_OUTPUT_ROWS(X)
 
-#define RIG_VR_ENUM_ENTRY(name, vr, ...) RIG_VR_##name = vr,
-enum { FMU_VARIABLES(RIG_VR_ENUM_ENTRY) RIG_VR_COUNT_PLUS_ONE };
-#undef RIG_VR_ENUM_ENTRY
+/* The table's tail, every table's (glue/fmu_table_tail.inc): FMU_VARIABLES
+ * (no row of the law's group) and the value references RIG_VR_*. */
+#define FMU_TABLE_ROWS RIG_VARIABLES
+#define FMU_VR_PREFIX RIG_VR_
+#include "glue/fmu_table_tail.inc"
 
 /* clang-format on */
 #endif

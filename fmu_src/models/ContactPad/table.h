@@ -145,14 +145,11 @@ static const char FMU_DOC_HTML[] =
       "Normal force of the foundation on the body at each cell (they sum to Fn)")                \
     PATCH_STATE_ARRAY(A, 36)
 
-#define FMU_VARIABLES(X) PAD_VARIABLES(X, X)
-#define FMU_GROUPED_VARIABLES(X, L) PAD_VARIABLES(X, L)
-#define FMU_GROUP "law"
-
-#define PAD_VR_ENUM_ENTRY(name, vr, ...) PAD_VR_##name = vr,
-enum { FMU_VARIABLES(PAD_VR_ENUM_ENTRY) PAD_VR_COUNT_PLUS_ONE };
-enum { FMU_ARRAYS(PAD_VR_ENUM_ENTRY) PAD_VR_ARRAYS_END };
-#undef PAD_VR_ENUM_ENTRY
+/* The table's tail, every table's (glue/fmu_table_tail.inc): FMU_VARIABLES,
+ * the law's group and the value references PAD_VR_*. */
+#define FMU_TABLE_ROWS PAD_VARIABLES
+#define FMU_VR_PREFIX PAD_VR_
+#include "glue/fmu_table_tail.inc"
 
 /* clang-format on */
 #endif

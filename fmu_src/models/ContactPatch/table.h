@@ -116,14 +116,11 @@ static const char FMU_DOC_HTML[] =
  * there n1, n2 are parameters): cells/cell_rows.h. */
 #define FMU_ARRAYS(A) PATCH_FORCE_ARRAYS(A, 27) PATCH_STATE_ARRAY(A, 29)
 
-#define FMU_VARIABLES(X) PATCH_VARIABLES(X, X)
-#define FMU_GROUPED_VARIABLES(X, L) PATCH_VARIABLES(X, L)
-#define FMU_GROUP "law"
-
-#define PATCH_VR_ENUM_ENTRY(name, vr, ...) PATCH_VR_##name = vr,
-enum { FMU_VARIABLES(PATCH_VR_ENUM_ENTRY) PATCH_VR_COUNT_PLUS_ONE };
-enum { FMU_ARRAYS(PATCH_VR_ENUM_ENTRY) PATCH_VR_ARRAYS_END };
-#undef PATCH_VR_ENUM_ENTRY
+/* The table's tail, every table's (glue/fmu_table_tail.inc): FMU_VARIABLES,
+ * the law's group and the value references PATCH_VR_*. */
+#define FMU_TABLE_ROWS PATCH_VARIABLES
+#define FMU_VR_PREFIX PATCH_VR_
+#include "glue/fmu_table_tail.inc"
 
 /* clang-format on */
 #endif

@@ -180,13 +180,11 @@ static const char FMU_DOC_HTML[] =
  * oc_params under their names and serializes them, the compiled master
  * fills them and the package's manifest (gen_model_description manifest)
  * lists them as the group "law", all from here. */
-#define FMU_VARIABLES(X) OC_VARIABLES(X, X)
-#define FMU_GROUPED_VARIABLES(X, L) OC_VARIABLES(X, L)
-#define FMU_GROUP "law"
-
-#define OC_VR_ENUM_ENTRY(name, vr, ...) OC_VR_##name = vr,
-enum { FMU_VARIABLES(OC_VR_ENUM_ENTRY) OC_VR_COUNT_PLUS_ONE };
-#undef OC_VR_ENUM_ENTRY
+/* The table's tail, every table's (glue/fmu_table_tail.inc): FMU_VARIABLES,
+ * the law's group and the value references OC_VR_*. */
+#define FMU_TABLE_ROWS OC_VARIABLES
+#define FMU_VR_PREFIX OC_VR_
+#include "glue/fmu_table_tail.inc"
 
 /* clang-format on */
 #endif
