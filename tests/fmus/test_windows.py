@@ -130,14 +130,17 @@ def script(model: str, version: int, token: str, turned: bool) -> str:
 
 
 def zig_cc(target: str, out: Path, *libs: str) -> Path:
-    """The host for `target`, with the project's zig.  The optimization and
-    sanitizer flags are those the FMUs' binaries were cross-built with
-    (CMakeLists.txt), so that zig reuses the target's C runtime it built
-    then; other flags make it build that runtime again."""
+    """The host for `target`, with the project's zig, reusing the target's C
+    runtime zig built for the FMUs' binaries (CMakeLists.txt): the same
+    optimization and sanitizer flags, and zig run from out's folder.  Zig
+    keys its cache by the runtime's source paths relative to the working
+    directory when that contains them (the checkout holds .venv and zig's
+    library in it), relative to zig's library otherwise (the CMake build's
+    folder): run from the checkout, it built the Windows runtime again, 130 s."""
     subprocess.run([sys.executable, "-m", "ziglang", "cc", "-target", target, "-std=c99", "-O2",
                     "-fno-sanitize=undefined", "-s",
                     "-I", str(HEADERS), str(HOST), *libs, "-o", str(out)],
-                   check=True, capture_output=True, timeout=900)
+                   check=True, capture_output=True, timeout=900, cwd=out.parent)
     return out
 
 
