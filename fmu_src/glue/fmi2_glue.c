@@ -1,6 +1,6 @@
 /*
  * FMI 2.0 Co-Simulation: the standard's signatures translated onto the shared,
- * version-independent instance (fmu_instance.c) and the model (fmu_model.h).
+ * version-independent instance (fmu_instance.h) and the model (fmu_model.h).
  * No mechanics and no model variables live here.
  */
 #include <math.h>

@@ -1,6 +1,6 @@
 /*
  * FMI 3.0 Co-Simulation: the standard's signatures translated onto the shared,
- * version-independent instance (fmu_instance.c) and the model (fmu_model.h).
+ * version-independent instance (fmu_instance.h) and the model (fmu_model.h).
  * No mechanics and no model variables live here.  Float64 variables, Int32
  * variables, Enumerations (through the Int64 functions, as FMI 3.0 asks) and
  * structural parameters (UInt64, as the standard's Dimension element asks;

@@ -3,7 +3,9 @@
  * logging categories, the time, the serialized state (phase and time
  * included, so that a state restores into a freshly instantiated instance)
  * and the checks every entry point makes.  fmi2_glue.c and fmi3_glue.c are
- * thin translations of their standard's signatures onto this.
+ * thin translations of their standard's signatures onto this.  Written in
+ * fmu_instance.c (the instance, its log, its phases and a step),
+ * fmu_start_values.c, fmu_state.c and fmu_jacobian.c (fmu_jacobian).
  */
 #ifndef FMU_INSTANCE_H
 #define FMU_INSTANCE_H
@@ -44,9 +46,8 @@ struct fmu_instance {
     fmu_log_fn log;
     void *(*alloc)(size_t n, size_t size);
     void (*release)(void *p);
-    void *glue; /* the version's own data (callbacks, environment) */
-    struct fmu_held_state
-        *states; /* the FMU states it gave out and has not freed (fmu_instance.c) */
+    void *glue;                    /* the version's own data (callbacks, environment) */
+    struct fmu_held_state *states; /* the FMU states it gave out and has not freed (fmu_state.c) */
 };
 
 /* NULL if out of memory.  Errors and warnings are logged unless switched

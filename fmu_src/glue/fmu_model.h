@@ -1,7 +1,7 @@
 /*
- * What a model provides to the shared FMI glue (fmu_instance.c, fmi2_glue.c,
- * fmi3_glue.c), as the Modelica Reference-FMUs share one set of FMI functions
- * across models: the glue belongs to no model, a model knows nothing of FMI.
+ * What a model provides to the shared FMI glue (glue/fmu_table.h's
+ * FMU_GLUE_SOURCES, fmi2_glue.c, fmi3_glue.c), as the Modelica Reference-FMUs share one set of FMI
+ * functions across models: the glue belongs to no model, a model knows nothing of FMI.
  *
  * A model provides its physics and its state, nothing else:
  *   - `struct fmu_model`, in which every variable of its table (FMU_VARIABLES
@@ -172,7 +172,7 @@ size_t fmu_model_state_size(void);
 void fmu_model_state_write(const fmu_model *m, unsigned char *buf);
 fmu_status fmu_model_state_read(fmu_model *m, const unsigned char *buf, fmu_msg *msg);
 
-/* ---- what the glue implements once for every model (fmu_instance.c) ----- */
+/* ---- what the glue implements once for every model (fmu_values.c) ---- */
 
 size_t fmu_model_size(void);
 /* The model at its table's start values; fmu_model_init_from takes them
@@ -203,6 +203,7 @@ fmu_status fmu_model_get_values(const fmu_model *m, const unsigned int vr[], siz
                                 size_t n_values, int type, size_t width, fmu_msg *msg);
 /* Whether vr is one of the model's structural parameters. */
 int fmu_model_is_structural(unsigned int vr);
+/* The model's derivative hook, or why there is none (fmu_jacobian.c). */
 fmu_status fmu_model_derivative(const fmu_model *m, const unsigned int unknown[], size_t n_unknown,
                                 const unsigned int known[], size_t n_known, const double seed[],
                                 double out[], int adjoint, fmu_msg *msg);

@@ -8,9 +8,9 @@
  * A table defines:
  *   FMU_MODEL_NAME, FMU_MODEL_IDENTIFIER, FMU_DESCRIPTION, FMU_STATE_TAG
  *     (the first bytes of its serialized states), FMU_DEFAULT_EXPERIMENT;
- *   FMU_SOURCES(S): its sources under fmu_src/ besides the version's glue
- *     (CMake's fmu_add reads the list; the headers of their folders ship
- *     with them);
+ *   FMU_SOURCES(S): its sources under fmu_src/ besides the glue's (below:
+ *     FMU_GLUE_SOURCES) and the version's (CMake's fmu_add reads the list;
+ *     the headers of their folders ship with them);
  *   its rows, ROWS(X, L): its variables, one row each, in the order of
  *     the model descriptions, value reference 0 the independent variable
  *     time; a row is X(name, vr, type, causality, variability, initial,
@@ -55,5 +55,19 @@
 
 /* A row's name and a space: "mu1 mu2 ... " from rows, for a list of knowns. */
 #define FMU_NAME_SPACE(name, ...) #name " "
+
+/* The glue's sources, every model's after its own FMU_SOURCES (and before
+ * the version's, glue/fmi2_glue.c or glue/fmi3_glue.c): the one list of
+ * them, which CMake's fmu_add reads and gen_model_description names in
+ * the model descriptions.  One S(...) a line, each an area of the glue. */
+/* clang-format off */
+#define FMU_GLUE_SOURCES(S)                                                                        \
+    S(glue/fmu_values.c)        /* variables: lookup, set, get; messages */                        \
+    S(glue/fmu_jacobian.c)      /* directional derivatives */                                      \
+    S(glue/fmu_instance.c)      /* the instance, its log and its phases */                         \
+    S(glue/fmu_start_values.c)  /* start values from the resources */                              \
+    S(glue/fmu_fields.c)        /* a serialized state's field lists */                             \
+    S(glue/fmu_state.c)         /* the serialized state, the FMU-state functions */
+/* clang-format on */
 
 #endif

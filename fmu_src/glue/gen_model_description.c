@@ -82,7 +82,7 @@ enum { NENUMS = 0 };
 #endif
 
 #define SRC(f) #f,
-static const char *const SOURCES[] = {FMU_SOURCES(SRC)};
+static const char *const SOURCES[] = {FMU_SOURCES(SRC) FMU_GLUE_SOURCES(SRC)};
 #undef SRC
 enum { NSOURCES = sizeof SOURCES / sizeof SOURCES[0] };
 

@@ -30,9 +30,10 @@
     "Carriage/block rig of Konyukhov and Schweizerhof's experiment: a block pushed along X1 " \
     "at constant velocity, laterally free but for a strip's friction; couple its u1, u2, N " \
     "to OrthotropicContact's inputs and T1, T2 back"
-/* Sources of the binary besides the version's glue (CMake's fmu_add reads
- * the list from here). */
-#define FMU_SOURCES(S) S(models/CarriageBlock/model.c) S(rig/rig_core.c) S(glue/fmu_instance.c)
+/* Sources of the binary besides the glue's (glue/fmu_table.h's
+ * FMU_GLUE_SOURCES and the version's; CMake's fmu_add reads the list from
+ * here). */
+#define FMU_SOURCES(S) S(models/CarriageBlock/model.c) S(rig/rig_core.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/CarriageBlock/model.h"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"2.05\" stepSize=\"0.0002\""

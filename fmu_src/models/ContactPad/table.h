@@ -44,7 +44,7 @@
     "the six-component wrench from the body's displacement, rotation, approach and tilts"
 #define FMU_SOURCES(S)                                                                          \
     S(law/contact_law.c) S(cells/cells.c) S(models/ContactPad/pressure.c)                       \
-    S(models/ContactPad/model.c) S(glue/fmu_instance.c)
+    S(models/ContactPad/model.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/ContactPad/model.h"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""

@@ -45,8 +45,7 @@
     "the coupled orthotropic adhesion-friction law (Konyukhov and Schweizerhof 2007) at its "  \
     "centre with its own slip; force and torque from the body's displacement and rotation"
 #define FMU_SOURCES(S)                                                                          \
-    S(law/contact_law.c) S(cells/cells.c) S(models/ContactPatch/model.c)                        \
-    S(glue/fmu_instance.c)
+    S(law/contact_law.c) S(cells/cells.c) S(models/ContactPatch/model.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/ContactPatch/model.h"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""

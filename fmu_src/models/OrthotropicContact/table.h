@@ -27,10 +27,11 @@
     "Coupled orthotropic adhesion-friction contact interface (Konyukhov and Schweizerhof "   \
     "2007): tangential force from the displacement of a body on a surface by an implicit " \
     "return mapping"
-/* Sources of the binary besides the version's glue (glue/fmi2_glue.c,
- * glue/fmi3_glue.c), under fmu_src/; CMake's fmu_add reads the list from
- * here and ships the headers of their folders with them. */
-#define FMU_SOURCES(S) S(law/contact_law.c) S(models/OrthotropicContact/model.c) S(glue/fmu_instance.c)
+/* Sources of the binary besides the glue's (glue/fmu_table.h's
+ * FMU_GLUE_SOURCES, and the version's glue/fmi2_glue.c or glue/fmi3_glue.c),
+ * under fmu_src/; CMake's fmu_add reads the list from here and ships the
+ * headers of their folders with them. */
+#define FMU_SOURCES(S) S(law/contact_law.c) S(models/OrthotropicContact/model.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/OrthotropicContact/model.h"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
