@@ -83,7 +83,8 @@ def _token(tmp, fmu_src: Path, table: str, version: str) -> tuple[str, str]:
     gen = tmp / f"gen{len(list(tmp.glob('gen*')))}"
     subprocess.run(_compiler() + ["-std=c99", "-I", str(fmu_src),
                                   f'-DFMU_TABLE_HEADER="{table}"', f'-DFMU_VERSION="{version}"',
-                                  str(fmu_src / "glue" / "gen_model_description.c"), "-o", str(gen), "-lm"],
+                                  *map(str, sorted((fmu_src / "glue").glob("gen_model_description*.c"))),
+                                  "-o", str(gen), "-lm"],
                    check=True, capture_output=True, timeout=120)
     header = subprocess.run([str(gen), "token"], check=True, capture_output=True, text=True).stdout
     xml = subprocess.run([str(gen), "fmi2"], check=True, capture_output=True, text=True).stdout
