@@ -148,17 +148,25 @@ def central(f, base, k, outputs, h):
     return (up - down) / (2 * h)
 
 
-@pytest.mark.parametrize("case", ["stick", "slip", "lift-off", "damped"])
+@pytest.mark.parametrize("case", ["stick", "slip", "lift-off", "damped", "damped closing"])
 def test_directional_derivatives_match_central_differences(version, case):
     """d(T1, T2, Mz, Fn, M1, M2)/d(u1, u2, theta, d, phi1, phi2) of the
     pending step against central differences of the pending outputs (the
-    pose away from any cell's switch between stick and slip or contact)."""
-    foundation = Foundation(KN, 5e4 if case == "damped" else 0.0)
-    lift = case == "lift-off"
+    pose away from any cell's switch between stick and slip or contact).
+    Damped closing: the pad came down 20 um in the last step, so the
+    damper presses where the rate term alone would reach past the touching
+    line (delta = 0), which bounds the pressed part: the pressure's jump
+    there moves with the pose."""
+    foundation = Foundation(KN, 5e4 if case.startswith("damped") else 0.0)
+    lift = case in ("lift-off", "damped closing")
     start = (1e-5, 0.0, 1e-3, 2e-5, 5e-4, 2e-3) if lift else (1e-5, 0.0, 1e-3, 1e-4, 2e-4, 5e-4)
+    if case == "damped closing":
+        start = (0.0, 0.0, 0.0, -1e-5, 0.0, 1e-3)
     push = 1e-7 if case == "stick" else 2e-2   # the elastic length mu N / eps: ~5 mm
     base = (start[0] + push, -0.5 * push, start[2] + 3 * push, start[3] * 1.1, start[4] * 0.9,
             start[5] * 1.05)
+    if case == "damped closing":
+        base = (push, -0.5 * push, 3 * push, 1e-5, 1e-4, 1e-3)
     with pad(version, (6, 5), foundation=foundation, pose=start) as f:
         f.do_step(1e-3)
         f.set_inputs(*base)
@@ -166,6 +174,9 @@ def test_directional_derivatives_match_central_differences(version, case):
         state = f.outputs()["contactState"]
         assert state == (1 if case == "stick" else 3)
         assert (f.outputs()["contactFraction"] < 1) == lift
+        if case == "damped closing":   # the share where delta > 0 (the rate term reaches further)
+            assert f.outputs()["contactFraction"] == pytest.approx(
+                cpad.contact_fraction(L, W, *base[3:], base[2]), rel=1e-12)
         for k, name in enumerate(f.INPUTS):
             h = 1e-7 * max(abs(base[k]), 1e-4)
             fd = central(f, base, k, WRENCH, h)
@@ -191,6 +202,64 @@ def test_damping_takes_the_rate_over_the_previous_step_and_never_pulls(version):
         f.set_inputs(0, 0, 0, 5e-6)                  # withdrawn at 25 mm/s: dn A v > kn A d
         assert wrench(f)["Fn"] == 0.0 and f.outputs()["contactState"] == 0
         assert f.outputs()["contactFraction"] == 0.0
+
+
+def test_a_damped_pad_that_approaches_and_never_touches_carries_nothing(version):
+    """Closing at 0.1 m/s from 0.2 mm above, dn = 1e5 N s/m^3 (dn/kn = 0.5
+    ms: dn v is the pressure of 50 um of approach): no point touches, so
+    nothing presses (a Kelvin-Voigt layer presses only where it touches),
+    however fast it comes; at the touch the damper's pressure dn v appears
+    at once over the area that touches."""
+    dn, v, h = 1e5, 0.1, 1e-4
+    with pad(version, (4, 4), foundation=Foundation(KN, dn), pose=(0, 0, 0, -2e-4, 0, 0)) as f:
+        for k in range(1, 20):
+            f.do_step(h)
+            f.set_inputs(0, 0, 0, -2e-4 + v * h * k)
+            assert wrench(f)["Fn"] == 0.0 and f.outputs()["contactFraction"] == 0.0, k
+        f.do_step(h)
+        f.set_inputs(0, 0, 0, 1e-5)          # 10 um in, from 10 um above
+        assert wrench(f)["Fn"] == pytest.approx(L * W * (KN * 1e-5 + dn * 2e-5 / h), rel=1e-12)
+
+
+def brute_touching(d, phi2, rate_d, rate_phi2, dn, n=200_000):
+    """Fn of a damped layer by the midpoint rule along the length (no
+    turn, phi1 = 0): kn delta + dn delta', clipped at 0, where delta > 0."""
+    x = (np.arange(n) + 0.5) / n * L - L / 2
+    delta = d + phi2 * x
+    p = np.where(delta > 0, np.maximum(KN * delta + dn * (rate_d + rate_phi2 * x), 0.0), 0.0)
+    return p.sum() * L / n * W
+
+
+def test_a_tilted_pad_closing_presses_where_it_touches_by_spring_and_damper(version):
+    """Tilted and closing: the pressed part is where the approach is > 0 and
+    the pressure with its rate term too, each cell's share exact (the
+    midpoint rule on 200 000 strips: first order at the lines, 1e-7)."""
+    dn, h = 5e4, 1e-3
+    with pad(version, (6, 5), foundation=Foundation(KN, dn), pose=(0, 0, 0, -1e-5, 0, 1e-3)) as f:
+        f.do_step(h)
+        f.set_inputs(0, 0, 0, 1e-5, 0, 1.2e-3)
+        Fn = wrench(f)["Fn"]
+        assert Fn == pytest.approx(brute_touching(1e-5, 1.2e-3, 2e-5 / h, 0.2e-3 / h, dn), rel=1e-6)
+        # where delta > 0: x > -d/phi2, whatever the rate term adds below
+        assert f.outputs()["contactFraction"] == pytest.approx((L / 2 + 1e-5 / 1.2e-3) / L, rel=1e-12)
+
+
+def test_the_damping_rate_is_exact_for_a_ramp_over_steps_of_varying_size(version):
+    """Steps alternating 0.1 and 0.2 ms, the approach ramped at 10 mm/s and
+    set at each step's start (the FMI's convention): every step's damping
+    pressure is dn v exactly, the backward difference over the step that
+    brought the inputs, whatever the sizes."""
+    dn, v = 1e5, 0.01
+    with pad(version, (4, 4), foundation=Foundation(KN, dn), pose=(0, 0, 0, 1e-5, 0, 0)) as f:
+        t = 0.0
+        for k in range(12):
+            d = 1e-5 + v * t
+            f.set_inputs(0, 0, 0, d)
+            if k > 0:
+                assert wrench(f)["Fn"] - KN * L * W * d == pytest.approx(dn * L * W * v, rel=1e-9), k
+            h = (1e-4, 2e-4)[k % 2]
+            f.do_step(h)
+            t += h
 
 
 def test_a_state_restored_mid_run_continues_bit_for_bit_rate_included(version):

@@ -38,11 +38,16 @@ enum { P_ROWS = 7, P_COLS = 6 };
  * reference pose's approach of the same body point divided by ref.h.
  * With a = (dn/kn)/ref.h, f0 = d + a (d - d_ref) and g = g_b + a (g_b -
  * g_ref), g_b = R(theta)^T (phi2, -phi1): each a linear function of the
- * pose, f0' = (1 + a) d' and g' = (1 + a) g_b'. */
+ * pose, f0' = (1 + a) d' and g' = (1 + a) g_b'.  With a > 0 (damped) the
+ * layer presses only where it touches, the approach d + g_b . r > 0, as
+ * well (a Kelvin-Voigt layer): the pressed part is clipped by both lines. */
 typedef struct {
     double f0, g[2];
-    double df0;      /* df0/dd [-] */
-    double dg[3][2]; /* dg/d(theta, phi1, phi2) [1/rad] */
+    double df0;       /* df0/dd [-] */
+    double dg[3][2];  /* dg/d(theta, phi1, phi2) [1/rad] */
+    int damped;       /* a > 0: the touching line d + gb . r = 0 clips too */
+    double d, gb[2];  /* the approach's field, d + gb . r */
+    double dgb[3][2]; /* dgb/d(theta, phi1, phi2) [1/rad] */
 } pad_field;
 
 /* R(theta)^T (phi2, -phi1): the approach's slopes along the body's axes. */
@@ -61,6 +66,10 @@ static pad_field field_of(const pad_model *m, const pad_pose *ref) {
     F.f0 = m->d;
     F.g[0] = gb[0];
     F.g[1] = gb[1];
+    F.damped = a > 0.0;
+    F.d = m->d;
+    F.gb[0] = gb[0];
+    F.gb[1] = gb[1];
     if (a > 0.0) { /* as differences, so that held inputs add exactly nothing */
         double gr[2];
         body_slopes(ref->theta, ref->phi[0], ref->phi[1], gr);
@@ -69,6 +78,12 @@ static pad_field field_of(const pad_model *m, const pad_pose *ref) {
         F.g[1] += a * (gb[1] - gr[1]);
     }
     const double k = 1.0 + a;
+    F.dgb[0][0] = -s * m->phi[1] - c * m->phi[0];
+    F.dgb[0][1] = -c * m->phi[1] + s * m->phi[0];
+    F.dgb[1][0] = -s;
+    F.dgb[1][1] = -c;
+    F.dgb[2][0] = c;
+    F.dgb[2][1] = -s;
     F.df0 = k;
     F.dg[0][0] = k * (-s * m->phi[1] - c * m->phi[0]);
     F.dg[0][1] = k * (-c * m->phi[1] + s * m->phi[0]);
@@ -77,6 +92,20 @@ static pad_field field_of(const pad_model *m, const pad_pose *ref) {
     F.dg[2][0] = k * c;
     F.dg[2][1] = k * -s;
     return F;
+}
+
+/* The moments of the part of a cell (centre r = (x, y), half sides hx,
+ * hy) that presses, e its effective approach at the centre; 1 if all of
+ * it.  Damped, the part that touches too, and its edge on the touching
+ * line (when `edge` is given). */
+static int pressed_part(const pad_field *F, double x, double y, double e, double hx, double hy,
+                        pad_moments *M, pad_edge *edge) {
+    pad_edge none;
+    if (!edge) edge = &none;
+    edge->n = 0;
+    if (!F->damped) return pad_clip_moments(e, F->g, hx, hy, M);
+    const double dl = (F->d + F->gb[0] * x) + F->gb[1] * y;
+    return pad_clip_moments_touching(e, F->g, dl, F->gb, hx, hy, M, edge);
 }
 
 /* The cells' half sides and centres [m]. */
@@ -116,7 +145,8 @@ static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], p
     for (int j = 0; j < n2; ++j) ey[j] = F->g[1] * G.y[j];
     const double kn = m->kn, cell_area = 4.0 * G.hx * G.hy, kA = kn * cell_area;
     const double L = g->length, W = g->width;
-    if (F->f0 - (fabs(F->g[0]) * (0.5 * L) + fabs(F->g[1]) * (0.5 * W)) > 0) {
+    if (F->f0 - (fabs(F->g[0]) * (0.5 * L) + fabs(F->g[1]) * (0.5 * W)) > 0 &&
+        (!F->damped || F->d - (fabs(F->gb[0]) * (0.5 * L) + fabs(F->gb[1]) * (0.5 * W)) > 0)) {
         for (int j = 0, c = 0; j < n2; ++j)
             for (int i = 0; i < n1; ++i, ++c) Nc[c] = kA * (ex[i] + ey[j]);
         S->Fn = kn * (L * W) * F->f0;
@@ -131,7 +161,7 @@ static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], p
         for (int i = 0; i < n1; ++i, ++c) {
             const double e = ex[i] + ey[j];
             pad_moments M;
-            if (pad_clip_moments(e, F->g, G.hx, G.hy, &M)) {
+            if (pressed_part(F, G.x[i], G.y[j], e, G.hx, G.hy, &M, NULL)) {
                 const double N = kA * e;
                 Nc[c] = N;
                 row_N += N;
@@ -256,10 +286,11 @@ fmu_status fmu_model_do_step(pad_model *m, double h, fmu_msg *msg) {
 /* ---- directional derivatives ------------------------------------------------ */
 
 /* A cell of the shown step's foundation: its centre, its field, its
- * pressed part's moments. */
+ * pressed part's moments and (damped) its edge on the touching line. */
 typedef struct {
     double r[2], e;
     pad_moments M;
+    pad_edge E;
 } pad_cell;
 
 static pad_cell pad_cell_of(const pad_model *m, const pad_field *F, int c) {
@@ -269,8 +300,39 @@ static pad_cell pad_cell_of(const pad_model *m, const pad_field *F, int c) {
     x.r[0] = cells_coordinate(c % g->n[0], g->n[0]) * g->length;
     x.r[1] = cells_coordinate(c / g->n[0], g->n[1]) * g->width;
     x.e = (F->f0 + F->g[0] * x.r[0]) + F->g[1] * x.r[1];
-    pad_clip_moments(x.e, F->g, hx, hy, &x.M);
+    pressed_part(F, x.r[0], x.r[1], x.e, hx, hy, &x.M, &x.E);
     return x;
+}
+
+/* Where the layer presses only where it touches (damped), the pressure
+ * jumps to kn e across the touching line delta = 0, which the pose moves:
+ * by s_q / |gb| along its normal per unit of a pose variable q, s_q =
+ * d delta / dq at the point (1 for d, dgb/dq . r for a turn or tilt).  The
+ * integrals of Fn and of the first moment r p gain kn times those of e s_q
+ * and of e r s_q along the cell's edge on it, /|gb| (two-point
+ * Gauss-Legendre: exact, the integrand a cubic along the line).  dN[q] and
+ * dmb[axis][q] over (theta, d, phi1, phi2). */
+static void touching_terms(const pad_field *F, const pad_cell *x, double kn, double dN[4],
+                           double dmb[2][4]) {
+    for (int q = 0; q < 4; ++q) dN[q] = dmb[0][q] = dmb[1][q] = 0.0;
+    if (!x->E.n) return;
+    const double slope = hypot(F->gb[0], F->gb[1]);
+    const double len = hypot(x->E.b[0] - x->E.a[0], x->E.b[1] - x->E.a[1]);
+    static const double node[2] = {0.21132486540518711775, 0.78867513459481288225};
+    for (int k = 0; k < 2; ++k) {
+        const double rho[2] = {x->E.a[0] + node[k] * (x->E.b[0] - x->E.a[0]),
+                               x->E.a[1] + node[k] * (x->E.b[1] - x->E.a[1])};
+        const double r[2] = {x->r[0] + rho[0], x->r[1] + rho[1]};
+        const double w = kn * (x->e + F->g[0] * rho[0] + F->g[1] * rho[1]) * (0.5 * len) / slope;
+        const double sq[4] = {F->dgb[0][0] * r[0] + F->dgb[0][1] * r[1], 1.0,
+                              F->dgb[1][0] * r[0] + F->dgb[1][1] * r[1],
+                              F->dgb[2][0] * r[0] + F->dgb[2][1] * r[1]};
+        for (int q = 0; q < 4; ++q) {
+            dN[q] += w * sq[q];
+            dmb[0][q] += w * sq[q] * r[0];
+            dmb[1][q] += w * sq[q] * r[1];
+        }
+    }
 }
 
 /* dN/d(theta, d, phi1, phi2) of a cell whose dN/d(f0, g0, g1) is dn. */
@@ -290,16 +352,35 @@ typedef struct {
 static void normal_tangent(const void *ctx, int c, double dN[4]) {
     const pad_tangent_ctx *t = ctx;
     const pad_cell x = pad_cell_of(t->m, &t->F, c);
-    double dn[3];
+    double dn[3], edge[4], unused[2][4];
     pad_cell_force(t->m->kn, &x.M, x.e, t->F.g, x.r, dn);
     pose_tangent(&t->F, dn, dN);
+    touching_terms(&t->F, &x, t->m->kn, edge, unused);
+    for (int q = 0; q < 4; ++q) dN[q] += edge[q];
+}
+
+/* The touching line's terms (touching_terms) of d(Fn, mbx, mby)/d(theta,
+ * d, phi1, phi2), summed over the cells, added to dq. */
+static void add_touching_terms(const pad_model *m, const pad_field *F, double dq[3][4]) {
+    if (!F->damped) return;
+    for (int c = 0, n = cells_count(&m->g); c < n; ++c) {
+        const pad_cell x = pad_cell_of(m, F, c);
+        double dN[4], dmb[2][4];
+        touching_terms(F, &x, m->kn, dN, dmb);
+        for (int q = 0; q < 4; ++q) {
+            dq[0][q] += dN[q];
+            dq[1][q] += dmb[0][q];
+            dq[2][q] += dmb[1][q];
+        }
+    }
 }
 
 /* The pad's Jacobian of the shown step: the cells' (cells_jacobian) for
  * T1, T2, Mz, dissipatedEnergy; Fn's and the first moment's from the
  * pressed parts' moments: d/df0 of the integrals of e+ and r e+ are those
  * of 1 and r, d/dg those of r and r r^T, over the part that presses (the
- * integrand vanishes on the line that bounds it); then M = (Y, -X) of
+ * integrand vanishes on the line e = 0 that bounds it; the touching line's
+ * terms besides, add_touching_terms); then M = (Y, -X) of
  * R(theta) mb, whose own turning adds (X, Y) to dM/dtheta. */
 static void partials(const pad_model *m, double *Jflat) {
     double(*P)[P_COLS] = (double(*)[P_COLS])Jflat;
@@ -337,6 +418,7 @@ static void partials(const pad_model *m, double *Jflat) {
     /* through the field to (theta, d, phi1, phi2), columns 2 to 5 */
     double dq[3][4];
     for (int r = 0; r < 3; ++r) pose_tangent(&t.F, D[r], dq[r]);
+    add_touching_terms(m, &t.F, dq);
     const double c = cos(m->g.theta), s = sin(m->g.theta);
     /* the first moment in the surface's axes, X = -M2, Y = M1, for the turning of R(theta) */
     const double X = -m->M[1], Y = m->M[0];

@@ -59,3 +59,69 @@ int pad_clip_moments(double e, const double g[2], double hx, double hy, pad_mome
     if (n >= 3) polygon_moments(x, y, n, out);
     return 0;
 }
+
+/* Sutherland-Hodgman: the vertices of the polygon (x, y) kept where
+ * c + gc . (x, y) > 0, each edge that crosses the line cut where it is 0;
+ * returns their number (at most n + 1). */
+static int clip_polygon(const double x[], const double y[], int n, double c, const double gc[2],
+                        double ox[], double oy[]) {
+    double v[6];
+    for (int k = 0; k < n; ++k) v[k] = c + gc[0] * x[k] + gc[1] * y[k];
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+        const int l = k + 1 == n ? 0 : k + 1;
+        const int in_k = v[k] > 0, in_l = v[l] > 0;
+        if (in_k) ox[m] = x[k], oy[m] = y[k], ++m;
+        if (in_k != in_l) {
+            const double t = v[k] / (v[k] - v[l]);
+            ox[m] = x[k] + t * (x[l] - x[k]);
+            oy[m] = y[k] + t * (y[l] - y[k]);
+            ++m;
+        }
+    }
+    return m;
+}
+
+/* The edge on delta = 0 inside the rectangle of corners (cx, cy): where
+ * two of its sides cross the line, cut to where e > 0. */
+static void touching_edge(const double cx[4], const double cy[4], double dl, const double gl[2],
+                          double e, const double g[2], pad_edge *edge) {
+    edge->n = 0;
+    double px[2], py[2];
+    int found = 0;
+    for (int k = 0; k < 4 && found < 2; ++k) {
+        const int l = (k + 1) & 3;
+        const double vk = dl + gl[0] * cx[k] + gl[1] * cy[k],
+                     vl = dl + gl[0] * cx[l] + gl[1] * cy[l];
+        if ((vk > 0) != (vl > 0)) {
+            const double t = vk / (vk - vl);
+            px[found] = cx[k] + t * (cx[l] - cx[k]);
+            py[found] = cy[k] + t * (cy[l] - cy[k]);
+            ++found;
+        }
+    }
+    if (found < 2) return;
+    const double ea = e + g[0] * px[0] + g[1] * py[0], eb = e + g[0] * px[1] + g[1] * py[1];
+    if (!(ea > 0) && !(eb > 0)) return;
+    const double ta = ea > 0 ? 0.0 : ea / (ea - eb), tb = eb > 0 ? 1.0 : ea / (ea - eb);
+    edge->n = 1;
+    edge->a[0] = px[0] + ta * (px[1] - px[0]);
+    edge->a[1] = py[0] + ta * (py[1] - py[0]);
+    edge->b[0] = px[0] + tb * (px[1] - px[0]);
+    edge->b[1] = py[0] + tb * (py[1] - py[0]);
+}
+
+int pad_clip_moments_touching(double e, const double g[2], double dl, const double gl[2], double hx,
+                              double hy, pad_moments *out, pad_edge *edge) {
+    edge->n = 0;
+    if (dl - (fabs(gl[0]) * hx + fabs(gl[1]) * hy) > 0) return pad_clip_moments(e, g, hx, hy, out);
+    out->area = out->m1[0] = out->m1[1] = out->m2[0] = out->m2[1] = out->m2[2] = 0.0;
+    if (!(dl + (fabs(gl[0]) * hx + fabs(gl[1]) * hy) > 0)) return 0; /* touching nowhere */
+    const double cx[4] = {-hx, hx, hx, -hx}, cy[4] = {-hy, -hy, hy, hy};
+    double tx[5], ty[5], px[6], py[6];
+    const int nt = clip_polygon(cx, cy, 4, dl, gl, tx, ty);
+    const int np = clip_polygon(tx, ty, nt, e, g, px, py);
+    if (np >= 3) polygon_moments(px, py, np, out);
+    touching_edge(cx, cy, dl, gl, e, g, edge);
+    return 0;
+}

@@ -12,7 +12,9 @@
  * everywhere) its area times kn e at its centre and, for the first moment,
  * its own second moments beside; a cell the line e = 0 crosses is clipped
  * to the polygon where e > 0 and its moments (area, first, second about the
- * cell centre) integrated exactly.  No FMI in it.
+ * cell centre) integrated exactly.  Damped, e is the approach plus its rate
+ * term and the layer presses only where the approach itself is > 0 too:
+ * the polygon is clipped by both lines.  No FMI in it.
  */
 #ifndef PAD_PRESSURE_H
 #define PAD_PRESSURE_H
@@ -31,6 +33,22 @@ typedef struct {
  * e + g . rho > 0 (rho about the cell centre, e the field there); 1 if that
  * is all of it, 0 otherwise (none or a clipped polygon). */
 int pad_clip_moments(double e, const double g[2], double hx, double hy, pad_moments *out);
+
+/* The part of the line delta = 0 inside a cell where e > 0, from a to b
+ * (about the cell centre [m]); n = 0 if there is none.  Where the damping
+ * presses (e > delta), the pressure jumps from 0 to kn e across it. */
+typedef struct {
+    int n;
+    double a[2], b[2];
+} pad_edge;
+
+/* pad_clip_moments for a damped foundation: the moments of the part of the
+ * cell where both the approach delta = dl + gl . rho and the effective
+ * approach e + g . rho are > 0 (a Kelvin-Voigt layer presses only where it
+ * touches, and never pulls), and the edge of it on delta = 0.  Where delta
+ * > 0 at the cell's four corners, pad_clip_moments's result, bit for bit. */
+int pad_clip_moments_touching(double e, const double g[2], double dl, const double gl[2], double hx,
+                              double hy, pad_moments *out, pad_edge *edge);
 
 /* A cell's normal force kn * integral of e+ [N] and its derivatives with
  * respect to (f0, g0, g1) [N/m], from its pressed part's moments, the field

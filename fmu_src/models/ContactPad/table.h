@@ -9,7 +9,8 @@
  *     turned by theta) approaches the surface by delta = d + phi2 X - phi1 Y
  *     (d the approach of the pad centre, > 0 pressed; phi1, phi2 small tilts
  *     about the surface's X1, X2, right-handed; X3 the outward normal);
- *   - the pressure there is p = kn delta + dn delta', clipped at 0 (it never
+ *   - the pressure there is p = kn delta + dn delta' where delta > 0 (the
+ *     layer presses only where it touches), clipped at 0 (it never
  *     pulls), delta' the approach's rate over the communication step
  *     (models/ContactPad/model.c: over the previous step's size, none before
  *     the first step);
@@ -57,7 +58,9 @@ static const char FMU_DOC_HTML[] =
     "cells, each the point law at its centre with its own slip, displaced by u + (R(theta) - "
     "I) r, stiffness (eps1, eps2) shared by area) on a Winkler foundation: a point of the pad "
     "at (X, Y) in the surface frame approaches by delta = d + phi2 X - phi1 Y and is pressed "
-    "by kn delta + dn delta', clipped at 0 (the pressure never pulls).  d &gt; 0 presses; "
+    "where it touches (delta &gt; 0) by kn delta + dn delta', clipped at 0 (the pressure "
+    "never pulls; a point above the layer carries nothing, however fast it comes).  d &gt; 0 "
+    "presses; "
     "phi1, phi2 are small tilts about the surface's X1, X2 (right-handed, X3 the outward "
     "normal).</li>\n"
     "<li>Each cell's normal force is the exact integral of that pressure over its rectangle: "
@@ -70,7 +73,9 @@ static const char FMU_DOC_HTML[] =
     "delta<sub>prev</sub>)/h<sub>prev</sub> of each point of the body, where delta<sub>prev"
     "</sub> is its approach at the last committed step and h<sub>prev</sub> that step's size; "
     "none before the first step (the step size is known at @DOSTEP@ only, the pending step "
-    "is computed when inputs are set).</li>\n"
+    "is computed when inputs are set): the backward difference over the step that brought "
+    "the inputs, set at each step's start.  dissipatedEnergy is the cells' friction alone, "
+    "not the damper's work.</li>\n"
     "<li>T1, T2, Mz: the cells' forces on the body and their moment about the pad centre, "
     "each cell's force at its centre, in the surface frame.</li>\n"
     "<li>Not modelled: large tilts (the approach is linearised in them), a curved surface, "
