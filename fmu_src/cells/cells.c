@@ -149,126 +149,170 @@ static OC_ALWAYS_INLINE void put_begun(oc_step *to, const oc_step *from) {
     to->contact = from->contact;
 }
 
+/* cells_cell_of's products along one axis, each of one coordinate only,
+ * formed once a row (i) or column (j): a cell is then their sums, in
+ * cells_cell_of's order.  r the coordinate [m], cr (cos(theta) - 1) r, sr
+ * sin(theta) r. */
+typedef struct {
+    double r[PATCH_MAX_SIDE], cr[PATCH_MAX_SIDE], sr[PATCH_MAX_SIDE];
+} axis_products;
+
+static OC_ALWAYS_INLINE void axis_products_of(int n, double side, double cm1, double sn,
+                                              axis_products *A) {
+    for (int i = 0; i < n; ++i) {
+        A->r[i] = cells_coordinate(i, n) * side;
+        A->cr[i] = cm1 * A->r[i];
+        A->sr[i] = sn * A->r[i];
+    }
+}
+
+/* Where cell c's committed state lies: base + c stride bytes, or (from
+ * bytes or the initial slip: base NULL) a copy the step makes. */
+typedef struct {
+    const unsigned char *base;
+    size_t stride;
+} states_at;
+
+static OC_ALWAYS_INLINE states_at states_of(const cells_source *src) {
+    states_at at = {NULL, 0};
+    if (src->kind == CELLS_FROM_STEPS) {
+        at.base = (const unsigned char *)&src->steps[0].next;
+        at.stride = sizeof(oc_step);
+    } else if (src->kind == CELLS_FROM_ARRAY) {
+        at.base = (const unsigned char *)src->array;
+        at.stride = sizeof(oc_state);
+    }
+    return at;
+}
+
+/* What every cell of a step shares. */
+typedef struct {
+    const oc_law *law; /* the law, for oc_law_step_finish */
+    const oc_law *lq;  /* its copy that no store to out[] can reach, for the begin */
+    const cells_setup *g;
+    const double *Nc;
+    const cells_source *src;
+    states_at at;
+    const axis_products *a0, *a1;
+    int n1;
+    double u0, u1;
+    oc_step *out;
+} step_cells;
+
+/* The cells first .. first + count - 1, the first at (*i, *j), which move
+ * on with them: each begun (oc_law_step_begin), the open and stick ones
+ * summed at once up to the first that is not, the rest summed in order
+ * once those are finished together (oc_law_step_finish). */
+static OC_ALWAYS_INLINE void step_batch(const step_cells *x, int first, int count, int *i, int *j,
+                                        running_sums *R) {
+    oc_state local[OC_BATCH_MAX];
+    oc_unfinished pending[OC_BATCH_MAX];
+    double Rr[OC_BATCH_MAX][2];      /* the moment arms of the cells summed after the finish */
+    int n_pending = 0, wait = count; /* the cells from `wait` on are summed after the finish */
+    for (int k = 0; k < count; ++k) {
+        const int c = first + k;
+        double d[2] = {x->u0, x->u1}, rr[2] = {x->a0->r[*i], x->a1->r[*j]};
+        if (rr[0] != 0.0 || rr[1] != 0.0) { /* the centre cell sees u itself */
+            const double dr0 = x->a0->cr[*i] - x->a1->sr[*j], dr1 = x->a0->sr[*i] + x->a1->cr[*j];
+            d[0] += dr0;
+            d[1] += dr1;
+            rr[0] += dr0;
+            rr[1] += dr1;
+        }
+        const oc_state *start;
+        if (x->at.base) {
+            start = (const oc_state *)(const void *)(x->at.base + (size_t)c * x->at.stride);
+        } else {
+            local[k] = source_cell(x->src, x->g, d, c);
+            start = &local[k];
+        }
+        if (++*i == x->n1) *i = 0, ++*j;
+        /* the step in a local first, which the compiler keeps in registers
+         * for the sums: read back from out[c], just stored field by field,
+         * loads would wait on the stores */
+        oc_step st;
+        oc_unfinished *r = &pending[n_pending];
+        oc_step *out = &x->out[c];
+        if (oc_law_step_begin(x->lq, start, d, x->Nc[c], &st, r->a)) {
+            put_begun(out, &st);
+            if (k < wait)
+                add_begun(R, &st, rr[0], rr[1]);
+            else
+                Rr[k][0] = rr[0], Rr[k][1] = rr[1];
+            continue;
+        }
+        out->next.u[0] = st.next.u[0];
+        out->next.u[1] = st.next.u[1];
+        out->next.N = st.next.N;
+        r->start = start;
+        r->out = out;
+        ++n_pending;
+        if (k < wait) wait = k;
+        Rr[k][0] = rr[0];
+        Rr[k][1] = rr[1];
+    }
+    if (n_pending == 0) return;
+    oc_law_step_finish(x->law, pending, n_pending);
+    for (int k = wait; k < count; ++k) add_cell(R, &x->out[first + k], Rr[k][0], Rr[k][1]);
+}
+
+/* The step's sums into S, and -1; or, if a number is not finite, the first
+ * cell whose step is not (n if a sum), S untouched. */
+static OC_ALWAYS_INLINE int sums_of(const running_sums *R, const oc_step out[], int n,
+                                    cells_sums *S) {
+    if (!(R->nonfinite == 0.0) || !isfinite(R->T0) || !isfinite(R->T1) || !isfinite(R->Mz) ||
+        !isfinite(R->energy)) {
+        for (int c = 0; c < n; ++c)
+            if (!oc_step_is_finite(&out[c])) return c;
+        return n;
+    }
+    S->T[0] = R->T0;
+    S->T[1] = R->T1;
+    S->Mz = R->Mz;
+    S->energy = R->energy;
+    S->slip_fraction = (double)R->slipping / (double)n;
+    S->contact = R->pressed == 0 ? 0 : R->slipping == 0 ? 1 : R->slipping == R->pressed ? 3 : 2;
+    return -1;
+}
+
 /* Each cell is the law's step on its own kinematics (cells_cell_of's) and
  * normal force Nc[c], summed in the order c = i + n1 j: the cells'
  * coordinates are formed once a step (n1 + n2 divisions, not two a cell
- * and an integer division), a committed state is read where it lies, not
- * copied, and each cell's kinematics go straight into the law's open and
- * stick steps (oc_law_step_begin) and its result into the sums; the cells
- * those leave are finished OC_BATCH_MAX at a time by oc_law_step_finish
- * (the slipping ones' solves interleaved, each the cell's own step bit for
- * bit), and summed after.  Whether every number is finite is read off the
- * sums once a step; only a step that fails looks for its first non-finite
- * cell.  tests/c/ContactPatch/test_patch_model.c holds the result to the
- * plain per-cell step, bit for bit. */
+ * and an integer division: axis_products_of), a committed state is read
+ * where it lies, not copied (states_of), and each cell's kinematics go
+ * straight into the law's open and stick steps (oc_law_step_begin) and its
+ * result into the sums; the cells those leave are finished OC_BATCH_MAX at
+ * a time by oc_law_step_finish (the slipping ones' solves interleaved, each
+ * the cell's own step bit for bit), and summed after (step_batch).
+ * Whether every number is finite is read off the sums once a step; only a
+ * step that fails looks for its first non-finite cell (sums_of).
+ * tests/c/ContactPatch/test_patch_model.c holds the result to the plain
+ * per-cell step, bit for bit. */
 int cells_step(const oc_law *law, const cells_setup *g, const double Nc[], const cells_source *src,
                oc_step *out, cells_sums *S) {
     const int n1 = g->n[0], n2 = g->n[1], n = n1 * n2;
     const double h = sin(0.5 * g->theta);
     const double cm1 = -2.0 * h * h, sn = sin(g->theta);
-    /* cells_cell_of's products, each of one coordinate only, formed once a
-     * row (i) or column (j): a cell is then its sums, in cells_cell_of's order. */
-    double r0[PATCH_MAX_SIDE], cr0[PATCH_MAX_SIDE], sr0[PATCH_MAX_SIDE];
-    double r1[PATCH_MAX_SIDE], cr1[PATCH_MAX_SIDE], sr1[PATCH_MAX_SIDE];
-    for (int i = 0; i < n1; ++i) {
-        r0[i] = cells_coordinate(i, n1) * g->length;
-        cr0[i] = cm1 * r0[i];
-        sr0[i] = sn * r0[i];
-    }
-    for (int j = 0; j < n2; ++j) {
-        r1[j] = cells_coordinate(j, n2) * g->width;
-        cr1[j] = cm1 * r1[j];
-        sr1[j] = sn * r1[j];
-    }
-    const double u0 = g->u[0], u1 = g->u[1];
+    axis_products a0, a1;
+    axis_products_of(n1, g->length, cm1, sn, &a0);
+    axis_products_of(n2, g->width, cm1, sn, &a1);
     running_sums R = {0.0, 0.0, 0.0, 0.0, 0.0, 0, 0};
-    /* Where cell c's committed state lies: base + c stride bytes, or (from
-     * bytes or the initial slip) a copy in local[]. */
-    const unsigned char *base = NULL;
-    size_t stride = 0;
-    if (src->kind == CELLS_FROM_STEPS) {
-        base = (const unsigned char *)&src->steps[0].next;
-        stride = sizeof(oc_step);
-    } else if (src->kind == CELLS_FROM_ARRAY) {
-        base = (const unsigned char *)src->array;
-        stride = sizeof(oc_state);
-    }
+    const states_at at = states_of(src);
     if (n == 1) { /* nothing to batch: the law's own step on the centre cell, d = u */
-        const double d[2] = {u0, u1};
+        const double d[2] = {g->u[0], g->u[1]};
         const oc_state one =
-            base ? *(const oc_state *)(const void *)base : source_cell(src, g, d, 0);
+            at.base ? *(const oc_state *)(const void *)at.base : source_cell(src, g, d, 0);
         oc_law_step(law, &one, d, Nc[0], &out[0]);
-        add_cell(&R, &out[0], r0[0], r1[0]);
+        add_cell(&R, &out[0], a0.r[0], a1.r[0]);
     } else {
-        oc_state local[OC_BATCH_MAX];
-        oc_unfinished pending[OC_BATCH_MAX];
         /* The law's tensors in a copy of its own that no store to out[] can
          * reach: the compiler keeps them in registers across the cells. */
         const oc_law lq = *law;
-        double Rr[OC_BATCH_MAX][2]; /* the moment arms of the cells summed after the finish */
-        for (int first = 0, i = 0, j = 0; first < n; first += OC_BATCH_MAX) {
-            const int count = n - first < OC_BATCH_MAX ? n - first : OC_BATCH_MAX;
-            int n_pending = 0,
-                wait = count; /* the cells from `wait` on are summed after the finish */
-            for (int k = 0; k < count; ++k) {
-                const int c = first + k;
-                double d[2] = {u0, u1}, rr[2] = {r0[i], r1[j]};
-                if (rr[0] != 0.0 || rr[1] != 0.0) { /* the centre cell sees u itself */
-                    const double dr0 = cr0[i] - sr1[j], dr1 = sr0[i] + cr1[j];
-                    d[0] += dr0;
-                    d[1] += dr1;
-                    rr[0] += dr0;
-                    rr[1] += dr1;
-                }
-                const oc_state *start;
-                if (base) {
-                    start = (const oc_state *)(const void *)(base + (size_t)c * stride);
-                } else {
-                    local[k] = source_cell(src, g, d, c);
-                    start = &local[k];
-                }
-                if (++i == n1) i = 0, ++j;
-                /* the step in a local first, which the compiler keeps in registers
-                 * for the sums: read back from out[c], just stored field by field,
-                 * loads would wait on the stores */
-                oc_step st;
-                oc_unfinished *r = &pending[n_pending];
-                if (oc_law_step_begin(&lq, start, d, Nc[c], &st, r->a)) {
-                    put_begun(&out[c], &st);
-                    if (k < wait)
-                        add_begun(&R, &st, rr[0], rr[1]);
-                    else
-                        Rr[k][0] = rr[0], Rr[k][1] = rr[1];
-                    continue;
-                }
-                out[c].next.u[0] = st.next.u[0];
-                out[c].next.u[1] = st.next.u[1];
-                out[c].next.N = st.next.N;
-                r->start = start;
-                r->out = &out[c];
-                ++n_pending;
-                if (k < wait) wait = k;
-                Rr[k][0] = rr[0];
-                Rr[k][1] = rr[1];
-            }
-            if (n_pending == 0) continue;
-            oc_law_step_finish(law, pending, n_pending);
-            for (int k = wait; k < count; ++k) add_cell(&R, &out[first + k], Rr[k][0], Rr[k][1]);
-        }
+        const step_cells x = {law, &lq, g, Nc, src, at, &a0, &a1, n1, g->u[0], g->u[1], out};
+        for (int first = 0, i = 0, j = 0; first < n; first += OC_BATCH_MAX)
+            step_batch(&x, first, n - first < OC_BATCH_MAX ? n - first : OC_BATCH_MAX, &i, &j, &R);
     }
-    if (!(R.nonfinite == 0.0) || !isfinite(R.T0) || !isfinite(R.T1) || !isfinite(R.Mz) ||
-        !isfinite(R.energy)) {
-        for (int c = 0; c < n; ++c)
-            if (!oc_step_is_finite(&out[c])) return c;
-        return n;
-    }
-    S->T[0] = R.T0;
-    S->T[1] = R.T1;
-    S->Mz = R.Mz;
-    S->energy = R.energy;
-    S->slip_fraction = (double)R.slipping / (double)n;
-    S->contact = R.pressed == 0 ? 0 : R.slipping == 0 ? 1 : R.slipping == R.pressed ? 3 : 2;
-    return -1;
+    return sums_of(&R, out, n, S);
 }
 
 /* The committed states a step starts from stay where they lie: the shown
