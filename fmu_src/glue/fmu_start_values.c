@@ -124,6 +124,8 @@ static const char *parse_decimal_integer(const char *s, double *value) {
 
 static int is_blank(char c) { return c == ' ' || c == '\t'; }
 
+/* Logs why the file is refused (with its line if > 0), closes it and frees
+ * start and freeme: -1. */
 static int load_fail(fmu_instance *I, const char *fn, const char *path, int line, FILE *f,
                      char *freeme, double *start, const char *fmt, ...) {
     char text[400];
@@ -141,23 +143,124 @@ static int load_fail(fmu_instance *I, const char *fn, const char *path, int line
     return -1;
 }
 
-int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources, int is_uri) {
-    if (!resources || !*resources) return 0;
+/* The file's path under `resources` (malloc'd); NULL if there is none to
+ * read (*failed 0) or out of memory (logged, *failed 1). */
+static char *start_values_path(fmu_instance *I, const char *fn, const char *resources, int is_uri,
+                               int *failed) {
+    *failed = 0;
+    if (!resources || !*resources) return NULL;
     char *dir = is_uri ? fmu_path_from_uri(resources) : NULL;
     const char *base = is_uri ? dir : resources;
-    if (!base) return 0; /* not a file URI: no file this FMU can read */
+    if (!base) return NULL; /* not a file URI: no file this FMU can read */
     const size_t len = strlen(base);
     const int sep = len > 0 && (base[len - 1] == '/' || base[len - 1] == '\\');
     char *path = malloc(len + 1 + sizeof FMU_START_VALUES_FILE);
     if (!path) {
         free(dir);
         FMU_ERROR(I, "%s: out of memory", fn);
-        return -1;
+        *failed = 1;
+        return NULL;
     }
     memcpy(path, base, len);
     if (!sep) path[len] = '/';
     memcpy(path + len + !sep, FMU_START_VALUES_FILE, sizeof FMU_START_VALUES_FILE);
     free(dir);
+    return path;
+}
+
+/* A line's `name = value` (its end of line and trailing blanks cut): 1,
+ * with *name and *value pointing into it; 0 for a blank line or a comment;
+ * -1 if it is neither. */
+static int split_line(char *p, char **name, char **value) {
+    while (is_blank(*p)) ++p;
+    if (*p == '\0' || *p == '#') return 0;
+    *name = p;
+    while (*p && !is_blank(*p) && *p != '=') ++p;
+    char *name_end = p;
+    while (is_blank(*p)) ++p;
+    if (*p != '=') return -1;
+    *name_end = '\0';
+    ++p;
+    while (is_blank(*p)) ++p;
+    *value = p;
+    return 1;
+}
+
+/* The value the text p gives x: NULL and *v, or what is wrong with it;
+ * *expected what it should have been. */
+static const char *value_of(const fmu_var *x, const char *p, double *v, const char **expected) {
+    if (x->type != FMU_T_Float64) {
+        *expected = "a decimal integer";
+        return parse_decimal_integer(p, v);
+    }
+    *expected = "a hexadecimal float such as 0x1.8p+3 (printf %a, Python float.hex()) or a "
+                "decimal integer";
+    return (p[0] == '0' || ((p[0] == '-' || p[0] == '+') && p[1] == '0')) &&
+                   (strchr(p, 'x') || strchr(p, 'X'))
+               ? parse_hex_float(p, v)
+               : parse_decimal_integer(p, v);
+}
+
+enum { LOAD_MESSAGE = 400 }; /* load_fail's, which a message fits */
+
+/* Writes why a line is refused into why[LOAD_MESSAGE]: -1. */
+static int refuse(char *why, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, LOAD_MESSAGE, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/* Takes `name = value` into start[] (seen[] marks the names given): 0, or
+ * -1 and why. */
+static int assign(const char *name, const char *p, double start[], unsigned char seen[],
+                  char *why) {
+    const unsigned int nv = INFO.n_vars;
+    unsigned int vr = nv;
+    for (unsigned int k = 0; k < nv; ++k)
+        if (INFO.vars[k].name && strcmp(INFO.vars[k].name, name) == 0) vr = k;
+    if (vr == nv) return refuse(why, "no variable named \"%s\"", name);
+    const fmu_var *x = &INFO.vars[vr];
+    if (x->causality != FMU_C_parameter) return refuse(why, "%s is not a parameter", name);
+    if (seen[vr]) return refuse(why, "%s is given twice", name);
+    seen[vr] = 1;
+    double v;
+    const char *expected, *bad = value_of(x, p, &v, &expected);
+    if (bad) return refuse(why, "%s = \"%s\": %s; expected %s", name, p, bad, expected);
+    if (!in_range(x, v))
+        return refuse(why, "%s = %.17g is outside [%g, %g]%s%s", name, v, x->min, x->max,
+                      unit_sep(x), unit_of(x));
+    start[vr] = v;
+    return 0;
+}
+
+/* Reads every line of f into start[]: 0, or -1 with why and *line the line
+ * that was wrong (the last read for a read error). */
+static int read_lines(FILE *f, double start[], unsigned char seen[], int *line, char *why) {
+    char buf[1002];
+    while (fgets(buf, sizeof buf, f)) {
+        ++*line;
+        size_t n = strlen(buf);
+        if (n > 0 && buf[n - 1] == '\n')
+            buf[--n] = '\0';
+        else if (!feof(f))
+            return refuse(why, "longer than 1000 characters");
+        if (n > 0 && buf[n - 1] == '\r') buf[--n] = '\0';
+        while (n > 0 && is_blank(buf[n - 1])) buf[--n] = '\0';
+        char *name, *value;
+        const int kind = split_line(buf, &name, &value);
+        if (kind < 0) return refuse(why, "expected `name = value`");
+        if (kind > 0 && assign(name, value, start, seen, why) != 0) return -1;
+    }
+    if (ferror(f)) return refuse(why, "read error");
+    return 0;
+}
+
+int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources, int is_uri) {
+    int failed;
+    char *path = start_values_path(I, fn, resources, is_uri, &failed);
+    if (!path) return failed ? -1 : 0;
     FILE *f = fopen(path, "rb");
     if (!f) { /* no file: the compiled start values */
         free(path);
@@ -171,73 +274,18 @@ int fmu_load_start_values(fmu_instance *I, const char *fn, const char *resources
         return load_fail(I, fn, path, 0, f, path, start, "out of memory");
     }
     memcpy(start, I->start, nv * sizeof *start);
-    char buf[1002];
+    char why[LOAD_MESSAGE];
     int line = 0;
-#define FAIL(...)                                                                                  \
-    do {                                                                                           \
-        free(seen);                                                                                \
-        return load_fail(I, fn, path, line, f, path, start, __VA_ARGS__);                          \
-    } while (0)
-    while (fgets(buf, sizeof buf, f)) {
-        ++line;
-        size_t n = strlen(buf);
-        if (n > 0 && buf[n - 1] == '\n')
-            buf[--n] = '\0';
-        else if (!feof(f))
-            FAIL("longer than 1000 characters");
-        if (n > 0 && buf[n - 1] == '\r') buf[--n] = '\0';
-        while (n > 0 && is_blank(buf[n - 1])) buf[--n] = '\0';
-        char *p = buf;
-        while (is_blank(*p)) ++p;
-        if (*p == '\0' || *p == '#') continue;
-        char *name = p;
-        while (*p && !is_blank(*p) && *p != '=') ++p;
-        char *name_end = p;
-        while (is_blank(*p)) ++p;
-        if (*p != '=') FAIL("expected `name = value`");
-        *name_end = '\0';
-        ++p;
-        while (is_blank(*p)) ++p;
-        unsigned int vr = nv;
-        for (unsigned int k = 0; k < nv; ++k)
-            if (INFO.vars[k].name && strcmp(INFO.vars[k].name, name) == 0) vr = k;
-        if (vr == nv) FAIL("no variable named \"%s\"", name);
-        const fmu_var *x = &INFO.vars[vr];
-        if (x->causality != FMU_C_parameter) FAIL("%s is not a parameter", name);
-        if (seen[vr]) FAIL("%s is given twice", name);
-        seen[vr] = 1;
-        double v;
-        const char *why;
-        if (x->type == FMU_T_Float64) {
-            why = (p[0] == '0' || ((p[0] == '-' || p[0] == '+') && p[1] == '0')) &&
-                          (strchr(p, 'x') || strchr(p, 'X'))
-                      ? parse_hex_float(p, &v)
-                      : parse_decimal_integer(p, &v);
-            if (why)
-                FAIL("%s = \"%s\": %s; expected a hexadecimal float such as 0x1.8p+3 "
-                     "(printf %%a, Python float.hex()) or a decimal integer",
-                     name, p, why);
-        } else if ((why = parse_decimal_integer(p, &v)) != NULL) {
-            FAIL("%s = \"%s\": %s; expected a decimal integer", name, p, why);
-        }
-        if (!in_range(x, v))
-            FAIL("%s = %.17g is outside [%g, %g]%s%s", name, v, x->min, x->max, unit_sep(x),
-                 unit_of(x));
-        start[vr] = v;
-    }
-    if (ferror(f)) FAIL("read error");
-#undef FAIL
+    const int read = read_lines(f, start, seen, &line, why);
+    free(seen);
+    if (read != 0) return load_fail(I, fn, path, line, f, path, start, "%s", why);
     fmu_msg msg;
-    if (fmu_model_init_from(I->model, start, &msg) != FMU_OK) {
-        free(seen);
-        line = 0;
+    if (fmu_model_init_from(I->model, start, &msg) != FMU_OK)
         return load_fail(I, fn, path, 0, f, path, start, "the values are not admissible: %s",
                          msg.text);
-    }
     memcpy(I->start, start, nv * sizeof *start);
     fmu_log(I, FMU_S_OK, FMU_LOG_CALLS, "%s: start values from %s", fn, path);
     fclose(f);
-    free(seen);
     free(start);
     free(path);
     return 0;
