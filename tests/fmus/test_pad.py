@@ -262,6 +262,29 @@ def test_the_damping_rate_is_exact_for_a_ramp_over_steps_of_varying_size(version
             t += h
 
 
+def test_dissipated_energy_counts_the_dampers_work(version):
+    """Pressed and pumped in full contact (d = 20 +- 5 um), steps of 0.1 and
+    0.2 ms: no cell slips, so the energy is the damper's alone, each step
+    the damping pressure dn (d - d_prev)/h_prev over the change d - d_prev
+    on the whole area, summed here from the inputs (to 1e-12); it grows
+    with every step that moves and never falls."""
+    dn = 1e5
+    with pad(version, (4, 4), foundation=Foundation(KN, dn), pose=(0, 0, 0, 2e-5, 0, 0)) as f:
+        t, d_prev, h_prev, expected, last = 0.0, 2e-5, None, 0.0, 0.0
+        for k in range(40):
+            d = 2e-5 + 5e-6 * math.sin(2 * math.pi * t / 2e-3)
+            f.set_inputs(0, 0, 0, d)
+            if h_prev is not None:
+                expected += dn * L * W * (d - d_prev) ** 2 / h_prev
+            energy = f.outputs()["dissipatedEnergy"]
+            assert energy == pytest.approx(expected, rel=1e-12, abs=1e-18) and energy >= last, k
+            assert f.outputs()["slipFraction"] == 0.0
+            last, h_prev, d_prev = energy, (1e-4, 2e-4)[k % 2], d
+            f.do_step(h_prev)
+            t += h_prev
+        assert expected > 0
+
+
 def test_a_state_restored_mid_run_continues_bit_for_bit_rate_included(version):
     """The damping's reference pose and step size travel in the state."""
     def path(f, k):

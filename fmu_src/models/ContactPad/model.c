@@ -43,11 +43,13 @@ enum { P_ROWS = 7, P_COLS = 6 };
  * well (a Kelvin-Voigt layer): the pressed part is clipped by both lines. */
 typedef struct {
     double f0, g[2];
-    double df0;       /* df0/dd [-] */
-    double dg[3][2];  /* dg/d(theta, phi1, phi2) [1/rad] */
-    int damped;       /* a > 0: the touching line d + gb . r = 0 clips too */
-    double d, gb[2];  /* the approach's field, d + gb . r */
-    double dgb[3][2]; /* dgb/d(theta, phi1, phi2) [1/rad] */
+    double df0;        /* df0/dd [-] */
+    double dg[3][2];   /* dg/d(theta, phi1, phi2) [1/rad] */
+    int damped;        /* a > 0: the touching line d + gb . r = 0 clips too */
+    double d, gb[2];   /* the approach's field, d + gb . r */
+    double dgb[3][2];  /* dgb/d(theta, phi1, phi2) [1/rad] */
+    double a;          /* (dn/kn)/ref.h [-] */
+    double dd, ddg[2]; /* the approach's change over the step, dd + ddg . r [m] */
 } pad_field;
 
 /* R(theta)^T (phi2, -phi1): the approach's slopes along the body's axes. */
@@ -70,9 +72,14 @@ static pad_field field_of(const pad_model *m, const pad_pose *ref) {
     F.d = m->d;
     F.gb[0] = gb[0];
     F.gb[1] = gb[1];
+    F.a = a;
+    F.dd = F.ddg[0] = F.ddg[1] = 0.0;
     if (a > 0.0) { /* as differences, so that held inputs add exactly nothing */
         double gr[2];
         body_slopes(ref->theta, ref->phi[0], ref->phi[1], gr);
+        F.dd = m->d - ref->d;
+        F.ddg[0] = gb[0] - gr[0];
+        F.ddg[1] = gb[1] - gr[1];
         F.f0 += a * (m->d - ref->d);
         F.g[0] += a * (gb[0] - gr[0]);
         F.g[1] += a * (gb[1] - gr[1]);
@@ -125,7 +132,38 @@ static void grid_of(const cells_setup *g, pad_grid *G) {
  * the area that presses. */
 typedef struct {
     double Fn, mb[2], contact_fraction;
+    double damper; /* the damper's work in the step [J] (damper_work) */
 } pad_normal;
+
+/* The integral of dd_r^2 over a cell's pressed part (moments M about its
+ * centre r), dd_r = dd + ddg . r the approach's change over the step. */
+static double change_squared(const pad_field *F, const double r[2], const pad_moments *M) {
+    const double c = (F->dd + F->ddg[0] * r[0]) + F->ddg[1] * r[1];
+    const double *g = F->ddg;
+    return c * c * M->area + 2.0 * c * (g[0] * M->m1[0] + g[1] * M->m1[1]) +
+           (g[0] * g[0] * M->m2[0] + 2.0 * g[0] * g[1] * M->m2[1] + g[1] * g[1] * M->m2[2]);
+}
+
+/* The damper's work on the body over the step [J]: its pressure dn
+ * dd_r/h = kn a dd_r over the approach's change dd_r, on the part that
+ * presses: kn a times the integral of dd_r^2 there (>= 0).  Where the body
+ * leaves the layer faster than it recovers (p clipped at 0) nothing acts on
+ * the body.  Without damping 0. */
+static double damper_work(const pad_model *m, const pad_field *F) {
+    if (!F->damped) return 0.0;
+    const cells_setup *g = &m->g;
+    const double hx = g->length / (2.0 * g->n[0]), hy = g->width / (2.0 * g->n[1]);
+    double sum = 0.0;
+    for (int c = 0, n = cells_count(g); c < n; ++c) {
+        const double r[2] = {cells_coordinate(c % g->n[0], g->n[0]) * g->length,
+                             cells_coordinate(c / g->n[0], g->n[1]) * g->width};
+        const double e = (F->f0 + F->g[0] * r[0]) + F->g[1] * r[1];
+        pad_moments M;
+        pressed_part(F, r[0], r[1], e, hx, hy, &M, NULL);
+        sum += change_squared(F, r, &M);
+    }
+    return m->kn * F->a * sum;
+}
 
 /* Every cell's normal force Nc[c] [N] and their sums: a cell's force kn
  * (e A + g . m1) and first moment about the pad centre r N + kn (e m1 +
@@ -153,6 +191,7 @@ static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], p
         S->mb[0] = kn * F->g[0] * (W * L * L * L / 12.0);
         S->mb[1] = kn * F->g[1] * (L * W * W * W / 12.0);
         S->contact_fraction = 1.0;
+        S->damper = damper_work(m, F);
         return;
     }
     double Fn = 0.0, mx = 0.0, my = 0.0, full = 0.0, part = 0.0;
@@ -186,6 +225,7 @@ static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], p
     S->mb[0] = mx;
     S->mb[1] = my;
     S->contact_fraction = (full + part) / (double)cells_count(g);
+    S->damper = damper_work(m, F);
 }
 
 /* (M1, M2) of a first moment in body axes: turned into the surface's, a
@@ -219,18 +259,22 @@ static fmu_status overflow(const pad_model *m, int bad, fmu_msg *msg) {
  * with `law`, its rate against `ref` (which commits nothing); or fails and
  * changes nothing. */
 static fmu_status evaluate(pad_model *m, const oc_law *law, const cells_source *src,
-                           const pad_pose *ref, fmu_msg *msg) {
+                           const pad_pose *ref, double damper, fmu_msg *msg) {
     double Nc[PATCH_MAX_CELLS];
     const pad_field F = field_of(m, ref);
     pad_normal S;
     normal_forces(m, &F, Nc, &S);
     double M[2];
     moments_of(m->g.theta, S.mb, M);
-    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1])) return overflow(m, -1, msg);
+    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1]) || !isfinite(damper + S.damper))
+        return overflow(m, -1, msg);
     cells_sums out;
     const int bad = cells_evaluate(&m->cells, law, &m->g, Nc, src, &out);
     if (bad >= 0) return overflow(m, bad, msg);
     m->out = out;
+    m->damper = damper;
+    m->damper_step = S.damper;
+    m->out.energy += damper + S.damper;
     m->Fn = S.Fn;
     m->M[0] = M[0];
     m->M[1] = M[1];
@@ -255,10 +299,13 @@ fmu_status fmu_model_update(pad_model *m, int changed, int allow, fmu_msg *msg) 
     if (allow & FMU_ALLOW_PARAMETERS) {
         const cells_source init = cells_initial();
         const pad_pose none = pose_now(m, 0.0);
-        return evaluate(m, use, &init, &none, msg);
+        return evaluate(m, use, &init, &none, 0.0, msg);
     }
     const cells_source src = cells_committed(&m->cells);
-    return evaluate(m, use, &src, m->cells.result_committed ? &m->commit : &m->ref, msg);
+    /* from the committed result, the damper's work up to its end */
+    const int after = m->cells.result_committed;
+    return evaluate(m, use, &src, after ? &m->commit : &m->ref,
+                    after ? m->damper + m->damper_step : m->damper, msg);
 }
 
 /* Every set in initialization already derived the start from the values it
@@ -267,7 +314,7 @@ fmu_status fmu_model_update(pad_model *m, int changed, int allow, fmu_msg *msg) 
 static fmu_status exit_init(pad_model *m, fmu_msg *msg) {
     const cells_source init = cells_initial();
     const pad_pose none = pose_now(m, 0.0);
-    return evaluate(m, &m->cells.law, &init, &none, msg);
+    return evaluate(m, &m->cells.law, &init, &none, 0.0, msg);
 }
 
 /* A further step with held inputs steps every cell again from what the
@@ -276,7 +323,8 @@ fmu_status fmu_model_do_step(pad_model *m, double h, fmu_msg *msg) {
     if (m->cells.result_committed) {
         const cells_source src = cells_committed(&m->cells);
         const pad_pose was = m->commit;
-        if (evaluate(m, &m->cells.law, &src, &was, msg) != FMU_OK) return FMU_ERR;
+        if (evaluate(m, &m->cells.law, &src, &was, m->damper + m->damper_step, msg) != FMU_OK)
+            return FMU_ERR;
     }
     m->cells.result_committed = 1;
     m->commit = pose_now(m, h);
@@ -359,6 +407,67 @@ static void normal_tangent(const void *ctx, int c, double dN[4]) {
     for (int q = 0; q < 4; ++q) dN[q] += edge[q];
 }
 
+/* The integral along an edge (about a cell centre r) of dd_r^2 s_q
+ * [m^3 per unit of q], s_q = d delta/dq at the point, over (theta, d,
+ * phi1, phi2): two-point Gauss-Legendre, exact for the cubic. */
+static void edge_change_squared(const pad_field *F, const double rc[2], const pad_edge *E,
+                                double out[4]) {
+    for (int q = 0; q < 4; ++q) out[q] = 0.0;
+    if (!E->n) return;
+    const double len = hypot(E->b[0] - E->a[0], E->b[1] - E->a[1]);
+    static const double node[2] = {0.21132486540518711775, 0.78867513459481288225};
+    for (int k = 0; k < 2; ++k) {
+        const double r[2] = {rc[0] + E->a[0] + node[k] * (E->b[0] - E->a[0]),
+                             rc[1] + E->a[1] + node[k] * (E->b[1] - E->a[1])};
+        const double c = (F->dd + F->ddg[0] * r[0]) + F->ddg[1] * r[1];
+        const double w = c * c * (0.5 * len);
+        out[0] += w * (F->dgb[0][0] * r[0] + F->dgb[0][1] * r[1]);
+        out[1] += w;
+        out[2] += w * (F->dgb[1][0] * r[0] + F->dgb[1][1] * r[1]);
+        out[3] += w * (F->dgb[2][0] * r[0] + F->dgb[2][1] * r[1]);
+    }
+}
+
+/* d(damper_work)/d(theta, d, phi1, phi2): inside the pressed part 2 kn a
+ * times the integral of dd_r s_q (dd_r's own derivative, the reference
+ * being fixed); the part grows across the touching line (speed s_q/|gb|)
+ * and across e = 0 (speed (1 + a) s_q/|g|), where the integrand kn a
+ * dd_r^2 is not 0. */
+static void damper_tangent(const pad_model *m, const pad_field *F, double dW[4]) {
+    for (int q = 0; q < 4; ++q) dW[q] = 0.0;
+    if (!F->damped) return;
+    const cells_setup *g = &m->g;
+    const double hx = g->length / (2.0 * g->n[0]), hy = g->width / (2.0 * g->n[1]);
+    const double ka = m->kn * F->a;
+    const double gl = hypot(F->gb[0], F->gb[1]), ge = hypot(F->g[0], F->g[1]);
+    for (int c = 0, n = cells_count(g); c < n; ++c) {
+        const pad_cell x = pad_cell_of(m, F, c);
+        const pad_moments *M = &x.M;
+        const double dc = (F->dd + F->ddg[0] * x.r[0]) + F->ddg[1] * x.r[1];
+        /* s_q at the centre and its slope: (theta, phi1, phi2) dgb . r, d 1 */
+        const double *sl[4] = {F->dgb[0], NULL, F->dgb[1], F->dgb[2]};
+        for (int q = 0; q < 4; ++q) {
+            const double s0 = sl[q] ? sl[q][0] * x.r[0] + sl[q][1] * x.r[1] : 1.0;
+            const double s1[2] = {sl[q] ? sl[q][0] : 0.0, sl[q] ? sl[q][1] : 0.0};
+            dW[q] += 2.0 * ka *
+                     (dc * s0 * M->area + (dc * s1[0] + s0 * F->ddg[0]) * M->m1[0] +
+                      (dc * s1[1] + s0 * F->ddg[1]) * M->m1[1] +
+                      (F->ddg[0] * s1[0] * M->m2[0] +
+                       (F->ddg[0] * s1[1] + F->ddg[1] * s1[0]) * M->m2[1] +
+                       F->ddg[1] * s1[1] * M->m2[2]));
+        }
+        double on_touch[4], on_zero[4];
+        edge_change_squared(F, x.r, &x.E, on_touch);
+        pad_edge Z;
+        const double dl = (F->d + F->gb[0] * x.r[0]) + F->gb[1] * x.r[1];
+        pad_line_part(x.e, F->g, dl, F->gb, hx, hy, &Z);
+        edge_change_squared(F, x.r, &Z, on_zero);
+        for (int q = 0; q < 4; ++q) /* an edge exists only where its field has a slope */
+            dW[q] += ka * ((x.E.n ? on_touch[q] / gl : 0.0) +
+                           (Z.n ? (1.0 + F->a) * on_zero[q] / ge : 0.0));
+    }
+}
+
 /* The touching line's terms (touching_terms) of d(Fn, mbx, mby)/d(theta,
  * d, phi1, phi2), summed over the cells, added to dq. */
 static void add_touching_terms(const pad_model *m, const pad_field *F, double dq[3][4]) {
@@ -429,6 +538,9 @@ static void partials(const pad_model *m, double *Jflat) {
     }
     P[4][2] += X;
     P[5][2] += Y;
+    double dW[4];
+    damper_tangent(m, &t.F, dW);
+    for (int k = 0; k < 4; ++k) P[6][k + 2] += dW[k];
 }
 
 /* ---- serialized state: the field list of model.h ------------------------ */
@@ -440,12 +552,20 @@ typedef struct {
     double kn, dn, d, phi[2];
     int result_committed;
     pad_pose ref, commit;
+    double damper;
 } pad_head;
 
 static pad_head head_of(const pad_model *m) {
-    const pad_head h = {
-        m->params, m->g,     m->kn, m->dn, m->d, {m->phi[0], m->phi[1]}, m->cells.result_committed,
-        m->ref,    m->commit};
+    const pad_head h = {m->params,
+                        m->g,
+                        m->kn,
+                        m->dn,
+                        m->d,
+                        {m->phi[0], m->phi[1]},
+                        m->cells.result_committed,
+                        m->ref,
+                        m->commit,
+                        m->damper};
     return h;
 }
 
@@ -460,6 +580,7 @@ static void put_head(pad_model *m, const pad_head *h) {
     m->cells.result_committed = h->result_committed;
     m->ref = h->ref;
     m->commit = h->commit;
+    m->damper = h->damper;
 }
 
 /* fmu_model_state_read once the head is in m: the steps' sizes checked,
@@ -472,6 +593,8 @@ static fmu_status read_cells(pad_model *m, const pad_head *was, const unsigned c
     if (!(m->ref.h >= 0.0) || !(m->commit.h >= 0.0))
         return fmu_fail(msg, "serialized state: a step size h=%g s, %g s below 0", m->ref.h,
                         m->commit.h);
+    if (!(m->damper >= 0.0))
+        return fmu_fail(msg, "serialized state: the damper's work %g J is below 0", m->damper);
     oc_law law;
     if (cells_restored_law(&m->cells, &was->params, &was->g, &m->params, &m->g, cells, &law, msg) !=
         FMU_OK)
@@ -482,8 +605,11 @@ static fmu_status read_cells(pad_model *m, const pad_head *was, const unsigned c
     normal_forces(m, &F, Nc, &S);
     double M[2];
     moments_of(m->g.theta, S.mb, M);
-    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1])) return refused_state(m, -1, msg);
+    if (!isfinite(S.Fn) || !isfinite(M[0]) || !isfinite(M[1]) || !isfinite(m->damper + S.damper))
+        return refused_state(m, -1, msg);
     if (restored_cells(m, &law, Nc, cells, msg) != FMU_OK) return FMU_ERR;
+    m->damper_step = S.damper;
+    m->out.energy += m->damper + S.damper;
     m->Fn = S.Fn;
     m->M[0] = M[0];
     m->M[1] = M[1];

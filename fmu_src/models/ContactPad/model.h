@@ -50,6 +50,9 @@ struct fmu_model {
      * that of the shown step with the size of the doStep that committed it
      * (while cells.result_committed): the next step's reference. */
     pad_pose ref, commit;
+    /* The damper's work on the body [J]: up to the shown step's start, and
+     * in the shown step (dissipatedEnergy counts both, with the cells'). */
+    double damper, damper_step;
     cells_grid cells;
 };
 typedef struct fmu_model pad_model;
@@ -79,6 +82,8 @@ static const fmu_field PAD_MODEL_FIELD_LIST[] = {
                          "[s] (0: none)"),
     PAD_POSE_FIELDS(commit, "the shown step's pose and the size [s] of the doStep that committed "
                             "it (while committed)"),
+    FMU_F64(pad_model, damper, "damper", "the damper's work up to the shown step's start [J]",
+            FINITE, 0),
     CELLS_STATES_FIELD};
 CELLS_STATE_FIELDS(PAD_MODEL_FIELD_LIST);
 /* What model.c writes itself (glue/fmu_model_defaults.inc the rest): its

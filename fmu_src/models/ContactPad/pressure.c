@@ -82,17 +82,16 @@ static int clip_polygon(const double x[], const double y[], int n, double c, con
     return m;
 }
 
-/* The edge on delta = 0 inside the rectangle of corners (cx, cy): where
- * two of its sides cross the line, cut to where e > 0. */
-static void touching_edge(const double cx[4], const double cy[4], double dl, const double gl[2],
-                          double e, const double g[2], pad_edge *edge) {
+void pad_line_part(double lc, const double lg[2], double cc, const double cg[2], double hx,
+                   double hy, pad_edge *edge) {
     edge->n = 0;
+    const double cx[4] = {-hx, hx, hx, -hx}, cy[4] = {-hy, -hy, hy, hy};
     double px[2], py[2];
     int found = 0;
     for (int k = 0; k < 4 && found < 2; ++k) {
         const int l = (k + 1) & 3;
-        const double vk = dl + gl[0] * cx[k] + gl[1] * cy[k],
-                     vl = dl + gl[0] * cx[l] + gl[1] * cy[l];
+        const double vk = lc + lg[0] * cx[k] + lg[1] * cy[k];
+        const double vl = lc + lg[0] * cx[l] + lg[1] * cy[l];
         if ((vk > 0) != (vl > 0)) {
             const double t = vk / (vk - vl);
             px[found] = cx[k] + t * (cx[l] - cx[k]);
@@ -101,7 +100,7 @@ static void touching_edge(const double cx[4], const double cy[4], double dl, con
         }
     }
     if (found < 2) return;
-    const double ea = e + g[0] * px[0] + g[1] * py[0], eb = e + g[0] * px[1] + g[1] * py[1];
+    const double ea = cc + cg[0] * px[0] + cg[1] * py[0], eb = cc + cg[0] * px[1] + cg[1] * py[1];
     if (!(ea > 0) && !(eb > 0)) return;
     const double ta = ea > 0 ? 0.0 : ea / (ea - eb), tb = eb > 0 ? 1.0 : ea / (ea - eb);
     edge->n = 1;
@@ -122,6 +121,6 @@ int pad_clip_moments_touching(double e, const double g[2], double dl, const doub
     const int nt = clip_polygon(cx, cy, 4, dl, gl, tx, ty);
     const int np = clip_polygon(tx, ty, nt, e, g, px, py);
     if (np >= 3) polygon_moments(px, py, np, out);
-    touching_edge(cx, cy, dl, gl, e, g, edge);
+    pad_line_part(dl, gl, e, g, hx, hy, edge);
     return 0;
 }

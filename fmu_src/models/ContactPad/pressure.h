@@ -42,6 +42,11 @@ typedef struct {
     double a[2], b[2];
 } pad_edge;
 
+/* The part of the line lc + lg . rho = 0 inside the rectangle [-hx, hx] x
+ * [-hy, hy] where cc + cg . rho > 0 (rho about the cell centre). */
+void pad_line_part(double lc, const double lg[2], double cc, const double cg[2], double hx,
+                   double hy, pad_edge *edge);
+
 /* pad_clip_moments for a damped foundation: the moments of the part of the
  * cell where both the approach delta = dl + gl . rho and the effective
  * approach e + g . rho are > 0 (a Kelvin-Voigt layer presses only where it
