@@ -26,40 +26,6 @@ static void polygon_moments(const double x[], const double y[], int n, pad_momen
     out->m2[2] = yy / 12;
 }
 
-int pad_clip_moments(double e, const double g[2], double hx, double hy, pad_moments *out) {
-    const double spread = fabs(g[0]) * hx + fabs(g[1]) * hy;
-    if (e - spread > 0) { /* the whole cell presses: the rectangle's own moments */
-        const double a = 4 * hx * hy;
-        out->area = a;
-        out->m1[0] = out->m1[1] = 0.0;
-        out->m2[0] = a * hx * hx / 3;
-        out->m2[1] = 0.0;
-        out->m2[2] = a * hy * hy / 3;
-        return 1;
-    }
-    out->area = out->m1[0] = out->m1[1] = out->m2[0] = out->m2[1] = out->m2[2] = 0.0;
-    if (!(e + spread > 0)) return 0; /* lifted everywhere (or a field not finite) */
-    /* Sutherland-Hodgman: the corners counterclockwise, kept where e > 0,
-     * each edge that crosses the line cut where e = 0 (at most 5 vertices) */
-    const double cx[4] = {-hx, hx, hx, -hx}, cy[4] = {-hy, -hy, hy, hy};
-    double ce[4], x[5], y[5];
-    for (int k = 0; k < 4; ++k) ce[k] = e + g[0] * cx[k] + g[1] * cy[k];
-    int n = 0;
-    for (int k = 0; k < 4; ++k) {
-        const int l = (k + 1) & 3;
-        const int in_k = ce[k] > 0, in_l = ce[l] > 0;
-        if (in_k) x[n] = cx[k], y[n] = cy[k], ++n;
-        if (in_k != in_l) {
-            const double t = ce[k] / (ce[k] - ce[l]);
-            x[n] = cx[k] + t * (cx[l] - cx[k]);
-            y[n] = cy[k] + t * (cy[l] - cy[k]);
-            ++n;
-        }
-    }
-    if (n >= 3) polygon_moments(x, y, n, out);
-    return 0;
-}
-
 /* Sutherland-Hodgman: the vertices of the polygon (x, y) kept where
  * c + gc . (x, y) > 0, each edge that crosses the line cut where it is 0;
  * returns their number (at most n + 1). */
@@ -80,6 +46,28 @@ static int clip_polygon(const double x[], const double y[], int n, double c, con
         }
     }
     return m;
+}
+
+int pad_clip_moments(double e, const double g[2], double hx, double hy, pad_moments *out) {
+    const double spread = fabs(g[0]) * hx + fabs(g[1]) * hy;
+    if (e - spread > 0) { /* the whole cell presses: the rectangle's own moments */
+        const double a = 4 * hx * hy;
+        out->area = a;
+        out->m1[0] = out->m1[1] = 0.0;
+        out->m2[0] = a * hx * hx / 3;
+        out->m2[1] = 0.0;
+        out->m2[2] = a * hy * hy / 3;
+        return 1;
+    }
+    out->area = out->m1[0] = out->m1[1] = out->m2[0] = out->m2[1] = out->m2[2] = 0.0;
+    if (!(e + spread > 0)) return 0; /* lifted everywhere (or a field not finite) */
+    /* the corners counterclockwise, kept where e > 0, each edge that crosses
+     * the line cut where e = 0 (at most 5 vertices) */
+    const double cx[4] = {-hx, hx, hx, -hx}, cy[4] = {-hy, -hy, hy, hy};
+    double x[5], y[5];
+    const int n = clip_polygon(cx, cy, 4, e, g, x, y);
+    if (n >= 3) polygon_moments(x, y, n, out);
+    return 0;
 }
 
 void pad_line_part(double lc, const double lg[2], double cc, const double cg[2], double hx,
