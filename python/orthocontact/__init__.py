@@ -27,7 +27,7 @@ import going down):
     uq, reproduction -- uncertainty propagation; the paper reproduced, sensitivity
     cli            -- the `orthocontact` command
 """
-from .experiment.scenario import load as load_scenario
+from .experiment import load_scenario
 from .fmu import ContactFMU, ContactParams, find_fmu
 from .rig import Rig, RigResult
 from .rig import run as run_rig
@@ -38,7 +38,7 @@ def load_measurements(folder):
     """Reads and validates a measurement folder (rig.toml and any of
     forces.csv, angles.csv, ramp.csv; angles in degrees, forces in N, travel in
     m).  Raises orthocontact.errors.InputError with a one-line message."""
-    from .identification.measurements import load_data
+    from .identification import load_data
     return load_data(folder)
 
 
@@ -47,8 +47,7 @@ def identify_parameters(data, validate: bool = True, workers=None, fmi_version: 
     stiffness [N/m] from a measurement folder or a set from load_measurements.
     Returns an Identification; .as_json() gives the values, standard errors and
     95 % intervals (what the command writes to identified.json)."""
-    from .identification.job import identify
-    from .identification.measurements import MeasurementSet
+    from .identification import MeasurementSet, identify
     if not isinstance(data, MeasurementSet):
         data = load_measurements(data)
     return identify(data, validate, workers, str(find_fmu(fmi_version=fmi_version)))

@@ -7,18 +7,16 @@ import time
 from pathlib import Path
 
 from ..errors import InputError
-from ..experiment.kinds import RunOptions, fmu_for, kind_of, require_mat_angles
-from ..experiment.scenario import load
-from ..output.folder import staged_output
-from ..output.lines import warn
-from ..output.manifest import one_run
+from ..experiment import RunOptions, fmu_for, kind_of, require_mat_angles
+from ..experiment import load_scenario as read_scenario
+from ..output import one_run, staged_output, warn
 
 
 def load_scenario(path, yes: bool | None = None):
     """The scenario file, its unusual values said as warnings; with `yes`
     given, its size checked (runs.size: refused above the limits unless yes)."""
-    from ..runs.size import check_scenario_size
-    sc = load(path)
+    from ..runs import check_scenario_size
+    sc = read_scenario(path)
     if yes is not None:
         check_scenario_size(sc, yes)
     for line in sc.warnings:
@@ -29,7 +27,7 @@ def load_scenario(path, yes: bool | None = None):
 def _run_scenario(sc, out: Path, fmu_path, how) -> dict:
     """The scenario run by its kind (reproduction.kinds) on the FMU the
     command resolved, its warning line said."""
-    from ..reproduction.kinds import run_scenario
+    from ..reproduction import run_scenario
     summary = run_scenario(sc, out, fmu_path, how)
     if summary["checks"]["warning"]:
         warn(summary["checks"]["warning"])
@@ -39,12 +37,12 @@ def _run_scenario(sc, out: Path, fmu_path, how) -> dict:
 def packaged_scenarios() -> Path:
     """The paper's scenario files installed with the package (or, in a source
     tree without an install, the repository's)."""
-    from ..fmu.files import PACKAGE_ROOT, installed_file
+    from ..fmu import PACKAGE_ROOT, installed_file
     return installed_file("scenarios", folder=True) or PACKAGE_ROOT.parents[1] / "scenarios"
 
 
 def cmd_run(args) -> int:
-    from ..output.figures import FigureDrawer
+    from ..output import FigureDrawer
     sc = load_scenario(args.scenario, args.yes)
     fmu_path = fmu_for(sc, args.fmi)
     with staged_output(args.out, args.cmd, args.force) as stage, _dask_for(args) as dask, \
@@ -58,17 +56,15 @@ def cmd_run(args) -> int:
 
 
 def cmd_reproduce(args) -> int:
-    from ..output.figures import FigureDrawer
-    from ..output.tables import write_json
-    from ..reproduction import paper_report
+    from ..output import FigureDrawer, write_json
+    from ..reproduction import calibration_rows, paper_rows, reproduction_report
     folder = Path(args.scenarios) if args.scenarios else packaged_scenarios()
     files = sorted(folder.glob("*.toml"))
     if not files:
         raise InputError(f"{folder}: expected scenario files (*.toml), found none")
     scenarios = [load_scenario(f, args.yes) for f in files]  # all validated before anything runs
-    from ..reproduction import sensitivity
-    from ..reproduction.kinds import in_report_order
-    from ..runs.size import Work, check_work, scenario_work
+    from ..reproduction import in_report_order, sensitivity
+    from ..runs import Work, check_work, scenario_work
     sens_sc = next((sc for sc in scenarios if sensitivity.takes(sc) and "extremum_phi_deg" in sc.paper),
                    None)   # the rig's hidden assumptions, on it
     planned = sensitivity.plan(sens_sc) if sens_sc is not None else None
@@ -101,13 +97,13 @@ def cmd_reproduce(args) -> int:
                 (stage / sc.name).mkdir()
                 summary = _run_scenario(sc, stage / sc.name, fmus[sc.name], how)
                 runs.append((sc, summary))
-                rows += paper_report.paper_rows(sc, summary)
+                rows += paper_rows(sc, summary)
             sens = sens.result() if sens is not None else None
             if sens is not None and sens["checks"]["warning"]:
                 warn(sens["checks"]["warning"])
-        rows += paper_report.calibration_rows()
+        rows += calibration_rows()
         write_json(stage / "summary.json", {"rows": rows, "scenarios": {sc.name: s for sc, s in runs}})
-        text = paper_report.reproduction_report(stage, runs, rows, time.time() - t0, sens)
+        text = reproduction_report(stage, runs, rows, time.time() - t0, sens)
     print(text.split("## Scenarios")[0].rstrip())
     print(f"\nwrote {args.out}/report.md in {time.time() - t0:.1f} s")
     return 0 if all(r["match"] for r in rows) else 1
@@ -119,12 +115,12 @@ def cmd_identify(args) -> int:
     for line in data.warnings:
         warn(line)
     if not args.no_validate:   # the fit runs no rig; its validation does
-        from ..runs.size import check_work
+        from ..runs import check_work
         check_work(str(args.data), identify.validation_work(data), "the data's points", "rig.toml's step_s",
                    args.yes, remedy="raise rig.toml's step_s (steps per run), or pass --no-validate (no "
                                     "validation runs) or --yes to run them anyway")
     with staged_output(args.out, args.cmd, args.force) as stage:
-        from ..fmu.files import find_fmu
+        from ..fmu import find_fmu
         result = identify.run(data, stage, validate=not args.no_validate, workers=args.workers,
                               fmu_path=str(find_fmu(fmi_version=args.fmi)), recordings=recordings,
                               force=args.force)
@@ -146,9 +142,9 @@ def _sensitivity_job(sc, fmu_path, master, out, planned) -> dict:
 
 
 def cmd_sensitivity(args) -> int:
-    from ..output.figures import FigureDrawer
+    from ..output import FigureDrawer
     from ..reproduction import sensitivity
-    from ..runs.size import check_work
+    from ..runs import check_work
     sc = load_scenario(args.scenario)
     planned = sensitivity.plan(sc)
     check_work(str(sc.path), sensitivity.work(planned), "its runs", "rig.travel_m", args.yes,
@@ -175,9 +171,9 @@ def cmd_sensitivity(args) -> int:
 
 def cmd_uq(args) -> int:
     from .. import uq
-    from ..fmu.files import find_fmu
-    from ..runs.size import check_uq_size
-    from ..uq.source import read_source
+    from ..fmu import find_fmu
+    from ..runs import check_uq_size
+    from ..uq import read_source
     est, source = read_source(args.identification)
     one_run(args.identification, args.scenario)   # the law and the rig of one identify run
     sc = load_scenario(args.scenario)
@@ -213,20 +209,20 @@ def _dask_for(args):
     if args.master == "fmpy" or getattr(args, "fmi", 2) == 3:
         raise InputError("--scheduler runs the compiled master on the workers: it takes FMI 2.0 "
                          "FMUs and --master auto or c")
-    from ..runs.cluster import DaskRunner
+    from ..runs import DaskRunner
     return DaskRunner(args.scheduler, args.workers or _default_workers())
 
 
 def _default_workers() -> int:
-    from ..runtime.workers import default_workers
+    from ..runtime import default_workers
     return default_workers()
 
 
 def cmd_ssp(args) -> int:
-    from ..experiment.ssp import write_ssp
+    from ..experiment import write_ssp
     sc = load_scenario(args.scenario)
     require_mat_angles(sc, "an SSP", args.scenario)
-    from ..rig.checks import system_settling_warning
+    from ..rig import system_settling_warning
     line = system_settling_warning(f"{sc.name} at {args.angle:g} deg", sc.params_at(args.angle), sc.rig)
     if line:
         warn(line)
@@ -237,7 +233,7 @@ def cmd_ssp(args) -> int:
 
 
 def cmd_export(args) -> int:
-    from ..identification.export import export, load_calibration, plausible_calibration, rig_scenario
+    from ..identification import export_calibration, load_calibration, plausible_calibration, rig_scenario
     cal = load_calibration(args.identification, force=args.force)
     sc = rig_scenario(cal, args.scenario)
     # the last gate: what it would warn about is refused too, unless --force
@@ -248,8 +244,8 @@ def cmd_export(args) -> int:
         warn(f"--force: exporting {what} (said in the FMUs' documentation/calibration.html and "
              f"description): {f.line}")
     with staged_output(args.out, args.cmd, args.force) as stage:
-        res = export(cal, stage, args.angle, sc, forced)
-    from ..rig.checks import system_settling_warning
+        res = export_calibration(cal, stage, args.angle, sc, forced)
+    from ..rig import system_settling_warning
     line = system_settling_warning(f"{res['ssp'].name}", res["ssp_params"], res["ssp_rig"])
     if line:
         warn(line)
@@ -264,13 +260,20 @@ def cmd_export(args) -> int:
 
 
 def cmd_design(args) -> int:
-    from ..identification import design, design_inputs, design_output
-    from ..identification.design_search import stderr_say
+    from ..identification import (
+        design,
+        design_output,
+        noise_of,
+        paper_prior,
+        prior_from_identified,
+        read_plan,
+        stderr_say,
+    )
     noise = (args.sigma_force, args.sigma_angle, args.sigma_ramp)
-    prior = design_inputs.prior_from_identified(args.prior, not args.no_strip, noise) if args.prior else \
-        design_inputs.paper_prior(not args.no_strip, design_inputs.noise_of(*noise))
+    prior = prior_from_identified(args.prior, not args.no_strip, noise) if args.prior else \
+        paper_prior(not args.no_strip, noise_of(*noise))
     velocities = design.velocities_of(prior, args.velocity_min, args.velocity_max, args.velocity_step)
-    fixed = tuple(design_inputs.read_plan(args.fixed)) if args.fixed else ()
+    fixed = tuple(read_plan(args.fixed)) if args.fixed else ()
     space = design.Space(design.angles_of(prior, args.angle_step), velocities, args.runs, args.ramp_samples,
                          args.carriage_runs, fixed)
     result = design.plan(prior, space, args.criterion, say=stderr_say)

@@ -38,9 +38,8 @@ import warnings
 from pathlib import Path
 
 from ..errors import InputError
-from ..output.folder import check_output_file, check_output_folder, check_owner
-from ..output.lines import forget_warnings, warn, warnings_said
-from ..runtime.interrupts import install_signal_handlers, interrupted, quiet_interrupts, written
+from ..output import check_output_file, check_output_folder, check_owner, forget_warnings, warn, warnings_said
+from ..runtime import install_signal_handlers, interrupted, quiet_interrupts, written
 from ..textfiles import files_read
 from .parser import build_parser
 
@@ -112,7 +111,7 @@ def run_command(argv=None) -> int:
             raise InputError("--master c runs FMI 2.0 FMUs; with --fmi 3 use --master fmpy "
                              "(or auto)")
         if getattr(args, "scheduler", None) not in (None, "none"):
-            from ..runs.cluster import check_address
+            from ..runs import check_address
             check_address(args.scheduler)
         # What the command reads (the paths its arguments name; every file
         # read through textfiles once it runs) its output may not hold.
@@ -205,7 +204,7 @@ def entry() -> None:
         print(os_error_line(e, None), file=sys.stderr)
         status = status or OS_ERROR
     if status == 130:
-        from ..runtime.temp import remove_unzipped
+        from ..runtime import remove_unzipped
         remove_unzipped()  # os._exit skips atexit
         sys.stdout.flush()
         sys.stderr.flush()

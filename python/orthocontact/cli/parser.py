@@ -57,7 +57,7 @@ def _out_path(text):
 def _workers(text):
     # Checked here, before any work, for every command that takes --workers:
     # above the machine's bound a run would fork until memory runs out.
-    from ..runtime.workers import check_workers
+    from ..runtime import check_workers
     n = _positive_int("worker processes")(text)
     try:
         return check_workers(n)
@@ -69,8 +69,7 @@ def _version_text() -> str:
     """The package's version and every installed FMU with the `version` its
     model description states; an FMU of another version is named as such (a
     stale install), not passed over."""
-    from ..fmu.files import find_fmu, model_description
-    from ..fmu.variables import models
+    from ..fmu import find_fmu, model_description, models
     from ..version import __version__
     lines = [f"orthocontact {__version__}"]
     for model in models().values():

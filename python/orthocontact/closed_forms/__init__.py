@@ -4,6 +4,7 @@ with the Teflon strip and its settling length (rig); FORMS, the table of the
 forms a scenario can name (named).  `from orthocontact import closed_forms
 as cf` gives them all."""
 from .named import FORMS, NamedForm, named  # noqa: F401
+from .pad import FULL_CONTACT, LIFT_OFF, TIPS, contact_fraction, pushed_at_height  # noqa: F401
 from .paper import (  # noqa: F401
     G_STANDARD,
     adhesion_tensor,
@@ -36,6 +37,12 @@ from .paper import (  # noqa: F401
     steady_tan_phi,
     stick_stiffness_x1,
 )
+from .patch import (  # noqa: F401
+    cell_centres,
+    full_slip_rotation_grid,
+    steady_force_direction,
+    torsional_stiffness_grid,
+)
 from .rig import (  # noqa: F401
     STRIP_BISECTIONS,
     STRIP_GRID,
@@ -55,4 +62,6 @@ __all__ = ['FORMS', 'NamedForm', 'named', 'of_law', 'G_STANDARD', 'rotation', 'a
            'mat_extremum', 'eps_ratio_from_r', 'isotropic_eps_ratio', 'eq40_objective', 'eq41_r2',
            'eq25_lambdas', 'slip_force_tensor', 'strip_lateral_force', 'STRIP_GRID', 'STRIP_BISECTIONS',
            'steady_strip_state_array', 'steady_tan_phi_with_strip_array', 'steady_tan_phi_with_strip',
-           'settling_length_array']
+           'settling_length_array', 'FULL_CONTACT', 'LIFT_OFF', 'TIPS', 'contact_fraction',
+           'pushed_at_height', 'cell_centres', 'full_slip_rotation_grid', 'steady_force_direction',
+           'torsional_stiffness_grid']

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..fmu.params import ContactParams
+from ..fmu import ContactParams
 
 
 @dataclass(frozen=True)

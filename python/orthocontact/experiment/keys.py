@@ -18,7 +18,7 @@ from dataclasses import dataclass, fields
 
 from .. import plausibility
 from ..errors import Problems
-from ..rig.harness import Rig
+from ..rig import Rig
 
 REQUIRED = object()  # a spec's default for a key that must be given
 

@@ -28,11 +28,18 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from ..errors import InputError, Problems
-from ..fmu.files import MODEL_IDENTIFIER, find_fmu
-from ..fmu.pad import PAD_MODEL, foundation_problem
-from ..fmu.params import RULES
-from ..fmu.patch import GEOMETRY, PATCH_MODEL, geometry_problem, geometry_range
-from ..rig.pushed import fit_steps_problem
+from ..fmu import (
+    GEOMETRY,
+    MODEL_IDENTIFIER,
+    PAD_MODEL,
+    PATCH_MODEL,
+    RULES,
+    find_fmu,
+    foundation_problem,
+    geometry_problem,
+    geometry_range,
+)
+from ..rig import fit_steps_problem
 from .keys import ANGLE_DEG, NON_NEGATIVE, POSITIVE, REQUIRED, boolean, choice, list_of, number
 
 # The pieces of a kind written above this layer: what registers each, and

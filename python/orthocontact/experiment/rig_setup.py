@@ -11,8 +11,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import InputError
-from ..fmu.params import RULES, ContactParams
-from ..rig.harness import Rig
+from ..fmu import RULES, ContactParams
+from ..rig import Rig
 from ..textfiles import read_toml
 from .geometry import AxisGeometry
 from .keys import ANGLE_DEG, POSITIVE, REQUIRED, RIG_KEYS, choice, read_table, rig_spec

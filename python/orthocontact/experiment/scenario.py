@@ -16,14 +16,11 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..closed_forms import FORMS
-from ..closed_forms.paper import isotropic_eps_ratio
+from ..closed_forms import FORMS, isotropic_eps_ratio
 from ..errors import InputError, Problems
-from ..fmu.generated import LAW
-from ..fmu.param_checks import check as check_parameter
-from ..fmu.params import RULES, ContactParams
+from ..fmu import LAW, RULES, ContactParams, check_parameter
 from ..plausibility import ELASTIC_LENGTHS
-from ..rig.harness import Rig
+from ..rig import Rig
 from ..textfiles import read_toml
 from .geometry import AxisGeometry
 from .keys import (
@@ -229,7 +226,7 @@ def load(path) -> Scenario:
             problem("fmu", "the path of an existing .fmu file", fmu)
         elif row is not None:
             # an FMU of another model would fail later, far from the key that named it
-            from ..fmu.files import model_description
+            from ..fmu import model_description
             try:
                 model = model_description(fmu_path).coSimulation.modelIdentifier
             except Exception as e:

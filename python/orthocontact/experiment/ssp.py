@@ -18,11 +18,9 @@ from __future__ import annotations
 import math
 import zipfile
 from pathlib import Path
-from xml.sax.saxutils import quoteattr
 
-from ..fmu.files import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu
-from ..fmu.start_values import write_with_start_values
-from ..runtime.folders import locked_folder
+from ..fmu import MODEL_IDENTIFIER, RIG_MODEL_IDENTIFIER, find_fmu, write_with_start_values
+from ..runtime import locked_folder
 from .scenario import Scenario
 
 NS = ('xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
@@ -79,6 +77,7 @@ def _component(name, source, connectors, reals, integers=()):
 def parameter_values_file(values: dict, name: str, description: str = "") -> str:
     """An SSP parameter values file (.ssv) of one FMU's parameters (floats as
     Real, ints as Integer), for tools that apply such a file to a component."""
+    from xml.sax.saxutils import quoteattr  # here, not at the start: it imports urllib.request (25 ms)
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              '<ssv:ParameterSet xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues" '
              f'version="1.0" name={quoteattr(name)}'
@@ -113,6 +112,7 @@ def _split(values: dict):
 
 def system_structure(sc: Scenario, angle_deg: float) -> str:
     """SystemStructure.ssd for the scenario at the mat angle [deg]."""
+    from xml.sax.saxutils import quoteattr  # as parameter_values_file
     rig = sc.rig
     stop = rig.travel_m / rig.velocity_m_s
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',

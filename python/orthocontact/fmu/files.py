@@ -7,8 +7,6 @@ import os
 import sys
 from pathlib import Path
 
-from fmpy import read_model_description
-
 MODEL_IDENTIFIER = "OrthotropicContact"
 
 
@@ -74,7 +72,10 @@ _descriptions: dict = {}
 
 def model_description(path):
     """fmpy's reading of the FMU's modelDescription.xml, parsed once per
-    file version and process (a reproduction asks for it dozens of times)."""
+    file version and process (a reproduction asks for it dozens of times).
+    fmpy is imported here, when a description is first read: a command's
+    start (`orthocontact --help`) does without it."""
+    from fmpy import read_model_description
     p = Path(path).resolve()
     st = p.stat()
     key = (p, st.st_mtime_ns, st.st_size)

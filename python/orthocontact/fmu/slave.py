@@ -7,8 +7,7 @@ import ctypes
 import weakref
 from typing import Callable
 
-from ..runtime.processes import signals_held
-from ..runtime.temp import unzipped
+from ..runtime import signals_held, unzipped
 
 # on_message(status, category, message): an FMI log call, its texts decoded
 OnMessage = Callable[[int, str, str], None]

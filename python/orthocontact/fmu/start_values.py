@@ -12,8 +12,6 @@ import math
 import re
 import zipfile
 from pathlib import Path
-from xml.etree import ElementTree
-from xml.sax.saxutils import escape, quoteattr
 
 from ..errors import InputError
 
@@ -39,6 +37,7 @@ def parameters(xml: bytes) -> dict:
     """name -> (type, min, max, start) of each parameter of a model
     description; min/max from the variable or its declared type (None: no
     limit), start as written."""
+    from xml.etree import ElementTree  # here: a command's start does without it
     root = ElementTree.fromstring(xml)
     fmi2 = root.get("fmiVersion", "").startswith("2")
     declared = {}
@@ -121,6 +120,7 @@ def _with_start(xml: str, fmi2: bool, name: str, value) -> str:
 
 
 def _with_description(xml: str, note: str) -> str:
+    from xml.sax.saxutils import escape, quoteattr  # here, not at the start: it imports urllib.request
     head = re.search(r"<fmiModelDescription\b[^>]*>", xml)
     element = head.group(0)
     m = re.search(r'\sdescription="([^"]*)"', element)

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from ..closed_forms.paper import steady_tan_phi
+from ..closed_forms import steady_tan_phi
 from .recordings import Recordings
 
 # A group's median |phi| under this has no sign judged: a tracker's drift

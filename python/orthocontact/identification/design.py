@@ -22,7 +22,7 @@ import numpy as np
 from .. import closed_forms as cf
 from .. import plausibility
 from ..errors import InputError
-from ..runs.progress import status_lines
+from ..runs import status_lines
 from . import fit_model
 from .design_inputs import PAPER_VELOCITIES, RAMP_VELOCITY_M_S, Prior, Run, baseline_runs, grouped, lab_order
 from .design_search import Equivalence, Problem, Status, approximate, exact

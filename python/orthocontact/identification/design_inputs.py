@@ -14,7 +14,7 @@ from pathlib import Path
 from .. import closed_forms as cf
 from .. import plausibility
 from ..errors import InputError
-from ..experiment.rig_setup import RigSetup
+from ..experiment import RigSetup
 from ..textfiles import read_rows
 from .recordings import KINDS, parse_number
 

@@ -10,8 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..output.figures import finish, pyplot
-from ..output.tables import write_csv, write_json
+from ..output import finish, pyplot, write_csv, write_json
 from .design import RAMP, SLIDE, Design
 from .design_inputs import PLAN_COLUMNS, grouped, plan_rows
 from .design_search import group_ratios

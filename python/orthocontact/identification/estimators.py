@@ -17,7 +17,7 @@ import numpy as np
 
 from .. import closed_forms as cf
 from ..errors import InputError
-from ..experiment.rig_setup import RigSetup
+from ..experiment import RigSetup
 from . import fit_model
 from .lack_of_fit import lack_of_fit
 from .measurements import MeasurementSet, friction_axis_key

@@ -23,13 +23,16 @@ from pathlib import Path
 from .. import closed_forms as cf
 from .. import plausibility
 from ..errors import InputError
-from ..experiment.kinds import require_mat_angles
-from ..experiment.rig_setup import RigSetup, load_rig_toml
-from ..experiment.scenario import Scenario, load
-from ..experiment.ssp import parameter_values_file, write_ssp
-from ..fmu.files import MODEL_IDENTIFIER, find_fmu
-from ..fmu.params import ContactParams
-from ..fmu.start_values import write_with_start_values
+from ..experiment import (
+    RigSetup,
+    Scenario,
+    load_rig_toml,
+    parameter_values_file,
+    require_mat_angles,
+    write_ssp,
+)
+from ..experiment import load_scenario as load
+from ..fmu import MODEL_IDENTIFIER, ContactParams, find_fmu, write_with_start_values
 from .identified import UNITS, Estimate, IdentifiedFile, NotIdentified
 from .identified_file import read_identified
 

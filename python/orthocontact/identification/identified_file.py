@@ -20,8 +20,8 @@ from pathlib import Path
 
 from .. import plausibility
 from ..errors import InputError
-from ..fmu.params import RULES
-from ..output.manifest import written_by
+from ..fmu import RULES
+from ..output import written_by
 from ..textfiles import read_text
 from . import identified
 from .measurements import changed_files, data_digest
@@ -40,7 +40,7 @@ class DataProvenance:
 
 def write_identified(path, f: identified.IdentifiedFile) -> Path:
     """Writes identified.json (indented JSON); the one writer."""
-    from ..output.tables import write_json
+    from ..output import write_json
     path = Path(path)
     write_json(path, f.as_json())
     return path

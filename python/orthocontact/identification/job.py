@@ -17,8 +17,8 @@ import numpy as np
 
 from .. import plausibility
 from ..errors import InputError
-from ..experiment.rig_setup import RigSetup
-from ..fmu.params import ContactParams
+from ..experiment import RigSetup
+from ..fmu import ContactParams
 from . import identified
 from .estimators import JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
 from .identified import REPORTED
@@ -38,10 +38,9 @@ def validate_with_fmu(data: MeasurementSet, values: dict, workers=None, fmu_path
     included (the estimated c_strip where it was fitted), and returns the
     residuals data - simulation and the runs' self-checks (rig_checks):
     "warning" holds the user's line if a run was not steady sliding."""
-    from ..rig.checks import check_runs, warning_line
-    from ..rig.harness import run
-    from ..runs.batch import run_many
-    from ..runtime.workers import default_workers
+    from ..rig import check_runs, run, warning_line
+    from ..runs import run_many
+    from ..runtime import default_workers
     rig = data.rig
     if "f_int" in values:
         rig = dataclasses.replace(rig, f_int_N=values["f_int"])
@@ -110,7 +109,7 @@ def validation_work(data: MeasurementSet):
     work estimate (runs.size.Work): none when mu1, mu2 will not be
     identified (no driving forces: identifiability), else a run at each
     validation point and one over the ramp."""
-    from ..runs.size import Work, steps_per_run
+    from ..runs import Work, steps_per_run
     work = Work()
     if "mu1" not in identifiability(data)[0]:
         return work
@@ -280,7 +279,7 @@ def identify(data: MeasurementSet, validate: bool = True, workers=None,
     values pass the plausibility gate before the validation runs
     (InputError: nothing is written).  A group the fitted law does not
     describe (lack_of_fit) is a warning here and refused by export."""
-    from ..runs.progress import Heartbeat
+    from ..runs import Heartbeat
     start = start_values(data)
     beat = Heartbeat("joint fit", unit="solves")   # a line at 2 s and every 10 s while it runs
     try:
@@ -356,8 +355,8 @@ def simulate_measurements(truth: ContactParams, rig: RigSetup, force_angles, ang
     and fitted trajectory angles at the given mat angles [deg], and the
     start of a pull at rig.ramp_angle_deg up to ramp_max_x1_m [m].
     truth.alpha/beta are ignored: the rig's geometry sets them per angle."""
-    from ..rig.harness import run
-    from ..runs.batch import run_many
+    from ..rig import run
+    from ..runs import run_many
     h = rig.harness(mode="quasistatic", step_s=1e-3, travel_m=0.2)
     angles = sorted(set(force_angles) | set(angle_angles))
     sims = dict(zip(angles, run_many([(rig.params_at(truth, a), h) for a in angles], workers, None,

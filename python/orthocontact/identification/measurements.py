@@ -25,7 +25,7 @@ import numpy as np
 
 from .. import plausibility
 from ..errors import InputError
-from ..experiment.rig_setup import RigSetup, load_rig_toml, write_rig_toml
+from ..experiment import RigSetup, load_rig_toml, write_rig_toml
 from ..textfiles import read_rows
 from .recordings import parse_number
 

@@ -22,7 +22,7 @@ import numpy as np
 
 from .. import plausibility
 from ..errors import InputError
-from ..experiment.rig_setup import RigSetup, load_rig_toml
+from ..experiment import RigSetup, load_rig_toml
 from ..textfiles import read_rows, read_toml
 
 KINDS = ("carriage", "slide", "ramp")

@@ -84,7 +84,7 @@ def _json_value(v):
 def write_table(red: Reduction, out: Path):
     """reduction.csv (one row per run; empty cells where a kind has no
     such value) and reduction.json (the same, and the warnings)."""
-    from ..output.tables import write_json
+    from ..output import write_json
     table = rows(red)
     with open(out / "reduction.csv", "w", newline="") as fh:
         w = csv.DictWriter(fh, COLUMNS)

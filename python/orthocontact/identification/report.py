@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import closed_forms as cf
-from ..experiment.rig_setup import RigSetup
+from ..experiment import RigSetup
 from .identified import UNITS, Estimate, ReductionSummary, reported_names
 
 # The one name of the angle the mat (the law's axes) is turned by: every figure, message and help text.

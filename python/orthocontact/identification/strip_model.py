@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from .. import closed_forms as cf
-from ..experiment.rig_setup import RigSetup
+from ..experiment import RigSetup
 from .measurements import MeasurementSet
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..experiment.scenario import Scenario
+from ..experiment import Scenario
 
 
 def pyplot():
@@ -88,7 +88,7 @@ class FigureDrawer:
 
     def __enter__(self):
         if self.workers > 1:
-            from ..runtime.processes import process_pool, stop_pool
+            from ..runtime import process_pool, stop_pool
             self._ex = process_pool(self.workers, _init_drawer)
             try:
                 # Start the workers now, so that matplotlib's import in them
@@ -114,7 +114,7 @@ class FigureDrawer:
     def __exit__(self, kind, value, tb):
         if self._ex is None:
             return False
-        from ..runtime.processes import stop_pool
+        from ..runtime import stop_pool
         if kind is not None:
             stop_pool(self._ex)
             return False

@@ -18,10 +18,19 @@ import zipfile
 from pathlib import Path
 
 from ..errors import InputError
-from ..runtime.folders import locked_folder
-from ..runtime.interrupts import hold_interrupts, interrupted, results_written
-from ..runtime.processes import signals_held
-from ..runtime.swap import UNSUPPORTED, can_exchange, exchange, link_tree, merge_into, prune_empty
+from ..runtime import (
+    UNSUPPORTED,
+    can_exchange,
+    exchange,
+    hold_interrupts,
+    interrupted,
+    link_tree,
+    locked_folder,
+    merge_into,
+    prune_empty,
+    results_written,
+    signals_held,
+)
 from ..textfiles import paths_being_read
 from .lines import note, warn
 from .manifest import MANIFEST, Manifest, file_names, file_sha256, new_manifest, read_manifest, write_manifest

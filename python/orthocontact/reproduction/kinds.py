@@ -7,10 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..experiment.kinds import RunOptions, kind_of
-from ..experiment.scenario import Scenario
-from ..fmu.files import fmi_version_of
-from ..output.tables import write_json
+from ..experiment import RunOptions, Scenario, kind_of
+from ..fmu import fmi_version_of
+from ..output import write_json
 
 # each registers its kinds' pieces
 from . import paper_report, planar_outputs, pushed_outputs, scenario_outputs  # noqa: F401

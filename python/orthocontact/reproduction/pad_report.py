@@ -6,8 +6,7 @@ its checks are not rows of the paper's table and not in the headline's
 counts; a failed check is its warning line, as in `orthocontact run`."""
 from __future__ import annotations
 
-from ..experiment.kinds import ReportPart, register
-from ..experiment.scenario import Scenario
+from ..experiment import ReportPart, Scenario, register
 from .patch_report import check_line, extension_section, figures_line, link, rectangle_mm
 
 PAD = extension_section("The contact pad", "the patch's cells on a Winkler foundation (the ContactPad "

@@ -17,10 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..experiment.kinds import KINDS as SCENARIO_KINDS
-from ..experiment.kinds import ReportPart, Section, kind_of, register
-from ..experiment.scenario import Scenario
-from ..output.tables import write_json
+from ..experiment import KINDS as SCENARIO_KINDS
+from ..experiment import ReportPart, Scenario, Section, kind_of, register
+from ..output import write_json
 from . import pad_report, patch_report  # noqa: F401  (register their kinds' parts: the report has them all)
 from .sensitivity import report_lines
 
@@ -123,9 +122,8 @@ PAPER_RIG = {"mass_kg": 1.875, "f_int_N": 5.0}
 def _paper_calibration(mu1=None, mu2=None):
     from pathlib import Path
 
-    from ..experiment.rig_setup import RigSetup
-    from ..identification.estimators import eq1, max_rule
-    from ..identification.measurements import MeasurementSet
+    from ..experiment import RigSetup
+    from ..identification import MeasurementSet, eq1, max_rule
     data = MeasurementSet(Path("paper"), RigSetup(**PAPER_RIG),
                           forces=np.array([[0.0, PAPER_FORCES_N[0]], [90.0, PAPER_FORCES_N[1]]]),
                           angles=np.array([[39.2, -PAPER_PHI_MAX_DEG]]))  # counterclockwise sign
@@ -201,7 +199,7 @@ def sign_free_peaks(sc: Scenario) -> dict:
     """Each implicit rule's largest |phi| over the scenario's range and its
     angle, from the steady closed form on a 0.01 deg grid: a comparison with
     the measured peak that does not depend on how the paper's sign is read."""
-    from ..runs.sweep import closed_form_phi_deg_array
+    from ..runs import closed_form_phi_deg_array
     lo = sc.sweep["start_deg"]
     grid = np.linspace(lo, lo + (sc.angle_count() - 1) * sc.sweep["step_deg"], 9001)
     out = {}

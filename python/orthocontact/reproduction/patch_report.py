@@ -7,8 +7,7 @@ not rows of the paper's table and not in the headline's counts; a failed
 check is its warning line, as in `orthocontact run`."""
 from __future__ import annotations
 
-from ..experiment.kinds import ReportPart, Section, register
-from ..experiment.scenario import Scenario
+from ..experiment import ReportPart, Scenario, Section, register
 
 
 def extension_section(title: str, what: str, guide: str, json_key: str) -> Section:

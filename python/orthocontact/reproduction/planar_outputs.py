@@ -24,13 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..closed_forms.paper import of_law, steady_phi_deg
-from ..closed_forms.patch import cell_centres
-from ..experiment.kinds import RunOptions, part
-from ..experiment.scenario import SCHEMA, Scenario, ScenarioError
-from ..fmu.patch import PATCH_MODEL, PatchGeometry
-from ..output.figures import curve_style, draw_here, finish, pyplot, swept_label
-from ..output.tables import write_csv, write_json
+from ..closed_forms import cell_centres, of_law, steady_phi_deg
+from ..experiment import SCHEMA, RunOptions, Scenario, ScenarioError, part
+from ..fmu import PATCH_MODEL, PatchGeometry
+from ..output import curve_style, draw_here, finish, pyplot, swept_label, write_csv, write_json
 from ..rig import planar
 
 # The towed block's steady yaw: after tow.duration_s the transient is far
@@ -182,7 +179,7 @@ def cell_states_of(params, body, tw, res) -> tuple:
     installed FMI 3.0 ContactPatch FMU if its record equals res's."""
     if res.cell_state is not None:
         return res.cell_state, "this run (FMI 3.0: cellState)"
-    from ..fmu.files import find_fmu
+    from ..fmu import find_fmu
     try:
         twin = find_fmu(fmi_version=3, model=PATCH_MODEL)
     except FileNotFoundError as e:
@@ -291,7 +288,7 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
 
 
 def _version(fmu_path) -> int:
-    from ..fmu.files import fmi_version_of
+    from ..fmu import fmi_version_of
     return fmi_version_of(fmu_path)
 
 

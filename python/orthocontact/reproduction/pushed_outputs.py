@@ -25,18 +25,22 @@ from pathlib import Path
 
 import numpy as np
 
-from ..closed_forms.pad import FULL_CONTACT, LIFT_OFF, TIPS, contact_fraction, pushed_at_height
-from ..closed_forms.paper import of_law, steady_drive_force, steady_phi_deg
-from ..experiment.kinds import RunOptions, part
-from ..experiment.scenario import Scenario, ScenarioError
-from ..fmu.files import find_fmu, fmi_version_of
-from ..fmu.pad import PAD_MODEL, Foundation
-from ..fmu.patch import PatchGeometry
-from ..output.figures import draw_here, finish, pyplot, swept_label
-from ..output.tables import write_csv, write_json
+from ..closed_forms import (
+    FULL_CONTACT,
+    LIFT_OFF,
+    TIPS,
+    contact_fraction,
+    of_law,
+    pushed_at_height,
+    steady_drive_force,
+    steady_phi_deg,
+)
+from ..experiment import RunOptions, Scenario, ScenarioError, part
+from ..fmu import PAD_MODEL, Foundation, PatchGeometry, find_fmu, fmi_version_of
+from ..output import draw_here, finish, pyplot, swept_label, write_csv, write_json
 from ..plausibility import ELASTIC_LENGTHS
 from ..rig import pushed
-from ..runs.sweep import closed_form_phi_deg_array
+from ..runs import closed_form_phi_deg_array
 
 # A settled push's trajectory angle is the closed form's to the transient
 # left after ELASTIC_LENGTHS elastic lengths (measured: < 1e-4 deg); its

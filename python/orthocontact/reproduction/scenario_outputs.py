@@ -12,12 +12,10 @@ from pathlib import Path
 import numpy as np
 
 from .. import closed_forms as cf
-from ..experiment.kinds import RunOptions, part
-from ..experiment.scenario import Scenario
-from ..output.figures import curve_style, draw_here, finish, pyplot, swept_label
-from ..output.tables import write_csv, write_json
-from ..rig.checks import SETTLE_TOL_DEG, STEADY_TOL_DEG
-from ..runs.sweep import StepStudyResult, SweepResult, closed_form_phi_deg_array, run_step_study, run_sweep
+from ..experiment import RunOptions, Scenario, part
+from ..output import curve_style, draw_here, finish, pyplot, swept_label, write_csv, write_json
+from ..rig import SETTLE_TOL_DEG, STEADY_TOL_DEG
+from ..runs import StepStudyResult, SweepResult, closed_form_phi_deg_array, run_step_study, run_sweep
 
 FLAT_DEG = 1e-9  # a closed form below this everywhere is flat: no extremum
 

@@ -29,9 +29,8 @@ import numpy as np
 
 from .. import closed_forms as cf
 from ..errors import InputError
-from ..experiment.kinds import kind_of
-from ..experiment.scenario import Scenario
-from ..rig.checks import check_runs, warning_line
+from ..experiment import Scenario, kind_of
+from ..rig import check_runs, warning_line
 
 MU_STRIPS = (0.0, 0.025, 0.05, 0.075, 0.1, 0.15, 0.2)
 
@@ -190,7 +189,7 @@ def work(p: Plan):
     """The plan's rig runs for the work estimate (runs.size.Work): how
     many at each velocity, and each one's steps (the scenario's travel at
     RIG_STEP_S)."""
-    from ..runs.size import Work, steps_per_run
+    from ..runs import Work, steps_per_run
     w = Work()
     for v in VELOCITIES:
         rigs = [r for _, r in p.tasks if r.velocity_m_s == v]
@@ -205,7 +204,7 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
     angles at a 4 ms step (those of `planned`, plan(sc) if not given)."""
     import time
 
-    from ..runs.batch import run_many
+    from ..runs import run_many
     t0 = time.time()
     pl = planned or plan(sc)
     measured, combos, spans, closed, tasks = pl.measured, pl.combos, pl.spans, pl.closed, pl.tasks
@@ -243,7 +242,7 @@ def run(sc: Scenario, workers: int = 1, fmu_path=None, master: str = "auto", pro
 def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
     """sensitivity_strip.csv, sensitivity_velocity.csv, sensitivity.json and
     two figures into out."""
-    from ..output.tables import write_csv, write_json
+    from ..output import write_csv, write_json
     keys = ["mu_strip", "velocity_m_s", "peak_phi_closed_deg", "peak_angle_closed_deg",
             "peak_phi_rig_deg", "peak_angle_rig_deg", "eps_ratio_for_measured_peak"]
     write_csv(out / "sensitivity_strip.csv", keys,
@@ -266,7 +265,7 @@ def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
 
 
 def _figures(res: Sensitivity, sc: Scenario, out) -> None:
-    from ..output.figures import finish, pyplot
+    from ..output import finish, pyplot
     plt = pyplot()
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5))
     for i, v in enumerate(VELOCITIES):

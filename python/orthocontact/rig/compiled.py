@@ -17,11 +17,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fmu.contact import FMUError
-from ..fmu.files import MODEL_IDENTIFIER, fmi_version_of, installed_file, model_description
-from ..fmu.params import RULES, ContactParams
-from ..fmu.variables import law_parameters
-from ..runtime.temp import unzipped
+from ..fmu import (
+    MODEL_IDENTIFIER,
+    RULES,
+    ContactParams,
+    FMUError,
+    fmi_version_of,
+    installed_file,
+    law_parameters,
+    model_description,
+)
+from ..runtime import unzipped
 from .harness import Rig, RigResult, RunFigures
 
 _CTYPES = {"double": ctypes.c_double, "int": ctypes.c_int, "long": ctypes.c_long}

@@ -34,9 +34,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..closed_forms.paper import G_STANDARD
-from ..fmu.contact import ContactFMU
-from ..fmu.params import ContactParams
+from ..closed_forms import G_STANDARD
+from ..fmu import ContactFMU, ContactParams
 from ..plausibility import number_problem
 
 MODES = ("dynamic", "quasistatic")

@@ -73,11 +73,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..closed_forms.paper import of_law, steady_tan_phi
-from ..closed_forms.patch import full_slip_rotation_grid, steady_force_direction, torsional_stiffness_grid
+from ..closed_forms import (
+    full_slip_rotation_grid,
+    of_law,
+    steady_force_direction,
+    steady_tan_phi,
+    torsional_stiffness_grid,
+)
 from ..errors import InputError
-from ..fmu.params import ContactParams
-from ..fmu.patch import PatchFMU, PatchGeometry
+from ..fmu import ContactParams, PatchFMU, PatchGeometry
 
 
 @dataclass(frozen=True)

@@ -40,11 +40,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..closed_forms.pad import FULL_CONTACT, LIFT_OFF, TIPS
+from ..closed_forms import FULL_CONTACT, LIFT_OFF, TIPS
 from ..errors import InputError
-from ..fmu.pad import Foundation, PadFMU
-from ..fmu.params import ContactParams
-from ..fmu.patch import PatchGeometry
+from ..fmu import ContactParams, Foundation, PadFMU, PatchGeometry
 
 # The unknowns of a step and the residuals' scales' names.
 UNKNOWNS = ("u2", "d", "phi1", "phi2")

@@ -2,9 +2,8 @@
 master and executor of runs.executors, with a progress bar."""
 from __future__ import annotations
 
-from ..fmu.files import find_fmu
-from ..fmu.params import ContactParams
-from ..rig.harness import Rig, RunFigures
+from ..fmu import ContactParams, find_fmu
+from ..rig import Rig, RunFigures
 from .executors import executor, resolve_master
 from .progress import Progress
 

@@ -34,8 +34,8 @@ def _master_for(fmu):
     unpacked once per worker process."""
     digest, name, blob = fmu
     if digest not in _masters:
-        from ..rig.compiled import CMaster
-        from ..runtime.temp import temp_folder
+        from ..rig import CMaster
+        from ..runtime import temp_folder
         folder = Path(tempfile.mkdtemp(prefix=f"fmu-{digest[:16]}-{os.getpid()}-", dir=temp_folder()))
         try:
             path = folder / name
@@ -59,7 +59,7 @@ def dask_setup(worker):
     holds it)."""
     import threading
 
-    from ..runtime.processes import end_with_parent
+    from ..runtime import end_with_parent
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, signal.SIG_IGN)
     if os.environ.get(PARENT_ENV, "").isdigit():
@@ -144,8 +144,7 @@ class DaskRunner:
     def _local_cluster(self, LocalCluster):
         import dask
 
-        from ..runtime.temp import TEMP_ENV, temp_folder
-        from ..runtime.workers import check_workers
+        from ..runtime import TEMP_ENV, check_workers, temp_folder
         check_workers(self.workers)
         self._scratch = tempfile.mkdtemp(prefix="dask-", dir=temp_folder())
         # Ctrl-C reaches the whole process group; the command decides (it

@@ -13,11 +13,9 @@ from __future__ import annotations
 import os
 from concurrent.futures import as_completed
 
-from ..fmu.contact import ContactFMU
-from ..fmu.files import find_fmu, fmi_version_of
-from ..rig.harness import RunFigures, run
-from ..runtime.processes import process_pool, stop_pool
-from ..runtime.temp import unzipped
+from ..fmu import ContactFMU, find_fmu, fmi_version_of
+from ..rig import RunFigures, run
+from ..runtime import process_pool, stop_pool, unzipped
 
 MASTERS = ("auto", "c", "fmpy")
 
@@ -54,7 +52,7 @@ def open_master(master: str, fmu_path, instance_name: str = "serial"):
     """The master `master` ("c" or "fmpy") on the FMU file `fmu_path`:
     .run([(params, rig)]) -> [RunFigures], .close()."""
     if master == "c":
-        from ..rig.compiled import CMaster
+        from ..rig import CMaster
         return CMaster(fmu_path)
     return FmpyMaster(fmu_path, instance_name)
 

@@ -10,7 +10,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..errors import InputError
-from ..experiment.kinds import kind_of, register
+from ..experiment import kind_of, register
 
 # Rig steps a command may take without --yes.  The largest work of the
 # documented commands is uq's benchmark, 10^6 runs of 512 steps (5.1e8 steps,

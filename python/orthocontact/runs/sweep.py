@@ -10,11 +10,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import closed_forms as cf
-from ..experiment.scenario import Scenario
-from ..fmu.contact import ContactFMU
-from ..rig.checks import RunChecks, check_runs, warning_line
-from ..rig.harness import run
-from ..runtime.workers import default_workers
+from ..experiment import Scenario
+from ..fmu import ContactFMU
+from ..rig import RunChecks, check_runs, run, warning_line
+from ..runtime import default_workers
 from .batch import run_many
 from .executors import resolve_master
 from .progress import Heartbeat
@@ -146,8 +145,8 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     extremum = dict(grid_ext, refined=False)
     beat = Heartbeat(f"{sc.name} extremum and trajectories", progress)
     if resolve_master(master, fmu_path) == "c":
-        from ..fmu.files import find_fmu
-        from ..rig.compiled import CMaster
+        from ..fmu import find_fmu
+        from ..rig import CMaster
         engine = CMaster(find_fmu(fmu_path))
 
         def one_run(a, rule=None):

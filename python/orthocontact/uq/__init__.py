@@ -13,7 +13,8 @@ from .propagate import (
     step_warning,
     uq_step,
 )
+from .source import read_source
 
 __all__ = ["Estimates", "draw", "load_estimates", "write_outputs", "DEFAULT_STEP_S",
            "STEP_CHECK_WARN_DEG", "UQResult", "bands", "check_geometry", "propagate", "step_warning",
-           "uq_step"]
+           "uq_step", "read_source"]

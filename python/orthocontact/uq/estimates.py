@@ -11,8 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..identification.identified import IdentifiedFile
-from ..identification.identified_file import read_identified
+from ..identification import IdentifiedFile, read_identified
 
 LAW_PARAMETERS = ("mu1", "mu2", "eps_ratio", "eps2")
 

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..experiment.scenario import Scenario
-from ..rig.checks import SETTLE_TOL_DEG
+from ..experiment import Scenario
+from ..rig import SETTLE_TOL_DEG
 from .estimates import Estimates
 from .propagate import UQResult, bands, measurement_draws
 from .source import Source
@@ -17,7 +17,7 @@ from .source import Source
 def write_outputs(res: UQResult, est: Estimates, sc: Scenario, seed: int, out: Path, source: Source) -> dict:
     """uq_bands.csv, samples.csv, uq.json, uq.png into out; returns the JSON,
     which names the identification drawn from (`source`)."""
-    from ..output.tables import write_csv, write_json
+    from ..output import write_csv, write_json
     bp, bd = bands(res.phi), bands(res.drive)
     nan = np.full(len(res.angles_deg), np.nan)
     noise = est.at_velocity(sc.rig.velocity_m_s)[1]
@@ -91,7 +91,7 @@ def widest_band(angles, bp) -> dict:
 
 
 def _figure(res: UQResult, est: Estimates, sc: Scenario, bp: dict, bm: dict, path: Path) -> None:
-    from ..output.figures import finish, pyplot, swept_label
+    from ..output import finish, pyplot, swept_label
     plt = pyplot()
     fig, ax = plt.subplots(figsize=(8, 4.5))
     a = res.angles_deg

@@ -19,10 +19,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import InputError
-from ..experiment.kinds import require_mat_angles
-from ..experiment.scenario import Scenario
-from ..rig.checks import SETTLE_TOL_DEG, RunChecks, angle_list, check_runs, remedy, warning_line
-from ..rig.harness import RunFigures
+from ..experiment import Scenario, require_mat_angles
+from ..rig import SETTLE_TOL_DEG, RunChecks, RunFigures, angle_list, check_runs, remedy, warning_line
 from .estimates import IMPLICIT_RULES, Estimates, draw
 
 # The step-size study (scenarios/step_study.toml; docs/benchmarks.md): the
@@ -127,7 +125,7 @@ def _run_chunk_on(run_grid, chunk):
 
 def run_chunk(fmu, chunk):
     """On a worker: _run_chunk_on the worker's compiled master for `fmu`."""
-    from ..runs.cluster import run_grid
+    from ..runs import run_grid
     return _run_chunk_on(lambda laws, axes, rig: run_grid(fmu, laws, axes, rig), chunk)
 
 
@@ -196,8 +194,8 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
               chunk_runs: int = 20000, progress: bool = True) -> UQResult:
     """The rig over the scenario's angles for `samples` parameter sets.
     scheduler None runs here, in this process; "local" or an address on Dask."""
-    from ..fmu.files import find_fmu
-    from ..runs.progress import Progress
+    from ..fmu import find_fmu
+    from ..runs import Progress
     t0 = time.time()
     check_geometry(sc, est)
     fmu_path = find_fmu(fmu_path)
@@ -218,7 +216,7 @@ def propagate(est: Estimates, sc: Scenario, samples: int, seed: int, fmu_path,
 
 def _propagate(est, sc, samples, seed, fmu_path, scheduler, workers, step_s, x, accepted, angles,
                nominal, chunks, rig, bar, t0) -> UQResult:
-    from ..rig.compiled import CMaster
+    from ..rig import CMaster
     cm = CMaster(fmu_path)
     try:
         # The step check: the estimates at the scenario's own step and at the UQ step.
@@ -236,7 +234,7 @@ def _propagate(est, sc, samples, seed, fmu_path, scheduler, workers, step_s, x, 
         cm.close()
     check = step_check(sc.rig.step_s, step_s, coarse, fine)
     if scheduler is not None:
-        from ..runs.cluster import DaskRunner
+        from ..runs import DaskRunner
         with DaskRunner(scheduler, workers) as dr:
             results = dr.map(run_chunk, chunks, fmu_path, lambda i, r: bar.update(r[0].size))
             engine = dr.description

@@ -8,8 +8,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..identification.identified_file import read_identified
-from ..output.manifest import written_by
+from ..identification import read_identified
+from ..output import written_by
 from ..textfiles import files_read
 from .estimates import Estimates, estimates_of
 
