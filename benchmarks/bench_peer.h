@@ -4,6 +4,8 @@
 #ifndef BENCH_PEER_H
 #define BENCH_PEER_H
 
+#include "models/OrthotropicContact/table.h"
+
 /* mu1, mu2, eps1, eps2, alpha, beta */
 typedef struct {
     double p[6];
@@ -13,9 +15,14 @@ typedef struct {
 /* The contact's value references the runs use (its table's; the peer has
  * the same): the law's parameters, the sliding rule, the inputs u1, u2, N,
  * the outputs T1, T2, then s1, s2, dissipatedEnergy, and contactState. */
-static const unsigned int BENCH_VR_PARAMS[6] = {1, 2, 3, 4, 5, 6}, BENCH_VR_RULE = 7,
-                          BENCH_VR_IN[3] = {8, 9, 10}, BENCH_VR_T[2] = {11, 12},
-                          BENCH_VR_MORE[3] = {13, 14, 16}, BENCH_VR_STATE = 15;
+#define BENCH_VR_OF(name, vr, ...) vr,
+static const unsigned int BENCH_VR_PARAMS[6] = {OC_LAW_PARAMETERS(BENCH_VR_OF)},
+                          BENCH_VR_RULE = OC_VR_slidingRule,
+                          BENCH_VR_IN[3] = {OC_VR_u1, OC_VR_u2, OC_VR_N},
+                          BENCH_VR_T[2] = {OC_VR_T1, OC_VR_T2},
+                          BENCH_VR_MORE[3] = {OC_VR_s1, OC_VR_s2, OC_VR_dissipatedEnergy},
+                          BENCH_VR_STATE = OC_VR_contactState;
+#undef BENCH_VR_OF
 
 /* What a traced step records: T1, T2, s1, s2, dissipatedEnergy, contactState. */
 enum { TRACE_COLUMNS = 6 };

@@ -1,11 +1,12 @@
 /*
  * The rows of a variable table (glue/fmu_table.h) that every model on the
  * cells (cells/cells.h) has: the initial slip, the
- * rectangle's geometry and the tangential motion, value references 8 to
- * 17 after the law's rows; and the sums' rows and the cells' arrays, whose
- * value references each table gives (the first of a group, the others
- * following), since its own rows come between.  ContactPatch's and
- * ContactPad's tables list them; what they add follows from 18 on.
+ * rectangle's geometry and the tangential motion, value references 16 to
+ * 25 after the law's block (law/law_table.h: OC_LAW_VR_END); and the sums'
+ * rows and the cells' arrays, whose value references each table gives (the
+ * first of a group, the others following), since its own rows come
+ * between.  ContactPatch's and ContactPad's tables list them; what they
+ * add follows from 26 on.
  */
 #ifndef CELLS_CELL_ROWS_H
 #define CELLS_CELL_ROWS_H
@@ -18,36 +19,36 @@
 #define PATCH_MAX_SIDE 32
 
 #define PATCH_INITIAL_SLIP_ITEMS(E)                                                              \
-    E(atInputs, 1, "every cell's slip is its displacement at the end of initialization: no "    \
-      "force until the body moves")                                                             \
-    E(explicit, 2, "every cell's slip is (s1Start, s2Start): the rest pose is that "           \
+    E(atInputs, 1, "every cell's slip is its displacement at the end of initialization: no "     \
+      "force until the body moves")                                                              \
+    E(explicit, 2, "every cell's slip is (s1Start, s2Start): the rest pose is that "             \
       "translation at theta = 0")
 
 #define PATCH_INITIAL_SLIP_ROWS(X)                                                               \
-    X(initialSlip, 8, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                     \
+    X(initialSlip, 16, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                    \
       "Initial slip: 1 atInputs (every cell unloaded where the inputs put it when "              \
       "initialization ends), 2 explicit (every cell's slip (s1Start, s2Start))")                 \
-    X(s1Start, 9, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                 \
+    X(s1Start, 17, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                \
       "Initial slip of every cell along X1 when initialSlip = explicit")                         \
-    X(s2Start, 10, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                \
+    X(s2Start, 18, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",                \
       "Initial slip of every cell along X2 when initialSlip = explicit")
 
 #define PATCH_GEOMETRY_ROWS(X)                                                                   \
-    X(length, 11, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                 \
+    X(length, 19, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                 \
       "Side of the patch along the body's axis 1 (X1 at theta = 0)")                             \
-    X(width, 12, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                  \
+    X(width, 20, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                  \
       "Side of the patch along the body's axis 2 (X2 at theta = 0)")                             \
-    X(n1, 13, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
+    X(n1, 21, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
       "Number of cells along length (at most PATCH_MAX_SIDE = 32)")                              \
-    X(n2, 14, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
+    X(n2, 22, Int32, parameter, fixed, exact, 8, 1, 32, "", "",                                  \
       "Number of cells along width (at most PATCH_MAX_SIDE = 32)")
 
 #define PATCH_MOTION_ROWS(X)                                                                     \
-    X(u1, 15, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+    X(u1, 23, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
       "Displacement of the patch centre relative to the surface along X1")                       \
-    X(u2, 16, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+    X(u2, 24, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
       "Displacement of the patch centre relative to the surface along X2")                       \
-    X(theta, 17, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                \
+    X(theta, 25, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                \
       "Rotation of the body relative to the surface, counterclockwise about the normal")
 
 /* The sums' rows from value reference vr on: the force and moment on the
@@ -55,9 +56,9 @@
  * energy; the share of it that slips and the step's state. */
 #define PATCH_RESULTANT_ROWS(X, vr, body)                                                        \
     X(T1, vr, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",             \
-      "Tangential force of the surface on the body along X1 (sum over the cells)")              \
+      "Tangential force of the surface on the body along X1 (sum over the cells)")               \
     X(T2, vr + 1, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",         \
-      "Tangential force of the surface on the body along X2 (sum over the cells)")              \
+      "Tangential force of the surface on the body along X2 (sum over the cells)")               \
     X(Mz, vr + 2, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",       \
       "Moment of the surface on the body about the normal through the " body " centre, "         \
       "counterclockwise")

@@ -2,17 +2,24 @@
  * The law's part of a model's table (glue/fmu_table.h), written once:
  * the rows of its parameters and of its sliding rule, and the rules'
  * enumeration.  Every model that carries the law (OrthotropicContact,
- * ContactPatch) includes this and puts OC_LAW_ROWS(L, X) among its
- * variables, at value references 1 to 7: L for the law's Float64
- * parameters, oc_params' fields of the same names (law/contact_law.h) in
- * this order, which a table marks as the group "law" (the package's
- * manifest lists them so), X for the sliding rule (oc_params.rule).  Each
- * description reads right for a point and for a patch of cells.
+ * ContactPatch, ContactPad) includes this and puts OC_LAW_ROWS(L, X) among
+ * its variables, in the law's block of value references, 1 to
+ * OC_LAW_VR_END - 1 (1 to 7 taken): L for the law's Float64 parameters,
+ * oc_params' fields of the same names (law/contact_law.h) in this order,
+ * which a table marks as the group "law" (the package's manifest lists
+ * them so), X for the sliding rule (oc_params.rule).  A model's own rows
+ * start at OC_LAW_VR_END, so that a new row of the law takes the next
+ * value reference of the block and moves none of them.  Each description
+ * reads right for a point and for a patch of cells.
  */
 #ifndef OC_LAW_TABLE_H
 #define OC_LAW_TABLE_H
 
 #include "glue/fmu_table.h"
+
+/* The law's block of value references ends before this: every model's own
+ * rows start here. */
+#define OC_LAW_VR_END 16
 
 /* A table's rows and lists keep their own layout. */
 /* clang-format off */
@@ -49,6 +56,13 @@
 
 #define OC_LAW_ROWS(L, X)                                                                      \
     OC_LAW_FRICTION_ROWS(L) OC_LAW_STIFFNESS_ROWS(L) OC_LAW_AXES_ROWS(L) OC_LAW_RULE_ROW(X)
+
+/* Every row of the law lies in its block (a negative array size fails to
+ * compile). */
+#define OC_LAW_IN_BLOCK(name, vr, ...)                                                         \
+    typedef char oc_law_block_##name[(vr) < OC_LAW_VR_END ? 1 : -1];
+OC_LAW_ROWS(OC_LAW_IN_BLOCK, OC_LAW_IN_BLOCK)
+#undef OC_LAW_IN_BLOCK
 
 /* The law's parameters alone (its L rows), and their names as a list of
  * knowns ("mu1 mu2 ... beta "). */

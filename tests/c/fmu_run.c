@@ -58,8 +58,9 @@ int main(int argc, char **argv) {
     if (!c || fmi3EnterInitializationMode(c, 0, 0, rows[0][0], 0, 0) != fmi3OK ||
         fmi3ExitInitializationMode(c) != fmi3OK)
         return 3;
-    /* value references of the table: u1 u2 N, then T1 T2 s1 s2 energy, contactState */
-    const fmi3ValueReference in_vr[3] = {8, 9, 10}, out_vr[5] = {11, 12, 13, 14, 16}, st_vr = 15;
+    /* value references of the table (OC_VR_*, models/OrthotropicContact/table.h): u1 u2 N,
+     * then T1 T2 s1 s2 energy, contactState */
+    const fmi3ValueReference in_vr[3] = {16, 17, 18}, out_vr[5] = {19, 20, 21, 22, 24}, st_vr = 23;
     for (int k = 0; k + 1 < n; ++k) {
         fmi3Boolean ev, term, early;
         fmi3Float64 last, y[5];

@@ -8,6 +8,7 @@ step mode: the inputs, read at a communication point after the first step.
 The descriptions validate against the FMI schemas fmpy ships, and the
 generator refuses a table that leaves an output's dependencies out."""
 import math
+import re
 import shutil
 import subprocess
 import sys
@@ -385,3 +386,26 @@ def test_the_generator_refuses_a_table_without_exact_dependencies(tmp_path, edit
                                   "-o", str(gen), "-lm"], check=True, capture_output=True, timeout=120)
     r = subprocess.run([str(gen), "fmi2"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 1 and r.stdout == "" and message in r.stderr, r.stderr
+
+
+def test_the_law_keeps_its_block_of_value_references():
+    """Every model that carries the law has the law's rows in its block,
+    value references 1 to OC_LAW_VR_END - 1 (law/law_table.h), alike in
+    each, and its own rows from OC_LAW_VR_END on: a new row of the law moves
+    none of a model's rows.  The rig, which has no law, starts at 1."""
+    end = int(re.search(r"#define OC_LAW_VR_END (\d+)",
+                        (ROOT / "fmu_src" / "law" / "law_table.h").read_text()).group(1))
+    carrying, law_vrs = [], set()
+    for model in models().values():
+        m = manifest(model)
+        law = set(m.group("law")) | ({"slidingRule"} if m.group("law") else set())
+        own = [v.value_reference for v in m.variables if v.name != "time" and v.name not in law]
+        if law:
+            carrying.append(model)
+            law_vrs.add(tuple((v.name, v.value_reference) for v in m.variables if v.name in law))
+            assert all(0 < vr < end for _, vr in next(iter(law_vrs))), model
+            assert min(own) == end, model
+        else:
+            assert min(own) == 1, model
+    assert {"OrthotropicContact", "ContactPatch", "ContactPad"} <= set(carrying)
+    assert len(law_vrs) == 1   # the same rows at the same value references in every model

@@ -668,7 +668,7 @@ def test_fmi3_n1_n2_are_uint64_and_only_uint64():
     try:
         s.setUInt64([vr["n1"], vr["n2"]], [3, 7])
         for call, why in [(lambda: s.setInt32([vr["n1"]], [4]),
-                           "fmi3SetInt32: variable n1 (vr 13) is of type UInt64 (a structural parameter)"),
+                           "fmi3SetInt32: variable n1 (vr 21) is of type UInt64 (a structural parameter)"),
                           (lambda: s.setUInt64([vr["n2"]], [0]), "n2 = 0 rejected: outside [1, 32]"),
                           (lambda: s.setUInt64([vr["n1"]], [2**64 - 1]),
                            "n1 = 1.84467e+19 rejected: outside [1, 32]"),
@@ -681,7 +681,7 @@ def test_fmi3_n1_n2_are_uint64_and_only_uint64():
         assert list(s.getUInt64([vr["n1"], vr["n2"]])) == [3, 7]
         with pytest.raises(FMICallException):
             s.getInt32([vr["n1"]])
-        assert any("n1 (vr 13) is of type UInt64 (a structural parameter), not Int32" in m
+        assert any("n1 (vr 21) is of type UInt64 (a structural parameter), not Int32" in m
                    for m in messages), messages
         assert len(s.getFloat64([vr["cellT1"]], nValues=21)) == 21
     finally:

@@ -98,45 +98,45 @@ static const char FMU_DOC_HTML[] =
     D(T1, PAD_INPUTS, PAD_KNOWNS) D(T2, PAD_INPUTS, PAD_KNOWNS) D(Mz, PAD_INPUTS, PAD_KNOWNS)    \
     D(Fn, PAD_NORMAL_INPUTS, PAD_NORMAL_KNOWNS) D(M1, PAD_NORMAL_INPUTS, PAD_NORMAL_KNOWNS)      \
     D(M2, PAD_NORMAL_INPUTS, PAD_NORMAL_KNOWNS) D(dissipatedEnergy, PAD_INPUTS, PAD_KNOWNS)      \
-    D(contactFraction, PAD_NORMAL_INPUTS, "length width n1 n2 " PAD_NORMAL_INPUTS)             \
+    D(contactFraction, PAD_NORMAL_INPUTS, "length width n1 n2 " PAD_NORMAL_INPUTS)               \
     D(slipFraction, PAD_INPUTS, PAD_KNOWNS_NO_RULE)                                              \
     D(contactState, PAD_INPUTS, PAD_KNOWNS_NO_RULE)
 
-/* The variables: time, the law's rows (value references 1 to 7), the cells'
- * rows (8 to 17: cells/cell_rows.h), then: */
+/* The variables: time, the law's rows (its block, value references 1 to 15:
+ * law/law_table.h), the cells' rows (16 to 25: cells/cell_rows.h), then: */
 #define PAD_FOUNDATION_ROWS(X)                                                                   \
-    X(kn, 18, Float64, parameter, fixed, exact, 1e7, 1e-100, 1e100, "N/m3", "",                  \
+    X(kn, 26, Float64, parameter, fixed, exact, 1e7, 1e-100, 1e100, "N/m3", "",                  \
       "Foundation stiffness: pressure per unit approach")                                        \
-    X(dn, 19, Float64, parameter, fixed, exact, 0.0, 0.0, 1e100, "N.s/m3", "",                   \
+    X(dn, 27, Float64, parameter, fixed, exact, 0.0, 0.0, 1e100, "N.s/m3", "",                   \
       "Foundation damping: pressure per unit approach rate, the rate taken over the previous "   \
       "communication step (none before the first)")
 
 #define PAD_POSE_ROWS(X)                                                                         \
-    X(d, 20, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                         \
+    X(d, 28, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                         \
       "Approach of the pad centre into the surface along -X3 (> 0 pressed)")                     \
-    X(phi1, 21, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                 \
+    X(phi1, 29, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                 \
       "Tilt of the pad about the surface's X1 axis (small; right-handed: +Y lifts)")             \
-    X(phi2, 22, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                 \
+    X(phi2, 30, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                 \
       "Tilt of the pad about the surface's X2 axis (small; right-handed: +X presses)")
 
 #define PAD_WRENCH_ROWS(X)                                                                       \
-    X(Fn, 26, Float64, output, continuous, calculated, 0.0, 0.0, NO_MAX, "N", "",                \
+    X(Fn, 34, Float64, output, continuous, calculated, 0.0, 0.0, NO_MAX, "N", "",                \
       "Normal force of the foundation on the body along X3 (>= 0)")                              \
-    X(M1, 27, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
+    X(M1, 35, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
       "Moment of the pressure on the body about the pad centre's X1 axis")                       \
-    X(M2, 28, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
+    X(M2, 36, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N.m", "",           \
       "Moment of the pressure on the body about the pad centre's X2 axis")
 
 #define PAD_CONTACT_ROW(X)                                                                       \
-    X(contactFraction, 30, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",      \
+    X(contactFraction, 38, Float64, output, continuous, calculated, 0.0, 0.0, 1.0, "1", "",      \
       "Share of the pad's area that presses in this step")
 
 #define PAD_VARIABLES(X, L)                                                                      \
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "",                 \
       "Simulation time")                                                                         \
     OC_LAW_ROWS(L, X) PATCH_INITIAL_SLIP_ROWS(X) PATCH_GEOMETRY_ROWS(X) PATCH_MOTION_ROWS(X)     \
-    PAD_FOUNDATION_ROWS(X) PAD_POSE_ROWS(X) PATCH_RESULTANT_ROWS(X, 23, "pad")                   \
-    PAD_WRENCH_ROWS(X) PATCH_ENERGY_ROW(X, 29) PAD_CONTACT_ROW(X) PATCH_SLIP_ROWS(X, 31, "pad")
+    PAD_FOUNDATION_ROWS(X) PAD_POSE_ROWS(X) PATCH_RESULTANT_ROWS(X, 31, "pad")                   \
+    PAD_WRENCH_ROWS(X) PATCH_ENERGY_ROW(X, 37) PAD_CONTACT_ROW(X) PATCH_SLIP_ROWS(X, 39, "pad")
 
 /* FMI 3.0 only: the cells' forces, normal forces and states as arrays of
  * shape (n1, n2), element [i][j] the cell i along length, j along width
@@ -145,10 +145,10 @@ static const char FMU_DOC_HTML[] =
  * Columns: name, value reference, type, unit, the scalar output whose
  * dependencies each element has, description. */
 #define FMU_ARRAYS(A)                                                                            \
-    PATCH_FORCE_ARRAYS(A, 33)                                                                    \
-    A(cellFn, 35, Float64, "N", Fn,                                                              \
+    PATCH_FORCE_ARRAYS(A, 41)                                                                    \
+    A(cellFn, 43, Float64, "N", Fn,                                                              \
       "Normal force of the foundation on the body at each cell (they sum to Fn)")                \
-    PATCH_STATE_ARRAY(A, 36)
+    PATCH_STATE_ARRAY(A, 44)
 
 /* The table's tail, every table's (glue/fmu_table_tail.inc): FMU_VARIABLES,
  * the law's group and the value references PAD_VR_*. */

@@ -42,7 +42,7 @@
 #define FMU_STATE_TAG {'O', 'C', 'P', 'T'}
 #define FMU_DESCRIPTION                                                                        \
     "Rectangular contact patch of a rigid body on a flat textured surface: n1 x n2 cells, each " \
-    "the coupled orthotropic adhesion-friction law (Konyukhov and Schweizerhof 2007) at its "  \
+    "the coupled orthotropic adhesion-friction law (Konyukhov and Schweizerhof 2007) at its "    \
     "centre with its own slip; force and torque from the body's displacement and rotation"
 #define FMU_SOURCES(S)                                                                          \
     S(law/contact_law.c) S(cells/cells.c) S(models/ContactPatch/model.c)
@@ -90,15 +90,15 @@ static const char FMU_DOC_HTML[] =
     D(slipFraction, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)                                          \
     D(contactState, PATCH_INPUTS, PATCH_KNOWNS_NO_RULE)
 
-/* The variables: time, the law's rows (value references 1 to 7), the cells'
- * rows (8 to 17: cells/cell_rows.h), then: */
+/* The variables: time, the law's rows (its block, value references 1 to 15:
+ * law/law_table.h), the cells' rows (16 to 25: cells/cell_rows.h), then: */
 #define PATCH_LOAD_ROWS(X)                                                                       \
-    X(N, 18, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                         \
+    X(N, 26, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                         \
       "Total normal force pressing the body on the surface (N <= 0: open contact)")              \
-    X(p1, 19, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+    X(p1, 27, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
       "Centre of pressure along the body's axis 1 (0: uniform pressure); while N > 0, "          \
       "|p1|/length + |p2|/width <= 1/6 and p1 = 0 if n1 = 1")                                    \
-    X(p2, 20, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
+    X(p2, 28, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \
       "Centre of pressure along the body's axis 2 (0: uniform pressure); while N > 0, "          \
       "|p1|/length + |p2|/width <= 1/6 and p2 = 0 if n2 = 1")
 
@@ -106,14 +106,14 @@ static const char FMU_DOC_HTML[] =
     X(time, 0, Float64, independent, continuous, , 0.0, NO_MIN, NO_MAX, "s", "",                 \
       "Simulation time")                                                                         \
     OC_LAW_ROWS(L, X) PATCH_INITIAL_SLIP_ROWS(X) PATCH_GEOMETRY_ROWS(X) PATCH_MOTION_ROWS(X)     \
-    PATCH_LOAD_ROWS(X) PATCH_RESULTANT_ROWS(X, 21, "patch") PATCH_ENERGY_ROW(X, 24)           \
-    PATCH_SLIP_ROWS(X, 25, "patch")
+    PATCH_LOAD_ROWS(X) PATCH_RESULTANT_ROWS(X, 29, "patch") PATCH_ENERGY_ROW(X, 32)              \
+    PATCH_SLIP_ROWS(X, 33, "patch")
 
 /* FMI 3.0 only: the cells' forces and states as arrays of shape (n1, n2),
  * element [i][j] the cell i along length, j along width (row-major, j
  * fastest), and n1, n2 their structural parameters (FMI 2.0 has neither:
  * there n1, n2 are parameters): cells/cell_rows.h. */
-#define FMU_ARRAYS(A) PATCH_FORCE_ARRAYS(A, 27) PATCH_STATE_ARRAY(A, 29)
+#define FMU_ARRAYS(A) PATCH_FORCE_ARRAYS(A, 35) PATCH_STATE_ARRAY(A, 37)
 
 /* The table's tail, every table's (glue/fmu_table_tail.inc): FMU_VARIABLES,
  * the law's group and the value references PATCH_VR_*. */

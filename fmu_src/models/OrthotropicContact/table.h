@@ -140,36 +140,37 @@ static const char FMU_DOC_HTML[] =
     D(contactState, "u1 u2 N", OC_INIT_KNOWNS_NO_RULE)                                         \
     D(dissipatedEnergy, "u1 u2 N", OC_INIT_KNOWNS)
 
-/* The variables: time, the law's rows (value references 1 to 7), then: */
+/* The variables: time, the law's rows (its block, value references 1 to 15:
+ * law/law_table.h), then from OC_LAW_VR_END = 16: */
 #define OC_INPUT_ROWS(X)                                                                       \
-    X(u1, 8, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                       \
+    X(u1, 16, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                      \
       "Displacement of the body relative to the surface along X1")                             \
-    X(u2, 9, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                       \
+    X(u2, 17, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                      \
       "Displacement of the body relative to the surface along X2")                             \
-    X(N, 10, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                       \
+    X(N, 18, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "N", "",                       \
       "Normal force pressing the body on the surface (N <= 0: open contact)")
 
 #define OC_OUTPUT_ROWS(X)                                                                      \
-    X(T1, 11, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",           \
+    X(T1, 19, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",           \
       "Tangential force of the surface on the body along X1")                                  \
-    X(T2, 12, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",           \
+    X(T2, 20, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "N", "",           \
       "Tangential force of the surface on the body along X2")                                  \
-    X(s1, 13, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "m", "",           \
+    X(s1, 21, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "m", "",           \
       "Slip displacement along X1")                                                            \
-    X(s2, 14, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "m", "",           \
+    X(s2, 22, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "m", "",           \
       "Slip displacement along X2")                                                            \
-    X(contactState, 15, Int32, output, discrete, calculated, 0, 0, 2, "", "",                  \
+    X(contactState, 23, Int32, output, discrete, calculated, 0, 0, 2, "", "",                  \
       "State of the step: 0 open, 1 stick, 2 slip")                                            \
-    X(dissipatedEnergy, 16, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J", \
+    X(dissipatedEnergy, 24, Float64, output, continuous, calculated, 0.0, NO_MIN, NO_MAX, "J", \
       "", "Frictional energy dissipated over the committed steps (never decreases)")
 
 #define OC_INITIAL_SLIP_ROWS(X)                                                                \
-    X(initialSlip, 17, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                  \
+    X(initialSlip, 25, InitialSlip, parameter, fixed, exact, 1, 1, 2, "", "",                  \
       "Initial slip: 1 atInputs (s = u when initialization ends: the contact starts unloaded " \
       "wherever the body is), 2 explicit (s = (s1Start, s2Start))")                            \
-    X(s1Start, 18, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",              \
+    X(s1Start, 26, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",              \
       "Initial slip along X1 when initialSlip = explicit")                                     \
-    X(s2Start, 19, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",              \
+    X(s2Start, 27, Float64, parameter, fixed, exact, 0.0, -1e300, 1e300, "m", "",              \
       "Initial slip along X2 when initialSlip = explicit")
 
 #define OC_VARIABLES(X, L)                                                                     \
