@@ -158,72 +158,115 @@ class Scenario:
 
 def load(path) -> Scenario:
     """Reads and validates a scenario file; raises one ScenarioError naming
-    every problem of the file, one line each."""
+    every problem of the file, one line each (in the order the readers
+    below find them)."""
     path = Path(path)
+    f = ScenarioFile(path, parsed(path))
+    top, row = f.top()
+    law = f.table("law") if "law" in f.tables else {}
+    geo, rig = f.table("geometry"), f.table("rig")
+    paper = {k: v for k, v in f.table("paper").items() if v is not None}
+    own = f.kind_tables(row)
+    eps1 = f.eps1(law)
+    fmu = f.fmu(top.get("fmu"), row)
+    f.check_travel(row, law, eps1, rig)
+    contact, geometry = f.law_on_axes(law, eps1, geo)
+    f.problems.raise_any()
+    return Scenario(
+        path=path, name=top["name"], title=top["title"] or top["name"], kind=top["kind"],
+        description=top["description"], law=contact, geometry=geometry, closed_form=geo["closed_form"],
+        rig=Rig(**rig), tables=own, paper=paper, fmu=fmu, warnings=f.warnings)
+
+
+def parsed(path: Path) -> dict:
+    """The file's TOML; ScenarioError (one line) if it cannot be read or is not TOML."""
     try:
-        raw = read_toml(path, "a scenario file (TOML)")   # a BOM, CRLF, a decimal comma: textfiles
+        return read_toml(path, "a scenario file (TOML)")   # a BOM, CRLF, a decimal comma: textfiles
     except InputError as e:
         raise ScenarioError(str(e)) from None
     except tomllib.TOMLDecodeError as e:
         raise ScenarioError(path, "(syntax)", f"valid TOML ({e})") from None
 
-    problems = Problems(ScenarioError)
-    warnings = []
-    tables = [k for k, v in raw.items() if isinstance(v, dict)]
 
-    def given(name):
-        return raw[name] if name in tables else {}
+class ScenarioFile:
+    """A scenario file being read: its TOML, the problems found so far and
+    the warnings said; a reader a table (or a check across tables) each."""
 
-    def section(name, data):
-        values, said = read_table(path, name + "." if name else "", data, SCHEMA[name], ScenarioError,
-                                  problems)
-        warnings.extend(said)
+    def __init__(self, path: Path, raw: dict):
+        self.path, self.raw = path, raw
+        self.problems = Problems(ScenarioError)
+        self.warnings = []
+        self.tables = [k for k, v in raw.items() if isinstance(v, dict)]
+
+    def problem(self, key, expected, got=None) -> None:
+        self.problems.add(str(ScenarioError(self.path, key, expected, got)))
+
+    def given(self, name: str) -> dict:
+        """The table as the file has it ({} where it has none)."""
+        return self.raw[name] if name in self.tables else {}
+
+    def table(self, name: str, data=None) -> dict:
+        """The table `name` (the file's, or `data`: the top level's keys)
+        read against its schema: its values, defaults filled in."""
+        if data is None:
+            data = self.given(name)
+        values, said = read_table(self.path, name + "." if name else "", data, SCHEMA[name], ScenarioError,
+                                  self.problems)
+        self.warnings.extend(said)
         return values
 
-    def problem(key, expected, got=None):
-        problems.add(str(ScenarioError(path, key, expected, got)))
+    def top(self):
+        """The top level's keys and the kind's row (None: no known kind, its
+        tables unknown); every table known, the kind's present, and [law]."""
+        for t in self.tables:
+            if t not in SCHEMA:
+                self.problem(t, "a known table: " + ", ".join(sorted(k for k in SCHEMA if k)))
+        top = self.table("", {k: v for k, v in self.raw.items() if k not in self.tables})
+        row = KINDS.get(top.get("kind"))
+        if row is not None:
+            for t in self.tables:
+                if t in SCHEMA and t not in COMMON and t not in row.tables:
+                    self.problem(t, f"no [{t}] table in a scenario of kind {row.name!r}")
+            for t in row.tables:
+                if t not in self.tables:
+                    self.problem(t, f"a [{t}] table for kind {row.name!r}")
+        if "law" not in self.tables:
+            self.problem("law", "a [law] table")
+        return top, row
 
-    for t in tables:
-        if t not in SCHEMA:
-            problem(t, "a known table: " + ", ".join(sorted(k for k in SCHEMA if k)))
-    top = section("", {k: v for k, v in raw.items() if k not in tables})
-    row = KINDS.get(top.get("kind"))   # None: no known kind, its tables unknown
-    if row is not None:
-        for t in tables:
-            if t in SCHEMA and t not in COMMON and t not in row.tables:
-                problem(t, f"no [{t}] table in a scenario of kind {row.name!r}")
-        for t in row.tables:
-            if t not in tables:
-                problem(t, f"a [{t}] table for kind {row.name!r}")
-    if "law" not in tables:
-        problem("law", "a [law] table")
-    law = section("law", given("law")) if "law" in tables else {}
-    geo = section("geometry", given("geometry"))
-    rig = section("rig", given("rig"))
-    paper = {k: v for k, v in section("paper", given("paper")).items() if v is not None}
-    own = {t: section(t, given(t)) for t in row.tables if t in tables} if row is not None else {}
-    if row is not None and row.check is not None and len(own) == len(row.tables):
-        row.check(path, own, problems)
+    def kind_tables(self, row) -> dict:
+        """The kind's own tables, and its checks across them once all are there."""
+        own = {t: self.table(t) for t in row.tables if t in self.tables} if row is not None else {}
+        if row is not None and row.check is not None and len(own) == len(row.tables):
+            row.check(self.path, own, self.problems)
+        return own
 
-    eps1 = None
-    if "eps1" in law and "eps_ratio" in law:
+    def eps1(self, law: dict):
+        """eps1 [N/m]: law.eps1, or law.eps_ratio x law.eps2 ("isotropic":
+        mu2/mu1); None where neither or both are given."""
+        if "eps1" not in law or "eps_ratio" not in law:
+            return None
         if law["eps1"] is not None and law["eps_ratio"] is not None:
-            problem("law.eps_ratio", "either law.eps1 or law.eps_ratio, not both")
+            self.problem("law.eps_ratio", "either law.eps1 or law.eps_ratio, not both")
         elif law["eps1"] is None and law["eps_ratio"] is None:
-            problem("law.eps1", "law.eps1 [N/m] or law.eps_ratio (eps1/eps2)")
+            self.problem("law.eps1", "law.eps1 [N/m] or law.eps_ratio (eps1/eps2)")
         elif law["eps1"] is not None:
-            eps1 = law["eps1"]
+            return law["eps1"]
         elif law.keys() >= {"mu1", "mu2", "eps2"}:
             ratio = law["eps_ratio"]
             if ratio == "isotropic":
                 ratio = isotropic_eps_ratio(law["mu1"], law["mu2"])
-            eps1 = ratio * law["eps2"]
+            return ratio * law["eps2"]
+        return None
 
-    fmu = top.get("fmu")
-    if fmu is not None:
-        fmu_path = (path.parent / fmu) if not Path(fmu).is_absolute() else Path(fmu)
+    def fmu(self, fmu, row):
+        """The key fmu as a path (beside the file where relative): an existing
+        FMU of the kind's model."""
+        if fmu is None:
+            return None
+        fmu_path = (self.path.parent / fmu) if not Path(fmu).is_absolute() else Path(fmu)
         if not fmu_path.is_file():
-            problem("fmu", "the path of an existing .fmu file", fmu)
+            self.problem("fmu", "the path of an existing .fmu file", fmu)
         elif row is not None:
             # an FMU of another model would fail later, far from the key that named it
             from ..fmu import model_description
@@ -233,25 +276,32 @@ def load(path) -> Scenario:
                 model = f"not a readable FMU ({e})"
             if model != row.model:
                 article = "an" if row.model[0] in "AEIOU" else "a"
-                problem("fmu", f"{article} {row.model} FMU for a scenario of kind {row.name!r}",
-                        f"{fmu}: {model}")
-        fmu = str(fmu_path)
+                self.problem("fmu", f"{article} {row.model} FMU for a scenario of kind {row.name!r}",
+                             f"{fmu}: {model}")
+        return str(fmu_path)
 
-    needs = {"mu1", "mu2", "eps2"} <= law.keys() and eps1 is not None and len(rig) == len(SCHEMA["rig"])
-    if row is not None and row.carriage and "travel_m" not in given("rig") and needs:
-        # The default rig must settle for the scenario's law: the quasi-static
-        # rig's transient dies out over a few elastic lengths mu N / eps.
+    def check_travel(self, row, law: dict, eps1, rig: dict) -> None:
+        """The default rig must settle for the scenario's law: the
+        quasi-static rig's transient dies out over a few elastic lengths
+        mu N / eps, and its fit must start beyond them."""
+        needs = {"mu1", "mu2", "eps2"} <= law.keys() and eps1 is not None and len(rig) == len(SCHEMA["rig"])
+        if row is None or not row.carriage or "travel_m" in self.given("rig") or not needs:
+            return
         elastic = max(law["mu1"], law["mu2"]) * rig["mass_kg"] * rig["g"] / min(eps1, law["eps2"])
         fit_start = rig["fit_from"] * rig["travel_m"]
         if rig["mode"] == "quasistatic" and fit_start < ELASTIC_LENGTHS * elastic:
-            problem("rig.travel_m", (
+            self.problem("rig.travel_m", (
                 f"a travel for this law: the default {rig['travel_m']:g} m starts the fit at "
                 f"{fit_start:g} m, within {ELASTIC_LENGTHS:g} elastic lengths max(mu) N / min(eps) = "
                 f"{elastic:.3g} m of the start, where the block has not settled; set "
                 + (f"rig.travel_m >= {ELASTIC_LENGTHS * elastic / rig['fit_from']:.3g}" if rig["fit_from"] > 0
                    else "rig.fit_from > 0 (the fit starts where the path does)")))
-    law_given = eps1 is not None and {"mu1", "mu2", "eps2", "rule"} <= law.keys()
-    if law_given:   # each against the FMU's own range (a positive 1e-320 passes the schema's check)
+
+    def law_checked(self, law: dict, eps1) -> bool:
+        """Whether the law is complete and each parameter within the FMU's
+        own range (a positive 1e-320 passes the schema's check)."""
+        if eps1 is None or not {"mu1", "mu2", "eps2", "rule"} <= law.keys():
+            return False
         refused = set()
         for name, value in (("mu1", law["mu1"]), ("mu2", law["mu2"]), ("eps2", law["eps2"]), ("eps1", eps1)):
             derived = name == "eps1" and law.get("eps1") is None   # eps_ratio x eps2
@@ -261,22 +311,24 @@ def load(path) -> Scenario:
                 check_parameter("ContactParams", LAW_ROWS[name], value)
             except ValueError as e:
                 refused.add(name)
-                problems.add(f"{path}: law.{'eps_ratio' if derived else name}: {str(e).split(': ', 1)[1]}")
-        law_given = not refused
-    if law_given and len(geo) == len(SCHEMA["geometry"]):
+                self.problems.add(f"{self.path}: law.{'eps_ratio' if derived else name}: "
+                                  f"{str(e).split(': ', 1)[1]}")
+        return not refused
+
+    def law_on_axes(self, law: dict, eps1, geo: dict):
+        """The law's parameters and the axes' geometry, where both are
+        complete, and geometry.closed_form held for them; (None, None) else."""
+        if not self.law_checked(law, eps1) or len(geo) != len(SCHEMA["geometry"]):
+            return None, None
         contact = ContactParams(law["mu1"], law["mu2"], float(eps1), float(law["eps2"]), rule=law["rule"])
         geometry = AxisGeometry(float(geo["alpha_offset_deg"]), float(geo["beta_offset_deg"]))
         refusal = FORMS[geo["closed_form"]].refusal(contact, geometry.beta_minus_alpha_deg)
         if refusal is not None:
             # a warning about the axes (radians in a degree key?) is the likely cause: say it too
-            said = "".join(f"; {w[len(str(path)) + 2:]}" for w in warnings
-                           if w.startswith(f"{path}: geometry."))
+            said = "".join(f"; {w[len(str(self.path)) + 2:]}" for w in self.warnings
+                           if w.startswith(f"{self.path}: geometry."))
             expected = (f"a closed form that holds for this law and these axes ({geo['closed_form']} needs "
                         f"{refusal}; \"general\" holds for any)")
-            problems.add(str(ScenarioError(path, "geometry.closed_form", expected, geo["closed_form"]))
-                         + said)
-    problems.raise_any()
-    return Scenario(
-        path=path, name=top["name"], title=top["title"] or top["name"], kind=top["kind"],
-        description=top["description"], law=contact, geometry=geometry, closed_form=geo["closed_form"],
-        rig=Rig(**rig), tables=own, paper=paper, fmu=fmu, warnings=warnings)
+            self.problems.add(str(ScenarioError(self.path, "geometry.closed_form", expected,
+                                                geo["closed_form"])) + said)
+        return contact, geometry
