@@ -226,14 +226,54 @@ def run(params: ContactParams, rig: Rig, fmu: ContactFMU | None = None,
             fmu.close()
 
 
+class Recording:
+    """simulate's observer: what a run keeps as it goes.  Every committed
+    step goes into the line fits of the path from rig.fit_from of the travel
+    on (the whole range, and each half); every record_every-th step and the
+    last into the columns of RigResult, with the FMU's outputs then."""
+    COLUMNS = ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive")
+
+    def __init__(self, fmu: ContactFMU, rig: Rig, n_steps: int, record_every: int):
+        h, v = rig.step_s, rig.velocity_m_s
+        self.fmu, self.f_int, self.every, self.n_steps = fmu, rig.f_int_N, record_every, n_steps
+        self.cols = {k: np.empty(n_steps // record_every + 1) for k in self.COLUMNS}
+        self.rec = 0
+        self.fit, self.head, self.tail = LineFit(), LineFit(), LineFit()
+        self.x1_fit = rig.fit_from * v * n_steps * h
+        x1_end = v * n_steps * h
+        self.x1_mid = self.x1_fit + 0.5 * (x1_end - self.x1_fit)
+
+    def step(self, k: int, t: float, x1: float, x2: float, T1: float, T2: float) -> None:
+        """Step k, committed at t [s] with the block at (x1, x2) [m] and the
+        contact's force (T1, T2) [N]."""
+        if x1 >= self.x1_fit:
+            drive = self.f_int - T1
+            self.fit.add(x1, x2, drive)
+            (self.tail if x1 >= self.x1_mid else self.head).add(x1, x2, drive)
+        if k % self.every == 0 or k == self.n_steps:
+            o, cols, rec = self.fmu.outputs(), self.cols, self.rec
+            cols["t"][rec], cols["x1"][rec], cols["x2"][rec] = t, x1, x2
+            cols["T1"][rec], cols["T2"][rec] = T1, T2
+            cols["s1"][rec], cols["s2"][rec] = o["s1"], o["s2"]
+            cols["state"][rec], cols["energy"][rec] = o["contactState"], o["dissipatedEnergy"]
+            cols["drive"][rec] = self.f_int - T1
+            self.rec = rec + 1
+
+    def result(self, newton: int) -> RigResult:
+        """The run's RigResult: the steps kept and the fits' figures."""
+        cols = {key: c[:self.rec] for key, c in self.cols.items()}
+        return RigResult(**cols, phi_deg=self.fit.angle_deg(), drive_mean_N=self.fit.mean_drive(),
+                         newton_iterations=newton, phi_head_deg=self.head.angle_deg(),
+                         phi_tail_deg=self.tail.angle_deg())
+
+
 def simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: int) -> RigResult:
     """The rig's loop over rig.travel_m on `fmu`, initialized with `params`
     (run() resets and initializes it): every run of the Python harness passes
-    here.  Keeps every `record_every`-th step."""
+    here.  What it keeps, every `record_every`-th step and the fits: Recording."""
     h, v, m, N = rig.step_s, rig.velocity_m_s, rig.mass_kg, rig.normal_force
     n_steps = int(math.ceil(rig.travel_m / (v * h) - 1e-9))
-    n_rec = n_steps // record_every + 1
-    cols = {k: np.empty(n_rec) for k in ("t", "x1", "x2", "T1", "T2", "s1", "s2", "state", "energy", "drive")}
+    recording = Recording(fmu, rig, n_steps, record_every)
     scale = min(params.mu1, params.mu2) * N / max(params.eps1, params.eps2)
     x2 = v2 = 0.0
     T1 = T2 = 0.0
@@ -243,12 +283,7 @@ def simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: int
     mu_s = rig.mu_strip
     damp = 1.0 + h * rig.c_strip / m  # the viscous term, implicit (1.0 without it: exact)
     visc = rig.c_strip / h
-    rec = 0
-    fit, head, tail = LineFit(), LineFit(), LineFit()
-    x1_fit = rig.fit_from * v * n_steps * h
-    x1_end = v * n_steps * h
-    x1_mid = x1_fit + 0.5 * (x1_end - x1_fit)
-    set_inputs, force, do_step = fmu.set_inputs, fmu.force, fmu.do_step
+    set_inputs, force, do_step, observe = fmu.set_inputs, fmu.force, fmu.do_step, recording.step
     snapshot = None
     for k in range(1, n_steps + 1):
         t = k * h
@@ -283,21 +318,7 @@ def simulate(fmu: ContactFMU, params: ContactParams, rig: Rig, record_every: int
                 newton += it
                 T1, T2 = force()
         do_step(h)
-        if x1 >= x1_fit:
-            fit.add(x1, x2, rig.f_int_N - T1)
-            (tail if x1 >= x1_mid else head).add(x1, x2, rig.f_int_N - T1)
-        if k % record_every == 0 or k == n_steps:
-            o = fmu.outputs()
-            cols["t"][rec], cols["x1"][rec], cols["x2"][rec] = t, x1, x2
-            cols["T1"][rec], cols["T2"][rec] = T1, T2
-            cols["s1"][rec], cols["s2"][rec] = o["s1"], o["s2"]
-            cols["state"][rec], cols["energy"][rec] = o["contactState"], o["dissipatedEnergy"]
-            cols["drive"][rec] = rig.f_int_N - T1
-            rec += 1
+        observe(k, t, x1, x2, T1, T2)
     if snapshot is not None:
         fmu.free_state(snapshot)
-    for key in cols:
-        cols[key] = cols[key][:rec]
-    return RigResult(**cols, phi_deg=fit.angle_deg(), drive_mean_N=fit.mean_drive(),
-                     newton_iterations=newton, phi_head_deg=head.angle_deg(),
-                     phi_tail_deg=tail.angle_deg())
+    return recording.result(newton)
