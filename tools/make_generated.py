@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
-"""Generates python/orthocontact/fmu/generated.py: the facts of the variable
-tables the package's Python code needs, as source a reader, mypy and pyright
-can see.  Read from the manifests the build generates from the tables
-(variables/<model>.json through orthocontact.fmu.variables):
+"""Generates the two files through which the variable tables reach the
+package's Python, from the manifests the build generates from the tables
+(models.json and variables/<model>.json, installed with the package):
+
+  python/orthocontact/fmu/tables.json   every model's manifest and CMake's list
+      of models, as orthocontact.fmu.variables reads them;
+  python/orthocontact/fmu/generated.py  the facts the code needs, as source a
+      reader, mypy and pyright can see:
 
   LAW, RULES, ContactParams   the law's parameters (the contact's "law" rows:
       unit, range, start, description), the sliding rules' numbers and the
@@ -17,9 +21,10 @@ can see.  Read from the manifests the build generates from the tables
   PAD_*                       the ContactPad FMU's, its foundation (its
       parameters the patch has not: kn, dn).
 
-    make generated                                   (re)write the file
-    .venv/bin/python tools/make_generated.py         the same, without the set-up
-    .venv/bin/python tools/make_generated.py --check exit 1 if the file differs
+    make generated                                   (re)write them, and every other
+                                                     generated file
+    .venv/bin/python tools/make_generated.py         these two, without the set-up
+    .venv/bin/python tools/make_generated.py --check exit 1 if either differs
 
 A table the generated code could not serve is refused with its reason,
 nothing written: a law parameter that is not Float64 or not a Python name,
@@ -39,6 +44,7 @@ from generated_files import differs, write
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGET = Path("python/orthocontact/fmu/generated.py")
+TABLES = Path("python/orthocontact/fmu/tables.json")
 REFRESH = "make generated (or .venv/bin/python tools/make_generated.py)"
 RULE_VARIABLE = "slidingRule"   # the contact's parameter that chooses the sliding rule
 WIDTH = 108                     # of the lines written (the project's limit is 110)
@@ -312,33 +318,55 @@ def source(contact, patch, tables: dict[str, str], pad=None) -> str:
     return "\n".join(lines) + "\n"
 
 
-def installed() -> tuple:
-    """The contact's and the patch's manifests as installed with the package, their tables' paths
-    and the pad's manifest."""
-    from orthocontact.fmu.files import installed_file
-    from orthocontact.fmu.variables import manifest, models
-    found = installed_file("models.json")
-    if found is None:
-        raise FileNotFoundError("models.json is not installed with the package; run `make setup`")
-    tables = {m["modelIdentifier"]: m["table"] for m in json.loads(found.read_text())["models"]}
-    roles = models()
-    return manifest(roles["contact"]), manifest(roles["patch"]), tables, manifest(roles["pad"])
+def installed_tables() -> dict:
+    """The manifests as the build installed them with the package: {"models": models.json's
+    list, "variables": {model identifier: variables/<model>.json}} (tables.json's content)."""
+    def read(rel: str) -> dict:
+        # as orthocontact.fmu.files.installed_file finds them, without importing the package:
+        # its import reads tables.json, which this writes
+        for entry in sys.path:
+            found = Path(entry or ".") / "orthocontact" / rel
+            if found.is_file():
+                return json.loads(found.read_text())
+        raise FileNotFoundError(f"{rel} is not installed with the package; run `make setup`")
+    listed = read("models.json")["models"]
+    models = [m["modelIdentifier"] for m in listed]
+    return {"models": listed, "variables": {model: read(f"variables/{model}.json") for model in models}}
 
 
-def generated() -> str:
-    return source(*installed())
+def tables_text(tables: dict) -> str:
+    return json.dumps(tables, indent=1, ensure_ascii=False) + "\n"
 
 
-def stale(root: Path = ROOT, text_now: str | None = None) -> str:
-    """A short diff if the file under `root` is not what the tables give, else ""."""
-    new = generated() if text_now is None else text_now
-    diff = differs(root, TARGET, new, 30)
-    return f"{TARGET} is not what the variable tables give: run {REFRESH}\n{diff}" if diff else ""
+def installed(tables: dict) -> tuple:
+    """The contact's and the patch's manifests, their tables' paths and the pad's manifest."""
+    from orthocontact.fmu.variables import manifest_from
+    paths = {m["modelIdentifier"]: m["table"] for m in tables["models"]}
+    roles = {m["role"]: m["modelIdentifier"] for m in tables["models"]}
+    return (*(manifest_from(tables["variables"][roles[r]]) for r in ("contact", "patch")), paths,
+            manifest_from(tables["variables"][roles["pad"]]))
+
+
+def generated() -> dict[Path, str]:
+    """{file: its text}: generated.py and tables.json."""
+    tables = installed_tables()
+    return {TARGET: source(*installed(tables)), TABLES: tables_text(tables)}
+
+
+def stale(root: Path = ROOT, texts: dict[Path, str] | None = None) -> str:
+    """A short diff for each file under `root` that is not what the tables give, else ""."""
+    new = generated() if texts is None else texts
+    out = []
+    for rel, text_now in new.items():
+        diff = differs(root, rel, text_now, 30)
+        if diff:
+            out.append(f"{rel} is not what the variable tables give: run {REFRESH}\n{diff}")
+    return "\n".join(out)
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="make_generated", description=__doc__.split("\n\n")[0])
-    ap.add_argument("--check", action="store_true", help="write nothing; exit 1 if the file differs")
+    ap.add_argument("--check", action="store_true", help="write nothing; exit 1 if either file differs")
     args = ap.parse_args(argv)
     try:
         new = generated()
@@ -350,7 +378,8 @@ def main(argv: list[str] | None = None) -> int:
         if problem:
             print(problem, file=sys.stderr)
         return 1 if problem else 0
-    write(ROOT, TARGET, new)
+    for rel, text_now in new.items():
+        write(ROOT, rel, text_now)
     return 0
 
 

@@ -1,8 +1,10 @@
 """The generated manifests (orthocontact.fmu.variables) against the FMUs'
 own model descriptions, read by fmpy (ranges from the XML itself: fmpy
 0.3.32 reads no min/max of an FMI 3.0 UInt64): the package's facts are the
-tables'."""
+tables'.  The package reads them from fmu/tables.json alone; the manifests
+the build installs are held to it here."""
 import dataclasses
+import json
 import xml.etree.ElementTree as ET
 import zipfile
 
@@ -11,7 +13,7 @@ from fmpy import read_model_description
 
 from orthocontact.fmu.files import find_fmu
 from orthocontact.fmu.params import RULES, ContactParams
-from orthocontact.fmu.variables import contact, law_parameters, manifest, models
+from orthocontact.fmu.variables import contact, law_parameters, manifest, models, tables
 
 
 def _number(text):
@@ -69,6 +71,19 @@ def test_the_typed_parameters_follow_the_tables_law_group():
     assert fields == [*law_parameters(), "rule"]
 
 
-def test_a_missing_manifest_is_one_clear_error():
-    with pytest.raises(FileNotFoundError, match=r"variables/NoSuchModel.json .*pip install"):
-        manifest("NoSuchModel")
+def test_the_installed_manifests_are_the_generated_tables():
+    """One channel: what the build installed (models.json, variables/<model>.json)
+    is tables.json, value for value; a table changed without `make generated`
+    fails here (and in tests/fmu/test_generated.py, naming the command)."""
+    from orthocontact.fmu.files import installed_file
+    listed = json.loads(installed_file("models.json").read_text())["models"]
+    assert listed == tables()["models"]
+    for m in listed:
+        model = m["modelIdentifier"]
+        installed = json.loads(installed_file(f"variables/{model}.json").read_text())
+        assert installed == tables()["variables"][model], model
+
+
+def test_an_unknown_model_is_one_clear_error_naming_the_models_there_are():
+    with pytest.raises(KeyError, match=r"no model .Nope. in the variable tables \(models: Orthotropic"):
+        manifest("Nope")

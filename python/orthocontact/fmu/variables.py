@@ -1,9 +1,12 @@
-"""The models and their variables as the build generated them from the
-variable tables (fmu_src/models/*/table.h): models.json (CMake's list of
-models, OC_MODELS) and variables/<model>.json (gen_model_description
-manifest), installed with the package.  The package reads names, value
-references, units, ranges, starts, the enumerations and the law's
-parameters from here instead of typing them.
+"""The models and their variables as generated from the variable tables
+(fmu_src/models/*/table.h): fmu/tables.json, which tools/make_generated.py
+writes beside fmu/generated.py from the manifests the build generates
+(models.json: CMake's list of models, OC_MODELS; variables/<model>.json:
+gen_model_description manifest).  The one way the tables reach Python:
+the installed manifests are only held to it (tests/fmu/test_variables.py),
+so a source checkout reads the same facts with or without an install.  The
+package reads names, value references, units, ranges, starts, the
+enumerations and the law's parameters from here instead of typing them.
 
 Units as the tables give them ("" for none); angles in rad."""
 from __future__ import annotations
@@ -13,7 +16,8 @@ from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
-from .files import installed_file
+# tools/make_generated.py writes it: {"models": models.json's list, "variables": {model: manifest}}
+TABLES = Path(__file__).with_name("tables.json")
 
 
 @dataclass(frozen=True)
@@ -84,24 +88,30 @@ class Manifest:
         raise KeyError(f"{self.model_identifier} has no variable {name!r}")
 
 
-def _read(rel: str) -> dict:
-    path = installed_file(rel)
-    if path is None:
-        raise FileNotFoundError(f"{rel} (generated from the variable tables) is not installed with "
-                                "the package; run `pip install .` from the repository")
-    return json.loads(Path(path).read_text())
+@cache
+def tables() -> dict:
+    """fmu/tables.json: {"models": [{"role", "modelIdentifier", "table"}, ...]
+    in CMake's order, "variables": {model identifier: its manifest}}."""
+    return json.loads(TABLES.read_text())
 
 
 @cache
 def models() -> dict[str, str]:
     """role ("contact", "rig") -> model identifier, in CMake's order."""
-    return {m["role"]: m["modelIdentifier"] for m in _read("models.json")["models"]}
+    return {m["role"]: m["modelIdentifier"] for m in tables()["models"]}
 
 
 @cache
 def manifest(model: str) -> Manifest:
     """The manifest of `model` (a model identifier of models())."""
-    d = _read(f"variables/{model}.json")
+    found = tables()["variables"].get(model)
+    if found is None:
+        raise KeyError(f"no model {model!r} in the variable tables (models: {', '.join(models().values())})")
+    return manifest_from(found)
+
+
+def manifest_from(d: dict) -> Manifest:
+    """A Manifest from a manifest's JSON (variables/<model>.json as the build writes it)."""
     rows = tuple(Variable(v["name"], v["valueReference"], v["type"], v["declaredType"], v["causality"],
                           v["variability"], v["unit"], v["start"], v["min"], v["max"], v["group"],
                           v.get("description", ""))
