@@ -1,6 +1,8 @@
 """identified.json, the identification's result as a file (its typed form:
-identified.IdentifiedFile): the one writer (write_identified, used by
-identify) and the one reader (read_identified, used by export and uq).
+identified.IdentifiedFile): built from an identification part by part
+(identified_file_of), the one writer (write_identified, used by identify)
+and the one reader (read_identified, used by export and uq; its fields
+typed by identified_json.from_json).
 
 The file carries SCHEMA_VERSION, and identified.schema.json beside this
 module describes it (a test validates identify's outputs against it).  The
@@ -20,14 +22,15 @@ from pathlib import Path
 
 from .. import plausibility
 from ..errors import InputError
-from ..fmu import RULES
 from ..output import written_by
 from ..textfiles import read_text
 from . import identified
+from .identified import REPORTED
+from .identified_json import WRITTEN_BY, from_json, is_number, short_repr
 from .measurements import changed_files, data_digest
+from .statistics import json_dof, res_stats
 
 SCHEMA = Path(__file__).with_name("identified.schema.json")   # installed with the package
-WRITTEN_BY = "written by `orthocontact identify`"
 
 
 @dataclass(frozen=True)
@@ -36,6 +39,141 @@ class DataProvenance:
     folder: Path      # the data folder as found now
     files: dict       # path under folder (POSIX) -> SHA-256, as identify recorded them
     digest: str       # SHA-256 of their sha256sum listing (measurements.data_digest)
+
+
+# The data groups' keys in the file (noise_estimate, noise_model, noise_assumed).
+GROUP_KEYS = {"forces": "forces_N", "angles": "angles_deg", "ramp": "ramp_N", "carriage": "carriage_N",
+              "stiffness": "stiffness_N_m"}
+# The estimates fitted beyond the five when the data determine them: unit and note.
+FITTED_NOTES = {
+    "c_strip": ("N s/m", "the strip's lateral viscosity, from the angles' change with velocity"),
+    "f_int": ("N", "the carriage's internal resistance, from the carriage runs (and every force)"),
+    "l1_l2_ratio": (None, "eigenvalue ratio lambda1/lambda2: what angles alone determine")}
+INTERVALS = ("ci95 = value * exp(-+ t(0.975, dof) stderr / value), on the log scale (the "
+             "delta method's log-normal interval: every parameter is positive by nature, "
+             "so its interval stays > 0; for a small stderr / value it is value -+ "
+             "t(0.975, dof) stderr); stderr from the Gauss-Newton covariance "
+             "with each value weighted by 1/(between_runs^2 + its within-run error^2); dof "
+             "the Welch-Satterthwaite degrees of freedom of that variance over its parts: "
+             "each group's between-run variance with its between_runs_dof (values less "
+             "the parameters it determines), the within-run errors known (inf)")
+CI = ("95%, on the log scale, Student t with each parameter's Welch-Satterthwaite "
+      "degrees of freedom over the data groups' noise estimates, "
+      "Gauss-Newton covariance with per-group noise estimates")
+
+
+def identified_file_of(ident, reduction: identified.ReductionSummary | None = None
+                       ) -> identified.IdentifiedFile:
+    """An identification (job.Identification) as identified.json holds it,
+    with the reduction's summary when the data were raw recordings."""
+    f = ident.fit
+    cov, joint = covariances(f)
+    return identified.IdentifiedFile(
+        estimates=estimates(f), max_rule=ident.max_rule,
+        eq40={k: v for k, v in (ident.eq40 or {}).items() if k != "eq41"} or None,
+        eq41=(ident.eq40 or {}).get("eq41"), eq1=ident.eq1, noise_estimate=noise_estimate(f),
+        noise_model={GROUP_KEYS[g]: {"between_runs": f.between_runs.get(g),
+                                     "between_runs_dof": json_dof(f.between_runs_dof.get(g)),
+                                     "within_run_rms": f.within_run.get(g),
+                                     "values": int(len(f.residuals[g]))}
+                     for g in f.sigma},
+        intervals=INTERVALS, noise_assumed=tuple(GROUP_KEYS[g] for g in f.sigma_assumed),
+        fit_residuals={g: res_stats(x) for g, x in f.residuals.items()}, dof=f.dof,
+        covariance=cov, covariance_joint=joint, points=points(ident.data),
+        ramp_stick_points=f.stick_points, validation_fmu=ident.validation,
+        data=data_record(ident.data), assumptions=assumptions(ident.data.rig, f), fit=fit_record(f),
+        reduction=reduction)
+
+
+def estimate(f, n: str, unit=None, note=None) -> identified.Estimate:
+    """The joint fit f's estimate of n: value, standard error, interval, dof."""
+    dof = f.param_dof.get(n)
+    return identified.Estimate(value=f.values[n], stderr=f.stderr[n], ci95=tuple(f.ci95[n]),
+                               dof=None if dof is None else
+                               (math.inf if not math.isfinite(dof) else round(float(dof), 2)),
+                               unit=unit, note=note)
+
+
+def estimates(f) -> dict:
+    """The five reported parameters, each estimated or why not, then those
+    fitted beyond them (FITTED_NOTES)."""
+    out = {n: estimate(f, n) if n in f.values else
+           identified.NotIdentified(f.not_identifiable.get(n, "not determined")) for n in REPORTED}
+    for n, (unit, note) in FITTED_NOTES.items():
+        if n in f.values:
+            out[n] = estimate(f, n, unit, note)
+    return out
+
+
+def noise_estimate(f) -> dict:
+    """Each data group's noise as fitted; the angles' at each velocity, for uq."""
+    noise = {GROUP_KEYS[g]: s for g, s in f.sigma.items()}
+    tau = f.between_runs.get("angles")
+    if isinstance(tau, dict):   # a measured angle's noise at each velocity, for uq
+        noise["angles_deg_by_velocity"] = {v: (t * t + f.within_run["angles"] ** 2) ** 0.5
+                                           for v, t in tau.items()}
+    return noise
+
+
+def covariances(f) -> tuple:
+    """What uncertainty propagation (orthocontact uq) draws from: the joint
+    Gauss-Newton covariance of the fitted parameters.  uq draws the law's
+    parameters: their marginal (exact for a normal); the joint one, with
+    F_int and the strip, beside it (None where there are no others)."""
+    law = [i for i, n in enumerate(f.free) if n not in ("f_int", "c_strip")]
+    sym = 0.5 * (f.cov + f.cov.T)
+    cov = identified.Covariance(parameters=tuple(f.free[i] for i in law),
+                                values=tuple(f.values[f.free[i]] for i in law),
+                                matrix=tuple(tuple(float(sym[i, j]) for j in law) for i in law))
+    joint = None if len(law) == len(f.free) else identified.Covariance(
+        parameters=tuple(f.free), values=tuple(f.values[n] for n in f.free),
+        matrix=tuple(tuple(float(c) for c in row) for row in sym))
+    return cov, joint
+
+
+def _rows(a):
+    return None if a is None else tuple(tuple(float(x) for x in r) for r in a)
+
+
+def points(d) -> identified.Points:
+    """The measured angles (with their velocities) and forces, to show beside the predictions."""
+    return identified.Points(angles=_rows(d.angles),
+                             angle_velocities=None if d.angles is None or d.angle_velocities is None
+                             else tuple(float(v) for v in d.angle_velocities),
+                             forces=_rows(d.forces))
+
+
+def data_record(d) -> identified.DataRecord:
+    """The data the identification read: folder, counts, every file and one digest over them."""
+    return identified.DataRecord(folder=str(d.folder), absolute_folder=str(Path(d.folder).resolve()),
+                                 forces=0 if d.forces is None else len(d.forces),
+                                 angles=0 if d.angles is None else len(d.angles),
+                                 ramp=0 if d.ramp is None else len(d.ramp),
+                                 files=d.files, sha256=None if d.files is None else data_digest(d.files))
+
+
+def assumptions(r, f) -> identified.Assumptions:
+    """The rig `r` (experiment.RigSetup) and rule the fit f was made on; F_int
+    and the strip's viscosity "estimated" where f estimated them."""
+    return identified.Assumptions(
+        rule=r.rule, alpha_offset_deg=r.alpha_offset_deg, beta_offset_deg=r.beta_offset_deg,
+        mass_kg=r.mass_kg, g=r.g, f_int_N="estimated" if "f_int" in f.values else r.f_int_N,
+        ramp_angle_deg=r.ramp_angle_deg, mu_strip=r.mu_strip,
+        c_strip_N_s_m=("estimated" if "c_strip" in f.values else
+                       (r.c_strip if r.c_strip is not None else 0.0)),
+        phi_convention="counterclockwise (data converted)" if r.phi_convention == "paper"
+        else "counterclockwise",
+        ci=CI)
+
+
+def fit_record(fit) -> identified.FitRecord:
+    """How the joint fit ended, as identified.json records it: a fit that
+    did not converge is written only by identify --force (identify), so
+    `forced` is its not converging."""
+    return identified.FitRecord(converged=fit.converged, convergence=dict(fit.convergence),
+                                reweighting_rounds=fit.reweighting_rounds, solves=tuple(fit.solves),
+                                lack_of_fit={g: t.as_json() for g, t in fit.lack_of_fit.items()},
+                                forced=not fit.converged)
 
 
 def write_identified(path, f: identified.IdentifiedFile) -> Path:
@@ -64,7 +202,7 @@ def read_identified(path, force: bool = False, override: str = "") -> identified
     version = d.get("schema_version")
     if version != identified.SCHEMA_VERSION or isinstance(version, bool):
         raise InputError(f"{path}: schema_version: expected {identified.SCHEMA_VERSION}, got "
-                         f"{_short(version)} (a file of another version of orthocontact: run "
+                         f"{short_repr(version)} (a file of another version of orthocontact: run "
                          "`orthocontact identify` again)")
     written_by(path)   # in an output folder: as its run wrote it
     f = from_json(path, d)
@@ -72,246 +210,6 @@ def read_identified(path, force: bool = False, override: str = "") -> identified
     if errors and not force:
         raise InputError(f"{errors[0]}; refused" + (f" ({override})" if override else ""))
     return dataclasses.replace(f, provenance=check_data(path, f.data))
-
-
-def _short(v) -> str:
-    r = repr(v)
-    return r if len(r) <= 60 else r[:57] + "..."
-
-
-class _Fields:
-    """Typed values out of one JSON object; InputError '<file>: <field>:
-    expected <what>, got <value>'."""
-
-    def __init__(self, path: Path, where: str, d):
-        self.path, self.where = path, where
-        if not isinstance(d, dict):
-            self.fail("", f"an object {WRITTEN_BY}", d)
-        self.d = d
-
-    def fail(self, key, what, got, why=""):
-        field = ".".join(k for k in (self.where, key) if k)
-        raise InputError(f"{self.path}: {field}: expected {what}, got {_short(got)}{why}")
-
-    def sub(self, key, optional=False):
-        v = self.d.get(key)
-        if v is None and optional:
-            return None
-        if not isinstance(v, dict):
-            self.fail(key, f"an object {WRITTEN_BY}", v)
-        return _Fields(self.path, ".".join(k for k in (self.where, key) if k), v)
-
-    def number(self, key, lo=None, lo_open=False, what=None, optional=False):
-        v = self.d.get(key)
-        if v is None and optional:
-            return None
-        ok = _is_number(v) and (lo is None or (v > lo if lo_open else v >= lo))
-        if not ok:
-            self.fail(key, what or ("a finite number" + ("" if lo is None else
-                                                       f" {'>' if lo_open else '>='} {lo:g}")), v)
-        return float(v)
-
-    def integer(self, key, lo=0):
-        v = self.d.get(key)
-        if not (isinstance(v, int) and not isinstance(v, bool) and v >= lo):
-            self.fail(key, f"an integer >= {lo}", v)
-        return v
-
-    def text(self, key, optional=False):
-        v = self.d.get(key)
-        if v is None and optional:
-            return None
-        if not isinstance(v, str):
-            self.fail(key, "a string", v)
-        return v
-
-    def obj(self, key, optional=True):
-        """An object kept as written (a section of the report)."""
-        v = self.d.get(key)
-        if not (isinstance(v, dict) or (v is None and optional)):
-            self.fail(key, "an object" + (" or null" if optional else ""), v)
-        return v
-
-    def rows(self, key, width, what):
-        """None, or a list of numbers (width 1) or of rows of `width` numbers."""
-        v = self.d.get(key)
-        if v is None:
-            return None
-        one = (lambda x: _is_number(x)) if width == 1 else (
-            lambda x: isinstance(x, list) and len(x) == width and all(_is_number(y) for y in x))
-        if not (isinstance(v, list) and all(one(x) for x in v)):
-            self.fail(key, what + " or null", v)
-        return tuple(float(x) for x in v) if width == 1 else tuple(tuple(float(y) for y in x) for x in v)
-
-    def number_or_estimated(self, key, lo=0.0):
-        v = self.d.get(key)
-        if v == "estimated":
-            return v
-        return self.number(key, lo, what=f'a number >= {lo:g} or "estimated"')
-
-
-def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-
-
-def _estimate(path, name, d) -> identified.Estimate | identified.NotIdentified:
-    f = _Fields(path, name, d)
-    if "value" not in d:
-        if d.get("identifiable") is False:
-            return identified.NotIdentified(f.text("reason"))
-        f.fail("value", "a finite number > 0 (or identifiable: false and the reason)", None)
-    value = f.number("value", 0, lo_open=True)
-    stderr = f.number("stderr", 0)
-    ci = d.get("ci95")
-    if not (isinstance(ci, list) and len(ci) == 2 and all(_is_number(x) for x in ci) and ci[0] <= ci[1]):
-        f.fail("ci95", "[low, high], low <= high", ci)
-    dof = d.get("dof")
-    if dof == "inf":
-        dof = math.inf
-    elif dof is not None:
-        dof = f.number("dof", 0, lo_open=True, what='a number > 0, "inf" or null')
-    return identified.Estimate(value, stderr, (float(ci[0]), float(ci[1])), dof,
-                               f.text("unit", optional=True), f.text("note", optional=True))
-
-
-def _covariance(path, where, d) -> identified.Covariance:
-    if not isinstance(d, dict) or not {"parameters", "values", "matrix"} <= set(d):
-        raise InputError(f"{path}: {where}: expected parameters, values and matrix "
-                         f"({WRITTEN_BY}; run it again)")
-    names = d["parameters"]
-    if not (isinstance(names, list) and names and all(isinstance(n, str) for n in names)
-            and len(set(names)) == len(names)):
-        raise InputError(f"{path}: {where}.parameters: expected the names of the estimates, "
-                         f"got {_short(names)}")
-    k, values, matrix = len(names), d["values"], d["matrix"]
-    if not (isinstance(values, list) and len(values) == k and isinstance(matrix, list) and len(matrix) == k
-            and all(isinstance(r, list) and len(r) == k for r in matrix)):
-        raise InputError(f"{path}: {where}: expected {k} values and a {k}x{k} matrix, got "
-                         f"{len(values) if isinstance(values, list) else 0} and {_short(matrix)}")
-    if not (all(_is_number(v) for v in values) and all(_is_number(x) for r in matrix for x in r)):
-        raise InputError(f"{path}: {where}: expected finite numbers")
-    if any(v <= 0 for v in values):
-        raise InputError(f"{path}: {where}.values: expected estimates > 0, got {_short(values)}")
-    return identified.Covariance(tuple(names), tuple(float(v) for v in values),
-                                 tuple(tuple(float(x) for x in r) for r in matrix))
-
-
-def from_json(path, d: dict) -> identified.IdentifiedFile:
-    """The typed file of identified.json's object `d` (read from `path`);
-    InputError naming the file and the first field that is not as identify
-    writes it."""
-    path = Path(path)
-    top = _Fields(path, "", d)
-    estimates = {}
-    for name in identified.REPORTED + identified.FITTED_TOO:
-        if name in d or name in identified.REPORTED:
-            if not isinstance(d.get(name), dict):
-                top.fail(name, f"an object {WRITTEN_BY}", d.get(name))
-            estimates[name] = _estimate(path, name, d[name])
-    a = top.sub("assumptions")
-    rule = a.d.get("rule")
-    if rule not in RULES:
-        a.fail("rule", f"one of {', '.join(RULES)}", rule)
-    assumptions = identified.Assumptions(
-        rule=rule, alpha_offset_deg=a.number("alpha_offset_deg", what="a finite number [deg]"),
-        beta_offset_deg=a.number("beta_offset_deg", what="a finite number [deg]"),
-        mass_kg=a.number("mass_kg", 0, lo_open=True), g=a.number("g", 0, lo_open=True),
-        f_int_N=a.number_or_estimated("f_int_N"), ramp_angle_deg=a.number("ramp_angle_deg"),
-        mu_strip=a.number("mu_strip", 0), c_strip_N_s_m=a.number_or_estimated("c_strip_N_s_m"),
-        phi_convention=a.text("phi_convention"), ci=a.text("ci"))
-    for key, name in (("f_int_N", "f_int"), ("c_strip_N_s_m", "c_strip")):
-        estimated = isinstance(estimates.get(name), identified.Estimate)
-        if getattr(assumptions, key) == "estimated" and not estimated:
-            top.fail(name, f'its estimate (assumptions.{key} is "estimated")', d.get(name))
-    data = top.sub("data")
-    files = data.d.get("files")
-    if not isinstance(files, dict) or not files or not all(
-            isinstance(k, str) and isinstance(v, str) for k, v in files.items()):
-        raise InputError(f"{path}: data.files: expected the SHA-256 of every file the identification "
-                         "read (`orthocontact identify` writes them; run it again)")
-    stated = data.d.get("sha256")
-    if stated != data_digest(files):
-        raise InputError(f"{path}: data.sha256: expected the digest of data.files' listing "
-                         f"({data_digest(files)[:12]}...), got {str(stated)[:12]}...: the file was edited")
-    folder = data.d.get("folder")
-    if not isinstance(folder, str) or not folder:
-        raise InputError(f"{path}: data.folder: expected the measurement folder's path")
-    record = identified.DataRecord(folder=folder, absolute_folder=data.text("absolute_folder"),
-                                   forces=data.integer("forces"), angles=data.integer("angles"),
-                                   ramp=data.integer("ramp"), files=dict(files), sha256=stated)
-    pts = top.sub("points")
-    points = identified.Points(angles=pts.rows("angles", 2, "[[mat angle deg, phi deg], ...]"),
-                               angle_velocities=pts.rows("angle_velocities", 1, "a velocity [m/s] per angle"),
-                               forces=pts.rows("forces", 2, "[[mat angle deg, force N], ...]"))
-    if points.angle_velocities is not None and len(points.angle_velocities) != len(points.angles or ()):
-        pts.fail("angle_velocities", f"one velocity [m/s] per angle ({len(points.angles or ())})",
-                 len(points.angle_velocities))
-    noise = top.sub("noise_estimate")
-    for k, v in noise.d.items():
-        if k == "angles_deg_by_velocity":
-            if not (isinstance(v, dict) and all(_is_number(_float(s)) and _is_number(x) and x >= 0
-                                                for s, x in v.items())):
-                noise.fail(k, "{velocity m/s: number >= 0 [deg]}", v)
-        else:
-            noise.number(k, 0, what="a number >= 0")
-    joint = d.get("covariance_joint")
-    assumed = d.get("noise_assumed", [])
-    if not (isinstance(assumed, list) and all(isinstance(g, str) for g in assumed)):
-        top.fail("noise_assumed", "a list of data groups", assumed)
-    reduction = None
-    if d.get("reduction") is not None:
-        r = top.sub("reduction")
-        runs, left, flagged, figures = (r.d.get(k) for k in ("runs", "left_out", "flagged", "figures"))
-        if not (isinstance(runs, dict) and all(isinstance(n, int) for n in runs.values())):
-            r.fail("runs", "{kind: count}", runs)
-        if not (isinstance(left, list) and isinstance(flagged, dict) and isinstance(figures, list)):
-            r.fail("", "runs, left_out, flagged, table, figures and scenario", d["reduction"])
-        reduction = identified.ReductionSummary(runs=dict(runs), left_out=tuple(left),
-                                                flagged=dict(flagged), table=r.text("table"),
-                                                figures=tuple(figures),
-                                                scenario=r.text("scenario", optional=True))
-    intervals = d.get("intervals")
-    if not isinstance(intervals, str):
-        top.fail("intervals", "a string", intervals)
-    fit = _fit_record(top.sub("fit"))
-    return identified.IdentifiedFile(
-        estimates=estimates, max_rule=top.obj("max_rule"), eq40=top.obj("eq40"), eq41=top.obj("eq41"),
-        eq1=top.obj("eq1"), noise_estimate=dict(noise.d), noise_model=top.obj("noise_model", optional=False),
-        intervals=intervals, noise_assumed=tuple(assumed),
-        fit_residuals=top.obj("fit_residuals", optional=False), dof=top.integer("dof", lo=-10**9),
-        covariance=_covariance(path, "covariance", d.get("covariance")),
-        covariance_joint=None if joint is None else _covariance(path, "covariance_joint", joint),
-        points=points, ramp_stick_points=top.integer("ramp_stick_points"),
-        validation_fmu=top.obj("validation_fmu"), data=record, assumptions=assumptions, fit=fit,
-        reduction=reduction, path=path)
-
-
-def _fit_record(fields) -> identified.FitRecord:
-    """identified.json's "fit": how the joint fit ended (identified.FitRecord)."""
-    d = fields.d
-    if not isinstance(d.get("converged"), bool) or not isinstance(d.get("forced", False), bool):
-        fields.fail("converged", "true or false", d.get("converged"))
-    convergence, solves, tests = d.get("convergence"), d.get("solves"), d.get("lack_of_fit")
-    if not (isinstance(convergence, dict) and all(isinstance(v, bool) for v in convergence.values())):
-        fields.fail("convergence", "{part: true or false}", convergence)
-    if not (isinstance(solves, list) and solves and all(isinstance(x, dict) for x in solves)):
-        fields.fail("solves", "a list of the solves' outcomes", solves)
-    if not (isinstance(tests, dict) and all(isinstance(t, dict) and isinstance(t.get("rejected"), bool)
-                                            and isinstance(t.get("line"), str) for t in tests.values())):
-        fields.fail("lack_of_fit", "{group: its test}", tests)
-    if d["converged"] != all(convergence.values()):
-        fields.fail("converged", f"{str(all(convergence.values())).lower()} (as its convergence says)",
-                    d["converged"])
-    return identified.FitRecord(converged=d["converged"], convergence=dict(convergence),
-                                reweighting_rounds=fields.integer("reweighting_rounds"), solves=tuple(solves),
-                                lack_of_fit=dict(tests), forced=d.get("forced", False))
-
-
-def _float(s):
-    try:
-        return float(s)
-    except (TypeError, ValueError):
-        return None
 
 
 # identified.json's values with a unit: estimate -> key of plausibility.QUANTITIES
@@ -331,7 +229,7 @@ def plausible_identified(f: identified.IdentifiedFile) -> list:
 
     def number(v, key):
         q = plausibility.QUANTITIES[key]
-        return _is_number(v) and (v > 0 or (v == 0 and q.zero_allowed))
+        return is_number(v) and (v > 0 or (v == 0 and q.zero_allowed))
     found = []
     for name, key in IDENTIFIED.items():
         v = f.value(name)

@@ -9,7 +9,6 @@ its typed form, writer and reader) and report (figure, Markdown, summary).  Unit
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -22,9 +21,9 @@ from ..fmu import ContactParams
 from . import identified
 from .estimators import JointFit, eq1, eq40_fit, identifiability, joint_fit, max_rule, start_values
 from .identified import REPORTED
-from .identified_file import write_identified
-from .measurements import MeasurementSet, data_digest, data_files, load_data, write_measurements
-from .statistics import json_dof, res_stats
+from .identified_file import fit_record, identified_file_of, write_identified
+from .measurements import MeasurementSet, data_files, load_data, write_measurements
+from .statistics import res_stats
 
 # The whole job here; its parts importable from here as before.
 __all__ = ["Identification", "identify", "run", "load_folder", "validate_with_fmu", "simulate_measurements",
@@ -138,97 +137,9 @@ class Identification:
 
     def identified_file(self, reduction: identified.ReductionSummary | None = None
                         ) -> identified.IdentifiedFile:
-        """The result as identified.json holds it (identified_file), with the
-        reduction's summary when the data were raw recordings."""
-        f = self.fit
-
-        def estimate(n, unit=None, note=None):
-            dof = f.param_dof.get(n)
-            return identified.Estimate(value=f.values[n], stderr=f.stderr[n], ci95=tuple(f.ci95[n]),
-                                       dof=None if dof is None else
-                                       (math.inf if not math.isfinite(dof) else round(float(dof), 2)),
-                                       unit=unit, note=note)
-        estimates = {n: estimate(n) if n in f.values else
-                     identified.NotIdentified(f.not_identifiable.get(n, "not determined")) for n in REPORTED}
-        if "c_strip" in f.values:
-            estimates["c_strip"] = estimate("c_strip", "N s/m", "the strip's lateral viscosity, from the "
-                                                                "angles' change with velocity")
-        if "f_int" in f.values:
-            estimates["f_int"] = estimate("f_int", "N", "the carriage's internal resistance, from the "
-                                                        "carriage runs (and every force)")
-        if "l1_l2_ratio" in f.values:
-            estimates["l1_l2_ratio"] = estimate("l1_l2_ratio", note="eigenvalue ratio lambda1/lambda2: what "
-                                                                    "angles alone determine")
-        d = self.data
-        unit = {"forces": "forces_N", "angles": "angles_deg", "ramp": "ramp_N", "carriage": "carriage_N",
-                "stiffness": "stiffness_N_m"}
-        noise = {unit[g]: s for g, s in f.sigma.items()}
-        tau = f.between_runs.get("angles")
-        if isinstance(tau, dict):   # a measured angle's noise at each velocity, for uq
-            noise["angles_deg_by_velocity"] = {v: (t * t + f.within_run["angles"] ** 2) ** 0.5
-                                               for v, t in tau.items()}
-        # What uncertainty propagation (orthocontact uq) draws from: the
-        # joint Gauss-Newton covariance of the fitted parameters, and the
-        # measured angles to show beside the predictions.
-        # uq draws the law's parameters: their marginal (exact for a
-        # normal); the joint one, with F_int and the strip, beside it.
-        law = [i for i, n in enumerate(f.free) if n not in ("f_int", "c_strip")]
-        sym = 0.5 * (f.cov + f.cov.T)
-        cov = identified.Covariance(parameters=tuple(f.free[i] for i in law),
-                                    values=tuple(f.values[f.free[i]] for i in law),
-                                    matrix=tuple(tuple(float(sym[i, j]) for j in law) for i in law))
-        joint = None if len(law) == len(f.free) else identified.Covariance(
-            parameters=tuple(f.free), values=tuple(f.values[n] for n in f.free),
-            matrix=tuple(tuple(float(c) for c in row) for row in sym))
-
-        def rows(a):
-            return None if a is None else tuple(tuple(float(x) for x in r) for r in a)
-        r = d.rig
-        return identified.IdentifiedFile(
-            estimates=estimates, max_rule=self.max_rule,
-            eq40={k: v for k, v in (self.eq40 or {}).items() if k != "eq41"} or None,
-            eq41=(self.eq40 or {}).get("eq41"), eq1=self.eq1, noise_estimate=noise,
-            noise_model={unit[g]: {"between_runs": f.between_runs.get(g),
-                                   "between_runs_dof": json_dof(f.between_runs_dof.get(g)),
-                                   "within_run_rms": f.within_run.get(g),
-                                   "values": int(len(f.residuals[g]))}
-                         for g in f.sigma},
-            intervals=("ci95 = value * exp(-+ t(0.975, dof) stderr / value), on the log scale (the "
-                       "delta method's log-normal interval: every parameter is positive by nature, "
-                       "so its interval stays > 0; for a small stderr / value it is value -+ "
-                       "t(0.975, dof) stderr); stderr from the Gauss-Newton covariance "
-                       "with each value weighted by 1/(between_runs^2 + its within-run error^2); dof "
-                       "the Welch-Satterthwaite degrees of freedom of that variance over its parts: "
-                       "each group's between-run variance with its between_runs_dof (values less "
-                       "the parameters it determines), the within-run errors known (inf)"),
-            noise_assumed=tuple(unit[g] for g in f.sigma_assumed),
-            fit_residuals={g: res_stats(x) for g, x in f.residuals.items()}, dof=f.dof,
-            covariance=cov, covariance_joint=joint,
-            points=identified.Points(angles=rows(d.angles),
-                                     angle_velocities=None if d.angles is None or d.angle_velocities is None
-                                     else tuple(float(v) for v in d.angle_velocities),
-                                     forces=rows(d.forces)),
-            ramp_stick_points=f.stick_points, validation_fmu=self.validation,
-            data=identified.DataRecord(folder=str(d.folder),
-                                       absolute_folder=str(Path(d.folder).resolve()),
-                                       forces=0 if d.forces is None else len(d.forces),
-                                       angles=0 if d.angles is None else len(d.angles),
-                                       ramp=0 if d.ramp is None else len(d.ramp),
-                                       # every file the identification read, and one digest over them
-                                       files=d.files,
-                                       sha256=None if d.files is None else data_digest(d.files)),
-            assumptions=identified.Assumptions(
-                rule=r.rule, alpha_offset_deg=r.alpha_offset_deg, beta_offset_deg=r.beta_offset_deg,
-                mass_kg=r.mass_kg, g=r.g, f_int_N="estimated" if "f_int" in f.values else r.f_int_N,
-                ramp_angle_deg=r.ramp_angle_deg, mu_strip=r.mu_strip,
-                c_strip_N_s_m=("estimated" if "c_strip" in f.values else
-                               (r.c_strip if r.c_strip is not None else 0.0)),
-                phi_convention="counterclockwise (data converted)" if r.phi_convention == "paper"
-                else "counterclockwise",
-                ci="95%, on the log scale, Student t with each parameter's Welch-Satterthwaite "
-                   "degrees of freedom over the data groups' noise estimates, "
-                   "Gauss-Newton covariance with per-group noise estimates"),
-            fit=self.fit_record(), reduction=reduction)
+        """The result as identified.json holds it (identified_file_of), with
+        the reduction's summary when the data were raw recordings."""
+        return identified_file_of(self, reduction)
 
     def fit_record(self) -> identified.FitRecord:
         return fit_record(self.fit)
@@ -236,16 +147,6 @@ class Identification:
     def as_json(self) -> dict:
         """identified.json's object (IdentifiedFile.as_json)."""
         return self.identified_file().as_json()
-
-
-def fit_record(fit: JointFit) -> identified.FitRecord:
-    """How the joint fit ended, as identified.json records it: a fit that
-    did not converge is written only by identify --force (identify), so
-    `forced` is its not converging."""
-    return identified.FitRecord(converged=fit.converged, convergence=dict(fit.convergence),
-                                reweighting_rounds=fit.reweighting_rounds, solves=tuple(fit.solves),
-                                lack_of_fit={g: t.as_json() for g, t in fit.lack_of_fit.items()},
-                                forced=not fit.converged)
 
 
 # The identified values the gate judges, by their key in plausibility.QUANTITIES.
