@@ -144,69 +144,85 @@ def run_sweep(sc: Scenario, workers: int | None = None, progress: bool = True,
     grid_ext = {"angle_deg": float(angles[k]), "phi_deg": float(phi[k])}
     extremum = dict(grid_ext, refined=False)
     beat = Heartbeat(f"{sc.name} extremum and trajectories", progress)
-    if resolve_master(master, fmu_path) == "c":
-        from ..fmu import find_fmu
-        from ..rig import CMaster
-        engine = CMaster(find_fmu(fmu_path))
-
-        def one_run(a, rule=None):
-            return engine.run([(sc.params_at(a, rule), sc.rig)])[0][0]
-
-        def record_run(a, every):
-            return engine.record(sc.params_at(a), sc.rig, every)
-    else:
-        engine = ContactFMU(fmu_path, instance_name="main")
-
-        def one_run(a, rule=None):
-            return run(sc.params_at(a, rule), sc.rig, fmu=engine, record_every=1 << 30).phi_deg
-
-        def record_run(a, every):
-            return run(sc.params_at(a), sc.rig, fmu=engine, record_every=every)
-
-    def one(a, rule=None):
-        beat.update()
-        return one_run(a, rule)
-
-    def record(a, every):
-        beat.update()
-        return record_run(a, every)
+    single = SingleRuns(sc, fmu_path, master, beat)
     try:
-        if sc.sweep["refine_extremum"] and len(angles) >= 3 and abs(phi[k]) > 1e-6:
-            sign = 1.0 if phi[k] > 0 else -1.0
-            step = sc.sweep["step_deg"]
-            lo, hi = max(angles[0], angles[k] - step), min(angles[-1], angles[k] + step)
-            cache, runs = {}, [0]
-
-            def f(a):
-                if a not in cache:
-                    cache[a] = sign * one(a)
-                    runs[0] += 1
-                return cache[a]
-            # phi is smooth about its extremum: parabolas through the grid's
-            # three best points converge in a few runs; golden section if not.
-            idx = [j for j in (k - 1, k, k + 1) if 0 <= j < len(angles)]
-            found = None
-            if len(idx) == 3:
-                for j in idx:
-                    cache[float(angles[j])] = sign * float(phi[j])
-                found = _parabolic_extremum(f, [float(angles[j]) for j in idx],
-                                            [sign * float(phi[j]) for j in idx])
-            a_ext, v = found if found is not None else _golden_extremum(f, lo, hi)
-            if v >= sign * phi[k]:
-                extremum = {"angle_deg": a_ext, "phi_deg": sign * v, "refined": True,
-                            "evaluations": runs[0]}
+        extremum = refined_extremum(sc, angles, phi, k, single.phi_deg) or extremum
         # The other implicit rule at the same angle: the sign of phi is what
         # tells the rules apart (report.md).
         other = {"coupled": "associated", "associated": "coupled"}.get(sc.law.rule)
         if other:
-            extremum["other_rule"] = {"rule": other, "phi_deg": one(extremum["angle_deg"], other)}
+            extremum["other_rule"] = {"rule": other, "phi_deg": single.phi_deg(extremum["angle_deg"], other)}
         n_rec = max(1, int(sc.rig.travel_m / (sc.rig.velocity_m_s * sc.rig.step_s) / 400))
-        traj = {float(a): record(a, n_rec) for a in sc.sweep["trajectory_angles_deg"]}
+        traj = {float(a): single.record(a, n_rec) for a in sc.sweep["trajectory_angles_deg"]}
     finally:
         beat.close()
-        engine.close()
+        single.close()
     return SweepResult(np.array(angles, dtype=float), phi, closed, drive, extremum, grid_ext, workers,
                        time.time() - t0, traj, list(res), checks)
+
+
+class SingleRuns:
+    """A sweep's runs one at a time after its batch (the extremum's
+    refinement, the other rule's angle, the recorded trajectories) on the
+    batch's master: the compiled one, or one fmpy instance; each run a beat
+    of the sweep's progress line."""
+
+    def __init__(self, sc: Scenario, fmu_path, master: str, beat: Heartbeat):
+        self.sc, self.beat = sc, beat
+        self.compiled = resolve_master(master, fmu_path) == "c"
+        if self.compiled:
+            from ..fmu import find_fmu
+            from ..rig import CMaster
+            self.engine = CMaster(find_fmu(fmu_path))
+        else:
+            self.engine = ContactFMU(fmu_path, instance_name="main")
+
+    def phi_deg(self, a: float, rule: str | None = None) -> float:
+        """The trajectory angle [deg] at the mat angle a [deg] (under `rule`)."""
+        self.beat.update()
+        if self.compiled:
+            return self.engine.run([(self.sc.params_at(a, rule), self.sc.rig)])[0][0]
+        return run(self.sc.params_at(a, rule), self.sc.rig, fmu=self.engine, record_every=1 << 30).phi_deg
+
+    def record(self, a: float, every: int):
+        """The run at the mat angle a [deg], every `every`-th step kept (RigResult)."""
+        self.beat.update()
+        if self.compiled:
+            return self.engine.record(self.sc.params_at(a), self.sc.rig, every)
+        return run(self.sc.params_at(a), self.sc.rig, fmu=self.engine, record_every=every)
+
+    def close(self) -> None:
+        self.engine.close()
+
+
+def refined_extremum(sc: Scenario, angles, phi, k: int, phi_at) -> dict | None:
+    """The extremum refined on the rig (phi_at(a): a run's angle [deg]) about
+    the grid's, angles[k]: None where the scenario does not ask, or the
+    refinement finds none beyond the grid's."""
+    if not (sc.sweep["refine_extremum"] and len(angles) >= 3 and abs(phi[k]) > 1e-6):
+        return None
+    sign = 1.0 if phi[k] > 0 else -1.0
+    step = sc.sweep["step_deg"]
+    lo, hi = max(angles[0], angles[k] - step), min(angles[-1], angles[k] + step)
+    cache, runs = {}, [0]
+
+    def f(a):
+        if a not in cache:
+            cache[a] = sign * phi_at(a)
+            runs[0] += 1
+        return cache[a]
+    # phi is smooth about its extremum: parabolas through the grid's
+    # three best points converge in a few runs; golden section if not.
+    idx = [j for j in (k - 1, k, k + 1) if 0 <= j < len(angles)]
+    found = None
+    if len(idx) == 3:
+        for j in idx:
+            cache[float(angles[j])] = sign * float(phi[j])
+        found = _parabolic_extremum(f, [float(angles[j]) for j in idx], [sign * float(phi[j]) for j in idx])
+    a_ext, v = found if found is not None else _golden_extremum(f, lo, hi)
+    if v >= sign * phi[k]:
+        return {"angle_deg": a_ext, "phi_deg": sign * v, "refined": True, "evaluations": runs[0]}
+    return None
 
 
 @dataclass
