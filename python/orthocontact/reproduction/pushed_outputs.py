@@ -13,7 +13,7 @@ force, open or slipping, at the first mat angle of each height),
 phi_vs_angle.png (the trajectory angle against the mat angle at each
 height, with the paper's closed form and measured extremum), regimes.png
 (the pressure's centre and the contact against mu h / length, with the
-thresholds 1/6 and 1/2); summary.json.
+thresholds 1/6 and 1/2), the figures drawn by pushed_figures; summary.json.
 
 The cells' normal forces and states are FMI 3.0 arrays: a push on an FMI
 2.0 FMU takes them from the same push on the installed FMI 3.0 ContactPad
@@ -21,13 +21,12 @@ FMU, and only if that push's record equals its own at every step."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..closed_forms import (
-    FULL_CONTACT,
-    LIFT_OFF,
     TIPS,
     contact_fraction,
     of_law,
@@ -37,10 +36,10 @@ from ..closed_forms import (
 )
 from ..experiment import RunOptions, Scenario, ScenarioError, part
 from ..fmu import PAD_MODEL, Foundation, PatchGeometry, find_fmu, fmi_version_of
-from ..output import draw_here, finish, pyplot, swept_label, write_csv, write_json
+from ..output import draw_here, write_csv, write_json
 from ..plausibility import ELASTIC_LENGTHS
 from ..rig import pushed
-from ..runs import closed_form_phi_deg_array
+from .pushed_figures import figure_cells, figure_phi, figure_regimes
 
 # A settled push's trajectory angle is the closed form's to the transient
 # left after ELASTIC_LENGTHS elastic lengths (measured: < 1e-4 deg); its
@@ -146,49 +145,86 @@ def pushed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     """Runs the push at each height and mat angle, writes the files and the
     figures; returns the summary."""
     refuse_large_tilts(sc)
-    pu, rule = sc.push, sc.law.rule
+    pu = sc.push
     version = fmi_version_of(fmu_path)
     runs, paths, cells, off, unsettled = [], [], {}, [], []
     for h in pu["heights_m"]:
         for i, a in enumerate(pu["angles_deg"]):
-            p = sc.params_at(a)
-            b = block_of(sc, h)
-            try:
-                res = pushed.push(p, b, pu["travel_m"], pu["step_m"], version, fmu_path,
-                                  cells=i == 0 and version == 3)
-                if i == 0:
-                    cells[h] = cells_of(p, b, pu, res)
-            except pushed.PushNotSolved as e:
-                raise ScenarioError(f"{sc.path}: push.step_m: the push at mat angle {a:g} deg could not be "
-                                    f"solved ({e}); a smaller push.step_m may help") from None
-            want = expected(sc, a, h)
-            solved = len(res.x1) > 0   # a push that tips at its first step has no step solved
-            last = -1
-            run = {"height_m": h, "angle_deg": a, "length_m": b.pad.length, "regime": res.regime,
-                   "regime_closed": want["regime"], "mu": want["mu"], "e_closed_m": want["e_m"],
-                   "tipped_at_m": res.tipped_at_m,
-                   "phi_deg": math.degrees(math.atan(res.trajectory_tan_phi(pushed.FIT_FROM))),
-                   "phi_closed_deg": of_law(steady_phi_deg, p, p.alpha, p.beta),
-                   "d_m": float(res.d[last]) if solved else None, "d_closed_m": want["d_m"],
-                   "phi2_rad": float(res.phi2[last]) if solved else None,
-                   "phi2_closed_rad": want["phi2_rad"],
-                   "e_m": float(-res.M2[last] / res.Fn[last]) if solved else None,
-                   "contact_fraction": float(res.contact_fraction[last]) if solved else None,
-                   "contact_fraction_closed": want["contact_fraction"],
-                   "newton_iterations": int(res.iterations.sum())}
-            if res.regime == TIPS or not math.isfinite(run["phi_deg"]):
-                run["phi_deg"] = None
-            run["elastic_length_m"] = elastic_length(sc, want)
-            settled = not pushed.FIT_FROM * pu["travel_m"] < ELASTIC_LENGTHS * run["elastic_length_m"]
-            run["phi_checked"] = settled and run["phi_deg"] is not None
-            if not settled:
-                unsettled.append(run)
-            problems = _check(run, want, settled)
-            run["ok"] = not problems
-            off += [f"h = {h:g} m, a = {a:g} deg: {x}" for x in problems]
-            runs.append(run)
+            one = push_at(sc, h, a, version, fmu_path, first=i == 0)
+            if i == 0:
+                cells[h] = one.cells
+            if not one.settled:
+                unsettled.append(one.run)
+            off += [f"h = {h:g} m, a = {a:g} deg: {x}" for x in one.problems]
+            runs.append(one.run)
+            res = one.res
             paths += [(h, a, float(x1), float(x2), float(d), float(ph), float(f)) for x1, x2, d, ph, f in
                       zip(res.x1, res.x2, res.d, res.phi2, res.contact_fraction)]
+    write_tables(out, runs, paths, cells)
+    draw = draw or draw_here
+    draw(figure_cells, sc, runs, cells, out / "pressure_cells.png")
+    draw(figure_phi, sc, runs, out / "phi_vs_angle.png")
+    draw(figure_regimes, sc, runs, out / "regimes.png")
+    summary = push_summary(sc, runs, cells, push_warning(sc, off, unsettled), unsettled)
+    write_json(out / "summary.json", summary)
+    return summary
+
+
+@dataclass
+class Push:
+    """One push of the scenario: its row (pushed_block.csv, summary.json's
+    runs), what is off its closed forms, whether it settled before its fit,
+    the result, and its cells (the first angle of a height only: cells_of)."""
+    run: dict
+    problems: list
+    settled: bool
+    res: pushed.PushResult
+    cells: tuple | None
+
+
+def push_at(sc: Scenario, h: float, a: float, version: int, fmu_path, first: bool) -> Push:
+    """The push at height h [m] and mat angle a [deg], checked against its
+    closed forms (_check); ScenarioError naming push.step_m if a step of it
+    cannot be solved."""
+    pu = sc.push
+    p = sc.params_at(a)
+    b = block_of(sc, h)
+    cells = None
+    try:
+        res = pushed.push(p, b, pu["travel_m"], pu["step_m"], version, fmu_path, cells=first and version == 3)
+        if first:
+            cells = cells_of(p, b, pu, res)
+    except pushed.PushNotSolved as e:
+        raise ScenarioError(f"{sc.path}: push.step_m: the push at mat angle {a:g} deg could not be "
+                            f"solved ({e}); a smaller push.step_m may help") from None
+    want = expected(sc, a, h)
+    solved = len(res.x1) > 0   # a push that tips at its first step has no step solved
+    last = -1
+    run = {"height_m": h, "angle_deg": a, "length_m": b.pad.length, "regime": res.regime,
+           "regime_closed": want["regime"], "mu": want["mu"], "e_closed_m": want["e_m"],
+           "tipped_at_m": res.tipped_at_m,
+           "phi_deg": math.degrees(math.atan(res.trajectory_tan_phi(pushed.FIT_FROM))),
+           "phi_closed_deg": of_law(steady_phi_deg, p, p.alpha, p.beta),
+           "d_m": float(res.d[last]) if solved else None, "d_closed_m": want["d_m"],
+           "phi2_rad": float(res.phi2[last]) if solved else None,
+           "phi2_closed_rad": want["phi2_rad"],
+           "e_m": float(-res.M2[last] / res.Fn[last]) if solved else None,
+           "contact_fraction": float(res.contact_fraction[last]) if solved else None,
+           "contact_fraction_closed": want["contact_fraction"],
+           "newton_iterations": int(res.iterations.sum())}
+    if res.regime == TIPS or not math.isfinite(run["phi_deg"]):
+        run["phi_deg"] = None
+    run["elastic_length_m"] = elastic_length(sc, want)
+    settled = not pushed.FIT_FROM * pu["travel_m"] < ELASTIC_LENGTHS * run["elastic_length_m"]
+    run["phi_checked"] = settled and run["phi_deg"] is not None
+    problems = _check(run, want, settled)
+    run["ok"] = not problems
+    return Push(run, problems, settled, res, cells)
+
+
+def write_tables(out: Path, runs: list, paths: list, cells: dict) -> None:
+    """pushed_block.csv (a row a push), push_paths.csv (a row a step) and
+    pressure_cells.csv (the cells at each height's first push's end)."""
     columns = ["height_m", "angle_deg", "regime", "regime_closed", "mu", "e_m", "e_closed_m", "tipped_at_m",
                "phi_deg", "phi_closed_deg", "d_m", "d_closed_m", "phi2_rad", "phi2_closed_rad",
                "contact_fraction", "contact_fraction_closed"]
@@ -198,32 +234,36 @@ def pushed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     cell_rows = [(h, i, j, float(N[i, j]), int(S[i, j])) for h, (N, S, _) in cells.items()
                  if N is not None for i in range(N.shape[0]) for j in range(N.shape[1])]
     write_csv(out / "pressure_cells.csv", ["height_m", "i", "j", "normal_N", "cell_state"], cell_rows)
-    draw = draw or draw_here
-    draw(figure_cells, sc, runs, cells, out / "pressure_cells.png")
-    draw(figure_phi, sc, runs, out / "phi_vs_angle.png")
-    draw(figure_regimes, sc, runs, out / "regimes.png")
-    warning = None
+
+
+def push_warning(sc: Scenario, off: list, unsettled: list) -> str | None:
+    """The one warning line: what is off the closed forms, else the pushes
+    whose angle and pose were not checked (not settled before the fit)."""
     if off:
-        warning = f"{sc.name}: the push is off its closed forms: " + "; ".join(off)
-    elif unsettled:
+        return f"{sc.name}: the push is off its closed forms: " + "; ".join(off)
+    if unsettled:
         worst = max(r["elastic_length_m"] for r in unsettled)
-        start = pushed.FIT_FROM * pu["travel_m"]
-        warning = (f"{sc.name}: the trajectory angle and the pose were not checked at {len(unsettled)} "
-                   f"pushes: the fit starts at {start:g} m, within {ELASTIC_LENGTHS:g} elastic lengths "
-                   f"of the most loaded cell (up to {worst:.3g} m) of the start; push further "
-                   f"(push.travel_m >= {2 * ELASTIC_LENGTHS * worst:.3g} m)")
+        start = pushed.FIT_FROM * sc.push["travel_m"]
+        return (f"{sc.name}: the trajectory angle and the pose were not checked at {len(unsettled)} "
+                f"pushes: the fit starts at {start:g} m, within {ELASTIC_LENGTHS:g} elastic lengths "
+                f"of the most loaded cell (up to {worst:.3g} m) of the start; push further "
+                f"(push.travel_m >= {2 * ELASTIC_LENGTHS * worst:.3g} m)")
+    return None
+
+
+def push_summary(sc: Scenario, runs: list, cells: dict, warning: str | None, unsettled: list) -> dict:
+    """summary.json: the runs, the thresholds at each angle, the cells' source and the checks."""
     L = sc.pad["length_m"]
-    summary = {**sc.head(), "rule": rule, "weight_N": sc.rig.mass_kg * sc.rig.g, "pad": sc.pad, "runs": runs,
-               "thresholds": {f"{a:g}": {"mu": friction_along_x1(sc.params_at(a)),
-                                         "lift_off_height_m": L / (6 * friction_along_x1(sc.params_at(a))),
-                                         "tipping_height_m": L / (2 * friction_along_x1(sc.params_at(a)))}
-                              for a in pu["angles_deg"]},
-               "cells": {f"{h:g}": why for h, (_, _, why) in cells.items()},
-               "checks": {"ok": warning is None, "warning": warning, "phi_unchecked": len(unsettled)},
-               "angle_convention": "phi the trajectory's angle from X1, counterclockwise; e the centre of "
-                                   "pressure's shift toward the leading edge (+X1)"}
-    write_json(out / "summary.json", summary)
-    return summary
+    return {**sc.head(), "rule": sc.law.rule, "weight_N": sc.rig.mass_kg * sc.rig.g, "pad": sc.pad,
+            "runs": runs,
+            "thresholds": {f"{a:g}": {"mu": friction_along_x1(sc.params_at(a)),
+                                      "lift_off_height_m": L / (6 * friction_along_x1(sc.params_at(a))),
+                                      "tipping_height_m": L / (2 * friction_along_x1(sc.params_at(a)))}
+                           for a in sc.push["angles_deg"]},
+            "cells": {f"{h:g}": why for h, (_, _, why) in cells.items()},
+            "checks": {"ok": warning is None, "warning": warning, "phi_unchecked": len(unsettled)},
+            "angle_convention": "phi the trajectory's angle from X1, counterclockwise; e the centre of "
+                                "pressure's shift toward the leading edge (+X1)"}
 
 
 def cells_of(params, block, pu, res) -> tuple:
@@ -250,107 +290,3 @@ def cells_of(params, block, pu, res) -> tuple:
 def run_pushed(sc: Scenario, out: Path, fmu_path, how: RunOptions) -> dict:
     """The kind's runner: pushed_outputs (runs in this process)."""
     return pushed_outputs(sc, out, fmu_path, how.draw)
-
-
-# -- figures -------------------------------------------------------------------------
-
-def figure_cells(sc: Scenario, runs: list, cells: dict, path: Path) -> None:
-    """The pressure under the block at the end of each height's push (its
-    first mat angle): cells coloured by normal force, open cells grey,
-    slipping ones dotted."""
-    plt = pyplot()
-    heights = list(cells)
-    pad = sc.pad
-    L, W, n1, n2 = pad["length_m"] * 1e3, pad["width_m"] * 1e3, pad["n1"], pad["n2"]
-    top = max((float(N.max()) for N, _, _ in cells.values() if N is not None), default=1.0) or 1.0
-    fig, axes = plt.subplots(1, len(heights), figsize=(2.6 * len(heights) + 1.2, 3.4), squeeze=False)
-    x, y = np.linspace(-L / 2, L / 2, n1 + 1), np.linspace(-W / 2, W / 2, n2 + 1)
-    xc, yc = np.meshgrid(0.5 * (x[1:] + x[:-1]), 0.5 * (y[1:] + y[:-1]), indexing="ij")
-    mesh = None
-    for ax, h in zip(axes[0], heights):
-        N, S, why = cells[h]
-        run = next(r for r in runs if r["height_m"] == h)
-        ax.set_title(f"h = {h * 1e3:g} mm: {run['regime']}", fontsize=9, y=1.0)
-        ax.set_xlabel("x1 [mm] (push →)", fontsize=8)
-        ax.tick_params(labelsize=7)
-        ax.set_xlim(-L / 2, L / 2)
-        ax.set_ylim(-W / 2, W / 2)
-        ax.set_aspect("equal")
-        if N is None:
-            ax.text(0, 0, why, ha="center", va="center", fontsize=7, wrap=True)
-            continue
-        ax.set_facecolor("0.85")   # open cells are masked: the grey shows
-        mesh = ax.pcolormesh(x, y, np.ma.masked_where(S == 0, N).T, cmap="viridis", vmin=0, vmax=top,
-                             edgecolors="white", linewidth=0.4)
-        slip = S == 2
-        ax.plot(xc[slip], yc[slip], ".", color="C3", ms=3)
-    axes[0][0].set_ylabel("x2 [mm]", fontsize=8)
-    if mesh is not None:
-        fig.colorbar(mesh, ax=list(axes[0]), fraction=0.03, pad=0.02).set_label("cell normal force [N]",
-                                                                                fontsize=8)
-    fig.suptitle(f"{sc.title}: pressure under the block at a = {sc.push['angles_deg'][0]:g}° (grey: open, "
-                 "red dot: slipping)", fontsize=9)
-    fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
-    plt.close(fig)
-
-
-def figure_phi(sc: Scenario, runs: list, path: Path) -> None:
-    """phi against the mat angle at each height, with the paper's closed form
-    (the scenario's) and its measured extremum where the scenario gives it."""
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    angles = sorted({r["angle_deg"] for r in runs})
-    fine = np.linspace(min(angles), max(angles), 181)
-    ax.plot(fine, closed_form_phi_deg_array(sc, fine), "-", color="0.3",
-            label=f"paper's closed form ({sc.closed_form})")
-    for k, h in enumerate(sorted({r["height_m"] for r in runs})):
-        mine = [r for r in runs if r["height_m"] == h and r["phi_deg"] is not None]
-        tips = [r["angle_deg"] for r in runs if r["height_m"] == h and r["phi_deg"] is None]
-        label = f"pad FMU, h = {h * 1e3:g} mm" + (f" (tips at {', '.join(f'{a:g}' for a in tips)}°)"
-                                                 if tips else "")
-        ax.plot([r["angle_deg"] for r in mine], [r["phi_deg"] for r in mine], "os^vD"[k % 5], ms=6 - k,
-                mfc="none", color=f"C{k}", label=label)
-    if "extremum_phi_deg" in sc.paper:
-        sign = -1.0 if sc.paper.get("phi_sign_differs") else 1.0
-        ax.axhline(sign * sc.paper["extremum_phi_deg"], color="C3", ls=":", lw=1,
-                   label=f"paper's measured extremum, {sign * sc.paper['extremum_phi_deg']:+g}°")
-    ax.set_xlabel(f"{swept_label(sc)} [deg]")
-    ax.set_ylabel("trajectory angle φ [deg] (counterclockwise)")
-    finish(fig, ax, path, f"{sc.title}: φ at every height")
-
-
-def figure_regimes(sc: Scenario, runs: list, path: Path) -> None:
-    """The pressure's centre e/length and the contact fraction against
-    mu h / length, with the closed forms and the thresholds 1/6 and 1/2."""
-    plt = pyplot()
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10, 4.2))
-    x = np.linspace(0, 0.6, 601)
-    pad, W = sc.pad, sc.rig.mass_kg * sc.rig.g
-    L, Wd, kn = pad["length_m"], pad["width_m"], pad["kn_N_m3"]
-    frac = []
-    for t in x:   # the closed form's steady pose at e = t length, and its contact
-        _, d, phi2 = pushed_at_height(kn, L, Wd, W, t * L)
-        frac.append(np.nan if d is None else contact_fraction(L, Wd, d, 0.0, phi2))
-    ax.plot(x, np.where(x < 0.5, x, np.nan), "-", color="0.3", label="closed form: e = μh")
-    bx.plot(x, frac, "-", color="0.3", label="closed form")
-    for a in (ax, bx):
-        for t, name in ((1 / 6, "1/6: lift-off"), (0.5, "1/2: tips")):
-            a.axvline(t, color="C3", ls=":", lw=1)
-            a.text(t, 0.02, f"{name} ", color="C3", fontsize=7, ha="right", transform=a.get_xaxis_transform())
-    for k, regime in enumerate((FULL_CONTACT, LIFT_OFF, TIPS)):
-        mine = [r for r in runs if r["regime"] == regime]
-        xs = [r["mu"] * r["height_m"] / L for r in mine]
-        if regime == TIPS:
-            ax.plot(xs, [0.5] * len(xs), "x", color=f"C{k}", ms=7, label="pad FMU: tips (no equilibrium)")
-            continue
-        ax.plot(xs, [r["e_m"] / L for r in mine], "o", mfc="none", color=f"C{k}", label=f"pad FMU: {regime}")
-        bx.plot(xs, [r["contact_fraction"] for r in mine], "o", mfc="none", color=f"C{k}",
-                label=f"pad FMU: {regime}")
-    ax.set_xlabel("μ h / length")
-    ax.set_ylabel("centre of pressure e / length")
-    bx.set_xlabel("μ h / length")
-    bx.set_ylabel("contact fraction")
-    bx.grid(alpha=0.3)
-    bx.legend(fontsize=8)
-    fig.suptitle(f"{sc.title}: full contact, lift-off and tipping", fontsize=10, y=0.995)
-    finish(fig, ax, path, "")
