@@ -246,6 +246,19 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
                                      "sensitivity": sensitivity,
                                      **{sec.json_key: section_json(sec, runs) for sec in sections()
                                         if sec.json_key}})
+    lines = rows_lines(rows, seconds) + (rules_lines(rules) if rules else []) + chain_lines(chain)
+    if sensitivity:
+        lines += report_lines(sensitivity)
+    for sec in sections():
+        lines += section_lines(sec, runs)
+    text = "\n".join(lines) + "\n"
+    (out / "report.md").write_text(text)
+    return text
+
+
+def rows_lines(rows: list[dict], seconds: float) -> list[str]:
+    """report.md's head: what each kind of evidence means, the table of
+    every row against the paper, and the headline."""
     lines = ["# orthocontact: reproduction of Konyukhov & Schweizerhof (2007)", "",
              f"Every scenario of the paper run through the OrthotropicContact FMU in the rig "
              f"harness ({seconds:.0f} s). Each row says what kind of evidence it is:", ""]
@@ -264,42 +277,43 @@ def reproduction_report(out: Path, runs: list[tuple[Scenario, dict]], rows: list
         lines.append(f"| {r['scenario']} | {r['quantity']}{conv} | {r['kind']} | {_fmt(r['paper'])} "
                      f"{r['unit']} | {_fmt(r['here'])} {r['unit']} | {other} | {tol} | "
                      f"{'yes' if r['match'] else '**NO**'} |")
-    lines += ["", f"**{headline(rows)}.**", ""]
-    if rules:
-        lines += ["## Which rule the experiment supports", "",
-                  f"The aged mat at its extremum (mat angle {rules['angle_deg']:.2f}°, a location "
-                  "computed here: the paper prints none), φ in the paper's convention:", "",
-                  "| | φ [deg] |", "|---|---|",
-                  f"| measured (paper, sec. 4.6) | {rules['measured_phi_deg']:+.2f} |"]
-        for rule, v in rules["rules"].items():
-            lines.append(f"| {rule} rule | {v:+.2f} |")
-        lines += ["", "The coupled rule's value is a round trip (ε1/ε2 was calibrated on it); the "
-                  "associated rule's direction depends on μ1, μ2 only, so its value is a "
-                  f"prediction from the forces: it turns the block the other way, "
-                  f"{abs(rules['rules']['associated'] - rules['measured_phi_deg']):.1f}° from the "
-                  "measurement.", ""]
-        free = rules.get("sign_free")
-        if free:
-            c, a = free["coupled"], free["associated"]
-            lines += ["Free of any sign reading, from the steady closed form: the associated rule's "
-                      f"largest |φ| is {a['peak_abs_phi_deg']:.2f}° at a mat angle of "
-                      f"{a['angle_deg']:.2f}°, against the measured "
-                      f"{abs(rules['measured_phi_deg']):.1f}°; the coupled rule's is "
-                      f"{c['peak_abs_phi_deg']:.2f}° at {c['angle_deg']:.2f}° (a round trip).", ""]
-        lines += SIGN_READING
-    lines += ["## The calibration chain from the measurements", "",
-              "| step | value | from |", "|---|---|---|"]
+    return lines + ["", f"**{headline(rows)}.**", ""]
+
+
+def rules_lines(rules: dict) -> list[str]:
+    """report.md's section on which rule the experiment supports (the aged
+    mat at its extremum under each rule, against the measured angle)."""
+    lines = ["## Which rule the experiment supports", "",
+             f"The aged mat at its extremum (mat angle {rules['angle_deg']:.2f}°, a location "
+             "computed here: the paper prints none), φ in the paper's convention:", "",
+             "| | φ [deg] |", "|---|---|",
+             f"| measured (paper, sec. 4.6) | {rules['measured_phi_deg']:+.2f} |"]
+    for rule, v in rules["rules"].items():
+        lines.append(f"| {rule} rule | {v:+.2f} |")
+    lines += ["", "The coupled rule's value is a round trip (ε1/ε2 was calibrated on it); the "
+              "associated rule's direction depends on μ1, μ2 only, so its value is a "
+              f"prediction from the forces: it turns the block the other way, "
+              f"{abs(rules['rules']['associated'] - rules['measured_phi_deg']):.1f}° from the "
+              "measurement.", ""]
+    free = rules.get("sign_free")
+    if free:
+        c, a = free["coupled"], free["associated"]
+        lines += ["Free of any sign reading, from the steady closed form: the associated rule's "
+                  f"largest |φ| is {a['peak_abs_phi_deg']:.2f}° at a mat angle of "
+                  f"{a['angle_deg']:.2f}°, against the measured "
+                  f"{abs(rules['measured_phi_deg']):.1f}°; the coupled rule's is "
+                  f"{c['peak_abs_phi_deg']:.2f}° at {c['angle_deg']:.2f}° (a round trip).", ""]
+    return lines + SIGN_READING
+
+
+def chain_lines(chain: list[dict]) -> list[str]:
+    """report.md's calibration chain from the measurements."""
+    lines = ["## The calibration chain from the measurements", "",
+             "| step | value | from |", "|---|---|---|"]
     lines += [f"| {c['step']} | {c['value']:.4f} | {c['from']} |" for c in chain]
-    lines += ["", "Unrounded, the chain gives ε1/ε2 = "
-              f"{chain[3]['value']:.4f}; the paper's 1.251 is what its rounded μ give. The "
-              "scenarios use the paper's 1.251.", ""]
-    if sensitivity:
-        lines += report_lines(sensitivity)
-    for sec in sections():
-        lines += section_lines(sec, runs)
-    text = "\n".join(lines) + "\n"
-    (out / "report.md").write_text(text)
-    return text
+    return lines + ["", "Unrounded, the chain gives ε1/ε2 = "
+                    f"{chain[3]['value']:.4f}; the paper's 1.251 is what its rounded μ give. The "
+                    "scenarios use the paper's 1.251.", ""]
 
 
 def section_runs(sec: Section, runs: list[tuple[Scenario, dict]]) -> list[tuple[Scenario, dict]]:
