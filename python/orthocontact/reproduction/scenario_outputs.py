@@ -24,6 +24,25 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
     """sweep.csv, trajectories.csv, three figures; returns the summary.
     draw(fn, *args) draws a figure (default: here and now; a FigureDrawer
     draws them in worker processes)."""
+    write_sweep_tables(sc, res, out)
+    closed_ext = _closed_extremum(sc, res)
+    # Flat when the paper's closed form is: then there is no extremum to show,
+    # however far a short dynamic run has settled.
+    flat = abs(closed_ext["phi_deg"]) < FLAT_DEG
+    draw = draw or draw_here
+    draw(figure_phi, sc, res, out / "phi_vs_angle.png", flat)
+    draw(_figure_paths, sc, res, out / "trajectories.png", "x2")
+    draw(_figure_paths, sc, res, out / "force_vs_travel.png", "drive")
+    summary = sweep_summary(sc, res, closed_ext, flat)
+    summary.update(drive_figures(sc, res))
+    write_json(out / "summary.json", summary)
+    return summary
+
+
+def write_sweep_tables(sc: Scenario, res: SweepResult, out: Path) -> None:
+    """sweep.csv (an angle a row: the axes, phi against the closed form, the
+    drive, each half's angle and the check) and trajectories.csv (the
+    recorded runs' steps)."""
     rows = []
     ch = res.checks
     for i, (a, phi, c, d) in enumerate(zip(res.angles_deg, res.phi_deg, res.phi_closed_deg,
@@ -44,21 +63,15 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
     write_csv(out / "trajectories.csv", ["angle_deg", "t_s", "x1_m", "x2_m", "T1_N", "T2_N",
                                          "drive_N", "contact_state"], traj_rows)
 
-    e = res.extremum
-    closed_ext = _closed_extremum(sc, res)
-    # Flat when the paper's closed form is: then there is no extremum to show,
-    # however far a short dynamic run has settled.
-    flat = abs(closed_ext["phi_deg"]) < FLAT_DEG
-    draw = draw or draw_here
-    draw(figure_phi, sc, res, out / "phi_vs_angle.png", flat)
-    draw(_figure_paths, sc, res, out / "trajectories.png", "x2")
-    draw(_figure_paths, sc, res, out / "force_vs_travel.png", "drive")
 
-    summary = {
+def sweep_summary(sc: Scenario, res: SweepResult, closed_ext: dict, flat: bool) -> dict:
+    """summary.json of a sweep: the extremum (none for a flat curve: the
+    closed form zero everywhere), the closed form's, the deviation, the checks."""
+    e = res.extremum
+    return {
         **sc.head(), "mode": sc.rig.mode,
         "rule": sc.law.rule, "n_angles": int(len(res.angles_deg)), "workers": res.workers,
         "seconds": round(res.seconds, 3),
-        # a flat curve (the closed form is zero everywhere) has no extremum to report
         "extremum": None if flat else {"angle_deg": e["angle_deg"], "phi_deg": e["phi_deg"],
                                        **({"other_rule": e["other_rule"]} if "other_rule" in e else {}),
                                        "steady_sliding": extremum_is_steady(res)},
@@ -72,21 +85,25 @@ def sweep_outputs(sc: Scenario, res: SweepResult, out: Path, draw=None) -> dict:
         "angle_convention": "counterclockwise from X1; phi = atan(dx2/dx1) of the fitted path",
         "checks": checks_summary(res.checks, res.angles_deg, res.phi_deg, res.warning(sc)),
     }
+
+
+def drive_figures(sc: Scenario, res: SweepResult) -> dict:
+    """The mean drive [N] at 0 and 90 deg where the grid has them; with
+    both, and the axes along the mat's, mu1 and mu2 from them (eq. 1)."""
     drives = {}
     for target in (0.0, 90.0):
         hit = np.where(np.abs(res.angles_deg - target) < 1e-9)[0]
         if len(hit):
             drives[f"{target:g}"] = float(res.drive_mean_N[hit[0]])
-    if drives:
-        summary["drive_mean_N"] = drives
-        if math.isclose(sc.geometry.beta_offset_deg % 180.0, 0.0, abs_tol=1e-9) and len(drives) == 2:
-            # Sliding along a friction axis at 0 and 90 deg: eq. (1).
-            r = sc.rig
-            summary["mu_from_drive"] = {
-                "mu1": cf.eq1_mu(drives["0"], r.f_int_N, r.mass_kg, r.g),
-                "mu2": cf.eq1_mu(drives["90"], r.f_int_N, r.mass_kg, r.g)}
-    write_json(out / "summary.json", summary)
-    return summary
+    if not drives:
+        return {}
+    found = {"drive_mean_N": drives}
+    if math.isclose(sc.geometry.beta_offset_deg % 180.0, 0.0, abs_tol=1e-9) and len(drives) == 2:
+        # Sliding along a friction axis at 0 and 90 deg: eq. (1).
+        r = sc.rig
+        found["mu_from_drive"] = {"mu1": cf.eq1_mu(drives["0"], r.f_int_N, r.mass_kg, r.g),
+                                  "mu2": cf.eq1_mu(drives["90"], r.f_int_N, r.mass_kg, r.g)}
+    return found
 
 
 def extremum_is_steady(res: SweepResult) -> bool:
