@@ -27,8 +27,9 @@ import numpy as np
 from ..closed_forms import cell_centres, of_law, steady_phi_deg
 from ..experiment import SCHEMA, RunOptions, Scenario, ScenarioError, part
 from ..fmu import PATCH_MODEL, PatchGeometry
-from ..output import curve_style, draw_here, finish, pyplot, swept_label, write_csv, write_json
+from ..output import draw_here, write_csv, write_json
 from ..rig import planar
+from .planar_figures import figure_cells, figure_twist, figure_yaw_angle, figure_yaw_time
 
 # The towed block's steady yaw: after tow.duration_s the transient is far
 # below this (tests/rig/test_planar.py: 1e-9 rad after 20 s); a larger
@@ -60,9 +61,6 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     the twist does not reach (the plateau starting past its end angle) is
     "not checked", with the angle it needs, not a failure."""
     body, tw = body_of(sc), sc.twist
-    g = body.patch
-    r_mean = (g.length + g.width) / 4.0
-    r_min = innermost_radius(g)
     rows, runs, checks, cells, said = [], {}, [], {}, []
     version = _version(fmu_path)
     for rule in tw["rules"]:
@@ -73,27 +71,7 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
         said.append(where)
         if states is not None:
             cells[rule] = (res, states)
-        k = planar.twist_stiffness(p, g)
-        slope = float(-res.Mz[0] / res.theta[0])
-        # a grid of one cell has none off the centre: no cell moves, no torque (k = 0, plateau 0)
-        onset = _elastic_length(p, body) / r_min if r_min else 0.0
-        past = res.theta >= PLATEAU_FROM * onset
-        plateau = planar.twist_plateau(p, body, res.theta)
-        tol = _elastic_length(p, body) / r_mean
-        rel = relative_error(res.Mz[past], plateau[past])
-        stuck_first = bool(res.contact_state[0] == 1)
-        check = {
-            "rule": rule, "k_N_m_rad": k, "slope_N_m_rad": slope,
-            "slope_relative_error": float(relative_error(slope, k)),
-            # the first step's theta is the first-order term's bound (rig.planar)
-            "slope_tolerance": 3 * float(res.theta[0]), "stuck_at_first_step": stuck_first,
-            "plateau_from_deg": math.degrees(PLATEAU_FROM * onset),
-            "plateau_max_relative_error": float(rel.max()) if rel.size else None,
-            "plateau_tolerance": tol, "theta_end_deg": math.degrees(res.theta[-1]),
-            "Mz_end_N_m": float(res.Mz[-1]), "Mz_full_slip_end_N_m": float(plateau[-1])}
-        check["plateau_checked"] = bool(rel.size)
-        check["ok"] = bool(stuck_first and check["slope_relative_error"] <= check["slope_tolerance"]
-                           and (not rel.size or rel.max() <= tol))
+        check, plateau, k = twist_check(rule, p, body, res)
         checks.append(check)
         runs[rule] = (res, plateau, k)
         rows += [(rule, math.degrees(t), float(m), float(c), float(f), int(s))
@@ -101,12 +79,12 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
                                           res.contact_state)]
     write_csv(out / "twist.csv", ["rule", "theta_deg", "Mz_N_m", "Mz_full_slip_N_m", "slip_fraction",
                                   "contact_state"], rows)
-    (draw or draw_here)(_figure_twist, sc, runs, out / "twist.png")
+    (draw or draw_here)(figure_twist, sc, runs, out / "twist.png")
     if len(cells) == len(tw["rules"]):
         cell_rows = _cell_rows(body.patch, cells)
         write_csv(out / "twist_cells.csv", ["rule", "instant", "step", "theta_deg", "i", "j", "x1_m",
                                             "x2_m", "cell_state"], cell_rows)
-        (draw or draw_here)(_figure_cells, sc, body.patch, cell_rows, out / "twist_cells.png")
+        (draw or draw_here)(figure_cells, sc, body.patch, cell_rows, out / "twist_cells.png")
         cells_summary = {"from": said[0], "files": ["twist_cells.csv", "twist_cells.png"]}
     else:
         cells_summary = {"from": None, "why": next(w for r, w in zip(tw["rules"], said) if r not in cells)}
@@ -119,6 +97,39 @@ def twist_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
                                    "on the body"}
     write_json(out / "summary.json", summary)
     return summary
+
+
+def twist_check(rule: str, p, body, res) -> tuple:
+    """A twist run against its closed forms: its first step's slope against
+    the grid's torsional stiffness k [N m/rad], stuck at that step, and
+    the torque past PLATEAU_FROM times the angle where the innermost cell
+    slides against the full-slip plateau.  Returns (the check, the plateau
+    at each step [N m], k)."""
+    g = body.patch
+    r_mean = (g.length + g.width) / 4.0
+    r_min = innermost_radius(g)
+    k = planar.twist_stiffness(p, g)
+    slope = float(-res.Mz[0] / res.theta[0])
+    # a grid of one cell has none off the centre: no cell moves, no torque (k = 0, plateau 0)
+    onset = _elastic_length(p, body) / r_min if r_min else 0.0
+    past = res.theta >= PLATEAU_FROM * onset
+    plateau = planar.twist_plateau(p, body, res.theta)
+    tol = _elastic_length(p, body) / r_mean
+    rel = relative_error(res.Mz[past], plateau[past])
+    stuck_first = bool(res.contact_state[0] == 1)
+    check = {
+        "rule": rule, "k_N_m_rad": k, "slope_N_m_rad": slope,
+        "slope_relative_error": float(relative_error(slope, k)),
+        # the first step's theta is the first-order term's bound (rig.planar)
+        "slope_tolerance": 3 * float(res.theta[0]), "stuck_at_first_step": stuck_first,
+        "plateau_from_deg": math.degrees(PLATEAU_FROM * onset),
+        "plateau_max_relative_error": float(rel.max()) if rel.size else None,
+        "plateau_tolerance": tol, "theta_end_deg": math.degrees(res.theta[-1]),
+        "Mz_end_N_m": float(res.Mz[-1]), "Mz_full_slip_end_N_m": float(plateau[-1])}
+    check["plateau_checked"] = bool(rel.size)
+    check["ok"] = bool(stuck_first and check["slope_relative_error"] <= check["slope_tolerance"]
+                       and (not rel.size or rel.max() <= tol))
+    return check, plateau, k
 
 
 @part("twist", "run")
@@ -261,8 +272,8 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
                                         "phi_deg", "minus_phi_turned_by_yaw_deg"], rows)
     write_csv(out / "yaw_vs_time.csv", ["rule", "angle_deg", "t_s", "yaw_deg"], time_rows)
     draw = draw or draw_here
-    draw(_figure_yaw_angle, sc, rows, out / "yaw_vs_angle.png")
-    draw(_figure_yaw_time, sc, records, out / "yaw_vs_time.png")
+    draw(figure_yaw_angle, sc, rows, out / "yaw_vs_angle.png")
+    draw(figure_yaw_time, sc, records, out / "yaw_vs_time.png")
     warning = None
     if worst > YAW_TOL_DEG:
         warning = (f"{sc.name}: the towed block's yaw is {worst:.3g} deg off its steady closed form "
@@ -290,101 +301,3 @@ def towed_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
 def _version(fmu_path) -> int:
     from ..fmu import fmi_version_of
     return fmi_version_of(fmu_path)
-
-
-def _figure_twist(sc: Scenario, runs: dict, path: Path) -> None:
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    top = 0.0
-    for i, (rule, (res, plateau, k)) in enumerate(runs.items()):
-        th = np.degrees(res.theta)
-        ax.plot(th, -res.Mz, color=f"C{i}", label=f"patch FMU, {rule}")
-        ax.plot(th, -plateau, "--", color=f"C{i}", lw=1, label=f"full slip (closed form), {rule}")
-        top = max(top, float(np.max(-res.Mz)))
-        if i == 0:
-            ax.plot(th, k * res.theta, ":", color="0.3", label=f"stick: k θ, k = {k:.4g} N·m/rad")
-    lowest = min(float(np.min(-res.Mz)) for res, _, _ in runs.values())
-    if lowest > 0:
-        # log-log: the stick line has slope 1, the plateau is flat, both readable
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        from matplotlib.ticker import FormatStrFormatter
-        for axis in (ax.xaxis, ax.yaxis):   # plain numbers: short tick labels
-            axis.set_major_formatter(FormatStrFormatter("%g"))
-            axis.set_minor_formatter(FormatStrFormatter(""))
-        ax.set_ylim(lowest / 2, 2 * top)
-    # else linear: a torque of 0 (a single cell, on the centre, never moves) has no logarithm
-    ax.set_xlabel("body angle θ [deg]")
-    ax.set_ylabel("torque to turn the body, −Mz [N·m]")
-    finish(fig, ax, path, f"{sc.title}: twist", swept_label(sc) + " at a = 0")
-
-
-def _figure_yaw_angle(sc: Scenario, rows: list, path: Path) -> None:
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    rules = list(dict.fromkeys(r[0] for r in rows))
-    fine = np.linspace(min(r[1] for r in rows), max(r[1] for r in rows), 181)
-    for i, rule in enumerate(rules):
-        pts = [r for r in rows if r[0] == rule]
-        closed = [math.degrees(planar.steady_yaw(sc.params_at(a, rule))) for a in fine]
-        phi = [of_law(steady_phi_deg, p, p.alpha, p.beta) for p in (sc.params_at(a, rule) for a in fine)]
-        ax.plot(fine, closed, "-", color=f"C{i}", lw=1, label=f"{rule}: yaw, closed form")
-        ax.plot([r[1] for r in pts], [r[2] for r in pts], "o", ms=4, color=f"C{i}",
-                label=f"{rule}: yaw, patch FMU")
-        ax.plot(fine, phi, ":", color=f"C{i}", label=f"{rule}: paper's φ (force along X1)")
-    ax.set_xlabel("mat angle a [deg]")
-    ax.set_ylabel("angle [deg]")
-    finish(fig, ax, path, f"{sc.title}: steady yaw of the towed block", swept_label(sc))
-
-
-def _figure_yaw_time(sc: Scenario, records: dict, path: Path) -> None:
-    plt = pyplot()
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for i, ((rule, a), res) in enumerate(records.items()):
-        ax.plot(res.t, np.degrees(res.theta), label=f"{rule[:5]}., a = {a:g}°",
-                **curve_style(i, len(res.t), len(records)))
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("yaw θ [deg]")
-    finish(fig, ax, path, f"{sc.title}: yaw against time", swept_label(sc), outside=True)
-
-
-def _figure_cells(sc: Scenario, g: PatchGeometry, rows: list, path: Path) -> None:
-    from matplotlib.colors import BoundaryNorm, ListedColormap
-    from matplotlib.patches import Rectangle
-    plt = pyplot()
-    # one row of panels per rule, rules whose cells are the same at the
-    # same instants sharing one
-    shown: dict = {}
-    for rule in dict.fromkeys(r[0] for r in rows):
-        mine = tuple(r[1:] for r in rows if r[0] == rule)
-        shown.setdefault(mine, []).append(rule)
-    panels = [(", ".join(rules), *key) for mine, rules in shown.items()
-              for key in dict.fromkeys(r[:3] for r in mine)]
-    rows = [(", ".join(rules), *r) for mine, rules in shown.items() for r in mine]
-    rules = list(dict.fromkeys(p[0] for p in panels))
-    ncol = max(sum(p[0] == rule for p in panels) for rule in rules)
-    colours = ("0.8", "C0", "C3")   # open, stick, slip
-    cmap, norm = ListedColormap(colours), BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3)
-    fig = plt.figure(figsize=(2.4 * ncol + 2.8, 1.6 * len(rules) + 1.2))
-    grid = fig.add_gridspec(len(rules) + 1, ncol, height_ratios=[0.02] + [1] * len(rules),
-                            hspace=0.75, wspace=0.3)
-    x = np.linspace(-g.length / 2, g.length / 2, g.n1 + 1) * 1e3
-    y = np.linspace(-g.width / 2, g.width / 2, g.n2 + 1) * 1e3
-    for r, rule in enumerate(rules):
-        for c, (_, name, k, theta) in enumerate(p for p in panels if p[0] == rule):
-            ax = fig.add_subplot(grid[r + 1, c])
-            state = np.array([q[8] for q in rows if q[:3] == (rule, name, k)]).reshape(g.n1, g.n2)
-            ax.pcolormesh(x, y, state.T, cmap=cmap, norm=norm, edgecolors="white", linewidth=0.5)
-            ax.set_aspect("equal")
-            ax.set_title(f"{name}\nθ = {theta:.3g}°", fontsize=9, y=1.0)
-            ax.tick_params(labelsize=7)
-            ax.set_xlabel("x1 [mm]", fontsize=8)
-            if c == 0:
-                ax.set_ylabel(f"{rule}\nx2 [mm]", fontsize=8)
-    # the figure's title and legend on a strip above the panels
-    strip = fig.add_subplot(grid[0, :])
-    strip.axis("off")
-    for colour, what in zip(colours, ("open", "stick", "slip")):
-        strip.add_patch(Rectangle((0, 0), 0, 0, facecolor=colour, label=what))
-    finish(fig, strip, path, f"{sc.title}: the cells during the twist (body frame, θ counterclockwise)",
-           f"α = {sc.geometry.alpha_offset_deg:g}°, β = {sc.geometry.beta_offset_deg:g}°", outside=True)

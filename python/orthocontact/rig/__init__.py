@@ -13,8 +13,9 @@ from .checks import (
 )
 from .compiled import CMaster
 from .harness import MODES, Rig, RigResult, RunFigures, run
+from .planar import steady_yaw
 from .pushed import fit_steps_problem
 
 __all__ = ["MODES", "Rig", "RigResult", "RunFigures", "run", "SETTLE_TOL_DEG", "STEADY_TOL_DEG", "RunChecks",
            "angle_list", "check_runs", "remedy", "system_settling_warning", "warning_line", "CMaster",
-           "fit_steps_problem"]
+           "fit_steps_problem", "steady_yaw"]
