@@ -102,46 +102,16 @@ def fit_figure(res, path: Path):
                              layout="constrained")
     grid = np.linspace(0, 90, 181)
     model = FittedModel(rig, v)
-
-    def paper_phi(eps_ratio):
-        # the paper's steady angle, eq. (10)/(23): no strip, no velocity
-        al, be = rig.axes(grid)
-        return np.degrees(np.arctan(cf.steady_tan_phi(v["mu1"], v["mu2"], eps_ratio, 1.0, al, be, rig.rule)))
     for ax, p in zip(axes[0], panels):
         if p in ("forces", "angles"):
-            pts = d.forces if p == "forces" else d.angles
-            vel = d.velocities_of_forces() if p == "forces" else d.velocities_of_angles()
-            speeds = np.unique(np.round(vel, 9))
-            for k, u in enumerate(speeds):
-                at = np.isclose(vel, u, rtol=0, atol=1e-9)
-                colour = f"C{k}"
-                tag = f" at {u:g} m/s" if len(speeds) > 1 else ""
-                ax.plot(pts[at, 0], pts[at, 1], "o", ms=4, color=colour, alpha=0.7, label="data" + tag)
-                curve = model.forces(grid, u) if p == "forces" else model.angles(grid, u)
-                if curve is not None:
-                    ax.plot(grid, curve, "-", color=colour, label=f"fitted model{tag}{model.label(p)}")
+            data_and_model(ax, p, d, model, grid)
         if p == "forces":
             ax.set_ylabel("driving force [N]")
         elif p == "angles":
-            for key, style, lab in (("max_rule", ":", "the paper's approximation (maximum rule)"),
-                                    ("eq41", "--", "the paper's eq. (41)")):
-                src = res.max_rule if key == "max_rule" else (res.eq40 or {}).get("eq41")
-                if src and "eps_ratio" in src and "mu1" in v and math.isfinite(src["eps_ratio"]):
-                    ax.plot(grid, paper_phi(src["eps_ratio"]), style, color="0.35" if key == "max_rule"
-                            else "C3", label=f"{lab}: ε1/ε2={src['eps_ratio']:.4f}")
+            paper_approximations(ax, res, grid)
             ax.set_ylabel("trajectory angle φ [deg]\n(counterclockwise)")
         else:
-            ax.plot(d.ramp[:, 0] * 1e3, d.ramp[:, 1], "o", ms=3, label="data")
-            if "eps2" in v:
-                al, be = rig.axes(rig.ramp_angle_deg)
-                k = cf.stick_stiffness_x1(v.get("eps_ratio", 1.0) * v["eps2"], v["eps2"], al)
-                top = cf.steady_drive_force(v["mu1"], v["mu2"], be, 0.0, rig.mass_kg, rig.g) \
-                    if "mu1" in v else float(np.max(d.ramp[:, 1]) - model.f_int)
-                xs = np.linspace(0, d.ramp[:, 0].max(), 200)
-                ax.plot(xs * 1e3, model.f_int + np.minimum(k * xs, top), "-",
-                        label=f"fitted model: k={k:.4g} N/m")
-            ax.set_xlabel("travel x1 [mm]")
-            ax.set_ylabel("driving force [N]")
+            ramp_panel(ax, d, v, rig, model)
         if p != "ramp":
             ax.set_xlabel(f"{SWEPT_ANGLE} [deg]")
         ax.grid(alpha=0.3)
@@ -150,6 +120,53 @@ def fit_figure(res, path: Path):
     fig.suptitle(f"orthocontact identify: {d.folder.name} ({model.describe()})", fontsize=10)
     fig.savefig(path, dpi=120, bbox_inches="tight")
     plt.close(fig)
+
+
+def data_and_model(ax, p: str, d, model: FittedModel, grid) -> None:
+    """The forces' or the angles' panel: the data and the fitted model's
+    curve at each velocity measured."""
+    pts = d.forces if p == "forces" else d.angles
+    vel = d.velocities_of_forces() if p == "forces" else d.velocities_of_angles()
+    speeds = np.unique(np.round(vel, 9))
+    for k, u in enumerate(speeds):
+        at = np.isclose(vel, u, rtol=0, atol=1e-9)
+        colour = f"C{k}"
+        tag = f" at {u:g} m/s" if len(speeds) > 1 else ""
+        ax.plot(pts[at, 0], pts[at, 1], "o", ms=4, color=colour, alpha=0.7, label="data" + tag)
+        curve = model.forces(grid, u) if p == "forces" else model.angles(grid, u)
+        if curve is not None:
+            ax.plot(grid, curve, "-", color=colour, label=f"fitted model{tag}{model.label(p)}")
+
+
+def paper_approximations(ax, res, grid) -> None:
+    """On the angles' panel, the paper's steady angle (eq. (10)/(23): no
+    strip, no velocity) at the eps1/eps2 of the maximum rule and of eq. (41)."""
+    v, rig = res.fit.values, res.data.rig
+
+    def paper_phi(eps_ratio):
+        al, be = rig.axes(grid)
+        return np.degrees(np.arctan(cf.steady_tan_phi(v["mu1"], v["mu2"], eps_ratio, 1.0, al, be, rig.rule)))
+    for key, style, lab in (("max_rule", ":", "the paper's approximation (maximum rule)"),
+                            ("eq41", "--", "the paper's eq. (41)")):
+        src = res.max_rule if key == "max_rule" else (res.eq40 or {}).get("eq41")
+        if src and "eps_ratio" in src and "mu1" in v and math.isfinite(src["eps_ratio"]):
+            ax.plot(grid, paper_phi(src["eps_ratio"]), style, color="0.35" if key == "max_rule"
+                    else "C3", label=f"{lab}: ε1/ε2={src['eps_ratio']:.4f}")
+
+
+def ramp_panel(ax, d, v: dict, rig, model: FittedModel) -> None:
+    """The ramp's panel: its data and the fitted stick line up to sliding."""
+    ax.plot(d.ramp[:, 0] * 1e3, d.ramp[:, 1], "o", ms=3, label="data")
+    if "eps2" in v:
+        al, be = rig.axes(rig.ramp_angle_deg)
+        k = cf.stick_stiffness_x1(v.get("eps_ratio", 1.0) * v["eps2"], v["eps2"], al)
+        top = cf.steady_drive_force(v["mu1"], v["mu2"], be, 0.0, rig.mass_kg, rig.g) \
+            if "mu1" in v else float(np.max(d.ramp[:, 1]) - model.f_int)
+        xs = np.linspace(0, d.ramp[:, 0].max(), 200)
+        ax.plot(xs * 1e3, model.f_int + np.minimum(k * xs, top), "-",
+                label=f"fitted model: k={k:.4g} N/m")
+    ax.set_xlabel("travel x1 [mm]")
+    ax.set_ylabel("driving force [N]")
 
 
 def unit_of(name: str) -> str:
