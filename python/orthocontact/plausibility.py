@@ -36,9 +36,11 @@ class Quantity:
     zero_allowed: bool = False
 
 
+# A length or a stiffness typed in another unit: the factor that brings it into the usual range.
+MM_CM, N_MM = ((0.001, "mm"), (0.01, "cm")), ((1e3, "N/mm"),)
+
 QUANTITIES = {
-    "velocity_m_s": Quantity("m/s", (0.0, 20.0), (1e-3, 2.0),
-                             "a lab rig's carriage moves at 0.001-2 m/s",
+    "velocity_m_s": Quantity("m/s", (0.0, 20.0), (1e-3, 2.0), "a lab rig's carriage moves at 0.001-2 m/s",
                              ((0.01, "cm/s"), (0.001, "mm/s"))),
     # below a milligram no block can be on a rig, and a smaller mass underflows
     # what the harnesses derive from it (a patch's inertia, a pad's tolerances)
@@ -48,8 +50,7 @@ QUANTITIES = {
                   ((0.01, "cm/s^2"),)),
     "f_int_N": Quantity("N", (0.0, 1e4), (0.0, 200.0), "a carriage's internal resistance is 0-200 N",
                         zero_allowed=True),
-    "travel_m": Quantity("m", (0.0, 100.0), (0.005, 10.0), "a lab rig's travel is 0.005-10 m",
-                         ((0.001, "mm"), (0.01, "cm"))),
+    "travel_m": Quantity("m", (0.0, 100.0), (0.005, 10.0), "a lab rig's travel is 0.005-10 m", MM_CM),
     "step_s": Quantity("s", (0.0, 0.1), (1e-7, 1e-2), "a communication step of 1e-7-1e-2 s"),
     "mu_strip": Quantity("-", (0.0, 5.0), (0.0, 1.0), "a Teflon strip's friction coefficient is 0-1",
                          zero_allowed=True),
@@ -57,35 +58,26 @@ QUANTITIES = {
                         zero_allowed=True),
     "mu1": Quantity("-", (0.0, 10.0), (0.01, 3.0), "friction coefficients are 0.01-3"),
     "mu2": Quantity("-", (0.0, 10.0), (0.01, 3.0), "friction coefficients are 0.01-3"),
-    "eps1": Quantity("N/m", (0.0, 1e12), (10.0, 1e9), "a contact's tangential stiffness is 10-1e9 N/m",
-                     ((1e3, "N/mm"),)),
-    "eps2": Quantity("N/m", (0.0, 1e12), (10.0, 1e9), "a contact's tangential stiffness is 10-1e9 N/m",
-                     ((1e3, "N/mm"),)),
+    "eps1": Quantity("N/m", (0.0, 1e12), (10.0, 1e9), "a contact's tangential stiffness is 10-1e9 N/m", N_MM),
+    "eps2": Quantity("N/m", (0.0, 1e12), (10.0, 1e9), "a contact's tangential stiffness is 10-1e9 N/m", N_MM),
     "eps2_nominal_N_m": Quantity("N/m", (0.0, 1e12), (10.0, 1e9),
-                                 "a contact's tangential stiffness is 10-1e9 N/m", ((1e3, "N/mm"),)),
+                                 "a contact's tangential stiffness is 10-1e9 N/m", N_MM),
     "eps_ratio": Quantity("-", (0.0, 1e6), (1e-3, 1e3), "stiffness ratios eps1/eps2 are 1e-3-1e3"),
     # a ramp run's stick stiffness dF/dx1 (raw recordings): a stiffness of the contact along x1
     "stiffness_N_m": Quantity("N/m", (0.0, 1e12), (10.0, 1e9),
                               "a ramp's stick stiffness dF/dx1 is 10-1e9 N/m",
                               ((1e3, "positions in mm or forces in kN"),)),
-    # the contact patch (scenario kinds twist and towed_block): its sides, the tow's pin (its
-    # distance ahead of the block's centre) and the twist's rate
-    "length_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a block's contact patch is 1 mm-1 m long",
-                         ((0.001, "mm"), (0.01, "cm"))),
-    "width_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a block's contact patch is 1 mm-1 m wide",
-                        ((0.001, "mm"), (0.01, "cm"))),
+    # the contact patch (twist, towed_block): its sides, the tow's pin ahead of its centre, the twist's rate
+    "length_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a block's contact patch is 1 mm-1 m long", MM_CM),
+    "width_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a block's contact patch is 1 mm-1 m wide", MM_CM),
     "pin_m": Quantity("m", (0.0, 10.0), (1e-3, 1.0), "a tow's pin is 1 mm-1 m ahead of the block's centre",
-                      ((0.001, "mm"), (0.01, "cm"))),
+                      MM_CM),
     "rate_deg_s": Quantity("deg/s", (0.0, 1e4), (1e-2, 1e3), "a twist turns at 0.01-1000 deg/s"),
-    # the pad (scenario kind pushed_block): its Winkler foundation, a layer's modulus over its
-    # thickness (a gel's 1 kPa over 10 cm is 1e4, steel's 200 GPa over 1 mm 2e14), and the push's
-    # heights above the contact and carriage step
-    "kn_N_m3": Quantity("N/m^3", (1e3, 1e16), (1e4, 1e15),
+    "kn_N_m3": Quantity("N/m^3", (1e3, 1e16), (1e4, 1e15),   # a gel's 1 kPa over 10 cm: 1e4; steel over 1 mm
                         "a pad's foundation (a layer's modulus over its thickness) is 1e4-1e15 N/m^3"),
-    "heights_m": Quantity("m", (0.0, 10.0), (0.0, 1.0), "a push's height above the contact is 0-1 m",
-                          ((0.001, "mm"), (0.01, "cm")), zero_allowed=True),
-    "step_m": Quantity("m", (0.0, 1.0), (1e-6, 1e-2), "a push's carriage step is 1e-6-1e-2 m",
-                       ((0.001, "mm"), (0.01, "cm"))),
+    "heights_m": Quantity("m", (0.0, 10.0), (0.0, 1.0), "a push's height above the contact is 0-1 m", MM_CM,
+                          zero_allowed=True),
+    "step_m": Quantity("m", (0.0, 1.0), (1e-6, 1e-2), "a push's carriage step is 1e-6-1e-2 m", MM_CM),
 }
 
 
