@@ -4,7 +4,7 @@
 # and the fast tier for every change:
 #   make check       set up and run the law, the FMUs, the rig and the CLI's core
 #                    (ruff check, release C tests, pytest -m "not slow"): under 2 minutes
-.PHONY: setup reproduce test check bench fmus crosscheck docs generated clean
+.PHONY: setup reproduce test check bench fmus generated clean
 
 setup:
 	tools/bootstrap.sh
@@ -26,26 +26,25 @@ bench: setup
 fmus:
 	tools/build_fmus.sh
 
-# Regenerates the cross-check files under cross-check/ from the FMUs.
-crosscheck: setup
-	.venv/bin/python tools/make_crosscheck.py
-
-# Regenerates docs/reference/variables.md (from the variable tables, through the
-# installed package's manifests and FMUs: hence setup, which rebuilds what changed)
-# and docs/reference/cli.md (from the parser); tests/contracts/test_reference_docs.py
-# fails while either differs from what this writes.  Also the contact patch's
-# and pad's guides' figures (tools/make_patch_figures.py, from the bundled scenarios)
-# and the experiment design's (tools/make_design_figure.py).
-docs: setup
+# Every generated file, in one command, from the variable tables, the parser
+# and the sources, after the set-up (which rebuilds the FMUs and the manifests
+# the build generates from the tables): fmu/generated.py and fmu/tables.json
+# (tools/make_generated.py: the one way the tables reach Python), the
+# repository's model descriptions (CMake's update_model_description), the
+# reference pages (docs/reference/variables.md, cli.md and the generated
+# blocks of the others: tools/make_reference.py), the guides' figures
+# (tools/make_patch_figures.py, tools/make_design_figure.py) and the FMI
+# cross-check files (tools/make_crosscheck.py).  Each test of a generated
+# file fails while it differs, naming this command.
+generated: setup
+	.venv/bin/python tools/make_generated.py
+	cmake -S . -B build/ctest-release -DOC_BUILD_TESTS=ON -DCMAKE_BUILD_TYPE=Release \
+	  -DFMI_HEADERS_DIR="$$(.venv/bin/python -c 'import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))')" >/dev/null
+	cmake --build build/ctest-release --target update_model_description >/dev/null
 	.venv/bin/python tools/make_reference.py
 	.venv/bin/python tools/make_patch_figures.py
 	.venv/bin/python tools/make_design_figure.py
-
-# Regenerates python/orthocontact/fmu/generated.py (ContactParams, the law's and
-# the patch's rows) from the variable tables, through the installed manifests:
-# hence setup.  tests/fmu/test_generated.py fails while it differs from what this writes.
-generated: setup
-	.venv/bin/python tools/make_generated.py
+	.venv/bin/python tools/make_crosscheck.py
 
 clean:
 	rm -rf build results .venv

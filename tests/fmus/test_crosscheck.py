@@ -45,7 +45,7 @@ def _crosscheck_dir(version, model):
     found = sorted((ROOT / "cross-check" / "fmus" / f"{version}.0" / "cs" / platform /
                     "orthocontact").glob(f"*/{model}"),
                    key=lambda d: tuple(int(x) for x in d.parent.name.split(".") if x.isdigit()))
-    assert found, f"cross-check files of {model} missing (make crosscheck)"
+    assert found, f"cross-check files of {model} missing (make generated)"
     return found[-1]
 
 
