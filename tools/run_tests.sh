@@ -76,7 +76,8 @@ for variant in "${variants[@]}"; do
   echo "== C unit tests ($variant) =="
   cmake -S . -B "build/ctest-$variant" "${flags[@]}" >/dev/null
   cmake --build "build/ctest-$variant" -j2 >/dev/null
-  (cd "build/ctest-$variant" && ctest --output-on-failure)
+  # both cores: the tests are independent processes (the sanitized ones take most of it)
+  (cd "build/ctest-$variant" && ctest --output-on-failure -j2)
 done
 # pytest's configuration: pyproject.toml.  Its summary lists the optional
 # parts; every one is required in `make test` (and wherever CI=true).
