@@ -126,6 +126,17 @@ static void dependencies(FILE *f, const char *output, int init, int by_index) {
     fputc('"', f);
 }
 
+/* FMI 2.0's Unknown of every output, with its dependencies in step mode
+ * (initial 0: <Outputs>) or in initialization (1: <InitialUnknowns>). */
+static void fmi2_unknowns(FILE *f, int initial) {
+    for (int i = 0; i < NROWS; ++i)
+        if (is(ROWS[i].causality, "output")) {
+            fprintf(f, "      <Unknown index=\"%d\"", i + 1);
+            dependencies(f, ROWS[i].name, initial, 1);
+            fputs("/>\n", f);
+        }
+}
+
 void fmi2(FILE *f, const char *token) {
     header(f, "2.0");
     fprintf(f, "  guid=\"%s\"\n", token);
@@ -155,19 +166,9 @@ void fmi2(FILE *f, const char *token) {
         fputs("/>\n    </ScalarVariable>\n", f);
     }
     fputs("  </ModelVariables>\n\n  <ModelStructure>\n    <Outputs>\n", f);
-    for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "output")) {
-            fprintf(f, "      <Unknown index=\"%d\"", i + 1);
-            dependencies(f, ROWS[i].name, 0, 1);
-            fputs("/>\n", f);
-        }
+    fmi2_unknowns(f, 0);
     fputs("    </Outputs>\n    <InitialUnknowns>\n", f);
-    for (int i = 0; i < NROWS; ++i)
-        if (is(ROWS[i].causality, "output")) {
-            fprintf(f, "      <Unknown index=\"%d\"", i + 1);
-            dependencies(f, ROWS[i].name, 1, 1);
-            fputs("/>\n", f);
-        }
+    fmi2_unknowns(f, 1);
     fputs("    </InitialUnknowns>\n  </ModelStructure>\n\n</fmiModelDescription>\n", f);
 }
 
