@@ -92,12 +92,10 @@ static pad_field field_of(const pad_model *m, const pad_pose *ref) {
     F.dgb[2][0] = c;
     F.dgb[2][1] = -s;
     F.df0 = k;
-    F.dg[0][0] = k * (-s * m->phi[1] - c * m->phi[0]);
-    F.dg[0][1] = k * (-c * m->phi[1] + s * m->phi[0]);
-    F.dg[1][0] = k * -s;
-    F.dg[1][1] = k * -c;
-    F.dg[2][0] = k * c;
-    F.dg[2][1] = k * -s;
+    for (int q = 0; q < 3; ++q) {
+        F.dg[q][0] = k * F.dgb[q][0];
+        F.dg[q][1] = k * F.dgb[q][1];
+    }
     return F;
 }
 
@@ -132,37 +130,20 @@ static void grid_of(const cells_setup *g, pad_grid *G) {
  * the area that presses. */
 typedef struct {
     double Fn, mb[2], contact_fraction;
-    double damper; /* the damper's work in the step [J] (damper_work) */
+    double damper; /* the damper's work in the step [J] (change_squared) */
 } pad_normal;
 
 /* The integral of dd_r^2 over a cell's pressed part (moments M about its
- * centre r), dd_r = dd + ddg . r the approach's change over the step. */
+ * centre r), dd_r = dd + ddg . r the approach's change over the step.  The
+ * damper's work on the body over the step [J] is kn a times its sum over
+ * the cells: its pressure dn dd_r/h = kn a dd_r over the change dd_r on the
+ * part that presses (>= 0); where the body leaves the layer faster than it
+ * recovers (p clipped at 0) nothing acts on the body. */
 static double change_squared(const pad_field *F, const double r[2], const pad_moments *M) {
     const double c = (F->dd + F->ddg[0] * r[0]) + F->ddg[1] * r[1];
     const double *g = F->ddg;
     return c * c * M->area + 2.0 * c * (g[0] * M->m1[0] + g[1] * M->m1[1]) +
            (g[0] * g[0] * M->m2[0] + 2.0 * g[0] * g[1] * M->m2[1] + g[1] * g[1] * M->m2[2]);
-}
-
-/* The damper's work on the body over the step [J]: its pressure dn
- * dd_r/h = kn a dd_r over the approach's change dd_r, on the part that
- * presses: kn a times the integral of dd_r^2 there (>= 0).  Where the body
- * leaves the layer faster than it recovers (p clipped at 0) nothing acts on
- * the body.  Without damping 0. */
-static double damper_work(const pad_model *m, const pad_field *F) {
-    if (!F->damped) return 0.0;
-    const cells_setup *g = &m->g;
-    const double hx = g->length / (2.0 * g->n[0]), hy = g->width / (2.0 * g->n[1]);
-    double sum = 0.0;
-    for (int c = 0, n = cells_count(g); c < n; ++c) {
-        const double r[2] = {cells_coordinate(c % g->n[0], g->n[0]) * g->length,
-                             cells_coordinate(c / g->n[0], g->n[1]) * g->width};
-        const double e = (F->f0 + F->g[0] * r[0]) + F->g[1] * r[1];
-        pad_moments M;
-        pressed_part(F, r[0], r[1], e, hx, hy, &M, NULL);
-        sum += change_squared(F, r, &M);
-    }
-    return m->kn * F->a * sum;
 }
 
 /* Every cell's normal force Nc[c] [N] and their sums: a cell's force kn
@@ -191,16 +172,21 @@ static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], p
         S->mb[0] = kn * F->g[0] * (W * L * L * L / 12.0);
         S->mb[1] = kn * F->g[1] * (L * W * W * W / 12.0);
         S->contact_fraction = 1.0;
-        S->damper = damper_work(m, F);
+        /* the whole rectangle's integral of dd_r^2 (dd_r linear) */
+        S->damper = kn * F->a *
+                    (L * W * F->dd * F->dd + F->ddg[0] * F->ddg[0] * (W * L * L * L / 12.0) +
+                     F->ddg[1] * F->ddg[1] * (L * W * W * W / 12.0));
         return;
     }
-    double Fn = 0.0, mx = 0.0, my = 0.0, full = 0.0, part = 0.0;
+    double Fn = 0.0, mx = 0.0, my = 0.0, full = 0.0, part = 0.0, damper = 0.0;
     for (int j = 0, c = 0; j < n2; ++j) {
         double row_N = 0.0, row_my = 0.0; /* a row's cells share y: its force's moment once */
         for (int i = 0; i < n1; ++i, ++c) {
             const double e = ex[i] + ey[j];
             pad_moments M;
-            if (pressed_part(F, G.x[i], G.y[j], e, G.hx, G.hy, &M, NULL)) {
+            const int whole = pressed_part(F, G.x[i], G.y[j], e, G.hx, G.hy, &M, NULL);
+            if (F->damped) damper += change_squared(F, (const double[2]){G.x[i], G.y[j]}, &M);
+            if (whole) {
                 const double N = kA * e;
                 Nc[c] = N;
                 row_N += N;
@@ -225,7 +211,7 @@ static void normal_forces(const pad_model *m, const pad_field *F, double Nc[], p
     S->mb[0] = mx;
     S->mb[1] = my;
     S->contact_fraction = (full + part) / (double)cells_count(g);
-    S->damper = damper_work(m, F);
+    S->damper = kn * F->a * damper;
 }
 
 /* (M1, M2) of a first moment in body axes: turned into the surface's, a
@@ -352,6 +338,27 @@ static pad_cell pad_cell_of(const pad_model *m, const pad_field *F, int c) {
     return x;
 }
 
+/* s_q = d delta/dq at the body point r over (theta, d, phi1, phi2) [m/rad,
+ * -]: dgb/dq . r for a turn or tilt, 1 for the approach. */
+static void pose_slopes(const pad_field *F, const double r[2], double sq[4]) {
+    sq[0] = F->dgb[0][0] * r[0] + F->dgb[0][1] * r[1];
+    sq[1] = 1.0;
+    sq[2] = F->dgb[1][0] * r[0] + F->dgb[1][1] * r[1];
+    sq[3] = F->dgb[2][0] * r[0] + F->dgb[2][1] * r[1];
+}
+
+/* The two-point Gauss-Legendre rule along an edge of the cell centred at
+ * rc: its points r[k] in body coordinates; returns each one's weight (half
+ * the edge's length).  Exact for a cubic along the edge. */
+static double edge_points(const double rc[2], const pad_edge *E, double r[2][2]) {
+    static const double node[2] = {0.21132486540518711775, 0.78867513459481288225};
+    for (int k = 0; k < 2; ++k) {
+        r[k][0] = rc[0] + E->a[0] + node[k] * (E->b[0] - E->a[0]);
+        r[k][1] = rc[1] + E->a[1] + node[k] * (E->b[1] - E->a[1]);
+    }
+    return 0.5 * hypot(E->b[0] - E->a[0], E->b[1] - E->a[1]);
+}
+
 /* Where the layer presses only where it touches (damped), the pressure
  * jumps to kn e across the touching line delta = 0, which the pose moves:
  * by s_q / |gb| along its normal per unit of a pose variable q, s_q =
@@ -364,21 +371,16 @@ static void touching_terms(const pad_field *F, const pad_cell *x, double kn, dou
                            double dmb[2][4]) {
     for (int q = 0; q < 4; ++q) dN[q] = dmb[0][q] = dmb[1][q] = 0.0;
     if (!x->E.n) return;
-    const double slope = hypot(F->gb[0], F->gb[1]);
-    const double len = hypot(x->E.b[0] - x->E.a[0], x->E.b[1] - x->E.a[1]);
-    static const double node[2] = {0.21132486540518711775, 0.78867513459481288225};
+    double r[2][2], sq[4];
+    const double half = edge_points(x->r, &x->E, r) / hypot(F->gb[0], F->gb[1]);
     for (int k = 0; k < 2; ++k) {
-        const double rho[2] = {x->E.a[0] + node[k] * (x->E.b[0] - x->E.a[0]),
-                               x->E.a[1] + node[k] * (x->E.b[1] - x->E.a[1])};
-        const double r[2] = {x->r[0] + rho[0], x->r[1] + rho[1]};
-        const double w = kn * (x->e + F->g[0] * rho[0] + F->g[1] * rho[1]) * (0.5 * len) / slope;
-        const double sq[4] = {F->dgb[0][0] * r[0] + F->dgb[0][1] * r[1], 1.0,
-                              F->dgb[1][0] * r[0] + F->dgb[1][1] * r[1],
-                              F->dgb[2][0] * r[0] + F->dgb[2][1] * r[1]};
+        const double e = x->e + F->g[0] * (r[k][0] - x->r[0]) + F->g[1] * (r[k][1] - x->r[1]);
+        const double w = kn * e * half;
+        pose_slopes(F, r[k], sq);
         for (int q = 0; q < 4; ++q) {
             dN[q] += w * sq[q];
-            dmb[0][q] += w * sq[q] * r[0];
-            dmb[1][q] += w * sq[q] * r[1];
+            dmb[0][q] += w * sq[q] * r[k][0];
+            dmb[1][q] += w * sq[q] * r[k][1];
         }
     }
 }
@@ -414,72 +416,65 @@ static void edge_change_squared(const pad_field *F, const double rc[2], const pa
                                 double out[4]) {
     for (int q = 0; q < 4; ++q) out[q] = 0.0;
     if (!E->n) return;
-    const double len = hypot(E->b[0] - E->a[0], E->b[1] - E->a[1]);
-    static const double node[2] = {0.21132486540518711775, 0.78867513459481288225};
+    double r[2][2], sq[4];
+    const double half = edge_points(rc, E, r);
     for (int k = 0; k < 2; ++k) {
-        const double r[2] = {rc[0] + E->a[0] + node[k] * (E->b[0] - E->a[0]),
-                             rc[1] + E->a[1] + node[k] * (E->b[1] - E->a[1])};
-        const double c = (F->dd + F->ddg[0] * r[0]) + F->ddg[1] * r[1];
-        const double w = c * c * (0.5 * len);
-        out[0] += w * (F->dgb[0][0] * r[0] + F->dgb[0][1] * r[1]);
-        out[1] += w;
-        out[2] += w * (F->dgb[1][0] * r[0] + F->dgb[1][1] * r[1]);
-        out[3] += w * (F->dgb[2][0] * r[0] + F->dgb[2][1] * r[1]);
+        const double c = (F->dd + F->ddg[0] * r[k][0]) + F->ddg[1] * r[k][1];
+        pose_slopes(F, r[k], sq);
+        for (int q = 0; q < 4; ++q) out[q] += c * c * half * sq[q];
     }
 }
 
-/* d(damper_work)/d(theta, d, phi1, phi2): inside the pressed part 2 kn a
- * times the integral of dd_r s_q (dd_r's own derivative, the reference
- * being fixed); the part grows across the touching line (speed s_q/|gb|)
- * and across e = 0 (speed (1 + a) s_q/|g|), where the integrand kn a
- * dd_r^2 is not 0. */
-static void damper_tangent(const pad_model *m, const pad_field *F, double dW[4]) {
+/* A cell's share of d(the damper's work)/d(theta, d, phi1, phi2), over kn
+ * a: inside its pressed part twice the integral of dd_r s_q (dd_r's own
+ * derivative, the reference being fixed); the part grows across the
+ * touching line (speed s_q/|gb|) and across e = 0 (speed (1 + a) s_q/|g|),
+ * where the integrand dd_r^2 is not 0. */
+static void damper_terms(const pad_model *m, const pad_field *F, const pad_cell *x, double dW[4]) {
+    const pad_moments *M = &x->M;
+    const double *d = F->ddg;
+    const double dc = (F->dd + d[0] * x->r[0]) + d[1] * x->r[1];
+    double s0[4];
+    pose_slopes(F, x->r, s0);
+    /* s_q = s0 + s1 . rho about the centre: s1 the slope dgb/dq (theta, phi1,
+     * phi2), none for the approach d */
+    const double zero[2] = {0.0, 0.0};
+    const double *slope[4] = {F->dgb[0], zero, F->dgb[1], F->dgb[2]};
+    for (int q = 0; q < 4; ++q) {
+        const double *s1 = slope[q];
+        dW[q] = 2.0 * (dc * s0[q] * M->area + (dc * s1[0] + s0[q] * d[0]) * M->m1[0] +
+                       (dc * s1[1] + s0[q] * d[1]) * M->m1[1] +
+                       (d[0] * s1[0] * M->m2[0] + (d[0] * s1[1] + d[1] * s1[0]) * M->m2[1] +
+                        d[1] * s1[1] * M->m2[2]));
+    }
+    double on_touch[4], on_zero[4];
+    edge_change_squared(F, x->r, &x->E, on_touch);
+    pad_edge Z;
+    const double hx = m->g.length / (2.0 * m->g.n[0]), hy = m->g.width / (2.0 * m->g.n[1]);
+    const double dl = (F->d + F->gb[0] * x->r[0]) + F->gb[1] * x->r[1];
+    pad_line_part(x->e, F->g, dl, F->gb, hx, hy, &Z);
+    edge_change_squared(F, x->r, &Z, on_zero);
+    for (int q = 0; q < 4; ++q) /* an edge exists only where its field has a slope */
+        dW[q] += (x->E.n ? on_touch[q] / hypot(F->gb[0], F->gb[1]) : 0.0) +
+                 (Z.n ? (1.0 + F->a) * on_zero[q] / hypot(F->g[0], F->g[1]) : 0.0);
+}
+
+/* What damping adds to the pad's Jacobian, in one pass over the cells:
+ * the touching line's terms (touching_terms) of d(Fn, mbx, mby)/d(theta,
+ * d, phi1, phi2) into dq, and d(the damper's work)/d(the same) into dW. */
+static void damped_terms(const pad_model *m, const pad_field *F, double dq[3][4], double dW[4]) {
     for (int q = 0; q < 4; ++q) dW[q] = 0.0;
-    if (!F->damped) return;
-    const cells_setup *g = &m->g;
-    const double hx = g->length / (2.0 * g->n[0]), hy = g->width / (2.0 * g->n[1]);
-    const double ka = m->kn * F->a;
-    const double gl = hypot(F->gb[0], F->gb[1]), ge = hypot(F->g[0], F->g[1]);
-    for (int c = 0, n = cells_count(g); c < n; ++c) {
-        const pad_cell x = pad_cell_of(m, F, c);
-        const pad_moments *M = &x.M;
-        const double dc = (F->dd + F->ddg[0] * x.r[0]) + F->ddg[1] * x.r[1];
-        /* s_q at the centre and its slope: (theta, phi1, phi2) dgb . r, d 1 */
-        const double *sl[4] = {F->dgb[0], NULL, F->dgb[1], F->dgb[2]};
-        for (int q = 0; q < 4; ++q) {
-            const double s0 = sl[q] ? sl[q][0] * x.r[0] + sl[q][1] * x.r[1] : 1.0;
-            const double s1[2] = {sl[q] ? sl[q][0] : 0.0, sl[q] ? sl[q][1] : 0.0};
-            dW[q] += 2.0 * ka *
-                     (dc * s0 * M->area + (dc * s1[0] + s0 * F->ddg[0]) * M->m1[0] +
-                      (dc * s1[1] + s0 * F->ddg[1]) * M->m1[1] +
-                      (F->ddg[0] * s1[0] * M->m2[0] +
-                       (F->ddg[0] * s1[1] + F->ddg[1] * s1[0]) * M->m2[1] +
-                       F->ddg[1] * s1[1] * M->m2[2]));
-        }
-        double on_touch[4], on_zero[4];
-        edge_change_squared(F, x.r, &x.E, on_touch);
-        pad_edge Z;
-        const double dl = (F->d + F->gb[0] * x.r[0]) + F->gb[1] * x.r[1];
-        pad_line_part(x.e, F->g, dl, F->gb, hx, hy, &Z);
-        edge_change_squared(F, x.r, &Z, on_zero);
-        for (int q = 0; q < 4; ++q) /* an edge exists only where its field has a slope */
-            dW[q] += ka * ((x.E.n ? on_touch[q] / gl : 0.0) +
-                           (Z.n ? (1.0 + F->a) * on_zero[q] / ge : 0.0));
-    }
-}
-
-/* The touching line's terms (touching_terms) of d(Fn, mbx, mby)/d(theta,
- * d, phi1, phi2), summed over the cells, added to dq. */
-static void add_touching_terms(const pad_model *m, const pad_field *F, double dq[3][4]) {
     if (!F->damped) return;
     for (int c = 0, n = cells_count(&m->g); c < n; ++c) {
         const pad_cell x = pad_cell_of(m, F, c);
-        double dN[4], dmb[2][4];
+        double dN[4], dmb[2][4], dw[4];
         touching_terms(F, &x, m->kn, dN, dmb);
+        damper_terms(m, F, &x, dw);
         for (int q = 0; q < 4; ++q) {
             dq[0][q] += dN[q];
             dq[1][q] += dmb[0][q];
             dq[2][q] += dmb[1][q];
+            dW[q] += m->kn * F->a * dw[q];
         }
     }
 }
@@ -489,7 +484,7 @@ static void add_touching_terms(const pad_model *m, const pad_field *F, double dq
  * pressed parts' moments: d/df0 of the integrals of e+ and r e+ are those
  * of 1 and r, d/dg those of r and r r^T, over the part that presses (the
  * integrand vanishes on the line e = 0 that bounds it; the touching line's
- * terms besides, add_touching_terms); then M = (Y, -X) of
+ * terms besides, damped_terms); then M = (Y, -X) of
  * R(theta) mb, whose own turning adds (X, Y) to dM/dtheta. */
 static void partials(const pad_model *m, double *Jflat) {
     double(*P)[P_COLS] = (double(*)[P_COLS])Jflat;
@@ -527,7 +522,8 @@ static void partials(const pad_model *m, double *Jflat) {
     /* through the field to (theta, d, phi1, phi2), columns 2 to 5 */
     double dq[3][4];
     for (int r = 0; r < 3; ++r) pose_tangent(&t.F, D[r], dq[r]);
-    add_touching_terms(m, &t.F, dq);
+    double dW[4];
+    damped_terms(m, &t.F, dq, dW);
     const double c = cos(m->g.theta), s = sin(m->g.theta);
     /* the first moment in the surface's axes, X = -M2, Y = M1, for the turning of R(theta) */
     const double X = -m->M[1], Y = m->M[0];
@@ -538,8 +534,6 @@ static void partials(const pad_model *m, double *Jflat) {
     }
     P[4][2] += X;
     P[5][2] += Y;
-    double dW[4];
-    damper_tangent(m, &t.F, dW);
     for (int k = 0; k < 4; ++k) P[6][k + 2] += dW[k];
 }
 
