@@ -43,6 +43,7 @@ import numpy as np
 from ..closed_forms import FULL_CONTACT, LIFT_OFF, TIPS
 from ..errors import InputError
 from ..fmu import ContactParams, Foundation, PadFMU, PatchGeometry
+from ..plausibility import FIT_FROM
 
 # The unknowns of a step and the residuals' scales' names.
 UNKNOWNS = ("u2", "d", "phi1", "phi2")
@@ -55,12 +56,11 @@ CONTINUATION_DEPTH = 8
 # The largest tilt [rad] a step may reach: the pad's approach d + phi2 X -
 # phi1 Y is the first order of sin(phi) (relative error phi^2/6: 4e-4 here).
 MAX_TILT_RAD = 0.05
-# The trajectory's slope is fitted over the travel from FIT_FROM of it on,
-# through at least FIT_STEPS solved steps: fewer leave no slope to measure.
-# Three, not the carriage's MIN_FIT_STEPS (rig.checks): each step here is
-# an equilibrium, on the steady path once settled, with no dynamics to
-# average out.
-FIT_FROM = 0.5
+# The trajectory's slope is fitted over the travel from FIT_FROM of it on
+# (the rigs' fitted part: plausibility.FIT_FROM), through at least
+# FIT_STEPS solved steps: fewer leave no slope to measure.  Three, not the
+# carriage's MIN_FIT_STEPS (rig.checks): each step here is an equilibrium,
+# on the steady path once settled, with no dynamics to average out.
 FIT_STEPS = 3
 
 
