@@ -7,6 +7,7 @@ parameters (initial = exact) and the start time, read in initialization mode;
 step mode: the inputs, read at a communication point after the first step.
 The descriptions validate against the FMI schemas fmpy ships, and the
 generator refuses a table that leaves an output's dependencies out."""
+import functools
 import math
 import re
 import shutil
@@ -27,19 +28,16 @@ from paths import ROOT
 
 
 class Instance:
-    """One instance of a model through fmpy, with the calls both versions share."""
+    """One instance of a model through fmpy, with the calls both versions
+    share.  Each model's description and loaded library are read once
+    (loaded); each Instance is a fresh instance of it (instantiate), freed
+    without unloading the library: what an importer running several
+    instances does."""
 
     def __init__(self, version, model):
-        path = str(find_fmu(fmi_version=version, model=model))
-        self.md = read_model_description(path)
+        self.md, self.s = loaded(version, model)
         self.var = {v.name: v for v in self.md.modelVariables}
-        if version == 2:
-            from fmpy.fmi2 import FMU2Slave as Slave
-        else:
-            from fmpy.fmi3 import FMU3Slave as Slave
         self.version = version
-        self.s = Slave(guid=self.md.guid, unzipDirectory=unzipped(path), modelIdentifier=model,
-                       instanceName="structure")
         self.s.instantiate()
 
     def set(self, values: dict):
@@ -76,7 +74,21 @@ class Instance:
 
     def free(self):
         self.s.terminate()
-        self.s.freeInstance()
+        # fmpy's freeInstance also unloads the library, which the next instance loads again
+        (self.s.fmi2FreeInstance if self.version == 2 else self.s.fmi3FreeInstance)(self.s.component)
+
+
+@functools.cache
+def loaded(version, model):
+    """(model description, fmpy slave with its library loaded) of the installed FMU."""
+    path = str(find_fmu(fmi_version=version, model=model))
+    md = read_model_description(path)
+    if version == 2:
+        from fmpy.fmi2 import FMU2Slave as Slave
+    else:
+        from fmpy.fmi3 import FMU3Slave as Slave
+    return md, Slave(guid=md.guid, unzipDirectory=unzipped(path), modelIdentifier=model,
+                     instanceName="structure")
 
 
 def knowns_by_mode(md):
@@ -138,7 +150,7 @@ def admissible(model, values):
 
 def measured_dependencies(version, model, points, mode):
     """{output: {known: the changes it makes, as (base, perturbed) pairs}}."""
-    md = read_model_description(str(find_fmu(fmi_version=version, model=model)))
+    md = loaded(version, model)[0]
     var = {v.name: v for v in md.modelVariables}
     found = {v.name: {} for v in md.modelVariables if v.causality == "output"}
     for point in points:
@@ -163,7 +175,7 @@ def measured_dependencies(version, model, points, mode):
 
 def declared(version, model):
     """{mode: {output: {known: kind}}} from the model description, as fmpy reads it."""
-    md = read_model_description(str(find_fmu(fmi_version=version, model=model)))
+    md = loaded(version, model)[0]
     out = {}
     for mode, unknowns in (("step", md.outputs), ("init", md.initialUnknowns)):
         out[mode] = {}
