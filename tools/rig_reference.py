@@ -84,10 +84,14 @@ class Interface:
 
         def phi(g):
             return self._norm(q_of(g)) - N
-        hi = 1e-12
-        while phi(hi) > 0:
+        # The root if BG were its largest eigenvalue (at most its trace)
+        # times I: below the root then; the bracket widened from there.
+        hi = (self._norm(q_tr) / N - 1.0) / (self.BG[0] + self.BG[3])
+        f_hi = phi(hi)
+        while f_hi > 0:
             hi *= 4
-        g = _illinois(phi, 0.0, phi(0.0), hi, phi(hi), 1e-15 * hi)
+            f_hi = phi(hi)
+        g = _illinois(phi, 0.0, phi(0.0), hi, f_hi, 1e-15 * hi)
         return q_of(g)
 
     def slip_after(self, u, q):
