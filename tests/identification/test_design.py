@@ -212,6 +212,9 @@ def test_a_criterion_minimises_the_relative_variances(tmp_path):
     (["--runs", "5", "--fixed", "bad.csv"], "bad.csv: line 2: kind"),
     (["--runs", "5", "--prior", "missing.json"], "missing.json"),
     (["--runs", "1", "--no-strip"], "--runs 1: expected enough slide runs"),
+    # three numbers for five parameters: refused before the search (a small grid: no progress line)
+    (["--runs", "1", "--ramp-samples", "1", "--angle-step", "45", "--velocity-step", "0.4"],
+     "--runs 1: expected enough slide runs to determine mu1, mu2, eps_ratio, eps2, c_strip"),
     (["--runs", "5", "--angle-step", "0.001", "--velocity-step", "0.001"], "at most 50000 candidate"),
 ])
 def test_bad_input_is_one_line_and_exit_2(tmp_path, args, says):
@@ -219,3 +222,13 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, args, says):
     p = run_cli(["design", *args, "--out", "o"], tmp_path)
     one_error_line(p, says)
     assert not (tmp_path / "o").exists()
+
+
+def test_a_baseline_that_determines_not_every_parameter_has_no_efficiency(tmp_path):
+    """Two runs with a strip: the paper's points (0 and 90 deg) tell nothing
+    of eps_ratio; the plan is not 1e15 times better than them, it is the
+    only one of the two that determines the parameters."""
+    p = run_cli(["design", "--runs", "2", "--angle-step", "5", "--out", "o"], tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert "baseline: its information is singular at this budget: no efficiency" in p.stdout
+    assert json.loads((tmp_path / "o" / "design.json").read_text())["efficiency"] is None

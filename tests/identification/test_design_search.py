@@ -55,6 +55,25 @@ def test_the_loss_is_log_det_of_the_covariance_and_inf_where_singular():
     assert problem.loss(np.stack([M, problem.information(counts)])).tolist() == [problem.loss(M), math.inf]
 
 
+def test_a_parameter_told_only_rounding_is_singular_however_the_correlation_looks():
+    """A line measured where its slope tells 1e-16 of what its intercept
+    does: the correlation form of M is the identity, yet nothing is known of
+    the slope."""
+    M = np.diag([1.0, 1e-16])
+    assert np.linalg.slogdet(M / np.sqrt(np.outer(np.diag(M), np.diag(M))))[1] == 0.0
+    assert regression(1).loss(M) == math.inf
+    assert regression(1).loss(np.diag([1.0, 1e-6])) < math.inf
+
+
+def test_the_rank_bound_counts_each_runs_rank_within_its_budget():
+    """A line's points each tell rank 1: one run cannot reach rank 2, two
+    can; a run already made adds its rank."""
+    assert regression(1, budget=(1,)).rank_bound() == 1
+    assert regression(1, budget=(2,)).rank_bound() == 2
+    made = np.einsum("i,j->ij", [1.0, 0.5], [1.0, 0.5])
+    assert regression(1, budget=(1,), fixed=made).rank_bound() == 2
+
+
 def test_a_nuisance_parameter_is_left_out_of_the_criterion():
     """Ds: only the slope designed; its variance sets the loss."""
     problem = regression(1, designed=(1,))

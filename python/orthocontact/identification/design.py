@@ -35,6 +35,7 @@ RAMP_SHARES = tuple(round(0.05 * k, 2) for k in range(1, 18))
 SLIDE, RAMP = 0, 1
 # Parameters a design plans for, in the order reported; F_int is nuisance.
 DESIGNED = ("mu1", "mu2", "eps_ratio", "eps2", "c_strip")
+ALWAYS = DESIGNED[:3]   # in every rig's fit
 
 
 @dataclass(frozen=True)
@@ -161,7 +162,7 @@ def candidates(prior: Prior, space: Space, also: list = ()) -> Candidates:
     carriage = space.carriage_runs > 0 or any(r.kind == "carriage" for r in list(space.fixed) + list(also))
     data = measurement_set(prior, points, ramp_x1, carriage)
     names, G, model = sensitivities(prior, data)
-    lost = [n for n in ("mu1", "mu2", "eps_ratio") if n not in names]
+    lost = [n for n in ALWAYS if n not in names]
     if lost:
         raise InputError(f"expected a rig whose runs determine {', '.join(lost)} (sliding rule "
                          f"{prior.rig.rule}: {identifiability(data)[1].get(lost[0], '')})")
@@ -312,12 +313,11 @@ def problem_of(prior: Prior, space: Space, cand: Candidates, criterion: str) -> 
     return Problem(cand.info, cand.run_kind, budget, made, cand.designed, criterion)
 
 
-def search(prior: Prior, space: Space, cand: Candidates, criterion: str, status: Status):
+def search(problem: Problem, cand: Candidates, velocity_m_s: float, status: Status):
     """(weights, Equivalence, counts): the approximate optimum, then whole runs."""
-    problem = problem_of(prior, space, cand, criterion)
     weights, equivalence = approximate(problem, status=status)
     status.text = f"whole runs by exchange among {len(cand.runs)} candidates"
-    return weights, equivalence, consolidated(cand, exact(problem, weights), prior.rig.velocity_m_s)
+    return weights, equivalence, consolidated(cand, exact(problem, weights), velocity_m_s)
 
 
 # The most candidate slide runs a design takes: the fit model's build costs about 1 ms
@@ -325,9 +325,17 @@ def search(prior: Prior, space: Space, cand: Candidates, criterion: str, status:
 MAX_CANDIDATES = 50_000
 
 
+def too_few_runs(space: Space, names) -> InputError:
+    return InputError(f"--runs {space.slides}: expected enough slide runs to determine "
+                      f"{', '.join(names)} (each gives a force and an angle)")
+
+
 def check_size(space: Space) -> None:
     """Refuses (InputError, before any work) a grid of more than
-    MAX_CANDIDATES slide runs: a step that small is usually a typo."""
+    MAX_CANDIDATES slide runs (a step that small is usually a typo), and
+    runs that give fewer numbers than every fit has parameters."""
+    if not space.fixed and 2 * space.slides + space.ramp_samples < len(ALWAYS):
+        raise too_few_runs(space, ALWAYS)
     n = len(space.angles_deg) * len(space.velocities_m_s)
     if n > MAX_CANDIDATES:
         raise InputError(f"--angle-step, --velocity-step: expected at most {MAX_CANDIDATES} candidate slide "
@@ -345,12 +353,13 @@ def plan(prior: Prior, space: Space, criterion: str, say=None) -> Design:
     status = Status(f"the fit's model at {n} candidate slide runs")
     with status_lines(say, lambda: status.text):
         cand = candidates(prior, space, baseline_runs(space.slides, prior.peak_angle_deg(), velocities))
-        weights, equivalence, counts = search(prior, space, cand, criterion, status)
-    problem = problem_of(prior, space, cand, criterion)
+        problem = problem_of(prior, space, cand, criterion)
+        if problem.rank_bound() < len(cand.names):   # no design within the budget determines them
+            raise too_few_runs(space, cand.names)
+        weights, equivalence, counts = search(problem, cand, prior.rig.velocity_m_s, status)
     M = problem.information(counts)
     if not np.isfinite(problem.loss(M)):
-        raise InputError(f"--runs {space.slides}: expected enough slide runs to determine "
-                         f"{', '.join(cand.names)} (each gives a force and an angle)")
+        raise too_few_runs(space, cand.names)
     runs = np.asarray(problem.budget, float)[cand.run_kind]
     baseline = baseline_of(prior, space, cand, made_runs(prior, space), problem)
     return Design(criterion, prior, space, cand, counts, weights, equivalence, M,

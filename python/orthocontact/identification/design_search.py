@@ -45,15 +45,27 @@ class Problem:
         """M of a design: n_c runs (or a weight) of each candidate."""
         return self.fixed + np.einsum("c,cij->ij", np.asarray(counts, float), self.info)
 
+    def rank_bound(self) -> int:
+        """The highest rank the information of whole runs within the budget
+        can reach: the runs made's, plus each run at most its group's highest."""
+        ranks = np.linalg.matrix_rank(self.info) if len(self.info) else np.zeros(0, int)
+        most = [int(ranks[self.group == g].max(initial=0)) for g in range(len(self.budget))]
+        return int(np.linalg.matrix_rank(self.fixed)) + sum(n * r for n, r in zip(self.budget, most))
+
     def loss(self, M) -> np.ndarray:
         """The criterion of one M (p, p) or of many (k, p, p): log det C_S
         (D) or tr C_S (A); inf where M is singular."""
         M = np.asarray(M, float)
         one = M.ndim == 2
         M = M[None] if one else M
-        d = np.sqrt(np.maximum(np.einsum("kii->ki", M), 1e-300))
+        diag = np.maximum(np.einsum("kii->ki", M), 1e-300)
+        d = np.sqrt(diag)
         sign, logdet = np.linalg.slogdet(M / (d[:, :, None] * d[:, None, :]))
-        ok = (sign > 0) & (logdet > math.log(SINGULAR))
+        # A parameter told SINGULAR times less than another (in the design's
+        # units, each by its prior value) is told nothing: its row is rounding,
+        # which the correlation form would scale up to look like information.
+        told = diag.min(axis=1) > SINGULAR * diag.max(axis=1)
+        ok = (sign > 0) & (logdet > math.log(SINGULAR)) & told
         out = np.full(len(M), np.inf)
         if ok.any():
             S = list(self.designed)
