@@ -5,6 +5,7 @@ written leaves it and reports success."""
 import os
 import signal
 import subprocess
+import sys
 import time
 
 import pytest
@@ -162,3 +163,33 @@ def test_a_dask_run_signalled_after_writing_everything_reports_success(tmp_path)
     assert f"wrote {out}/summary.json" in stdout
     assert {"summary.json", "sweep.csv", "phi_vs_angle.png"} <= set(os.listdir(out))
     assert leftovers(tmp_path) == ["out"]  # no .out.partial-*
+
+
+LEFT_TASK = """
+import asyncio, sys
+from orthocontact.runtime import quiet_leftovers
+
+async def start():
+    raise RuntimeError("Nanny failed to start.")
+
+loop = asyncio.new_event_loop()
+task = loop.create_task(start())
+loop.run_until_complete(asyncio.sleep(0))   # it fails; no one asks for its exception
+if sys.argv[1] == "quiet":
+    quiet_leftovers()
+del task   # the loop logs the failure as the task goes
+"""
+
+
+@pytest.mark.parametrize("quiet", [True, False])
+def test_after_an_interrupt_a_cut_off_clusters_tasks_print_nothing(quiet):
+    """What a Ctrl-C while Dask's nannies start leaves: a failed task no one
+    retrieved, which asyncio logs as it is collected, after the command's one
+    line.  Quieted, nothing; without, the traceback this guards against."""
+    p = subprocess.run([sys.executable, "-c", LEFT_TASK, "quiet" if quiet else "loud"], capture_output=True,
+                       text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    if quiet:
+        assert p.stderr == ""
+    else:
+        assert "Task exception was never retrieved" in p.stderr and "Nanny failed to start" in p.stderr

@@ -39,7 +39,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..output import check_output_file, check_output_folder, check_owner, forget_warnings, warn, warnings_said
-from ..runtime import install_signal_handlers, interrupted, quiet_interrupts, written
+from ..runtime import install_signal_handlers, interrupted, quiet_interrupts, quiet_leftovers, written
 from ..textfiles import files_read
 from .parser import build_parser
 
@@ -134,6 +134,7 @@ def run_command(argv=None) -> int:
             return 1
         return status
     except KeyboardInterrupt:
+        quiet_leftovers()
         print(f"orthocontact: interrupted; nothing written to {out}", file=sys.stderr)
         return 130
     except InputError as e:   # a scenario's (ScenarioError) too: one hierarchy

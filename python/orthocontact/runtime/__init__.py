@@ -11,6 +11,7 @@ from .interrupts import (
     install_signal_handlers,
     interrupted,
     quiet_interrupts,
+    quiet_leftovers,
     results_written,
     written,
 )
@@ -20,7 +21,7 @@ from .temp import TEMP_ENV, remove_unzipped, temp_folder, unzipped
 from .workers import check_workers, default_workers
 
 __all__ = ["LOCK", "locked_folder", "hold_interrupts", "install_signal_handlers", "interrupted",
-           "quiet_interrupts", "results_written", "written", "end_with_parent", "process_pool",
-           "signals_held", "stop_pool", "UNSUPPORTED", "can_exchange", "exchange", "link_tree", "merge_into",
-           "prune_empty", "TEMP_ENV", "remove_unzipped", "temp_folder", "unzipped", "check_workers",
-           "default_workers"]
+           "quiet_interrupts", "quiet_leftovers", "results_written", "written", "end_with_parent",
+           "process_pool", "signals_held", "stop_pool", "UNSUPPORTED", "can_exchange", "exchange",
+           "link_tree", "merge_into", "prune_empty", "TEMP_ENV", "remove_unzipped", "temp_folder",
+           "unzipped", "check_workers", "default_workers"]

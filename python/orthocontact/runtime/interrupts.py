@@ -6,6 +6,7 @@ the command's own status), never as "nothing written"."""
 from __future__ import annotations
 
 import contextlib
+import logging
 import signal
 import sys
 
@@ -66,3 +67,12 @@ def quiet_interrupts(unraisable):
     if issubclass(unraisable.exc_type, KeyboardInterrupt) and _interrupted:
         return
     sys.__unraisablehook__(unraisable)
+
+
+def quiet_leftovers() -> None:
+    """After an interrupt: a Dask cluster cut off while it started leaves
+    tasks whose errors its event loop logs as the interpreter ends ("Task
+    exception was never retrieved ... Nanny failed to start"); the command
+    has ended and said so, and those tracebacks would only bury its line."""
+    for name in ("asyncio", "distributed", "tornado"):
+        logging.getLogger(name).disabled = True
