@@ -164,6 +164,9 @@ def _comma_file(path: Path, rows):
                         "(or save the file separated by semicolons, which is read with decimal commas)")
             raise InputError(f"{path}: line {line}: {used} cells ({','.join(cells[:used])}) where the "
                              f"header names {width} columns{hint}")
+        joined = "|".join(cells[:used])
+        if "," not in joined and joined.count(".") <= used:
+            continue   # both patterns need a comma or a cell's second point
         for c in cells[:used]:
             if DECIMAL_COMMA.match(c) or THOUSANDS.match(c):
                 raise InputError(f"{path}: line {line}: {c!r}: a decimal comma (or a thousands "

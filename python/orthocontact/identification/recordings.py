@@ -94,19 +94,39 @@ def read_series(path: Path, columns: tuple, what: str, missing_ok: tuple = ()) -
     of the missing_ok columns may be empty or nan (a drop-out)."""
     rows = _rows(path, what)
     idx = _header(path, rows, columns)
-    data = []
-    last_t, last_line = -math.inf, None
-    for line, r in rows[1:]:
-        vals = [parse_number(path, line, c, r[k] if k < len(r) else "", c in missing_ok)
-                for c, k in zip(columns, idx)]
-        if vals[0] <= last_t:
-            raise InputError(f"{path}: line {line}: {columns[0]}: expected a time after line "
-                             f"{last_line}'s {last_t:g} s (samples in time order), got {vals[0]:g}")
-        last_t, last_line = vals[0], line
-        data.append(vals)
+    body = rows[1:]
+    data = _all_finite(body, idx)
+    if data is None:    # some cell is not a finite number: read cell by cell, naming the first
+        data = _cell_by_cell(path, body, columns, idx, missing_ok)
+    late = np.flatnonzero(np.diff(data[:, 0]) <= 0) if len(data) else ()
+    if len(late):
+        i = int(late[0])
+        raise InputError(f"{path}: line {body[i + 1][0]}: {columns[0]}: expected a time after line "
+                         f"{body[i][0]}'s {data[i, 0]:g} s (samples in time order), got {data[i + 1, 0]:g}")
     if len(data) < MIN_SAMPLES:
         raise InputError(f"{path}: expected at least {MIN_SAMPLES} samples, got {len(data)}")
-    return np.array(data, dtype=float)
+    return data
+
+
+def _all_finite(body, idx):
+    """The columns idx of every row as an array, if each cell is a finite
+    number as float() reads it; None otherwise (a short row, a word, an empty
+    cell or nan)."""
+    try:
+        data = np.array([list(map(float, (r[k] for _, r in body))) for k in idx]).T
+    except (ValueError, IndexError):
+        return None
+    return data.reshape(len(body), len(idx)) if np.isfinite(data).all() else None
+
+
+def _cell_by_cell(path, body, columns, idx, missing_ok) -> np.ndarray:
+    """The columns idx read cell by cell (parse_number), refusing the first
+    cell in file order that is not a number, drop-outs kept as nan."""
+    data = []
+    for line, r in body:
+        data.append([parse_number(path, line, c, r[k] if k < len(r) else "", c in missing_ok)
+                     for c, k in zip(columns, idx)])
+    return np.array(data, dtype=float).reshape(len(body), len(idx))
 
 
 def load_recordings(folder) -> Recordings:
