@@ -70,7 +70,7 @@ cells_source cells_initial(void) {
 }
 
 cells_source cells_committed(const cells_grid *G) {
-    cells_source s = {CELLS_FROM_ARRAY, G->start, NULL, -1, NULL};
+    cells_source s = {CELLS_FROM_ARRAY, G->from < 0 ? G->moved : G->start, NULL, -1, NULL};
     if (G->result_committed || G->from > 0) {
         s.kind = CELLS_FROM_STEPS;
         s.buffer = G->result_committed ? G->shown : G->from - 1;
@@ -80,8 +80,10 @@ cells_source cells_committed(const cells_grid *G) {
 }
 
 const oc_state *cells_start_of(const cells_grid *G, int c) {
-    return G->from > 0 ? &G->steps[G->from - 1][c].next : &G->start[c];
+    return G->from > 0 ? &G->steps[G->from - 1][c].next : G->from < 0 ? &G->moved[c] : &G->start[c];
 }
+
+oc_state *cells_move_target(cells_grid *G) { return G->from < 0 ? G->start : G->moved; }
 
 int cells_free_buffer(const cells_grid *G) {
     int b = 0;
@@ -92,6 +94,9 @@ int cells_free_buffer(const cells_grid *G) {
 fmu_status cells_law(const oc_params *p, const cells_setup *g, oc_law *law, fmu_msg *msg) {
     const char *why = oc_params_check(p);
     if (why) return fmu_fail(msg, "%s", why);
+    if (g->n[0] * g->n[1] > PATCH_MAX_CELLS)
+        return fmu_fail(msg, "n1 x n2 = %d x %d cells: at most %d cells in all", g->n[0], g->n[1],
+                        PATCH_MAX_CELLS);
     const double w = 1.0 / ((double)g->n[0] * (double)g->n[1]);
     oc_params cell = *p;
     cell.eps1 = p->eps1 * w;
@@ -324,7 +329,11 @@ int cells_evaluate(cells_grid *G, const oc_law *law, const cells_setup *g, const
     if (bad >= 0) return bad;
     if (src->kind == CELLS_FROM_STEPS) {
         G->from = src->buffer + 1;
-    } else if (!(src->kind == CELLS_FROM_ARRAY && src->array == G->start)) {
+    } else if (src->kind == CELLS_FROM_ARRAY && src->array == G->moved) {
+        G->from = -1; /* states moved (cells_move_target), where they lie */
+    } else if (src->kind == CELLS_FROM_ARRAY && src->array == G->start) {
+        G->from = 0;
+    } else {
         for (int c = 0, n = cells_count(g); c < n; ++c) {
             const cells_cell x = cells_cell_of(g, c);
             G->start[c] = source_cell(src, g, x.d, c);

@@ -32,7 +32,7 @@
 extern "C" {
 #endif
 
-enum { PATCH_MAX_CELLS = PATCH_MAX_SIDE * PATCH_MAX_SIDE };
+enum { PATCH_MAX_CELLS = 1024 };
 
 /* The values of the parameter initialSlip (cells/cell_rows.h). */
 enum { PATCH_INITIAL_AT_INPUTS = 1, PATCH_INITIAL_EXPLICIT = 2 };
@@ -61,10 +61,15 @@ typedef struct {
     /* The states the shown step was computed from (its start): the steps
      * steps[from - 1][c].next a doStep committed, where they lie, or start[c]
      * (from = 0, as a zeroed model has it: initial or restored states,
-     * which no step holds). */
+     * which no step holds), or moved[c] (from = -1: committed states a
+     * model moved, cells/transport.h). */
     int from;
     int result_committed; /* 0: pending, committed states = the start; 1: = steps[shown][c].next */
     oc_state start[PATCH_MAX_CELLS];
+    /* Moved states are written into whichever of start and moved the shown
+     * step does not start from (cells_move_target), so that a step refused
+     * changes nothing, and a step starts from them where they lie. */
+    oc_state moved[PATCH_MAX_CELLS];
     /* The shown step, its start's, and one free: a new step is computed
      * into the buffer that is neither, so that a refused one changes nothing. */
     oc_step steps[3][PATCH_MAX_CELLS];
@@ -106,6 +111,10 @@ cells_source cells_initial(void);
 cells_source cells_committed(const cells_grid *G);
 /* Cell c's start of the shown step. */
 const oc_state *cells_start_of(const cells_grid *G, int c);
+/* Where to write committed states moved (cells/transport.h) for a step
+ * from them (a source CELLS_FROM_ARRAY of it): start or moved, whichever
+ * the shown step does not start from. */
+oc_state *cells_move_target(cells_grid *G);
 
 /* The cells' law: the parameters with the stiffness shared by area. */
 fmu_status cells_law(const oc_params *p, const cells_setup *g, oc_law *law, fmu_msg *msg);

@@ -28,8 +28,9 @@ from orthocontact.fmu.variables import ArrayVariable, Variable, manifest
 
 # the amplitude of an input of each unit: a displacement of the order of the
 # contact's elastic length mu N / eps (1 mm), a turn past an edge cell's
-# sticking (10 mrad), a force of the order of the rig's block's weight (20 N)
-SCALE = {"m": 1e-3, "rad": 1e-2, "N": 20.0}
+# sticking (10 mrad), a force of the order of the rig's block's weight (20 N),
+# a speed that carries a surface about a cell (12.5 mm at the defaults) a step
+SCALE = {"m": 1e-3, "rad": 1e-2, "N": 20.0, "m/s": 10.0}
 BIAS = 0.4
 STEP = 1e-3      # s
 STEPS = 1000

@@ -114,7 +114,7 @@ def test_a_checkers_range_options_and_items_are_readable_and_a_list_is_gated_ite
     assert rules.item.options == ("associated", "coupled")
     assert rules(["coupled", "associated"]) is None
     assert rules(["coupled", "coupled"]) == "a list without repeated items (each is run once)"
-    assert isinstance(SCHEMA["patch"]["n1"][0], Number) and SCHEMA["patch"]["n1"][0].hi == 32
+    assert isinstance(SCHEMA["patch"]["n1"][0], Number) and SCHEMA["patch"]["n1"][0].hi == 64
     assert plausible("pin_m", 0.015) is None
     assert plausible("pin_m", [0.015, 15.0]) == ("error", "pin_m[1] = 15 m: a tow's pin is 1 mm-1 m ahead of "
                                                           "the block's centre; mm?")

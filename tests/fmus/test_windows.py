@@ -60,8 +60,9 @@ FOLDERS = {2: ("linux64", "win64"), 3: ("x86_64-linux", "x86_64-windows")}
 # The inputs' amplitude by unit: displacements past the elastic length mu N / eps
 # (about 0.6 mm at the defaults), so that cells stick and slip; normal forces
 # of either sign (open and closed contact); rotations of a few degrees; a
-# centre of pressure inside the patch's kern at its default size.
-AMPLITUDE = {"m": 2e-3, "N": 20.0, "rad": 0.05}
+# centre of pressure inside the patch's kern at its default size; a rolling speed
+# that carries the surface about a cell (12.5 mm at the defaults) a step.
+AMPLITUDE = {"m": 2e-3, "N": 20.0, "rad": 0.05, "m/s": 10.0}
 STEPS, H = 300, 1e-3
 # The angle parameters' values in the turned case (rad): the law's axes away
 # from the defaults' quarter turn, each its own.

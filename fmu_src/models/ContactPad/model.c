@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cells/transport.h"
 #include "models/ContactPad/pressure.h"
 
 /* Where each of the pad's own variables lives (cells/cells_model.inc has the
@@ -14,6 +15,7 @@
 #define FMU_SLOT_d offsetof(pad_model, d)
 #define FMU_SLOT_phi1 offsetof(pad_model, phi[0])
 #define FMU_SLOT_phi2 offsetof(pad_model, phi[1])
+#define FMU_SLOT_vr offsetof(pad_model, vr)
 #define FMU_SLOT_Fn offsetof(pad_model, Fn)
 #define FMU_SLOT_M1 offsetof(pad_model, M[0])
 #define FMU_SLOT_M2 offsetof(pad_model, M[1])
@@ -271,8 +273,22 @@ static fmu_status evaluate(pad_model *m, const oc_law *law, const cells_source *
 
 /* The pose of the inputs, its rate over h. */
 static pad_pose pose_now(const pad_model *m, double h) {
-    const pad_pose p = {m->d, {m->phi[0], m->phi[1]}, m->g.theta, h};
+    const pad_pose p = {m->d, {m->phi[0], m->phi[1]}, m->g.theta, h, m->vr};
     return p;
+}
+
+/* Where a step from the committed result starts: the committed states
+ * moved with the material by the committed step's vr h, in cells
+ * (cells/transport.h), where the shown step does not start from; none
+ * moved, where they lie. */
+static cells_source rolled_from_commit(pad_model *m) {
+    const cells_source src = cells_committed(&m->cells);
+    const double shift = m->commit.vr * m->commit.h / (m->g.length / m->g.n[0]);
+    if (shift == 0.0) return src;
+    oc_state *to = cells_move_target(&m->cells);
+    cells_transport(&m->g, shift, &src, to);
+    const cells_source moved = {CELLS_FROM_ARRAY, to, NULL, -1, NULL};
+    return moved;
 }
 
 fmu_status fmu_model_update(pad_model *m, int changed, int allow, fmu_msg *msg) {
@@ -287,9 +303,9 @@ fmu_status fmu_model_update(pad_model *m, int changed, int allow, fmu_msg *msg) 
         const pad_pose none = pose_now(m, 0.0);
         return evaluate(m, use, &init, &none, 0.0, msg);
     }
-    const cells_source src = cells_committed(&m->cells);
     /* from the committed result, the damper's work up to its end */
     const int after = m->cells.result_committed;
+    const cells_source src = after ? rolled_from_commit(m) : cells_committed(&m->cells);
     return evaluate(m, use, &src, after ? &m->commit : &m->ref,
                     after ? m->damper + m->damper_step : m->damper, msg);
 }
@@ -307,7 +323,7 @@ static fmu_status exit_init(pad_model *m, fmu_msg *msg) {
  * last doStep committed (the rate against that step's pose: none). */
 fmu_status fmu_model_do_step(pad_model *m, double h, fmu_msg *msg) {
     if (m->cells.result_committed) {
-        const cells_source src = cells_committed(&m->cells);
+        const cells_source src = rolled_from_commit(m);
         const pad_pose was = m->commit;
         if (evaluate(m, &m->cells.law, &src, &was, m->damper + m->damper_step, msg) != FMU_OK)
             return FMU_ERR;
@@ -543,22 +559,18 @@ static void partials(const pad_model *m, double *Jflat) {
 typedef struct {
     oc_params params;
     cells_setup g;
-    double kn, dn, d, phi[2];
+    double kn, dn, d, phi[2], vr;
     int result_committed;
     pad_pose ref, commit;
     double damper;
 } pad_head;
 
 static pad_head head_of(const pad_model *m) {
-    const pad_head h = {m->params,
-                        m->g,
-                        m->kn,
-                        m->dn,
-                        m->d,
-                        {m->phi[0], m->phi[1]},
-                        m->cells.result_committed,
-                        m->ref,
-                        m->commit,
+    const pad_head h = {m->params, m->g,
+                        m->kn,     m->dn,
+                        m->d,      {m->phi[0], m->phi[1]},
+                        m->vr,     m->cells.result_committed,
+                        m->ref,    m->commit,
                         m->damper};
     return h;
 }
@@ -571,6 +583,7 @@ static void put_head(pad_model *m, const pad_head *h) {
     m->d = h->d;
     m->phi[0] = h->phi[0];
     m->phi[1] = h->phi[1];
+    m->vr = h->vr;
     m->cells.result_committed = h->result_committed;
     m->ref = h->ref;
     m->commit = h->commit;

@@ -15,6 +15,12 @@
  * pose of the last committed step, `ref`) and the size of that step; the
  * pending step knows no other (the step size reaches the model at doStep
  * only).  Before the first doStep there is none (ref.h = 0).
+ *
+ * Rolling likewise (cells/transport.h): a step from the committed result
+ * starts from the committed states moved with the material by the
+ * committed step's vr h (commit.vr, commit.h), so that vr acts from the
+ * next step on; a step at the same time again starts from that moved
+ * start.  vr h = 0 moves nothing: the pad without rolling, bit for bit.
  */
 #ifndef PAD_MODEL_H
 #define PAD_MODEL_H
@@ -31,10 +37,12 @@
 extern "C" {
 #endif
 
-/* A pose of the pad and the step size its rate is taken over. */
+/* A pose of the pad, its rolling speed and the step size its rate is taken
+ * over. */
 typedef struct {
     double d, phi[2], theta; /* [m], [rad], [rad] */
     double h;                /* [s]; 0: no rate */
+    double vr;               /* [m/s]: the material moves by vr h over the step */
 } pad_pose;
 
 struct fmu_model {
@@ -42,6 +50,7 @@ struct fmu_model {
     cells_setup g;    /* the geometry, the initial slip, u1, u2, theta */
     double kn, dn;    /* the foundation [N/m^3], [N s/m^3] */
     double d, phi[2]; /* the pose's inputs [m], [rad] */
+    double vr;        /* the rolling speed [m/s] (cells/transport.h) */
     /* The shown step's outputs, where the table reads them: */
     cells_sums out;
     double Fn, M[2], contact_fraction;
@@ -66,7 +75,8 @@ typedef struct fmu_model pad_model;
         FMU_F64(pad_model, member.phi[0], "phi1", group, FINITE, 0),                               \
         FMU_F64(pad_model, member.phi[1], "phi2", group, FINITE, 0),                               \
         FMU_F64(pad_model, member.theta, "theta", group, FINITE, 0),                               \
-        FMU_F64(pad_model, member.h, "h", group, FINITE, 0)
+        FMU_F64(pad_model, member.h, "h", group, FINITE, 0),                                       \
+        FMU_F64(pad_model, member.vr, "vr", group, FINITE, 0)
 static const fmu_field PAD_MODEL_FIELD_LIST[] = {
     FMU_RECORD(pad_model, params, &OC_PARAMS_FIELDS,
                "the law's parameters (eps1, eps2 the whole pad's)"),
@@ -77,6 +87,7 @@ static const fmu_field PAD_MODEL_FIELD_LIST[] = {
     FMU_F64(pad_model, d, "d", "the inputs", FINITE, 0),
     FMU_F64(pad_model, phi[0], "phi1", "the inputs", FINITE, 0),
     FMU_F64(pad_model, phi[1], "phi2", "the inputs", FINITE, 0),
+    FMU_F64(pad_model, vr, "vr", "the inputs", FINITE, 0),
     CELLS_COMMITTED_FIELD,
     PAD_POSE_FIELDS(ref, "the pose the shown step's rate is taken against, and over what step "
                          "[s] (0: none)"),

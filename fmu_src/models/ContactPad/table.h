@@ -44,7 +44,7 @@
     "Schweizerhof 2007) with its own slip, pressed by the foundation under the pad's pose; "   \
     "the six-component wrench from the body's displacement, rotation, approach and tilts"
 #define FMU_SOURCES(S)                                                                          \
-    S(law/contact_law.c) S(cells/cells.c) S(models/ContactPad/pressure.c)                       \
+    S(law/contact_law.c) S(cells/cells.c) S(cells/transport.c) S(models/ContactPad/pressure.c)  \
     S(models/ContactPad/model.c)
 /* The model: its struct and its serialized state's field list (FMU_STATE_FIELDS). */
 #define FMU_MODEL_HEADER "models/ContactPad/model.h"
@@ -78,8 +78,14 @@ static const char FMU_DOC_HTML[] =
     "body besides the cells' friction.</li>\n"
     "<li>T1, T2, Mz: the cells' forces on the body and their moment about the pad centre, "
     "each cell's force at its centre, in the surface frame.</li>\n"
+    "<li>Rolling: vr is the speed at which the body's surface passes through the pad along "
+    "its axis 1 (vr &gt; 0: it enters at x = +length/2, unloaded, and leaves at -length/2). "
+    "Each step moves the cells' elastic states with the material by the previous step's vr "
+    "h (exactly for a whole number of cells, else by linear upwind interpolation); each cell "
+    "keeps its dissipated energy.  A creep u1 = xi vr t is the longitudinal creepage xi.</li>\n"
     "<li>Not modelled: large tilts (the approach is linearised in them), a curved surface, "
-    "coupling between neighbouring points of the foundation, rolling.</li>\n</ul>\n"
+    "coupling between neighbouring points of the foundation, the inertia of the rolling "
+    "material, a carcass behind it.</li>\n</ul>\n"
     "<h2>Step semantics</h2>\n<p>As the point FMU: setting inputs computes every cell's step "
     "from the committed state without committing it; @DOSTEP@ commits all cells at once, or "
     "none.  @DIRDER@ gives the derivatives of T1, T2, Mz, Fn, M1, M2, dissipatedEnergy with "
@@ -117,7 +123,11 @@ static const char FMU_DOC_HTML[] =
     X(phi1, 29, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                 \
       "Tilt of the pad about the surface's X1 axis (small; right-handed: +Y lifts)")             \
     X(phi2, 30, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "rad", "deg",                 \
-      "Tilt of the pad about the surface's X2 axis (small; right-handed: +X presses)")
+      "Tilt of the pad about the surface's X2 axis (small; right-handed: +X presses)")            \
+    X(vr, 41, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m/s", "",                      \
+      "Rolling speed: the body's surface passes through the pad along its axis 1, entering at "  \
+      "x = +length/2 (vr > 0) and leaving at -length/2; it moves the cells' states from the "    \
+      "next step on")
 
 #define PAD_WRENCH_ROWS(X)                                                                       \
     X(Fn, 34, Float64, output, continuous, calculated, 0.0, 0.0, NO_MAX, "N", "",                \
@@ -145,10 +155,10 @@ static const char FMU_DOC_HTML[] =
  * Columns: name, value reference, type, unit, the scalar output whose
  * dependencies each element has, description. */
 #define FMU_ARRAYS(A)                                                                            \
-    PATCH_FORCE_ARRAYS(A, 41)                                                                    \
-    A(cellFn, 43, Float64, "N", Fn,                                                              \
+    PATCH_FORCE_ARRAYS(A, 42)                                                                    \
+    A(cellFn, 44, Float64, "N", Fn,                                                              \
       "Normal force of the foundation on the body at each cell (they sum to Fn)")                \
-    PATCH_STATE_ARRAY(A, 44)
+    PATCH_STATE_ARRAY(A, 45)
 
 /* The table's tail, every table's (glue/fmu_table_tail.inc): FMU_VARIABLES,
  * the law's group and the value references PAD_VR_*. */

@@ -118,10 +118,10 @@ PATCH_GEOMETRY: tuple[Row, ...] = (
         description="Side of the patch along the body's axis 1 (X1 at theta = 0)"),
     Row("width", type="Float64", unit="m", min=1e-100, max=1e+100, start=0.1,
         description="Side of the patch along the body's axis 2 (X2 at theta = 0)"),
-    Row("n1", type="Int32", unit="", min=1, max=32, start=8,
-        description="Number of cells along length (at most PATCH_MAX_SIDE = 32)"),
-    Row("n2", type="Int32", unit="", min=1, max=32, start=8,
-        description="Number of cells along width (at most PATCH_MAX_SIDE = 32)"),
+    Row("n1", type="Int32", unit="", min=1, max=64, start=8,
+        description="Number of cells along length (at most 64, and n1 n2 at most 1024)"),
+    Row("n2", type="Int32", unit="", min=1, max=64, start=8,
+        description="Number of cells along width (at most 64, and n1 n2 at most 1024)"),
 )
 
 
@@ -130,8 +130,8 @@ PATCH_GEOMETRY: tuple[Row, ...] = (
 PAD_MODEL = "ContactPad"
 
 # Its inputs in the table's order, all Float64: u1 [m], u2 [m], theta [rad], d [m], phi1 [rad], phi2
-# [rad].
-PAD_INPUTS = ("u1", "u2", "theta", "d", "phi1", "phi2")
+# [rad], vr [m/s].
+PAD_INPUTS = ("u1", "u2", "theta", "d", "phi1", "phi2", "vr")
 
 # Its outputs in the table's order: Float64 T1 [N], T2 [N], Mz [N.m], Fn [N], M1 [N.m], M2 [N.m],
 # dissipatedEnergy [J], contactFraction [-], slipFraction [-]; Int32 contactState [-].

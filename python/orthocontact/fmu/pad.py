@@ -13,7 +13,13 @@ centre's X1, X2; contactFraction [-] the share of the area that presses.
 
 Step semantics as the patch's: `set_inputs` computes every cell's normal
 force and step without committing them, so a master can iterate on the
-pending result with its derivatives (`jacobian`); `do_step` commits it."""
+pending result with its derivatives (`jacobian`); `do_step` commits it.
+
+Rolling: vr [m/s] is the speed at which the body's surface passes through
+the pad along its axis 1 (> 0: entering at x = +length/2); each step moves
+the cells' states with the material by the previous step's vr h, so a
+creep u1 = xi vr t is the longitudinal creepage xi (docs/guides/contact-pad.md,
+"Rolling")."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -25,6 +31,10 @@ from .patch import CellsFMU, PatchGeometry, refuse_problems, table_row, value_pr
 
 # The foundation's parameters (its parameters the patch has not), in the table's order.
 FOUNDATION = tuple(row.name for row in PAD_FOUNDATION)
+# The pose: every input but the rolling speed vr, in the table's order; what
+# set_inputs sets and jacobian differentiates (no output depends on vr directly).
+ROLLING = "vr"
+POSE = tuple(name for name in PAD_INPUTS if name != ROLLING)
 # What load() reads: the six-component wrench on the body.
 WRENCH = ("T1", "T2", "Mz", "Fn", "M1", "M2")
 
@@ -56,7 +66,7 @@ class Foundation:
 class PadFMU(CellsFMU):
     """One instance of the ContactPad FMU, FMI 2.0 or 3.0."""
     MODEL = PAD_MODEL
-    INPUTS = PAD_INPUTS
+    INPUTS = POSE
     FLOAT_OUTPUTS = PAD_FLOAT_OUTPUTS
     INTEGER_OUTPUTS = PAD_INTEGER_OUTPUTS
     LOAD = WRENCH
@@ -65,21 +75,32 @@ class PadFMU(CellsFMU):
         super().__init__(fmu_path, instance_name, fmi_version)
 
     def initialize(self, params: ContactParams, geometry: PatchGeometry, foundation: Foundation,
-                   pose: tuple = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)):
+                   pose: tuple = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0), vr: float = 0.0):
         """Sets the law's parameters, the pad's geometry and foundation, the
         initial pose (u1 [m], u2 [m], theta [rad], d [m], phi1 [rad], phi2
-        [rad]) and enters step mode; every cell starts unloaded where the pose
-        puts it (initialSlip = atInputs)."""
-        if len(pose) != len(PAD_INPUTS):
-            raise ValueError(f"pose must be ({', '.join(PAD_INPUTS)}), got {pose!r}")
+        [rad]) and rolling speed vr [m/s], and enters step mode; every cell
+        starts unloaded where the pose puts it (initialSlip = atInputs)."""
+        if len(pose) != len(POSE):
+            raise ValueError(f"pose must be ({', '.join(POSE)}), got {pose!r}")
         self._start(params, geometry, {name: float(getattr(foundation, name)) for name in FOUNDATION},
                     tuple(pose))
+        if vr != 0.0:   # before the first step: the material moves from its commit on
+            self._set_inputs(tuple(pose), vr)
 
     def set_inputs(self, u1: float, u2: float, theta: float, d: float, phi1: float = 0.0,
-                   phi2: float = 0.0):
+                   phi2: float = 0.0, vr: float = 0.0):
         """The pad's pose: displacement [m], rotation [rad], approach [m] and
-        tilts [rad]; the pending step, not committed."""
-        self._set_inputs((u1, u2, theta, d, phi1, phi2))
+        tilts [rad], and its rolling speed [m/s] (it moves the states from
+        the next step on); the pending step, not committed."""
+        self._set_inputs((u1, u2, theta, d, phi1, phi2), vr)
+
+    def _set_inputs(self, values, vr: float | None = None):
+        """The pose (INPUTS' order) and, if given, vr, in one call."""
+        if vr is None:
+            return super()._set_inputs(values)
+        pairs = ", ".join(f"{n}={float(v)}" for n, v in zip((*self.INPUTS, ROLLING), (*values, vr)))
+        self._call(f"setting inputs ({pairs})", self._set_real, [*self._in_vr, self.vr[ROLLING]],
+                   [float(v) for v in (*values, vr)])
 
     def jacobian(self, knowns, outputs=WRENCH) -> list[list[float]]:
         """d(outputs)/d(knowns) of the pending step, a row per output and a

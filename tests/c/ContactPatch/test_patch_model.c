@@ -202,7 +202,9 @@ static void step_matches_the_plain_per_cell_step(void) {
     for (int episode = 0; episode < 60; ++episode) {
         ref_setup g;
         g.n1 = 1 + (int)pick(episode % 5 == 4 ? PATCH_MAX_SIDE : 12);
-        g.n2 = 1 + (int)pick(episode % 5 == 4 ? PATCH_MAX_SIDE : 12);
+        const int most = PATCH_MAX_CELLS / g.n1; /* n1 n2 <= PATCH_MAX_CELLS */
+        g.n2 =
+            1 + (int)pick(episode % 5 == 4 ? (most < PATCH_MAX_SIDE ? most : PATCH_MAX_SIDE) : 12);
         g.length = 0.02 + 0.2 * uniform();
         g.width = 0.02 + 0.2 * uniform();
         oc_params q = {0.2 + uniform(),       0.2 + uniform(),   5e3 + 5e4 * uniform(),
@@ -469,8 +471,23 @@ static void plausible(double v[6]) { v[3] = 5 + 20 * uniform(); }
 
 static double step_size(void) { return 1e-3; }
 
+/* Each side up to PATCH_MAX_SIDE, but no more than PATCH_MAX_CELLS cells in
+ * all: a grid beyond is refused, saying why. */
+static void grids_up_to_the_cells_storage(void) {
+    const fmi2ValueReference vn[2] = {PATCH_VR_n1, PATCH_VR_n2};
+    const fmi2Integer ok[2] = {PATCH_MAX_SIDE, PATCH_MAX_CELLS / PATCH_MAX_SIDE},
+                      wide[2] = {PATCH_MAX_SIDE, PATCH_MAX_CELLS / PATCH_MAX_SIDE + 1};
+    fmi2Component c = make();
+    CHECK(fmi2SetInteger(c, vn, 2, ok) == fmi2OK, "%d x %d cells", ok[0], ok[1]);
+    host_log.message[0] = 0;
+    CHECK(fmi2SetInteger(c, vn, 2, wide) == fmi2Error && strstr(host_log.message, "at most 1024"),
+          "%d x %d cells refused: %s", wide[0], wide[1], host_log.message);
+    fmi2FreeInstance(c);
+}
+
 int main(void) {
     rng_state = 0x9e3779b97f4a7c15ull;
+    grids_up_to_the_cells_storage();
     derivatives_match_differences();
     step_matches_the_plain_per_cell_step();
     normal_forces_have_resultant_n_and_first_moment_n_p();

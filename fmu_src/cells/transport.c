@@ -1,0 +1,127 @@
+#include "cells/transport.h"
+
+#include <float.h>
+#include <math.h>
+
+/* Where the committed states lie: base + c stride bytes. */
+typedef struct {
+    const unsigned char *base;
+    size_t stride;
+} moved_from;
+
+static const oc_state *moved_state(moved_from at, int c) {
+    return (const oc_state *)(const void *)(at.base + (size_t)c * at.stride);
+}
+
+/* What a cell takes: normal force, yield coordinates, elastic displacement u - s. */
+typedef struct {
+    double N, a[2], e[2];
+} cells_material;
+
+/* w times the material of state s, its force and elastic displacement
+ * times sign, added to *t.  An open state carries a = 0 and u - s = 0 but
+ * may hold N <= 0 (the normal force it was open at): none of it. */
+static OC_ALWAYS_INLINE void take_state(cells_material *t, const oc_state *s, double w,
+                                        double sign) {
+    const double sw = sign * w;
+    t->N += w * (s->N > 0 ? s->N : 0.0);
+    t->a[0] += sw * s->a[0];
+    t->a[1] += sw * s->a[1];
+    t->e[0] += sw * (s->u[0] - s->s[0]);
+    t->e[1] += sw * (s->u[1] - s->s[1]);
+}
+
+/* w times the material of column m of the row starting at `row` added to
+ * *t: beyond the grid, the ghost (the mirror image, negated), or beyond the
+ * mirror's reach nothing (unloaded). */
+static void take_column(cells_material *t, moved_from at, int row, int n1, int m, double w) {
+    double sign = 1.0;
+    if (m >= n1 || m < 0) {
+        m = m >= n1 ? 2 * n1 - 1 - m : -1 - m;
+        sign = -1.0;
+    }
+    if (w == 0.0 || m < 0 || m >= n1) return;
+    take_state(t, moved_state(at, row + m), w, sign);
+}
+
+/* Cell c takes the material t, keeping its own u and energy (own). */
+static OC_ALWAYS_INLINE void put_moved(oc_state *o, const oc_state *own, const cells_material *t) {
+    o->u[0] = own->u[0];
+    o->u[1] = own->u[1];
+    o->energy = own->energy;
+    if (!(t->N > 0)) { /* unloaded material: open, its slip where the body is */
+        o->N = 0.0;
+        o->a[0] = o->a[1] = 0.0;
+        o->s[0] = o->u[0];
+        o->s[1] = o->u[1];
+        return;
+    }
+    o->N = t->N;
+    o->a[0] = t->a[0];
+    o->a[1] = t->a[1];
+    o->s[0] = o->u[0] - t->e[0];
+    o->s[1] = o->u[1] - t->e[1];
+}
+
+/* Cells lo .. hi of a row (out and in at its first cell), each taking
+ * w0 of the state k columns on and f of the next, both inside the grid: the
+ * bulk of the cells, without a test or a branch (an open state contributes
+ * N clipped at 0 and no force or elastic displacement). */
+static void move_inside_cells(oc_state *restrict out, const unsigned char *restrict in,
+                              size_t stride, int lo, int hi, int k, double w0, double f) {
+    for (int i = lo; i <= hi; ++i) {
+        const oc_state *s0 = (const oc_state *)(const void *)(in + (size_t)(i + k) * stride);
+        const oc_state *s1 = (const oc_state *)(const void *)(in + (size_t)(i + k + 1) * stride);
+        const oc_state *own = (const oc_state *)(const void *)(in + (size_t)i * stride);
+        const double N = w0 * (s0->N > 0 ? s0->N : 0.0) + f * (s1->N > 0 ? s1->N : 0.0);
+        const double a0 = w0 * s0->a[0] + f * s1->a[0], a1 = w0 * s0->a[1] + f * s1->a[1];
+        const double e0 = w0 * (s0->u[0] - s0->s[0]) + f * (s1->u[0] - s1->s[0]);
+        const double e1 = w0 * (s0->u[1] - s0->s[1]) + f * (s1->u[1] - s1->s[1]);
+        const int on = N > 0;
+        oc_state *o = &out[i];
+        o->u[0] = own->u[0];
+        o->u[1] = own->u[1];
+        o->energy = own->energy;
+        o->N = on ? N : 0.0;
+        o->a[0] = on ? a0 : 0.0;
+        o->a[1] = on ? a1 : 0.0;
+        o->s[0] = on ? own->u[0] - e0 : own->u[0];
+        o->s[1] = on ? own->u[1] - e1 : own->u[1];
+    }
+}
+
+/* Cell i of a row by the general rule: ghosts and unloaded material. */
+static void move_edge_cell(oc_state *out, moved_from at, int row, int n1, int i, int k, double w0,
+                           double f) {
+    cells_material t = {0.0, {0.0, 0.0}, {0.0, 0.0}};
+    take_column(&t, at, row, n1, i + k, w0);
+    take_column(&t, at, row, n1, i + k + 1, f);
+    put_moved(&out[row + i], moved_state(at, row + i), &t);
+}
+
+void cells_transport(const cells_setup *g, double shift, const cells_source *src, oc_state out[]) {
+    const int n1 = g->n[0], n2 = g->n[1];
+    /* a shift within rounding of a whole number of cells is that number: exact */
+    const double whole = nearbyint(shift);
+    if (fabs(shift - whole) <= 8.0 * DBL_EPSILON * fabs(shift)) shift = whole;
+    /* beyond 2 n1 columns every source is unloaded: the shift's whole part bounded */
+    const double k_floor = fmax(-3.0 * n1, fmin(3.0 * n1, floor(shift)));
+    const double f = fmin(1.0, fmax(0.0, shift - k_floor)), w0 = 1.0 - f;
+    const int k = (int)k_floor;
+    moved_from at = {(const unsigned char *)src->array, sizeof(oc_state)};
+    if (src->kind == CELLS_FROM_STEPS) {
+        at.base = (const unsigned char *)&src->steps[0].next;
+        at.stride = sizeof(oc_step);
+    }
+    /* the columns whose two sources lie inside the grid */
+    const int lo = k < 0 ? -k : 0, hi = n1 - 2 - k < n1 - 1 ? n1 - 2 - k : n1 - 1;
+    for (int j = 0; j < n2; ++j) {
+        const int row = n1 * j;
+        for (int i = 0; i < n1 && i < lo; ++i) move_edge_cell(out, at, row, n1, i, k, w0, f);
+        if (lo <= hi)
+            move_inside_cells(out + row, at.base + (size_t)row * at.stride, at.stride, lo, hi, k,
+                              w0, f);
+        for (int i = hi + 1 > lo ? hi + 1 : lo; i < n1; ++i)
+            move_edge_cell(out, at, row, n1, i, k, w0, f);
+    }
+}
