@@ -34,7 +34,8 @@ static OC_ALWAYS_INLINE void take_state(cells_material *t, const oc_state *s, do
 /* w times the material of column m of the row starting at `row` added to
  * *t: beyond the grid, the ghost (the mirror image, negated), or beyond the
  * mirror's reach nothing (unloaded). */
-static void take_column(cells_material *t, moved_from at, int row, int n1, int m, double w) {
+static OC_ALWAYS_INLINE void take_column(cells_material *t, moved_from at, int row, int n1, int m,
+                                         double w) {
     double sign = 1.0;
     if (m >= n1 || m < 0) {
         m = m >= n1 ? 2 * n1 - 1 - m : -1 - m;
@@ -63,20 +64,29 @@ static OC_ALWAYS_INLINE void put_moved(oc_state *o, const oc_state *own, const c
     o->s[1] = o->u[1] - t->e[1];
 }
 
+/* The material of state s: N clipped at 0 (an open state may hold the
+ * N <= 0 it opened at, and carries no force or elastic displacement). */
+static OC_ALWAYS_INLINE cells_material material_of(const oc_state *s) {
+    const cells_material t = {
+        s->N > 0 ? s->N : 0.0, {s->a[0], s->a[1]}, {s->u[0] - s->s[0], s->u[1] - s->s[1]}};
+    return t;
+}
+
 /* Cells lo .. hi of a row (out and in at its first cell), each taking
  * w0 of the state k columns on and f of the next, both inside the grid: the
- * bulk of the cells, without a test or a branch (an open state contributes
- * N clipped at 0 and no force or elastic displacement). */
+ * bulk of the cells, without a test or a branch, each source's material
+ * formed once (a cell's second source is the next one's first). */
 static void move_inside_cells(oc_state *restrict out, const unsigned char *restrict in,
                               size_t stride, int lo, int hi, int k, double w0, double f) {
+    cells_material m0 =
+        material_of((const oc_state *)(const void *)(in + (size_t)(lo + k) * stride));
     for (int i = lo; i <= hi; ++i) {
-        const oc_state *s0 = (const oc_state *)(const void *)(in + (size_t)(i + k) * stride);
-        const oc_state *s1 = (const oc_state *)(const void *)(in + (size_t)(i + k + 1) * stride);
         const oc_state *own = (const oc_state *)(const void *)(in + (size_t)i * stride);
-        const double N = w0 * (s0->N > 0 ? s0->N : 0.0) + f * (s1->N > 0 ? s1->N : 0.0);
-        const double a0 = w0 * s0->a[0] + f * s1->a[0], a1 = w0 * s0->a[1] + f * s1->a[1];
-        const double e0 = w0 * (s0->u[0] - s0->s[0]) + f * (s1->u[0] - s1->s[0]);
-        const double e1 = w0 * (s0->u[1] - s0->s[1]) + f * (s1->u[1] - s1->s[1]);
+        const cells_material m1 =
+            material_of((const oc_state *)(const void *)(in + (size_t)(i + k + 1) * stride));
+        const double N = w0 * m0.N + f * m1.N;
+        const double a0 = w0 * m0.a[0] + f * m1.a[0], a1 = w0 * m0.a[1] + f * m1.a[1];
+        const double e0 = w0 * m0.e[0] + f * m1.e[0], e1 = w0 * m0.e[1] + f * m1.e[1];
         const int on = N > 0;
         oc_state *o = &out[i];
         o->u[0] = own->u[0];
@@ -87,12 +97,13 @@ static void move_inside_cells(oc_state *restrict out, const unsigned char *restr
         o->a[1] = on ? a1 : 0.0;
         o->s[0] = on ? own->u[0] - e0 : own->u[0];
         o->s[1] = on ? own->u[1] - e1 : own->u[1];
+        m0 = m1;
     }
 }
 
 /* Cell i of a row by the general rule: ghosts and unloaded material. */
-static void move_edge_cell(oc_state *out, moved_from at, int row, int n1, int i, int k, double w0,
-                           double f) {
+static OC_ALWAYS_INLINE void move_edge_cell(oc_state *out, moved_from at, int row, int n1, int i,
+                                            int k, double w0, double f) {
     cells_material t = {0.0, {0.0, 0.0}, {0.0, 0.0}};
     take_column(&t, at, row, n1, i + k, w0);
     take_column(&t, at, row, n1, i + k + 1, f);
