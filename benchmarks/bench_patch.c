@@ -17,7 +17,12 @@
  *             fmi2GetReal(T1, T2, Mz, Fn, M1, M2);
  *   - lifted: the pad tilted by phi2 = 2 d/length at half that approach, so
  *             that its trailing quarter lifts and the cells along the line
- *             are clipped (its figures only: its forces are not the patch's).
+ *             are clipped (its figures only: its forces are not the patch's);
+ *   - rolling: the pad rolling by 1e-6 cells a step: every step moves
+ *             every cell's state by a fractional shift (the dearer case),
+ *             while the cells stick or slip as the pad's, so that the
+ *             figure is what rolling adds to a cell's step (its figures
+ *             only).
  * The four compute the same cells: at the end of every run the patch's T
  * must equal the points', the law's and the pad's sums (cell order, as the
  * patch sums) to 1e-12 relative, and the slip fraction be 0 (stick) or 1
@@ -30,8 +35,8 @@
  * CPU time, and each ratio is that of those figures with the range of the
  * rounds' own ratios beside it.  Targets: a cell's cost in the
  * patch <= 1.2x the law's own step, a 100-cell patch step <= 0.5x of 100
- * point steps through the FMI calls, and a pad's cell <= 1.3x a patch's at
- * 100 and 400 cells.
+ * point steps through the FMI calls, a pad's cell <= 1.3x a patch's at
+ * 100 and 400 cells, and a rolling pad's cell <= 1.3x a pad's there.
  *
  * Paths (bench_common.h's, plus a turn): stick, the body oscillates inside
  * every cell's sticking ellipse (u as bench_inputs, theta within 2e-4 rad);
@@ -64,8 +69,8 @@ extern const unsigned int BENCH_POINT_VRS[8];
 enum { P_RULE, P_INITIAL, P_U1, P_U2, P_N, P_T1, P_T2, P_STATE };
 /* bench_patch_pad.c: the pad FMU's table */
 extern const char *const BENCH_PAD_TOKEN;
-extern const unsigned int BENCH_PAD_VRS[17];
-enum { D_U1, D_T1 = 6, D_N1 = 12, D_N2, D_KN, D_SLIP, D_CONTACT };
+extern const unsigned int BENCH_PAD_VRS[18];
+enum { D_U1, D_T1 = 6, D_N1 = 12, D_N2, D_KN, D_SLIP, D_CONTACT, D_VR };
 
 enum { N_GRIDS = 4, MAX_CELLS = 400, PERIOD = 16 };
 static const int SIDES[N_GRIDS] = {1, 4, 10, 20};
@@ -208,8 +213,11 @@ static double pad_area, pad_length;
 
 /* The pad given the patch's inputs: d = N/(kn A) presses each cell with the
  * patch's N/n; lifted, half that approach and phi2 = 2 d/length, so that
- * the part x < -length/4 lifts and the cells along that line are clipped. */
-static run_result run_pad(const fmi2_api *a, const grid *G, int slip, long steps, int lifted) {
+ * the part x < -length/4 lifts and the cells along that line are clipped;
+ * rolling, by 1e-6 cells a step. */
+enum { PAD_PLAIN, PAD_LIFTED, PAD_ROLLING };
+static run_result run_pad(const fmi2_api *a, const grid *G, int slip, long steps, int mode) {
+    const int lifted = mode == PAD_LIFTED;
     fmi2Component c = a->inst("pad", fmi2CoSimulation, BENCH_PAD_TOKEN, "", &host_print2_cb, 0, 0);
     const fmi2ValueReference vn[2] = {BENCH_PAD_VRS[D_N1], BENCH_PAD_VRS[D_N2]};
     const fmi2Integer nn[2] = {G->side, G->side};
@@ -228,8 +236,14 @@ static run_result run_pad(const fmi2_api *a, const grid *G, int slip, long steps
     const double v0[6] = {u[0],       u[1], theta_of(0, slip),
                           scale * d0, 0.0,  lifted ? 2 * d0 / pad_length : 0.0};
     a->set_real(c, in, 6, v0);
+    const double h = 1e-4;
+    if (mode == PAD_ROLLING) {
+        const fmi2ValueReference vvr = BENCH_PAD_VRS[D_VR];
+        const double vr = 1e-6 * pad_length / G->side / h;
+        a->set_real(c, &vvr, 1, &vr);
+    }
     a->exit_init(c);
-    double t = 0, h = 1e-4, sink = 0, y[6] = {0, 0, 0, 0, 0, 0};
+    double t = 0, sink = 0, y[6] = {0, 0, 0, 0, 0, 0};
     const double t0 = now();
     for (long k = 0; k < steps; ++k) {
         bench_inputs(k, slip, u);
@@ -376,13 +390,13 @@ int main(int argc, char **argv) {
     pad_area = d[6] * d[7];
     pad_length = d[6];
 
-    /* [grid][slip][patch, points, law, pad, lifted]: best ns; ratio ranges over rounds */
-    double best[N_GRIDS][2][5], cell_lo[N_GRIDS][2], cell_hi[N_GRIDS][2], pts_lo[N_GRIDS][2],
+    /* [grid][slip][patch, points, law, pad, lifted, rolling]: best ns; ratio ranges over rounds */
+    double best[N_GRIDS][2][6], cell_lo[N_GRIDS][2], cell_hi[N_GRIDS][2], pts_lo[N_GRIDS][2],
         pts_hi[N_GRIDS][2], pad_lo[N_GRIDS][2], pad_hi[N_GRIDS][2], worst_diff = 0, sf[N_GRIDS][2];
     int failed = 0;
     for (int g = 0; g < N_GRIDS; ++g)
         for (int s = 0; s < 2; ++s) {
-            for (int r = 0; r < 5; ++r) best[g][s][r] = 1e30;
+            for (int r = 0; r < 6; ++r) best[g][s][r] = 1e30;
             cell_lo[g][s] = pts_lo[g][s] = pad_lo[g][s] = 1e30;
             cell_hi[g][s] = pts_hi[g][s] = pad_hi[g][s] = 0;
         }
@@ -395,14 +409,15 @@ int main(int argc, char **argv) {
                 const run_result a = run_patch(&pa, G, s, steps);
                 const run_result b = run_points(&pt, G, s, steps);
                 const run_result l = run_law(G, s, steps);
-                const run_result q = run_pad(&pd, G, s, steps, 0);
-                const run_result z = run_pad(&pd, G, s, steps, 1);
+                const run_result q = run_pad(&pd, G, s, steps, PAD_PLAIN);
+                const run_result z = run_pad(&pd, G, s, steps, PAD_LIFTED);
+                const run_result o = run_pad(&pd, G, s, steps, PAD_ROLLING);
                 const double dp = rel(a.T, b.T), dl = rel(a.T, l.T), dq = rel(a.T, q.T);
                 worst_diff = fmax(worst_diff, fmax(fmax(dp, dl), dq));
                 const double want = s ? 1.0 : 0.0;
                 if (!(dp <= 1e-12 && dl <= 1e-12 && dq <= 1e-12) || a.slip_fraction != want ||
                     b.slip_fraction != want || l.slip_fraction != want || q.slip_fraction != want ||
-                    !isfinite(z.T[0] + z.T[1])) {
+                    !isfinite(z.T[0] + z.T[1]) || !isfinite(o.T[0] + o.T[1])) {
                     fprintf(stderr,
                             "%d cells, %s: patch T (%.17g, %.17g) slip %g; points (%.17g, %.17g) "
                             "slip %g; law (%.17g, %.17g) slip %g; pad (%.17g, %.17g) slip %g\n",
@@ -413,6 +428,7 @@ int main(int argc, char **argv) {
                 }
                 best[g][s][3] = fmin(best[g][s][3], q.ns);
                 best[g][s][4] = fmin(best[g][s][4], z.ns);
+                best[g][s][5] = fmin(best[g][s][5], o.ns);
                 pad_lo[g][s] = fmin(pad_lo[g][s], q.ns / a.ns);
                 pad_hi[g][s] = fmax(pad_hi[g][s], q.ns / a.ns);
                 sf[g][s] = a.slip_fraction;
@@ -431,18 +447,18 @@ int main(int argc, char **argv) {
         "# FMU steps (set u1 u2 N, doStep, get T1 T2 each) and n linked-in oc_law_step calls;\n"
         "# %ld cell steps a run, interleaved, least disturbed of %d rounds, thread CPU time\n",
         cell_steps, rounds);
-    printf("%5s %-5s %10s %9s %9s %17s %11s %17s %5s %10s %17s %10s\n", "cells", "path", "patch_ns",
-           "cell_ns", "law_ns", "cell/law [rounds]", "points_ns", "patch/points", "slip", "pad_ns",
-           "pad/patch", "lifted_ns");
+    printf("%5s %-5s %10s %9s %9s %17s %11s %17s %5s %10s %17s %10s %10s\n", "cells", "path",
+           "patch_ns", "cell_ns", "law_ns", "cell/law [rounds]", "points_ns", "patch/points",
+           "slip", "pad_ns", "pad/patch", "lifted_ns", "rolling_ns");
     for (int g = 0; g < N_GRIDS; ++g)
         for (int s = 0; s < 2; ++s) {
             const int n = grids[g].n;
             const double *b = best[g][s];
             printf("%5d %-5s %10.1f %9.2f %9.2f %5.2f [%4.2f-%4.2f] %11.1f %5.3f [%4.2f-%4.2f] "
-                   "%5.2f %10.1f %5.2f [%4.2f-%4.2f] %10.1f\n",
+                   "%5.2f %10.1f %5.2f [%4.2f-%4.2f] %10.1f %10.1f\n",
                    n, s ? "slip" : "stick", b[0], b[0] / n, b[2] / n, b[0] / b[2], cell_lo[g][s],
                    cell_hi[g][s], b[1], b[0] / b[1], pts_lo[g][s], pts_hi[g][s], sf[g][s], b[3],
-                   b[3] / b[0], pad_lo[g][s], pad_hi[g][s], b[4]);
+                   b[3] / b[0], pad_lo[g][s], pad_hi[g][s], b[4], b[5]);
         }
     for (int s = 0; s < 2; ++s) {
         const double rc = best[3][s][0] / best[3][s][2], rp = best[2][s][0] / best[2][s][1];
@@ -455,6 +471,12 @@ int main(int argc, char **argv) {
         const double r100 = best[2][s][3] / best[2][s][0], r400 = best[3][s][3] / best[3][s][0];
         printf("%s: a pad's cell / a patch's at 100 cells %.2f, at 400 cells %.2f, target <= 1.30 "
                "%s\n",
+               s ? "slip " : "stick", r100, r400, fmax(r100, r400) <= 1.3 ? "met" : "NOT MET");
+    }
+    for (int s = 0; s < 2; ++s) {
+        const double r100 = best[2][s][5] / best[2][s][3], r400 = best[3][s][5] / best[3][s][3];
+        printf("%s: pad rolling cell / a pad's cell at 100 cells %.2f, at 400 cells %.2f, target "
+               "<= 1.30 %s\n",
                s ? "slip " : "stick", r100, r400, fmax(r100, r400) <= 1.3 ? "met" : "NOT MET");
     }
     printf("patch, points, law and pad agree: max relative difference of T %.1e %s\n", worst_diff,

@@ -6,8 +6,8 @@
 const char *const BENCH_PAD_TOKEN = FMU_TOKEN;
 
 /* in this order: the inputs u1, u2, theta, d, phi1, phi2; the outputs T1,
- * T2, Mz, Fn, M1, M2; n1, n2, kn, slipFraction, contactFraction */
-const unsigned int BENCH_PAD_VRS[17] = {PAD_VR_u1,
+ * T2, Mz, Fn, M1, M2; n1, n2, kn, slipFraction, contactFraction; the input vr */
+const unsigned int BENCH_PAD_VRS[18] = {PAD_VR_u1,
                                         PAD_VR_u2,
                                         PAD_VR_theta,
                                         PAD_VR_d,
@@ -23,4 +23,5 @@ const unsigned int BENCH_PAD_VRS[17] = {PAD_VR_u1,
                                         PAD_VR_n2,
                                         PAD_VR_kn,
                                         PAD_VR_slipFraction,
-                                        PAD_VR_contactFraction};
+                                        PAD_VR_contactFraction,
+                                        PAD_VR_vr};
