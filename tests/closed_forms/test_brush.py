@@ -2,8 +2,9 @@
 each other and against integrals written out here: the steady force's two
 regimes meet at the slip onset and tend to the friction limit, the profile
 integral under uniform pressure is the closed form, the adhesion zone is
-where the profile leaves the line xi a, and the spin's coefficients are the
-midpoint sums of the stick deflection they state."""
+where the profile leaves the line xi a, the spin's coefficients are the
+midpoint sums of the stick deflection they state, and the slip's power is
+the energy balance of the body's work and the elastic energy that leaves."""
 import math
 
 import numpy as np
@@ -87,3 +88,17 @@ def test_the_spin_coefficients_are_the_stick_deflections_sums():
     assert abs(T1) < 1e-12 * kT2 * spin
     assert T2 == pytest.approx(-kT2 * spin, rel=1e-5) and Mz == pytest.approx(-kMz * spin, rel=1e-5)
     assert math.isclose(kT2, eps2 * L**2 / 12) and math.isclose(kMz, eps1 * L * W**2 / 24)
+
+
+@pytest.mark.parametrize("factor", [0.5, 1.0, 1.37, 4.0])
+def test_slip_power_is_the_energy_balance(factor):
+    """The friction's power is the body's work |T| |xi| vr less the elastic
+    energy flux the leaving material takes, (mu p)^2/(2 c) W vr past the
+    onset (the trailing edge on the limit); none in full adhesion."""
+    xi, vr = factor * brush.slip_onset(EPS, MU, FN, L), 2.0
+    T = brush.steady_force(EPS, MU, FN, L, xi)
+    c, p = EPS / (L * W), FN / (L * W)
+    leaving = (MU * p) ** 2 / (2 * c) * W * vr if factor >= 1 else c * (xi * L) ** 2 / 2 * W * vr
+    assert brush.slip_power(EPS, MU, FN, L, xi, vr) == pytest.approx(abs(T) * xi * vr - leaving, rel=1e-12,
+                                                                     abs=1e-12 * MU * FN * vr)
+    assert brush.slip_power(EPS, MU, FN, L, -xi, -vr) == brush.slip_power(EPS, MU, FN, L, xi, vr)

@@ -60,6 +60,18 @@ def steady_force(eps, mu, fn, length, creepage) -> float:
     return -math.copysign(mu * fn * (1.0 - mu * fn / (2.0 * eps * abs(creepage) * length)), creepage)
 
 
+def slip_power(eps, mu, fn, length, creepage, vr) -> float:
+    """P [W]: the power the friction dissipates in steady rolling at vr
+    [m/s] under uniform pressure: a point past the adhesion zone slides on
+    the friction limit mu p at the creep rate |xi| vr, so P = mu fn |xi| vr
+    (1 - a*/length), a* = adhesion_length (0 in full adhesion).  The energy
+    balance: the body's work |T| |xi| vr less the elastic energy the leaving
+    material takes, (mu p)^2/(2 c) per area, c = eps/A."""
+    if fn <= 0.0:
+        return 0.0
+    return mu * fn * abs(creepage) * abs(vr) * (1.0 - adhesion_length(eps, mu, fn, length, creepage) / length)
+
+
 def spin_coefficients(eps1, eps2, length, width) -> tuple[float, float]:
     """(k_T2 [N m], k_Mz [N m^2]): in full adhesion a spin phi_s = theta'/vr
     [1/m] gives T2 = -k_T2 phi_s and Mz = -k_Mz phi_s (T1 = 0).  In stick the
