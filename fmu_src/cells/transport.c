@@ -18,52 +18,6 @@ typedef struct {
     double N, a[2], e[2];
 } cells_material;
 
-/* w times the material of state s, its force and elastic displacement
- * times sign, added to *t.  An open state carries a = 0 and u - s = 0 but
- * may hold N <= 0 (the normal force it was open at): none of it. */
-static OC_ALWAYS_INLINE void take_state(cells_material *t, const oc_state *s, double w,
-                                        double sign) {
-    const double sw = sign * w;
-    t->N += w * (s->N > 0 ? s->N : 0.0);
-    t->a[0] += sw * s->a[0];
-    t->a[1] += sw * s->a[1];
-    t->e[0] += sw * (s->u[0] - s->s[0]);
-    t->e[1] += sw * (s->u[1] - s->s[1]);
-}
-
-/* w times the material of column m of the row starting at `row` added to
- * *t: beyond the grid, the ghost (the mirror image, negated), or beyond the
- * mirror's reach nothing (unloaded). */
-static OC_ALWAYS_INLINE void take_column(cells_material *t, moved_from at, int row, int n1, int m,
-                                         double w) {
-    double sign = 1.0;
-    if (m >= n1 || m < 0) {
-        m = m >= n1 ? 2 * n1 - 1 - m : -1 - m;
-        sign = -1.0;
-    }
-    if (w == 0.0 || m < 0 || m >= n1) return;
-    take_state(t, moved_state(at, row + m), w, sign);
-}
-
-/* Cell c takes the material t, keeping its own u and energy (own). */
-static OC_ALWAYS_INLINE void put_moved(oc_state *o, const oc_state *own, const cells_material *t) {
-    o->u[0] = own->u[0];
-    o->u[1] = own->u[1];
-    o->energy = own->energy;
-    if (!(t->N > 0)) { /* unloaded material: open, its slip where the body is */
-        o->N = 0.0;
-        o->a[0] = o->a[1] = 0.0;
-        o->s[0] = o->u[0];
-        o->s[1] = o->u[1];
-        return;
-    }
-    o->N = t->N;
-    o->a[0] = t->a[0];
-    o->a[1] = t->a[1];
-    o->s[0] = o->u[0] - t->e[0];
-    o->s[1] = o->u[1] - t->e[1];
-}
-
 /* The material of state s: N clipped at 0 (an open state may hold the
  * N <= 0 it opened at, and carries no force or elastic displacement). */
 static OC_ALWAYS_INLINE cells_material material_of(const oc_state *s) {
@@ -72,10 +26,42 @@ static OC_ALWAYS_INLINE cells_material material_of(const oc_state *s) {
     return t;
 }
 
+/* The material of column m of the row starting at cell `row`: beyond the
+ * grid the ghost (the mirror image, its force and elastic displacement
+ * negated), beyond the mirror's reach none (unloaded). */
+static OC_ALWAYS_INLINE cells_material column_material(moved_from at, int row, int n1, int m) {
+    if (m >= 0 && m < n1) return material_of(moved_state(at, row + m));
+    const int mirror = m >= n1 ? 2 * n1 - 1 - m : -1 - m;
+    cells_material t = {0.0, {0.0, 0.0}, {0.0, 0.0}};
+    if (mirror < 0 || mirror >= n1) return t;
+    t = material_of(moved_state(at, row + mirror));
+    t.a[0] = -t.a[0];
+    t.a[1] = -t.a[1];
+    t.e[0] = -t.e[0];
+    t.e[1] = -t.e[1];
+    return t;
+}
+
+/* Cell o takes w0 of m0 and f of m1, keeping its own u and energy.
+ * Material with N = 0 is open without a test: both its parts are open or
+ * weighted 0, so its force and elastic displacement are zeros (of either
+ * sign) and its slip exactly u. */
+static OC_ALWAYS_INLINE void take(oc_state *o, const oc_state *own, const cells_material *m0,
+                                  const cells_material *m1, double w0, double f) {
+    o->u[0] = own->u[0];
+    o->u[1] = own->u[1];
+    o->energy = own->energy;
+    o->N = w0 * m0->N + f * m1->N;
+    o->a[0] = w0 * m0->a[0] + f * m1->a[0];
+    o->a[1] = w0 * m0->a[1] + f * m1->a[1];
+    o->s[0] = own->u[0] - (w0 * m0->e[0] + f * m1->e[0]);
+    o->s[1] = own->u[1] - (w0 * m0->e[1] + f * m1->e[1]);
+}
+
 /* Cells lo .. hi of a row (out and in at its first cell), each taking
  * w0 of the state k columns on and f of the next, both inside the grid: the
- * bulk of the cells, without a test or a branch, each source's material
- * formed once (a cell's second source is the next one's first). */
+ * bulk of the cells, without a test, each source's material formed once
+ * (a cell's second source is the next one's first). */
 static void move_inside_cells(oc_state *restrict out, const unsigned char *restrict in,
                               size_t stride, int lo, int hi, int k, double w0, double f) {
     cells_material m0 =
@@ -84,30 +70,18 @@ static void move_inside_cells(oc_state *restrict out, const unsigned char *restr
         const oc_state *own = (const oc_state *)(const void *)(in + (size_t)i * stride);
         const cells_material m1 =
             material_of((const oc_state *)(const void *)(in + (size_t)(i + k + 1) * stride));
-        const double N = w0 * m0.N + f * m1.N;
-        const double a0 = w0 * m0.a[0] + f * m1.a[0], a1 = w0 * m0.a[1] + f * m1.a[1];
-        const double e0 = w0 * m0.e[0] + f * m1.e[0], e1 = w0 * m0.e[1] + f * m1.e[1];
-        const int on = N > 0;
-        oc_state *o = &out[i];
-        o->u[0] = own->u[0];
-        o->u[1] = own->u[1];
-        o->energy = own->energy;
-        o->N = on ? N : 0.0;
-        o->a[0] = on ? a0 : 0.0;
-        o->a[1] = on ? a1 : 0.0;
-        o->s[0] = on ? own->u[0] - e0 : own->u[0];
-        o->s[1] = on ? own->u[1] - e1 : own->u[1];
+        take(&out[i], own, &m0, &m1, w0, f);
         m0 = m1;
     }
 }
 
-/* Cell i of a row by the general rule: ghosts and unloaded material. */
+/* Cell i of a row whose sources are not both inside: ghosts, unloaded
+ * material. */
 static OC_ALWAYS_INLINE void move_edge_cell(oc_state *out, moved_from at, int row, int n1, int i,
                                             int k, double w0, double f) {
-    cells_material t = {0.0, {0.0, 0.0}, {0.0, 0.0}};
-    take_column(&t, at, row, n1, i + k, w0);
-    take_column(&t, at, row, n1, i + k + 1, f);
-    put_moved(&out[row + i], moved_state(at, row + i), &t);
+    const cells_material m0 = column_material(at, row, n1, i + k);
+    const cells_material m1 = column_material(at, row, n1, i + k + 1);
+    take(&out[row + i], moved_state(at, row + i), &m0, &m1, w0, f);
 }
 
 void cells_transport(const cells_setup *g, double shift, const cells_source *src, oc_state out[]) {
