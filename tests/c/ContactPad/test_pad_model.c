@@ -9,10 +9,11 @@
  *   - full contact: Fn = kn A d and the moments of the continuum's linear
  *     pressure to 1e-12 on random grids and turns, the cells' normal forces
  *     (read from the committed states the FMU serialized) summing to Fn;
- *   - random call sequences with hostile values: every call returns a
- *     defined status, a successful read is finite, a refused call changes
- *     nothing (the serialized state is the same byte for byte), and a state
- *     the FMU wrote restores into a fresh instance reading the same outputs.
+ *   - random call sequences with hostile values, rolling among them: every
+ *     call returns a defined status, a successful read is finite, a refused
+ *     call changes nothing (the serialized state is the same byte for
+ *     byte), and a state the FMU wrote restores into a fresh instance
+ *     reading the same outputs.
  * The lift-off's exact integrals against the continuum's closed form:
  * tests/fmus/test_pad.py (closed_forms.pad). */
 #include <float.h>
@@ -171,8 +172,16 @@ static void full_contact_is_the_linear_pressure_on_every_grid(void) {
            checked);
 }
 
-/* Half the inputs pressing, the tilts small. */
-static void plausible(double v[NK]) { v[3] = 1e-6 * (uniform() + 0.5), v[4] *= 0.01, v[5] *= 0.01; }
+/* The random sequences' inputs: the pose and the rolling speed vr. */
+static const fmi2ValueReference ROLLING_KNOWN[NK + 1] = {
+    PAD_VR_u1, PAD_VR_u2, PAD_VR_theta, PAD_VR_d, PAD_VR_phi1, PAD_VR_phi2, PAD_VR_vr};
+
+/* Half the inputs pressing, the tilts small; two input sets in three
+ * rolling, by up to a few cells a step either way. */
+static void plausible(double v[NK + 1]) {
+    v[3] = 1e-6 * (uniform() + 0.5), v[4] *= 0.01, v[5] *= 0.01;
+    v[6] = pick(3) ? v[6] * 1e3 : 0.0;
+}
 
 /* Steps of 1 to 3 ms: the damping's rate over varied steps. */
 static double step_size(void) { return 1e-3 * (1 + pick(3)); }
@@ -181,7 +190,8 @@ int main(void) {
     rng_state = 0x9e3779b97f4a7c15ull;
     derivatives_match_differences();
     full_contact_is_the_linear_pressure_on_every_grid();
-    const cells_random M = {make, KNOWN, NK, UNKNOWN, NU, plausible, PAD_VR_dn, step_size};
+    const cells_random M = {make, ROLLING_KNOWN, NK + 1,    UNKNOWN,
+                            NU,   plausible,     PAD_VR_dn, step_size};
     random_sequences(&M);
     return oc_report();
 }
