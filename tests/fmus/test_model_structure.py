@@ -282,8 +282,10 @@ def patch_points(mode):
 # the pressure's resultants move with every known of the pose, the grid's
 # rounding with n1, n2); its foundation presses with ~4-19 N.
 PAD = dict(LAW, slidingRule=2, length=0.1, width=0.08, n1=4, n2=4, kn=1.2e7, dn=0.0)
-FULL = dict(d=2e-4, phi1=3e-4, phi2=1.2e-3)    # corners 2e-4 +- 6e-5 +- 1.2e-5 m
-LIFTED = dict(d=4e-5, phi1=3e-4, phi2=1.2e-3)  # corners 4e-5 +- 6e-5 +- 1.2e-5 m: x < -0.023 m lifts
+# Rolling in full contact (a step moves the states by 0.02 cells), not on the
+# lifted pose: no output depends on vr, which moves the states from the next step on.
+FULL = dict(d=2e-4, phi1=3e-4, phi2=1.2e-3, vr=0.5)    # corners 2e-4 +- 6e-5 +- 1.2e-5 m
+LIFTED = dict(d=4e-5, phi1=3e-4, phi2=1.2e-3, vr=0.0)  # corners 4e-5 +- 6e-5 +- 1.2e-5 m: x < -0.023 m lifts
 
 
 def pad_inputs(scale, push, pose, slip=(0.0, 0.0)):

@@ -362,8 +362,8 @@ def test_derivative_of_what_it_does_not_provide_is_refused(make, version):
 
 
 @pytest.mark.parametrize("name,value,why", [
-    ("n1", 0, "n1 = 0 rejected: outside [1, 32]"),
-    ("n2", 33, "n2 = 33 rejected: outside [1, 32]"),
+    ("n1", 0, "n1 = 0 rejected: outside [1, 64]"),
+    ("n2", 65, "n2 = 65 rejected: outside [1, 64]"),
     ("length", 0.0, "length = 0 rejected: outside [1e-100, 1e+100] m"),
     ("width", -1.0, "width = -1 rejected"),
     ("eps1", math.nan, "eps1 = nan rejected: values must be finite"),
@@ -659,7 +659,7 @@ def test_fmi3_structural_parameters_resize_the_arrays_in_configuration_mode():
 def test_fmi3_n1_n2_are_uint64_and_only_uint64():
     """FMI 3.0 wants an array's dimension to be a UInt64 structural
     parameter: n1, n2 are set and read through the UInt64 functions only;
-    the Int32 ones refuse them by name, as does a value outside [1, 32]
+    the Int32 ones refuse them by name, as does a value outside [1, 64]
     (2^64 - 1 as itself, not as -1), each with an error status and a log
     line, the values as they were."""
     s, md, vr, messages = _fmi3_patch("uint64")
@@ -669,9 +669,9 @@ def test_fmi3_n1_n2_are_uint64_and_only_uint64():
         s.setUInt64([vr["n1"], vr["n2"]], [3, 7])
         for call, why in [(lambda: s.setInt32([vr["n1"]], [4]),
                            "fmi3SetInt32: variable n1 (vr 21) is of type UInt64 (a structural parameter)"),
-                          (lambda: s.setUInt64([vr["n2"]], [0]), "n2 = 0 rejected: outside [1, 32]"),
+                          (lambda: s.setUInt64([vr["n2"]], [0]), "n2 = 0 rejected: outside [1, 64]"),
                           (lambda: s.setUInt64([vr["n1"]], [2**64 - 1]),
-                           "n1 = 1.84467e+19 rejected: outside [1, 32]"),
+                           "n1 = 1.84467e+19 rejected: outside [1, 64]"),
                           (lambda: s.setInt64([vr["n1"]], [4]), "is of type UInt64")]:
             with pytest.raises(FMICallException):
                 call()
