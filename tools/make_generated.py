@@ -36,6 +36,7 @@ import argparse
 import json
 import keyword
 import math
+import re
 import sys
 import textwrap
 from pathlib import Path
@@ -276,9 +277,23 @@ def cells_section(prefix: str, model_m, without, own_name: str, own_words: str, 
     return out + [")"]
 
 
+# The cells' limit in all (n1 n2), which no table row holds: the C constant itself.
+CELLS_HEADER = Path("fmu_src/cells/cells.h")
+
+
+def max_cells() -> int:
+    """PATCH_MAX_CELLS as fmu_src/cells/cells.h defines it."""
+    found = re.search(r"enum \{ PATCH_MAX_CELLS = (\d+) \};", (ROOT / CELLS_HEADER).read_text())
+    if found is None:
+        raise ValueError(f"{CELLS_HEADER}: no `enum {{ PATCH_MAX_CELLS = N }};`")
+    return int(found.group(1))
+
+
 def patch_section(contact, patch, table: str) -> list[str]:
     return cells_section("PATCH", patch, (contact,), "GEOMETRY",
-                         "Its geometry: its parameters the point contact has not", table)
+                         "Its geometry: its parameters the point contact has not", table) + [
+        "", f"# The most cells a patch or pad has in all, n1 n2 ({CELLS_HEADER}'s PATCH_MAX_CELLS).",
+        f"PATCH_MAX_CELLS = {max_cells()}"]
 
 
 def pad_section(contact, patch, pad, table: str) -> list[str]:

@@ -85,7 +85,10 @@ def test_a_height_held_only_by_a_large_tilt_is_refused_in_one_line(tmp_path):
 
 @pytest.mark.parametrize("old,new,says", [
     ("kn_N_m3 = 1.0e8", "kn_N_m3 = 1.0e200", ["pad.kn_N_m3 = 1e+200 N/m^3: a pad's foundation"]),
-    ("n1 = 8", "n1 = 40", ["pad.n1: expected a number <= 32, got 40"]),
+    ("n1 = 8", "n1 = 70", ["pad.n1: expected a number <= 64, got 70"]),
+    # each side within 64, the cells in all not: refused here, not as the FMU's traceback
+    ("n1 = 8\nn2 = 8", "n1 = 27\nn2 = 38",
+     ["pad.n1, pad.n2: n1 x n2 = 27 x 38 = 1026 cells: at most 1024 cells in all"]),
     ("heights_m = [0.0,", "heights_m = [-0.01,", ["push.heights_m"]),
     ("[push]\n", "[pushx]\n", ["pushx: expected a known table",
                                "push: expected a [push] table for kind 'pushed_block'"]),

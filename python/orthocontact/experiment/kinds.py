@@ -34,6 +34,7 @@ from ..fmu import (
     PAD_MODEL,
     PATCH_MODEL,
     RULES,
+    cells_problem,
     find_fmu,
     foundation_problem,
     geometry_problem,
@@ -202,11 +203,15 @@ PATCH = {"length_m": (POSITIVE, REQUIRED), "width_m": (POSITIVE, REQUIRED),
 
 
 def rectangle_problems(path, table: str, given: dict, problems: Problems) -> None:
-    """A [patch] or [pad] table's sides and cells against the FMU's own ranges."""
+    """A [patch] or [pad] table's sides and cells against the FMU's own
+    ranges, and its cells in all (fmu.cells_problem)."""
     for name, key in zip(GEOMETRY, ("length_m", "width_m", "n1", "n2")):
         problem = geometry_problem(name, given[key]) if key in given else None
         if problem is not None:
             problems.add(f"{path}: {table}.{key}: {problem}")
+    problem = cells_problem(given["n1"], given["n2"]) if "n1" in given and "n2" in given else None
+    if problem is not None:
+        problems.add(f"{path}: {table}.n1, {table}.n2: {problem}")
 
 
 def patch_geometry(path, values: dict, problems: Problems) -> None:

@@ -18,7 +18,14 @@ from dataclasses import dataclass
 
 from .contact import INITIAL_SLIP, FMUError
 from .files import find_fmu, model_description
-from .generated import PATCH_FLOAT_OUTPUTS, PATCH_GEOMETRY, PATCH_INPUTS, PATCH_INTEGER_OUTPUTS, PATCH_MODEL
+from .generated import (
+    PATCH_FLOAT_OUTPUTS,
+    PATCH_GEOMETRY,
+    PATCH_INPUTS,
+    PATCH_INTEGER_OUTPUTS,
+    PATCH_MAX_CELLS,
+    PATCH_MODEL,
+)
 from .param_checks import Row
 from .params import ContactParams
 from .slave import FreedOnClose, instantiate, integer_call
@@ -91,6 +98,14 @@ def geometry_problem(name: str, value) -> str | None:
     return value_problem(geometry_row(name), value)
 
 
+def cells_problem(n1, n2) -> str | None:
+    """What is wrong with n1 x n2 cells in all (the FMU holds at most
+    PATCH_MAX_CELLS), the sides each right; None if it is right."""
+    if n1 * n2 > PATCH_MAX_CELLS:
+        return f"n1 x n2 = {n1} x {n2} = {n1 * n2} cells: at most {PATCH_MAX_CELLS} cells in all"
+    return None
+
+
 @dataclass(frozen=True)
 class PatchGeometry:
     """The patch: length along the body's axis 1, width along axis 2 [m];
@@ -104,6 +119,9 @@ class PatchGeometry:
 
     def __post_init__(self):
         refuse_problems(self, PATCH_GEOMETRY)
+        problem = cells_problem(self.n1, self.n2)
+        if problem is not None:
+            raise ValueError(f"PatchGeometry: {problem}")
 
 
 class CellsFMU(FreedOnClose):
