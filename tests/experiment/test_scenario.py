@@ -270,7 +270,8 @@ def test_a_list_of_runs_with_a_repeat_is_one_line(tmp_path, scenario, old, new, 
 # end in exit 0 or in one line and exit 2.
 
 BELOW_ONE_STEP = 10.0
-SIZE_CAPS = {"rig steps": 2e4, "twist steps": 1500, "tow steps": 400}
+# The patch's in cell-steps (steps x n1 n2): 1500 and 400 steps of the default 8 x 8 cells.
+SIZE_CAPS = {"rig steps": 2e4, "twist cell-steps": 1500 * 64, "tow cell-steps": 400 * 64}
 PROPERTY_EXAMPLES = 12   # per kind
 
 
@@ -386,12 +387,13 @@ def _scenarios(kind):
             t = table(section, [k for k in SCHEMA[section] if k not in ("angle_deg", "duration_s")],
                       angles_deg={"items": 2})
             h = given(section, "step_s")
-            if kind == "twist":   # at most SIZE_CAPS["twist steps"] steps (angle / (rate h))
-                t["angle_deg"] = draw(value("twist", "angle_deg",
-                                            hi=SIZE_CAPS["twist steps"] * given("twist", "rate_deg_s") * h))
+            cells = given("patch", "n1") * given("patch", "n2")
+            if kind == "twist":   # at most SIZE_CAPS["twist cell-steps"] (angle / (rate h) steps)
+                t["angle_deg"] = draw(value("twist", "angle_deg", hi=SIZE_CAPS["twist cell-steps"] / cells
+                                            * given("twist", "rate_deg_s") * h))
             else:
                 t["duration_s"] = draw(value("tow", "duration_s", lo=h / BELOW_ONE_STEP,
-                                             hi=SIZE_CAPS["tow steps"] * h))
+                                             hi=SIZE_CAPS["tow cell-steps"] / cells * h))
         assert set(tables) - {""} <= {"law", "geometry", "rig"} | set(KINDS[kind].tables)
         return _scenario_text(tables)
 
