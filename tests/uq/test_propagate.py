@@ -149,7 +149,7 @@ def test_on_a_real_scheduler_with_a_worker_killed_mid_run(identified, tmp_path):
             c.wait_for_workers(2, timeout=60)
 
         sc = SCENARIOS / "mat_aged.toml"
-        args = ["--samples", "80", "--seed", "11", "--chunk-runs", "273"]  # 28 chunks of at most 3 sets
+        args = ["--samples", "160", "--seed", "11", "--chunk-runs", "273"]  # 54 chunks of 3 sets
         run = subprocess.Popen(CMD + ["uq", str(identified), "--scenario", str(sc), "--out",
                                       str(tmp_path / "cluster"), "--scheduler", address, *args],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
