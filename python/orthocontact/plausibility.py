@@ -37,11 +37,11 @@ class Quantity:
 
 
 # A length or a stiffness typed in another unit: the factor that brings it into the usual range.
-MM_CM, N_MM = ((0.001, "mm"), (0.01, "cm")), ((1e3, "N/mm"),)
+MM_CM, N_MM, SPEEDS = ((0.001, "mm"), (0.01, "cm")), ((1e3, "N/mm"),), ((0.01, "cm/s"), (0.001, "mm/s"))
 
 QUANTITIES = {
     "velocity_m_s": Quantity("m/s", (0.0, 20.0), (1e-3, 2.0), "a lab rig's carriage moves at 0.001-2 m/s",
-                             ((0.01, "cm/s"), (0.001, "mm/s"))),
+                             SPEEDS),
     # below a milligram no block can be on a rig, and a smaller mass underflows
     # what the harnesses derive from it (a patch's inertia, a pad's tolerances)
     "mass_kg": Quantity("kg", (1e-6, 1000.0), (0.01, 100.0), "a block on a lab rig weighs 0.01-100 kg",
@@ -78,6 +78,8 @@ QUANTITIES = {
     "heights_m": Quantity("m", (0.0, 10.0), (0.0, 1.0), "a push's height above the contact is 0-1 m", MM_CM,
                           zero_allowed=True),
     "step_m": Quantity("m", (0.0, 1.0), (1e-6, 1e-2), "a push's carriage step is 1e-6-1e-2 m", MM_CM),
+    "load_N": Quantity("N", (0.0, 1e7), (0.1, 1e5), "a wheel's load is 0.1-1e5 N", ((1e3, "kN"),)),
+    "vr_m_s": Quantity("m/s", (0.0, 500.0), (1e-3, 100.0), "a wheel or belt rolls at 0.001-100 m/s", SPEEDS),
 }
 
 
@@ -182,10 +184,8 @@ def scale_slip(ratio: float, slips=LENGTH_SLIPS) -> str | None:
     """The unit a column was likely typed in, if `ratio` (what the column
     gives over what it should, e.g. a tracked speed over the carriage's
     velocity) is within a factor 2 of that unit's factor."""
-    for factor, unit in slips:
-        if 0.5 * factor < ratio < 2 * factor:
-            return unit
-    return None
+    found = slip(ratio, slips)
+    return None if found is None else found[1]
 
 
 # Time and force columns typed in another unit: the factor a time comes out

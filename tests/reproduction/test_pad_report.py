@@ -33,3 +33,18 @@ def test_a_run_off_its_regime_is_marked_and_a_tipped_one_says_where():
     text = "\n".join(pad_report.pushed_lines(sc, summary("tips", "lift-off", ok=False)))
     assert "tips (**lift-off**) at 0.2 mm of travel | — |" in text
     assert "Check: **warning**: pushed_block: off" in text
+
+
+def test_a_rolling_pad_shows_each_runs_deviation_where_the_brush_holds_and_its_lateral_force():
+    sc = load(SCENARIOS / "rolling_wheel.toml")
+    worst = {f"{r} {a:g} {d}": 1e-3 for r in ("coupled", "associated") for a in (0.0, 90.0)
+             for d in ("longitudinal", "lateral")}
+    lateral = {f"{r} {a:g}": 0.0 if a in (0.0, 90.0) else 0.05 for r in ("coupled", "associated")
+               for a in sc.roll["angles_deg"]}
+    s = {"kind": "rolling", "pad": sc.pad, "roll": sc.roll, "lateral_from_longitudinal_max_over_Fn": lateral,
+         "checks": {"ok": True, "warning": None, "tolerance_over_mu_Fn": 1 / 32, "worst_over_mu_Fn": worst}}
+    text = "\n".join(pad_report.rolling_lines(sc, s))
+    assert "| coupled | 0 | 1.00e-03 | 1.00e-03 | 0.0000 |" in text
+    assert "| coupled | 45 | no closed form | no closed form | 0.0500 |" in text
+    assert "Check: ok." in text and "rolling_wheel/zones.png" in text
+    assert pad_report.rolling_json(sc, s)["checks"]["ok"]

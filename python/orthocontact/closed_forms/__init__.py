@@ -1,8 +1,18 @@
 """The closed forms, in one place for tests, figures, checks and
 identification: the paper's (paper) and, beyond it, the rig's steady state
-with the Teflon strip and its settling length (rig); FORMS, the table of the
+with the Teflon strip and its settling length (rig), the pad's (pad) and the
+rolling pad's brush (brush); FORMS, the table of the
 forms a scenario can name (named).  `from orthocontact import closed_forms
 as cf` gives them all."""
+from .brush import (  # noqa: F401
+    adhesion_length,
+    creep_stiffness,
+    deflection_profile,
+    slip_onset,
+    spin_coefficients,
+    steady_force,
+    steady_force_profile,
+)
 from .named import FORMS, NamedForm, named  # noqa: F401
 from .pad import FULL_CONTACT, LIFT_OFF, TIPS, contact_fraction, pushed_at_height  # noqa: F401
 from .paper import (  # noqa: F401
@@ -64,4 +74,5 @@ __all__ = ['FORMS', 'NamedForm', 'named', 'of_law', 'G_STANDARD', 'rotation', 'a
            'steady_strip_state_array', 'steady_tan_phi_with_strip_array', 'steady_tan_phi_with_strip',
            'settling_length_array', 'FULL_CONTACT', 'LIFT_OFF', 'TIPS', 'contact_fraction',
            'pushed_at_height', 'cell_centres', 'full_slip_rotation_grid', 'steady_force_direction',
-           'torsional_stiffness_grid']
+           'torsional_stiffness_grid', 'adhesion_length', 'creep_stiffness', 'deflection_profile',
+           'slip_onset', 'spin_coefficients', 'steady_force', 'steady_force_profile']

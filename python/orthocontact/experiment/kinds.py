@@ -261,3 +261,16 @@ PUSH = {"heights_m": (list_of(NON_NEGATIVE, unique=True), REQUIRED),
 
 kind("pushed_block", model=PAD_MODEL, carriage=False, check=pushed_block_problems,
      tables={"pad": PAD, "push": PUSH})
+
+# The pad rolling (reproduction.rolling_outputs): a wheel's or a belt roller's
+# contact on the pad, pressed by load_N [N], its surface passing through at
+# vr_m_s [m/s] along the pad's axis 1, the body creeping at each creepage
+# (longitudinal and lateral) for rolled_lengths pad lengths at the Courant
+# number courant (the material's passage per step in cells).
+ROLL = {"load_N": (POSITIVE, REQUIRED), "vr_m_s": (POSITIVE, 1.0),
+        "creepages": (list_of(number(0.0, 1.0), unique=True), REQUIRED),
+        "angles_deg": (list_of(ANGLE_DEG, unique=True), [0.0, 15.0, 30.0, 45.0, 60.0, 75.0, 90.0]),
+        "rules": (list_of(choice(RUN_RULES), unique=True), list(RUN_RULES)),
+        "courant": (number(0.0, 1.0, lo_open=True), 1.0), "rolled_lengths": (number(1.0, 100.0), 2.0)}
+
+kind("rolling", model=PAD_MODEL, carriage=False, check=pad_geometry, tables={"pad": PAD, "roll": ROLL})

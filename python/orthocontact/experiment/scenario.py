@@ -134,6 +134,7 @@ class Scenario:
     tow = KindTable()
     pad = KindTable()             # a body on the pad: the rectangle on its foundation
     push = KindTable()
+    roll = KindTable()            # a pad that rolls: its load, speed and creepages
 
     def head(self) -> dict:
         """summary.json's first keys: which scenario, its title and kind."""

@@ -12,7 +12,7 @@ from ..fmu import fmi_version_of
 from ..output import write_json
 
 # each registers its kinds' pieces
-from . import paper_report, planar_outputs, pushed_outputs, scenario_outputs  # noqa: F401
+from . import paper_report, planar_outputs, pushed_outputs, rolling_outputs, scenario_outputs  # noqa: F401
 
 
 def run_scenario(sc: Scenario, out: Path, fmu_path, how: RunOptions) -> dict:

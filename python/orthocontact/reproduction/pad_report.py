@@ -60,3 +60,44 @@ def pushed_lines(sc: Scenario, s: dict) -> list[str]:
 
 
 register("pushed_block", "report", ReportPart(PAD, pushed_lines, pushed_json))
+
+
+def rolling_json(sc: Scenario, s: dict) -> dict:
+    """report.json's entry of a rolling pad: its checks and lateral forces."""
+    return {"kind": s["kind"], "checks": s["checks"],
+            "lateral_from_longitudinal_max_over_Fn": s["lateral_from_longitudinal_max_over_Fn"]}
+
+
+def rolling_lines(sc: Scenario, s: dict) -> list[str]:
+    """A rolling pad's lines in the section: each run's largest deviation
+    from the brush's closed form where it holds, and the largest lateral
+    force a pure longitudinal creepage makes at each mat angle."""
+    p, r = s["pad"], s["roll"]
+    lines = [f"### {sc.title}", "",
+             f"A {rectangle_mm(p)} pad of {p['n1']} × {p['n2']} cells on a foundation of {p['kn_N_m3']:.3g} "
+             f"N/m³, pressed flat by {r['load_N']:g} N, its surface passing through at {r['vr_m_s']:g} m/s "
+             f"({r['courant']:g} cell a step), the body creeping longitudinally or laterally at each "
+             f"creepage up to {max(r['creepages']):g}, each held for {r['rolled_lengths']:g} pad lengths: "
+             "the brush model with the law's orthotropic stiffness and friction in each bristle. Where the "
+             "texture's axes are the pad's, the force is the brush's closed form (full adhesion −εLξ/2, "
+             "then partial slip); elsewhere a longitudinal creepage also pushes sideways.", "",
+             "| rule | mat angle [deg] | longitudinal: off the closed form [μFn] | lateral: off the closed "
+             "form [μFn] | largest \\|T2\\|/Fn under longitudinal creepage |",
+             "|---|---|---|---|---|"]
+    worst = s["checks"]["worst_over_mu_Fn"]
+    for rule in r["rules"]:
+        for a in r["angles_deg"]:
+            off = ["no closed form" if (x := worst.get(f"{rule} {a:g} {d}")) is None else f"{x:.2e}"
+                   for d in ("longitudinal", "lateral")]
+            lines.append(f"| {rule} | {a:g} | {off[0]} | {off[1]} | "
+                         f"{s['lateral_from_longitudinal_max_over_Fn'][f'{rule} {a:g}']:.4f} |")
+    lines += ["", f"Tolerance: {s['checks']['tolerance_over_mu_Fn']:.3g} μFn (the grid's first-order error "
+              f"at {p['n1']} cells along the rolling axis).", "", check_line(s), "",
+              figures_line(sc, [link(sc, "force_creepage.png", "force against creepage"),
+                                link(sc, "lateral_force.png", "the lateral force of a longitudinal creepage"),
+                                link(sc, "zones.png", "the adhesion and slip zones")],
+                           ("rolling.csv", "rolling_cells.csv")), ""]
+    return lines
+
+
+register("rolling", "report", ReportPart(PAD, rolling_lines, rolling_json))

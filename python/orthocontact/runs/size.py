@@ -181,6 +181,17 @@ def pushed_work(sc) -> Work:
             .plus("the cells again (FMI 3.0), at most", len(pu["heights_m"]), steps))
 
 
+@estimates("rolling", "roll.angles_deg, roll.rules or roll.creepages",
+           "roll.rolled_lengths, roll.courant or pad.n1")
+def rolling_work(sc) -> Work:
+    """A roll at each mat angle, rule and direction (longitudinal, lateral)
+    through each creepage, each held for rolled_lengths pad lengths of
+    courant cells a step."""
+    r = sc.roll
+    steps = math.ceil(r["rolled_lengths"] * sc.pad["n1"] / r["courant"] - 1e-9)
+    return Work().plus("rolls", 2 * len(r["rules"]) * len(r["angles_deg"]), len(r["creepages"]) * steps)
+
+
 def scenario_work(sc) -> Work:
     """Every rig run `orthocontact run` makes for a scenario: its kind's
     estimate."""
