@@ -68,14 +68,20 @@ variants=(release asan)
 [ $fast = 0 ] || variants=(release)
 for variant in "${variants[@]}"; do
   flags=(-DOC_BUILD_TESTS=ON -DFMI_HEADERS_DIR="$FMI_DIR")
+  target=all
   if [ "$variant" = asan ]; then
-    flags+=(-DOC_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug)
+    # The C tests alone (the release build compiles everything else), at -O1
+    # as the sanitizers' docs advise (at -O0 the law's random sequences were
+    # most of `make test`'s C part).  GCC's -Wstringop-overflow misreads the
+    # sanitized 2x2 matrix products at -O1 (the release build has no such warning).
+    flags+=(-DOC_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_C_FLAGS_DEBUG=-O1 -g -Wno-stringop-overflow")
+    target=c_tests
   else
     flags+=(-DCMAKE_BUILD_TYPE=Release)
   fi
   echo "== C unit tests ($variant) =="
   cmake -S . -B "build/ctest-$variant" "${flags[@]}" >/dev/null
-  cmake --build "build/ctest-$variant" -j2 >/dev/null
+  cmake --build "build/ctest-$variant" -j2 --target "$target" >/dev/null
   # both cores: the tests are independent processes (the sanitized ones take most of it)
   (cd "build/ctest-$variant" && ctest --output-on-failure -j2)
 done
