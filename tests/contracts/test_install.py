@@ -24,13 +24,15 @@ def test_editable_install_finds_its_fmus_and_runs(tmp_path):
     # through a .pth file (installing casadi, numpy and matplotlib afresh took
     # most of a minute); the package itself in editable mode, in the new
     # environment, whose site-packages come first.  Host binaries only
-    # (OC_CROSS=OFF): what is tested is where an editable install finds its
-    # FMUs, not the cross build; a build folder of its own.
+    # (OC_CROSS=OFF), unoptimised (Debug builds faster): what is
+    # tested is where an editable install finds its FMUs, not the cross build
+    # or the optimiser; a build folder of its own.
     site = _sh([str(py), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"]).stdout.strip()
     shared = _sh([sys.executable, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"]).stdout
     (Path(site) / "zz_shared_dependencies.pth").write_text(shared)
     _sh(pip + ["--no-build-isolation", "--no-deps", "-e", str(ROOT),
-               "-Cbuild-dir=build/editable-test", "-Ccmake.define.OC_CROSS=OFF"], timeout=900)
+               "-Cbuild-dir=build/editable-test", "-Ccmake.define.OC_CROSS=OFF", "-Ccmake.build-type=Debug"],
+        timeout=900)
     probe = _sh([str(py), "-c", "import orthocontact, orthocontact.fmu as f; "
                  "print(orthocontact.__file__); print(f.find_fmu()); print(f.find_fmu(fmi_version=3))"],
                 cwd=tmp_path).stdout.splitlines()
