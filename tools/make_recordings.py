@@ -234,9 +234,9 @@ def write_folder(out: Path, truth: Truth, runs: dict, f_int_in_toml: bool = Fals
     for name, (kind, a, v, traj, forces) in runs.items():
         lines.append(f"{name},{kind},{a:g},{v:g}")
         if traj is not None:
-            body = "\n".join(f"{t:.5f},{x:.{digits}f},{y:.{digits}f}" for t, x, y in traj)
+            body = "\n".join(f"{t:.5f},{x:.{digits}f},{y:.{digits}f}" for t, x, y in traj.tolist())
             (out / "trajectories" / f"{name}.csv").write_text("t_s,x1_m,x2_m\n" + body + "\n")
-        body = "\n".join(f"{t:.5f},{f:.4f}" for t, f in forces)
+        body = "\n".join(f"{t:.5f},{f:.4f}" for t, f in forces.tolist())
         (out / "forces" / f"{name}.csv").write_text("t_s,force_N\n" + body + "\n")
     (out / "runs.csv").write_text("\n".join(lines) + "\n")
 
