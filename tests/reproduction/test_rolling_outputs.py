@@ -91,3 +91,15 @@ def test_a_load_typed_in_kn_is_said_and_strict_refuses_it(tmp_path):
     p = run_cli(["run", light, "--out", tmp_path / "out", "--strict"], cwd=tmp_path)
     assert p.returncode == 1, p.stderr
     assert "roll.load_N = 0.05 N: a wheel's load is 0.1-1e5 N; kN?" in p.stderr
+
+
+def test_a_force_that_is_not_a_number_fails_the_check():
+    """No NaN passes as ok: a deviation that is not a number is off."""
+    sc = load(BUNDLED)
+    pad = rolling_outputs.pad_of(sc)
+    law = rolling_outputs.axis_law(sc.params_at(0.0, "coupled"), 0)
+    row = rolling_outputs.creepage_row("coupled", 0.0, "longitudinal", law, pad,
+                                       (1e-3, float("nan"), 0.0, 0.0, 50.0, 1.0))
+    worst = {("coupled", 0.0, "longitudinal"): row["off_closed_form_over_mu_Fn"]}
+    s = rolling_outputs.rolling_summary(sc, pad, [row], worst, 3)
+    assert not s["checks"]["ok"] and "mat angle 0 deg" in s["checks"]["warning"]
