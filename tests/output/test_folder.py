@@ -219,7 +219,9 @@ def test_a_killed_runs_staging_folder_goes_with_the_next_run_and_a_live_ones_sta
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     live = start(SCENARIOS / "case1.toml")
     try:
-        _until(lambda: len(partials()) == 1)
+        # its .lock appears once held (made as .lock.new, renamed after the flock):
+        # stopped before that, the run would stay without one
+        _until(lambda: len(partials()) == 1 and (partials()[0] / LOCK).exists())
         os.kill(live.pid, signal.SIGSTOP)   # in progress, its lock held
         theirs = partials()
         killed = start(SCENARIOS / "mat_aged.toml")
