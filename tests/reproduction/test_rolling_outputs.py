@@ -55,6 +55,9 @@ def test_fmi3_gives_the_same_rows_and_the_cells(tmp_path):
         assert p.returncode == 0, p.stderr
     for name in ("rolling.csv", "rolling_cells.csv"):    # FMI 2.0's cells: its FMI 3.0 twin's
         assert (tmp_path / "2" / name).read_bytes() == (tmp_path / "3" / name).read_bytes(), name
+    said = json.loads((tmp_path / "2/summary.json").read_text())["cells"]
+    assert said == {"coupled 30": "the same rolls on the installed FMI 3.0 ContactPad FMU, equal to this run "
+                                  "at the end of every creepage (FMI 2.0 has no arrays)"}
     cells = list(csv.DictReader(open(tmp_path / "3/rolling_cells.csv")))
     assert len(cells) == 8 * 32 * 4                        # the first rule: creepages x cells
     states = {c["state"] for c in cells}
@@ -101,5 +104,5 @@ def test_a_force_that_is_not_a_number_fails_the_check():
     row = rolling_outputs.creepage_row("coupled", 0.0, "longitudinal", law, pad,
                                        (1e-3, float("nan"), 0.0, 0.0, 50.0, 1.0))
     worst = {("coupled", 0.0, "longitudinal"): row["off_closed_form_over_mu_Fn"]}
-    s = rolling_outputs.rolling_summary(sc, pad, [row], worst, 3)
+    s = rolling_outputs.rolling_summary(sc, pad, [row], worst, {})
     assert not s["checks"]["ok"] and "mat angle 0 deg" in s["checks"]["warning"]

@@ -29,6 +29,7 @@ from ..experiment import SCHEMA, RunOptions, Scenario, ScenarioError, part
 from ..fmu import PATCH_MODEL, PatchGeometry
 from ..output import draw_here, write_csv, write_json
 from ..rig import planar
+from .fmi3_twin import fmi3_twin
 from .planar_figures import figure_cells, figure_twist, figure_yaw_angle, figure_yaw_time
 
 # The towed block's steady yaw: after tow.duration_s the transient is far
@@ -190,19 +191,14 @@ def cell_states_of(params, body, tw, res) -> tuple:
     installed FMI 3.0 ContactPatch FMU if its record equals res's."""
     if res.cell_state is not None:
         return res.cell_state, "this run (FMI 3.0: cellState)"
-    from ..fmu import find_fmu
-    try:
-        twin = find_fmu(fmi_version=3, model=PATCH_MODEL)
-    except FileNotFoundError as e:
-        return None, f"FMI 2.0 has no arrays, and no FMI 3.0 ContactPatch FMU is installed ({e})"
-    again = planar.twist(params, body, math.radians(tw["rate_deg_s"]), math.radians(tw["angle_deg"]),
-                         tw["step_s"], fmu_path=twin, fmi_version=3, cells=True)
-    if not all(np.array_equal(getattr(res, k), getattr(again, k))
-               for k in ("theta", "Mz", "slip_fraction", "contact_state")):
-        return None, (f"FMI 2.0 has no arrays, and the installed FMI 3.0 FMU ({twin}) does not give "
-                      "this FMU's torque bit for bit: its cells would not be this run's")
-    return again.cell_state, ("the same twist on the installed FMI 3.0 ContactPatch FMU, equal to this "
-                              "run at every step in torque, slip fraction and state (FMI 2.0 has no arrays)")
+    again, why = fmi3_twin(
+        PATCH_MODEL, lambda twin: planar.twist(params, body, math.radians(tw["rate_deg_s"]),
+                                               math.radians(tw["angle_deg"]), tw["step_s"], fmu_path=twin,
+                                               fmi_version=3, cells=True),
+        lambda again: all(np.array_equal(getattr(res, k), getattr(again, k))
+                          for k in ("theta", "Mz", "slip_fraction", "contact_state")),
+        "twist", " at every step in torque, slip fraction and state", differs="torque")
+    return (None if again is None else again.cell_state), why
 
 
 # The instants the cells are shown at: the last step with every cell stuck,

@@ -35,10 +35,11 @@ from ..closed_forms import (
     steady_phi_deg,
 )
 from ..experiment import RunOptions, Scenario, ScenarioError, part
-from ..fmu import PAD_MODEL, Foundation, PatchGeometry, find_fmu, fmi_version_of
+from ..fmu import PAD_MODEL, Foundation, PatchGeometry, fmi_version_of
 from ..output import draw_here, write_csv, write_json
 from ..plausibility import ELASTIC_LENGTHS
 from ..rig import pushed
+from .fmi3_twin import fmi3_twin
 from .pushed_figures import figure_cells, figure_phi, figure_regimes
 
 # A settled push's trajectory angle is the closed form's to the transient
@@ -274,16 +275,11 @@ def cells_of(params, block, pu, res) -> tuple:
     if res.cell_normal is not None or res.regime == TIPS:
         return res.cell_normal, res.cell_state, ("this run (FMI 3.0: cellFn, cellState)"
                                                  if res.regime != TIPS else "the block tipped")
-    try:
-        twin = find_fmu(fmi_version=3, model=PAD_MODEL)
-    except FileNotFoundError as e:
-        return None, None, f"FMI 2.0 has no arrays, and no FMI 3.0 ContactPad FMU is installed ({e})"
-    again = pushed.push(params, block, pu["travel_m"], pu["step_m"], 3, twin, cells=True)
-    if not all(np.array_equal(getattr(res, k), getattr(again, k)) for k in ("x1", "x2", "d", "phi2", "T1")):
-        return None, None, (f"FMI 2.0 has no arrays, and the installed FMI 3.0 FMU ({twin}) does not give "
-                            "this FMU's push bit for bit")
-    return again.cell_normal, again.cell_state, ("the same push on the installed FMI 3.0 ContactPad FMU, "
-                                                 "equal to this run at every step (FMI 2.0 has no arrays)")
+    again, why = fmi3_twin(
+        PAD_MODEL, lambda twin: pushed.push(params, block, pu["travel_m"], pu["step_m"], 3, twin, cells=True),
+        lambda again: all(np.array_equal(getattr(res, k), getattr(again, k))
+                          for k in ("x1", "x2", "d", "phi2", "T1")), "push")
+    return (None, None, why) if again is None else (again.cell_normal, again.cell_state, why)
 
 
 @part("pushed_block", "run")

@@ -89,7 +89,7 @@ def figure_zones(sc: Scenario, cells: dict, creepages, path: Path) -> None:
     """Each cell's state at the end of a longitudinal creepage (rows) at
     each mat angle (columns), the first rule: sticking (adhesion) light,
     slipping dark; the material enters on the right.  Said in words where
-    there are none (an FMI 2.0 run whose FMI 3.0 twin differed)."""
+    there are none (an FMI 2.0 run without its FMI 3.0 twin)."""
     plt = pyplot()
     rule = sc.roll["rules"][0]
     angles = list(sc.roll["angles_deg"])
@@ -110,8 +110,8 @@ def figure_zones(sc: Scenario, cells: dict, creepages, path: Path) -> None:
             if r == 0:
                 ax.set_title(f"{a:g}°", fontsize=8)
             if states is None:
-                ax.text(0.5, 0.5, "no cells: the FMI 3.0\ntwin differed", ha="center", va="center",
-                        fontsize=6, transform=ax.transAxes)
+                ax.text(0.5, 0.5, "no cell arrays:\nsummary.json's\n\"cells\" says why", ha="center",
+                        va="center", fontsize=6, transform=ax.transAxes)
                 continue
             S = states[list(creepages).index(xi)]
             ax.pcolormesh(x, y, S.T, cmap="Blues", vmin=0, vmax=2.5)

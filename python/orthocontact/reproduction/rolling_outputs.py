@@ -32,8 +32,9 @@ import numpy as np
 
 from ..closed_forms import adhesion_tensor, friction_tensor, slip_onset, steady_force
 from ..experiment import RunOptions, Scenario, part
-from ..fmu import PAD_MODEL, Foundation, PadFMU, PatchGeometry, find_fmu, fmi_version_of
+from ..fmu import PAD_MODEL, Foundation, PadFMU, PatchGeometry, fmi_version_of
 from ..output import draw_here, write_csv, write_json
+from .fmi3_twin import fmi3_twin
 from .rolling_figures import figure_force_creepage, figure_lateral, figure_zones
 
 DIRECTIONS = ("longitudinal", "lateral")
@@ -115,14 +116,15 @@ def rolling_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     figures; returns the summary."""
     pad, r = pad_of(sc), sc.roll
     version = fmi_version_of(fmu_path)
-    rows, cells, worst = [], {}, {}
+    rows, cells, cells_from, worst = [], {}, {}, {}
     for rule in r["rules"]:
         for a in r["angles_deg"]:
             params = sc.params_at(a, rule)
             for direction in DIRECTIONS:
                 got, states = roll(params, pad, direction, r["creepages"], fmu_path, version)
                 if direction == "longitudinal" and rule == r["rules"][0]:   # the zones figure's
-                    cells[(rule, a)] = states if version == 3 else fmi3_twin(params, pad, r["creepages"], got)
+                    cells[(rule, a)], cells_from[f"{rule} {a:g}"] = \
+                        cells_of(params, pad, r["creepages"], got, states, version)
                 law = axis_law(params, DIRECTIONS.index(direction))
                 rows += [creepage_row(rule, a, direction, law, pad, one) for one in got]
                 offs = [row["off_closed_form_over_mu_Fn"] for row in rows[-len(got):]]
@@ -133,17 +135,20 @@ def rolling_outputs(sc: Scenario, out: Path, fmu_path, draw=None) -> dict:
     draw(figure_force_creepage, sc, rows, out / "force_creepage.png")
     draw(figure_lateral, sc, rows, out / "lateral_force.png")
     draw(figure_zones, sc, cells, r["creepages"], out / "zones.png")
-    summary = rolling_summary(sc, pad, rows, worst, version)
+    summary = rolling_summary(sc, pad, rows, worst, cells_from)
     write_json(out / "summary.json", summary)
     return summary
 
 
-def fmi3_twin(params, pad: RollingPad, creepages, rows: list) -> list | None:
-    """The cells' states of an FMI 2.0 run (which has no arrays) from the
-    same run on the installed FMI 3.0 ContactPad FMU, if its rows equal the
-    run's bit for bit (the two builds compute the same bits); None if not."""
-    again, states = roll(params, pad, "longitudinal", creepages, find_fmu(fmi_version=3, model=PAD_MODEL), 3)
-    return states if again == rows else None
+def cells_of(params, pad: RollingPad, creepages, rows: list, states: list, version: int) -> tuple:
+    """(the cells' states at the end of each longitudinal creepage, where
+    they come from), or (None, why not): the run's own (FMI 3.0), else those
+    of the same run on the installed FMI 3.0 FMU (fmi3_twin)."""
+    if version == 3:
+        return states, "this run (FMI 3.0: cellState)"
+    again, why = fmi3_twin(PAD_MODEL, lambda twin: roll(params, pad, "longitudinal", creepages, twin, 3),
+                           lambda again: again[0] == rows, "rolls", " at the end of every creepage")
+    return (None if again is None else again[1]), why
 
 
 def creepage_row(rule: str, a: float, direction: str, law, pad: RollingPad, one: tuple) -> dict:
@@ -177,7 +182,7 @@ def write_tables(out: Path, pad: RollingPad, rows: list, cells: dict, creepages)
                                           "state"], cell_rows)
 
 
-def rolling_summary(sc: Scenario, pad: RollingPad, rows: list, worst: dict, version: int) -> dict:
+def rolling_summary(sc: Scenario, pad: RollingPad, rows: list, worst: dict, cells_from: dict) -> dict:
     """summary.json: the pad, its drive, every row, the checks where a
     closed form holds, and the largest lateral force a pure longitudinal
     creepage makes at each mat angle."""
@@ -194,11 +199,8 @@ def rolling_summary(sc: Scenario, pad: RollingPad, rows: list, worst: dict, vers
         if row["direction"] == "longitudinal":
             key = f"{row['rule']} {row['angle_deg']:g}"
             lateral[key] = max(lateral.get(key, 0.0), abs(row["T2_over_Fn"]))
-    cells = ("this run's (FMI 3.0)" if version == 3 else
-             "the same runs on the installed FMI 3.0 ContactPad FMU, equal to these bit for bit (FMI 2.0 "
-             "has no arrays), where the zones figure shows them")
     return {**sc.head(), "pad": sc.pad, "roll": sc.roll, "d_m": pad.d_m, "h_s": pad.h_s,
-            "steps_per_creepage": pad.steps, "cells": cells, "rows": rows,
+            "steps_per_creepage": pad.steps, "cells": cells_from, "rows": rows,
             "lateral_from_longitudinal_max_over_Fn": lateral,
             "checks": {"ok": warning is None, "tolerance_over_mu_Fn": tol, "warning": warning,
                        "worst_over_mu_Fn": {f"{r} {a:g} {d}": v for (r, a, d), v in worst.items()}}}
