@@ -10,6 +10,7 @@ from .kinds import (
     part,
     register,
     require_mat_angles,
+    roll_steps,
 )
 from .rig_setup import RigSetup, load_rig_toml, write_rig_toml
 from .scenario import SCHEMA, Scenario, ScenarioError
@@ -17,5 +18,5 @@ from .scenario import load as load_scenario
 from .ssp import parameter_values_file, write_ssp
 
 __all__ = ["load_scenario", "Scenario", "ScenarioError", "SCHEMA", "KINDS", "ReportPart", "RunOptions",
-           "Section", "fmu_for", "kind_of", "part", "register", "require_mat_angles", "RigSetup",
-           "load_rig_toml", "write_rig_toml", "parameter_values_file", "write_ssp"]
+           "Section", "fmu_for", "kind_of", "part", "register", "require_mat_angles", "roll_steps",
+           "RigSetup", "load_rig_toml", "write_rig_toml", "parameter_values_file", "write_ssp"]

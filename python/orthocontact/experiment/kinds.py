@@ -24,6 +24,7 @@ piece (PARTS).  A new kind is a `kind(...)` row here and its pieces, each
 registered where it is written; no other module names it."""
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -274,3 +275,9 @@ ROLL = {"load_N": (POSITIVE, REQUIRED), "vr_m_s": (POSITIVE, 1.0),
         "courant": (number(0.0, 1.0, lo_open=True), 1.0), "rolled_lengths": (number(1.0, 100.0), 2.0)}
 
 kind("rolling", model=PAD_MODEL, carriage=False, check=pad_geometry, tables={"pad": PAD, "roll": ROLL})
+
+
+def roll_steps(roll: dict, n1: int) -> int:
+    """The steps a rolling scenario holds each creepage for: its
+    rolled_lengths pad lengths of n1 cells at courant cells a step."""
+    return math.ceil(roll["rolled_lengths"] * n1 / roll["courant"] - 1e-9)

@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from ..closed_forms import adhesion_tensor, friction_tensor, slip_onset, steady_force
-from ..experiment import RunOptions, Scenario, part
+from ..experiment import RunOptions, Scenario, part, roll_steps
 from ..fmu import PAD_MODEL, Foundation, PadFMU, PatchGeometry, fmi_version_of
 from ..output import draw_here, write_csv, write_json
 from .fmi3_twin import fmi3_twin
@@ -68,9 +68,8 @@ def pad_of(sc: Scenario) -> RollingPad:
     g = PatchGeometry(float(p["length_m"]), float(p["width_m"]), int(p["n1"]), int(p["n2"]))
     kn = float(p["kn_N_m3"])
     h = r["courant"] * g.length / (g.n1 * r["vr_m_s"])
-    steps = math.ceil(r["rolled_lengths"] * g.n1 / r["courant"] - 1e-9)
     return RollingPad(g, Foundation(kn), r["load_N"], r["load_N"] / (kn * g.length * g.width),
-                      r["vr_m_s"], h, steps)
+                      r["vr_m_s"], h, roll_steps(r, g.n1))
 
 
 def axis_law(params, axis: int) -> tuple[float, float] | None:

@@ -10,7 +10,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..errors import InputError
-from ..experiment import kind_of, register
+from ..experiment import kind_of, register, roll_steps
 
 # Rig steps a command may take without --yes.  The largest work of the
 # documented commands is uq's benchmark, 10^6 runs of 512 steps (5.1e8 steps,
@@ -188,8 +188,8 @@ def rolling_work(sc) -> Work:
     through each creepage, each held for rolled_lengths pad lengths of
     courant cells a step."""
     r = sc.roll
-    steps = math.ceil(r["rolled_lengths"] * sc.pad["n1"] / r["courant"] - 1e-9)
-    return Work().plus("rolls", 2 * len(r["rules"]) * len(r["angles_deg"]), len(r["creepages"]) * steps)
+    return Work().plus("rolls", 2 * len(r["rules"]) * len(r["angles_deg"]),
+                       len(r["creepages"]) * roll_steps(r, sc.pad["n1"]))
 
 
 def scenario_work(sc) -> Work:
