@@ -106,3 +106,16 @@ def test_a_force_that_is_not_a_number_fails_the_check():
     worst = {("coupled", 0.0, "longitudinal"): row["off_closed_form_over_mu_Fn"]}
     s = rolling_outputs.rolling_summary(sc, pad, [row], worst, {})
     assert not s["checks"]["ok"] and "mat angle 0 deg" in s["checks"]["warning"]
+
+
+def test_a_normal_force_off_the_load_fails_the_check():
+    """Flat and in full contact the pad carries its load exactly: a row whose
+    Fn is not the load (a foundation misapplied) is a warning."""
+    sc = load(BUNDLED)
+    pad = rolling_outputs.pad_of(sc)
+    law = rolling_outputs.axis_law(sc.params_at(0.0, "coupled"), 0)
+    one = [rolling_outputs.creepage_row("coupled", 0.0, "longitudinal", law, pad,
+                                        (0.0, 0.0, 0.0, 0.0, fn, 0.0)) for fn in (50.0, 50.5)]
+    s = rolling_outputs.rolling_summary(sc, pad, one, {}, {})
+    assert not s["checks"]["ok"] and s["checks"]["Fn_off_load"] == pytest.approx(0.01)
+    assert "roll.load_N = 50 N" in s["checks"]["warning"]

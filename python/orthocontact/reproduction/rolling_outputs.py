@@ -44,6 +44,8 @@ DIRECTIONS = ("longitudinal", "lateral")
 # 1/n1; at most CLOSED_FORM_TOL_MAX.
 CLOSED_FORM_PER_CELL = 1.0
 CLOSED_FORM_TOL_MAX = 0.05
+# Fn's relative deviation from the load that rounding leaves (kn A d).
+FN_TOL = 1e-12
 # A tensor whose off-diagonal entry is below this share of its diagonal is on the pad's axes.
 ON_AXES = 1e-12
 
@@ -187,8 +189,13 @@ def rolling_summary(sc: Scenario, pad: RollingPad, rows: list, worst: dict, cell
     creepage makes at each mat angle."""
     tol = closed_form_tol(pad)
     bad = {k: v for k, v in worst.items() if not v <= tol}   # a NaN is off, never ok
+    # flat and in full contact the foundation carries the load exactly (Fn = kn A d)
+    fn_off = float(np.max([abs(row["Fn_N"] / pad.load_N - 1.0) for row in rows], initial=0.0))
     warning = None
-    if bad:
+    if not fn_off <= FN_TOL:
+        warning = (f"{sc.name}: the pad carries Fn {fn_off:.3g} of the load off roll.load_N = {pad.load_N:g} "
+                   "N, which a flat pad in full contact carries exactly")
+    elif bad:
         (rule, a, direction), off = max(bad.items(), key=lambda kv: kv[1])
         warning = (f"{sc.name}: the {rule} pad rolling at mat angle {a:g} deg under {direction} creepage "
                    f"is {off:.3g} mu Fn off the brush's closed form (tolerance {tol:.3g} mu Fn at "
@@ -202,6 +209,7 @@ def rolling_summary(sc: Scenario, pad: RollingPad, rows: list, worst: dict, cell
             "steps_per_creepage": pad.steps, "cells": cells_from, "rows": rows,
             "lateral_from_longitudinal_max_over_Fn": lateral,
             "checks": {"ok": warning is None, "tolerance_over_mu_Fn": tol, "warning": warning,
+                       "Fn_off_load": fn_off,
                        "worst_over_mu_Fn": {f"{r} {a:g} {d}": v for (r, a, d), v in worst.items()}}}
 
 
