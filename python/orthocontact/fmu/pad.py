@@ -85,22 +85,14 @@ class PadFMU(CellsFMU):
         self._start(params, geometry, {name: float(getattr(foundation, name)) for name in FOUNDATION},
                     tuple(pose))
         if vr != 0.0:   # before the first step: the material moves from its commit on
-            self._set_inputs(tuple(pose), vr)
+            self._set_inputs(tuple(pose), {ROLLING: vr})
 
     def set_inputs(self, u1: float, u2: float, theta: float, d: float, phi1: float = 0.0,
                    phi2: float = 0.0, vr: float = 0.0):
         """The pad's pose: displacement [m], rotation [rad], approach [m] and
         tilts [rad], and its rolling speed [m/s] (it moves the states from
         the next step on); the pending step, not committed."""
-        self._set_inputs((u1, u2, theta, d, phi1, phi2), vr)
-
-    def _set_inputs(self, values, vr: float | None = None):
-        """The pose (INPUTS' order) and, if given, vr, in one call."""
-        if vr is None:
-            return super()._set_inputs(values)
-        pairs = ", ".join(f"{n}={float(v)}" for n, v in zip((*self.INPUTS, ROLLING), (*values, vr)))
-        self._call(f"setting inputs ({pairs})", self._set_real, [*self._in_vr, self.vr[ROLLING]],
-                   [float(v) for v in (*values, vr)])
+        self._set_inputs((u1, u2, theta, d, phi1, phi2), {ROLLING: vr})
 
     def jacobian(self, knowns, outputs=WRENCH) -> list[list[float]]:
         """d(outputs)/d(knowns) of the pending step, a row per output and a

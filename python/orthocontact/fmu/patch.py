@@ -197,10 +197,16 @@ class CellsFMU(FreedOnClose):
         self._call("exitInitializationMode", self._slave.exitInitializationMode)
         self.initialized = True
 
-    def _set_inputs(self, values):
-        """All INPUTS in one call (their order): the pending step, not committed."""
-        pairs = ", ".join(f"{n}={float(v)}" for n, v in zip(self.INPUTS, values))
-        self._call(f"setting inputs ({pairs})", self._set_real, self._in_vr, [float(v) for v in values])
+    def _set_inputs(self, values, also: dict | None = None):
+        """All INPUTS in one call (their order), with the Float64 inputs
+        `also` names ({name: value}): the pending step, not committed."""
+        names, refs = self.INPUTS, self._in_vr
+        values = [float(v) for v in values]
+        if also:
+            names, refs = (*names, *also), [*refs, *(self.vr[n] for n in also)]
+            values += [float(v) for v in also.values()]
+        pairs = ", ".join(f"{n}={v}" for n, v in zip(names, values))
+        self._call(f"setting inputs ({pairs})", self._set_real, refs, values)
 
     def outputs(self) -> dict:
         """FLOAT_OUTPUTS (T1, T2 [N], Mz [N m], dissipatedEnergy [J],
