@@ -42,7 +42,8 @@
     "Rectangular pad of a rigid body on a Winkler foundation under a flat textured surface: "  \
     "n1 x n2 cells, each the coupled orthotropic adhesion-friction law (Konyukhov and "        \
     "Schweizerhof 2007) with its own slip, pressed by the foundation under the pad's pose; "   \
-    "the six-component wrench from the body's displacement, rotation, approach and tilts"
+    "the six-component wrench from the body's displacement, rotation, approach and tilts, the "  \
+    "body's surface rolling through the pad at vr (a brush)"
 #define FMU_SOURCES(S)                                                                          \
     S(law/contact_law.c) S(cells/cells.c) S(cells/transport.c) S(models/ContactPad/pressure.c)  \
     S(models/ContactPad/model.c)
