@@ -93,6 +93,18 @@ def test_a_push_beyond_the_small_tilts_is_refused_naming_the_tilt():
         pushed.push(mat(0.0), block(0.45 * L / 0.408, kn=1e6), 4e-3, 2e-4)
 
 
+def test_a_push_whose_newton_leaves_the_pads_poses_is_refused_saying_so():
+    """A soft, nearly frictionless-stiff mat (eps = (100, 1) N/m) on a soft
+    foundation at mat angle 30 deg, pushed a metre a step: where every cell
+    slides T2 does not follow u2, the lateral balance's Newton ran to u2 =
+    -inf and the FMU's refusal of it ended the run in a traceback."""
+    p = ContactParams.from_degrees(1.0, 1.0, 100.0, 1.0, 120.0, 30.0, "coupled")
+    soft = pushed.PushedBlock(MASS, G_STANDARD, PatchGeometry(1.0, 1.0, 8, 8), Foundation(1e3), 0.0)
+    why = r"Newton did not reach equilibrium \(its pose not finite\)"
+    with pytest.raises(pushed.PushNotSolved, match=why):
+        pushed.push(p, soft, 10.0, 1.0)
+
+
 @pytest.mark.parametrize("kw, word", [(dict(mass_kg=0.0), "mass_kg"), (dict(height_m=-0.01), "height_m"),
                                       (dict(g=math.inf), "g"), (dict(height_m=True), "height_m"),
                                       # > 0, but its tolerances underflow (a division by 0 before)

@@ -42,7 +42,7 @@ import numpy as np
 
 from ..closed_forms import FULL_CONTACT, LIFT_OFF, TIPS
 from ..errors import InputError
-from ..fmu import ContactParams, Foundation, PadFMU, PatchGeometry
+from ..fmu import ContactParams, FMUError, Foundation, PadFMU, PatchGeometry
 from ..plausibility import FIT_FROM
 
 # The unknowns of a step and the residuals' scales' names.
@@ -180,7 +180,14 @@ class _Equilibrium:
         self.force_tol, self.moment_tol = RESIDUAL_TOL * W, RESIDUAL_TOL * W * max(g.length, g.width)
 
     def residual(self, u1, x):
-        self.fmu.set_inputs(u1, x[0], 0.0, x[1], x[2], x[3])
+        """_NotConverged where Newton left the poses the pad can be in (a
+        pose that is not finite, or one the FMU refuses: forces that overflow)."""
+        if not np.all(np.isfinite(x)):
+            raise _NotConverged("its pose not finite")
+        try:
+            self.fmu.set_inputs(u1, x[0], 0.0, x[1], x[2], x[3])
+        except FMUError as e:
+            raise _NotConverged(f"a pose the pad refuses: {e}") from None
         T1, T2, Mz, Fn, M1, M2 = self.fmu.load()
         h, force_tol, moment_tol = self.h, self.force_tol, self.moment_tol
         R = np.array([T2 / force_tol, (Fn - self.W) / force_tol, (M1 + h * T2) / moment_tol,
@@ -200,8 +207,11 @@ class _Equilibrium:
         it = 0
         while np.max(np.abs(R)) > 1.0:
             if it == NEWTON_ITERATIONS:
-                raise _NotConverged(f"{np.max(np.abs(R)):.3g}")
-            dx = np.linalg.solve(self.jacobian(), -R)
+                raise _NotConverged(f"residual {np.max(np.abs(R)):.3g} tolerances")
+            try:
+                dx = np.linalg.solve(self.jacobian(), -R)
+            except np.linalg.LinAlgError:   # e.g. every cell slides: u2 leaves T2 as it is
+                raise _NotConverged("a singular Jacobian") from None
             step, norm = 1.0, np.max(np.abs(R))
             while True:   # backtracking: a step that does not reduce the residual is halved
                 trial = x + step * dx
@@ -220,11 +230,21 @@ class _Equilibrium:
         >= Fn length/2: T1 / Fn under lateral equilibrium is the friction
         the pressure's shape hardly changes (not at all in full slip)."""
         x = x.copy()
+        R, w = self.residual(u1, x)
         for _ in range(NEWTON_ITERATIONS):
-            R, w = self.residual(u1, x)
             if abs(R[0]) <= 1.0:
                 break
-            x[0] -= w[1] / self.fmu.jacobian(("u2",), ("T2",))[0][0]
+            slope = self.fmu.jacobian(("u2",), ("T2",))[0][0]
+            if not (math.isfinite(slope) and slope != 0.0):
+                break   # T2 does not follow u2 (every cell slides): the full Newton takes over
+            trial = x.copy()
+            trial[0] -= w[1] / slope
+            try:
+                R, w = self.residual(u1, trial)
+            except _NotConverged:   # a step beyond the poses the pad can be in: likewise
+                R, w = self.residual(u1, x)
+                break
+            x = trial
         T1, Fn = w[0], w[3]
         if Fn > 0 and self.h * abs(T1) >= 0.5 * Fn * self.length:
             raise _Tips
@@ -237,7 +257,7 @@ class _Equilibrium:
         except _NotConverged as e:
             if depth == CONTINUATION_DEPTH:
                 raise PushNotSolved(f"the push at travel {u1:.6g} m (height {self.h:g} m): Newton did not "
-                                    f"reach equilibrium (residual {e} tolerances)") from None
+                                    f"reach equilibrium ({e})") from None
             xm, _, im = self.continued(u0, 0.5 * (u0 + u1), x, depth + 1)
             x1, w1, i1 = self.continued(0.5 * (u0 + u1), u1, xm, depth + 1)
             return x1, w1, im + i1
@@ -295,6 +315,9 @@ def push(params: ContactParams, block: PushedBlock, travel_m: float, step_m: flo
             except _Tips:
                 regime, tipped = TIPS, u1
                 break
+            except _NotConverged as e:   # the lateral balance's start refused
+                raise PushNotSolved(f"the push at travel {u1:.6g} m (height {solver.h:g} m): its lateral "
+                                    f"balance did not start ({e})") from None
             _check_tilt(u1, x, solver.h)
             u_prev = u1
             out = fmu.outputs()
