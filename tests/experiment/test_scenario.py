@@ -10,6 +10,7 @@ import pytest
 from cli_run import case4_named, error_lines, one_error_line, scenario_variant
 from cli_run import run_cli as run
 from orthocontact.cli.main import main
+from orthocontact.experiment.kinds import KINDS
 from orthocontact.experiment.scenario import ScenarioError, load
 from paths import SCENARIOS
 
@@ -167,7 +168,6 @@ def test_every_bundled_scenario_loads_without_a_warning_within_the_limits():
     """scenarios/*.toml, which `reproduce` runs: each named after its file,
     no value outside its plausible range, its work within the limits; every
     kind has one (the patch's twist and towed block beside the paper's)."""
-    from orthocontact.experiment.kinds import KINDS
     from orthocontact.runs.size import check_scenario_size
     kinds = set()
     for f in sorted(SCENARIOS.glob("*.toml")):
@@ -265,13 +265,16 @@ def test_a_list_of_runs_with_a_repeat_is_one_line(tmp_path, scenario, old, new, 
 # tested apart); an optional key left out half of the time (its default then).  Capped, to keep an
 # example near a second: the steps of each run (SIZE_CAPS: the key that sets them drawn within the
 # cap, or down to a tenth of a step, which is refused), at most 4 mat angles, 2 recorded
-# trajectories, 3 steps of a step study, 2 tow angles.  No [paper] table and no fmu key (tested
+# trajectories, 3 steps of a step study, 2 tow, push or roll angles, 2 heights, 2 creepages, a
+# pad of at most 12 x 4 cells.  No [paper] table and no fmu key (tested
 # apart).  Each is written as a TOML file and run by `orthocontact run FILE --out DIR`, which must
 # end in exit 0 or in one line and exit 2.
 
 BELOW_ONE_STEP = 10.0
 # The patch's in cell-steps (steps x n1 n2): 1500 and 400 steps of the default 8 x 8 cells.
-SIZE_CAPS = {"rig steps": 2e4, "twist cell-steps": 1500 * 64, "tow cell-steps": 400 * 64}
+SIZE_CAPS = {"rig steps": 2e4, "twist cell-steps": 1500 * 64, "tow cell-steps": 400 * 64,
+             "push steps": 400, "roll steps": 200}
+PAD_MOST = {"n1": 12, "n2": 4}
 PROPERTY_EXAMPLES = 12   # per kind
 
 
@@ -299,7 +302,6 @@ def _scenarios(kind):
 
     from orthocontact import plausibility
     from orthocontact.experiment.keys import REQUIRED, AnyOf, Choice, ListOf, Number, boolean
-    from orthocontact.experiment.kinds import KINDS
     from orthocontact.experiment.scenario import SCHEMA
 
     def log_uniform(lo, hi):
@@ -381,6 +383,26 @@ def _scenarios(kind):
             tables["study"]["steps_s"] = draw(value("study", "steps_s", items=3,
                                                     lo=travel / (v * SIZE_CAPS["rig steps"]),
                                                     hi=BELOW_ONE_STEP * travel / v))
+        elif kind in ("pushed_block", "rolling"):
+            pad = table("pad", ["length_m", "width_m", "kn_N_m3"])
+            for key, most in PAD_MOST.items():
+                if draw(st.booleans()):
+                    pad[key] = draw(st.integers(1, most))
+            n1 = given("pad", "n1")
+            if kind == "pushed_block":   # at most SIZE_CAPS["push steps"] steps (travel / step)
+                push = table("push", ["heights_m", "angles_deg", "travel_m"], heights_m={"items": 2},
+                             angles_deg={"items": 2})
+                push["step_m"] = draw(value("push", "step_m", lo=push["travel_m"] / SIZE_CAPS["push steps"],
+                                            hi=BELOW_ONE_STEP * push["travel_m"]))
+            else:   # at most SIZE_CAPS["roll steps"] steps a creepage (rolled_lengths n1 / courant)
+                roll = table("roll", ["load_N", "vr_m_s", "creepages", "angles_deg", "rules"],
+                             creepages={"items": 2}, angles_deg={"items": 2})
+                if draw(st.booleans()):
+                    roll["rolled_lengths"] = draw(value("roll", "rolled_lengths",
+                                                        hi=SIZE_CAPS["roll steps"] / n1))
+                if draw(st.booleans()):
+                    roll["courant"] = draw(value("roll", "courant", lo=given("roll", "rolled_lengths") * n1
+                                                 / SIZE_CAPS["roll steps"]))
         else:
             table("patch", list(SCHEMA["patch"]))
             section = "twist" if kind == "twist" else "tow"
@@ -401,17 +423,15 @@ def _scenarios(kind):
 
 
 @pytest.mark.needs("hypothesis")
-@pytest.mark.parametrize("kind", ["sweep", "step_study", "twist", "towed_block"])
+@pytest.mark.parametrize("kind", list(KINDS))
 def test_every_scenario_the_schema_accepts_ends_in_a_result_or_one_line(tmp_path, kind):
     """No scenario of any kind ends in a traceback (exit 1 is a result that
     does not match the paper, and no drawn scenario compares with it): exit 0,
-    or exit 2 with one line naming the file."""
+    or exit 2 with one line per problem naming the file (after the
+    plausibility gate's warnings, each naming it too)."""
     import tempfile
 
     from hypothesis import HealthCheck, given, settings
-
-    from orthocontact.experiment.kinds import KINDS
-    assert kind in KINDS
 
     @settings(max_examples=PROPERTY_EXAMPLES, deadline=None, derandomize=True, database=None,
               suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
@@ -423,6 +443,11 @@ def test_every_scenario_the_schema_accepts_ends_in_a_result_or_one_line(tmp_path
             p = run(["run", "s.toml", "--out", "out", "--workers", "1"], d, timeout=300)
             assert "Traceback" not in p.stderr, text + p.stderr
             assert p.returncode in (0, 2), text + p.stderr
-            if p.returncode == 2:   # a line per problem, each naming the file
-                assert all("s.toml" in line for line in error_lines(p)), p.stderr
+            if p.returncode == 2:   # a line per problem, each naming the file, after its warnings
+                lines = p.stderr.strip().splitlines()
+                warned = sum(line.startswith("orthocontact: warning: ") for line in lines)
+                assert all(line.startswith("orthocontact: warning: ") for line in lines[:warned]), p.stderr
+                assert lines[warned:] and all(line.startswith("orthocontact: error: ")
+                                              for line in lines[warned:]), p.stderr
+                assert all("s.toml" in line for line in lines), p.stderr
     check()
