@@ -268,7 +268,7 @@ def test_a_list_of_runs_with_a_repeat_is_one_line(tmp_path, scenario, old, new, 
 # trajectories, 3 steps of a step study, 2 tow, push or roll angles, 2 heights, 2 creepages, a
 # pad of at most 12 x 4 cells.  No [paper] table and no fmu key (tested
 # apart).  Each is written as a TOML file and run by `orthocontact run FILE --out DIR`, which must
-# end in exit 0 or in one line and exit 2.
+# end in exit 0 or in exit 2 with a line a problem (after the gate's warnings).
 
 BELOW_ONE_STEP = 10.0
 # The patch's in cell-steps (steps x n1 n2): 1500 and 400 steps of the default 8 x 8 cells.
