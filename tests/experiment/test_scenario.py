@@ -275,7 +275,7 @@ BELOW_ONE_STEP = 10.0
 SIZE_CAPS = {"rig steps": 2e4, "twist cell-steps": 1500 * 64, "tow cell-steps": 400 * 64,
              "push steps": 400, "roll steps": 200}
 PAD_MOST = {"n1": 12, "n2": 4}
-PROPERTY_EXAMPLES = 12   # per kind
+PROPERTY_EXAMPLES = 10   # per kind
 
 
 def _toml(v) -> str:
