@@ -303,6 +303,7 @@ def _scenarios(kind):
     from orthocontact import plausibility
     from orthocontact.experiment.keys import REQUIRED, AnyOf, Choice, ListOf, Number, boolean
     from orthocontact.experiment.scenario import SCHEMA
+    from orthocontact.rig.pushed import FIT_STEPS
 
     def log_uniform(lo, hi):
         return st.floats(math.log10(lo), math.log10(hi)).map(lambda e: float(10.0 ** e))
@@ -392,8 +393,10 @@ def _scenarios(kind):
             if kind == "pushed_block":   # at most SIZE_CAPS["push steps"] steps (travel / step)
                 push = table("push", ["heights_m", "angles_deg", "travel_m"], heights_m={"items": 2},
                              angles_deg={"items": 2})
+                # mostly leaving the fitted half FIT_STEPS steps (fewer are refused at load: tested apart)
+                most = push["travel_m"] * (0.5 / FIT_STEPS if draw(st.integers(0, 3)) else BELOW_ONE_STEP)
                 push["step_m"] = draw(value("push", "step_m", lo=push["travel_m"] / SIZE_CAPS["push steps"],
-                                            hi=BELOW_ONE_STEP * push["travel_m"]))
+                                            hi=most))
             else:   # at most SIZE_CAPS["roll steps"] steps a creepage (rolled_lengths n1 / courant)
                 roll = table("roll", ["load_N", "vr_m_s", "creepages", "angles_deg", "rules"],
                              creepages={"items": 2}, angles_deg={"items": 2})
