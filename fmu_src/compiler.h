@@ -24,6 +24,11 @@
  * OC_LIKELY(c)  a condition nearly always true, tested by a branch the
  *   processor predicts, so that the work after it need not wait for the
  *   test (clang makes the slip solve's start test a select otherwise).
+ * OC_VECTORS  1 where GCC/Clang vector extensions (two doubles a vector:
+ *   SSE2 on x86-64, NEON on aarch64; no intrinsics, no -march) carry the
+ *   slip solve's lanes (law/lanes.h) and the rolling cells' pairs
+ *   (cells/transport.c); -DOC_SCALAR_LANES or another compiler: 0, the
+ *   same numbers in plain C.
  */
 #ifndef OC_COMPILER_H
 #define OC_COMPILER_H
@@ -36,6 +41,12 @@
 #define OC_ALWAYS_INLINE inline
 #define OC_NOINLINE
 #define OC_LIKELY(c) (c)
+#endif
+
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(OC_SCALAR_LANES)
+#define OC_VECTORS 1
+#else
+#define OC_VECTORS 0
 #endif
 
 #if defined(__clang__)

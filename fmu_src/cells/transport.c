@@ -19,15 +19,15 @@ static OC_ALWAYS_INLINE const oc_state *moved_state(moved_from at, int c) {
 }
 
 /* Two neighbouring numbers of a state at once: a vector of two doubles
- * where the compiler has them (GCC/Clang vector extensions, as
- * law/lanes.h), else a struct; each operation lane by lane, so that each
- * number is the scalar arithmetic's bit for bit.  A state's pairs: (u1,
+ * where the compiler has them (OC_VECTORS: compiler.h), else a struct;
+ * each operation lane by lane, so that each number is the scalar
+ * arithmetic's bit for bit.  A state's pairs: (u1,
  * u2), (N, a1), (a2, s1), (s2, energy), and (s1, s2) across them. */
 typedef char state_in_pairs[offsetof(oc_state, N) == 16 && offsetof(oc_state, a) == 24 &&
                                     offsetof(oc_state, s) == 40 && offsetof(oc_state, energy) == 56
                                 ? 1
                                 : -1];
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(OC_SCALAR_LANES)
+#if OC_VECTORS
 typedef double pair __attribute__((vector_size(16)));
 typedef long long pair_mask __attribute__((vector_size(16)));
 #define pair_get(x, l) ((x)[l])

@@ -199,7 +199,7 @@ static OC_ALWAYS_INLINE void slip_cell_finish(const oc_law *L, const slip_cell *
                                               double w1, double inv_wmax);
 #define OC_SLIP_LANES 1
 #include "law/slip_solve.inc"
-#ifdef OC_VECTOR_LANES
+#if OC_VECTORS
 #define OC_SLIP_LANES 2
 #include "law/slip_solve.inc"
 #endif

@@ -19,7 +19,7 @@
  *   splat(a)            a number into every lane
  *   make(a, b)          the lanes of two cells (a double takes a)
  *   get(x, l), mask_get(m, l)  lane l (macros: see lane2_get)
- * Without the vector extensions (or with -DOC_SCALAR_LANES) the batch's
+ * Without the vector extensions (OC_VECTORS 0: compiler.h) the batch's
  * lanes are the doubles' (OC_LANE_WIDTH: 2 or 1).
  */
 #ifndef OC_LAW_LANES_H
@@ -47,8 +47,7 @@ static OC_ALWAYS_INLINE double lane1_make(double a, double b) {
 #define lane1_get(x, l) (x)
 #define lane1_mask_get(m, l) (m)
 
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(OC_SCALAR_LANES)
-#define OC_VECTOR_LANES 1
+#if OC_VECTORS
 typedef double v2d __attribute__((vector_size(16)));
 typedef long long v2m __attribute__((vector_size(16))); /* a lane all ones or zero */
 static OC_ALWAYS_INLINE v2d lane2_sel(v2m m, v2d a, v2d b) {
