@@ -75,6 +75,9 @@ def test_a_semicolon_file_with_decimal_commas_is_read_as_with_points(tmp_path):
     (b'x,y\n"0,5",1\n',
      "line 2: '0,5': a decimal comma (or a thousands separator) in a comma-separated file"),
     (b"x;y\n1.234,5;2\n", "line 2: '1.234,5': a number with a thousands separator"),
+    # two points in one cell and none in the other: as many points as cells
+    (b"x,y\n1.234.5,7\n",
+     "line 2: '1.234.5': a decimal comma (or a thousands separator) in a comma-separated file"),
     (b"x;y\n0,5;1\n1.234;2\n", "line 3: '1.234' beside decimal commas such as '0,5' (line 2) in a file "
                                "separated by semicolons"),
 ])

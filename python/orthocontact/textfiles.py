@@ -107,6 +107,9 @@ SEPARATOR_NAMES = {",": "commas", ";": "semicolons", "\t": "tabs"}
 DECIMAL_COMMA = re.compile(r"^[+-]?(\d+,\d*|,\d+)([eE][+-]?\d+)?$")
 # A number with both separators: 1.234,5 or 1,234.5 (a thousands separator).
 THOUSANDS = re.compile(r"^[+-]?\d{1,3}([.,]\d{3})+[.,]\d*([eE][+-]?\d+)?$")
+# Two points with no line break between: in cells joined by line breaks, a
+# cell THOUSANDS matches with points (1.234.5; it holds digits and separators only).
+TWO_POINTS = re.compile(r"\.[^\n]*\.")
 POINT_NUMBER = re.compile(r"^[+-]?(\d+\.\d*|\.\d+)([eE][+-]?\d+)?$")
 PLAIN_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 # A TOML line `key = 1,875`: invalid TOML that a decimal comma explains.
@@ -164,8 +167,8 @@ def _comma_file(path: Path, rows):
                         "(or save the file separated by semicolons, which is read with decimal commas)")
             raise InputError(f"{path}: line {line}: {used} cells ({','.join(cells[:used])}) where the "
                              f"header names {width} columns{hint}")
-        joined = "|".join(cells[:used])
-        if "," not in joined and joined.count(".") <= used:
+        joined = "\n".join(cells[:used])
+        if "," not in joined and not TWO_POINTS.search(joined):
             continue   # both patterns need a comma or a cell's second point
         for c in cells[:used]:
             if DECIMAL_COMMA.match(c) or THOUSANDS.match(c):
