@@ -177,6 +177,14 @@ def test_a_pushs_estimate_is_its_heights_times_its_angles_and_the_fmi3_cells_at_
     assert work.parts == (("pushes", 16, 25), ("the cells again (FMI 3.0), at most", 4, 25))
 
 
+def test_a_rolls_estimate_is_its_rules_angles_and_directions_and_the_fmi3_cells_at_most():
+    """The bundled wheel: 2 rules x 7 angles x 2 directions, 8 creepages of
+    2 pad lengths of 32 cells at Courant 1, and the longitudinal rolls of
+    the first rule again for their cells where the FMU has no arrays."""
+    work = scenario_work(load(SCENARIOS / "rolling_wheel.toml"))
+    assert work.parts == (("rolls", 28, 512), ("the cells again (FMI 3.0), at most", 7, 512))
+
+
 def test_a_push_of_a_billion_steps_is_refused_naming_its_keys(tmp_path):
     big = scenario_variant(SCENARIOS / "pushed_block.toml", "step_m = 2.0e-4", "step_m = 1e-12",
                            tmp_path / "big.toml")

@@ -186,10 +186,12 @@ def pushed_work(sc) -> Work:
 def rolling_work(sc) -> Work:
     """A roll at each mat angle, rule and direction (longitudinal, lateral)
     through each creepage, each held for rolled_lengths pad lengths of
-    courant cells a step."""
+    courant cells a step, and the longitudinal rolls of the first rule
+    again for their cells where the FMU has no arrays (FMI 2.0)."""
     r = sc.roll
-    return Work().plus("rolls", 2 * len(r["rules"]) * len(r["angles_deg"]),
-                       len(r["creepages"]) * roll_steps(r, sc.pad["n1"]))
+    steps = len(r["creepages"]) * roll_steps(r, sc.pad["n1"])
+    return (Work().plus("rolls", 2 * len(r["rules"]) * len(r["angles_deg"]), steps)
+            .plus("the cells again (FMI 3.0), at most", len(r["angles_deg"]), steps))
 
 
 def scenario_work(sc) -> Work:
