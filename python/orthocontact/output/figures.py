@@ -14,25 +14,32 @@ def pyplot():
     return plt
 
 
-def finish(fig, ax, path: Path, title: str, legend_title: str | None = None,
-            outside: bool = False) -> None:
-    """The common end of every figure: title, grid, legend, file, close.
-    outside: the legend goes right of the axes, where it cannot cover data."""
-    ax.set_title(title, fontsize=10, y=1.0)  # an explicit y skips a costly auto placement
+def label(ax, title: str, legend_title: str | None = None, outside: bool = False, size: int = 10) -> None:
+    """A panel's title (size pt), grid and legend (size - 2 pt). outside:
+    the legend goes right of the axes, where it cannot cover data."""
+    ax.set_title(title, fontsize=size, y=1.0)  # an explicit y skips a costly auto placement
     ax.grid(alpha=0.3)
-    if outside:
-        ax.legend(fontsize=8, title=legend_title, title_fontsize=8, loc="upper left",
-                  bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
-    else:
-        ax.legend(fontsize=8, title=legend_title, title_fontsize=8)
+    place = dict(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0) if outside else {}
+    ax.legend(fontsize=size - 2, title=legend_title, title_fontsize=size - 2, **place)
+
+
+def save(fig, path: Path) -> None:
+    """The figure's PNG, and the figure closed."""
+    fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
+    pyplot().close(fig)
+
+
+def finish(fig, ax, path: Path, title: str, legend_title: str | None = None,
+           outside: bool = False) -> None:
+    """The common end of a figure of one panel: its label, margins, file, close."""
+    label(ax, title, legend_title, outside)
     # Fixed margins, sized for these labels, instead of tight_layout: its
     # extra layout pass was a third of each figure's time, and make
     # reproduce draws 22 of them.
     width = fig.get_size_inches()[0]
     fig.subplots_adjust(left=0.75 / width, bottom=0.12, top=0.93,
                         right=1 - (2.0 if outside else 0.2) / width)
-    fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
-    pyplot().close(fig)
+    save(fig, path)
 
 
 # Lines that lie on top of each other stay distinguishable: each curve gets its

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..closed_forms import FULL_CONTACT, LIFT_OFF, TIPS, contact_fraction, pushed_at_height
 from ..experiment import Scenario
-from ..output import finish, pyplot, swept_label
+from ..output import finish, pyplot, save, swept_label
 from ..runs import closed_form_phi_deg_array
 
 
@@ -50,8 +50,7 @@ def figure_cells(sc: Scenario, runs: list, cells: dict, path: Path) -> None:
                                                                                 fontsize=8)
     fig.suptitle(f"{sc.title}: pressure under the block at a = {sc.push['angles_deg'][0]:g}° (grey: open, "
                  "red dot: slipping)", fontsize=9)
-    fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
-    plt.close(fig)
+    save(fig, path)
 
 
 def figure_phi(sc: Scenario, runs: list, path: Path) -> None:

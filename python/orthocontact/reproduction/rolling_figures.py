@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..experiment import Scenario
-from ..output import curve_style, finish, pyplot, swept_label
+from ..output import curve_style, finish, label, pyplot, save, swept_label
 
 # The zones figure: at most this many creepages (rows), spread over the list.
 ZONE_ROWS = 4
@@ -43,19 +43,11 @@ def figure_force_creepage(sc: Scenario, rows: list, path: Path) -> None:
             ax.set_xlabel(f"{direction} creepage [-]", fontsize=8)
             ax.set_ylabel(f"-{key.split('_')[0]} / Fn [-]", fontsize=8)
             ax.tick_params(labelsize=7)
-            finish_panel(ax, f"{rule}: {direction} (dotted: the brush's closed form)", swept_label(sc))
+            label(ax, f"{rule}: {direction} (dotted: the brush's closed form)", swept_label(sc), outside=True,
+                  size=9)
     fig.suptitle(f"{sc.title}: force against creepage", fontsize=10)
     fig.subplots_adjust(left=0.08, right=0.85, bottom=0.07, top=0.92, hspace=0.3, wspace=0.45)
-    fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
-    plt.close(fig)
-
-
-def finish_panel(ax, title: str, legend_title: str) -> None:
-    """A panel's title, grid and legend (outside, right)."""
-    ax.set_title(title, fontsize=9, y=1.0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, title=legend_title, title_fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0),
-              borderaxespad=0.0)
+    save(fig, path)
 
 
 def figure_lateral(sc: Scenario, rows: list, path: Path) -> None:
@@ -118,5 +110,4 @@ def figure_zones(sc: Scenario, cells: dict, creepages, path: Path) -> None:
             ax.set_aspect("equal")
     fig.suptitle(f"{sc.title}: adhesion (light) and slip (dark) zones, {rule} rule, longitudinal "
                  "creepage; material enters on the right", fontsize=8)
-    fig.savefig(path, dpi=120, pil_kwargs={"compress_level": 3})
-    plt.close(fig)
+    save(fig, path)

@@ -265,7 +265,7 @@ def write_outputs(res: Sensitivity, sc: Scenario, out, draw=None) -> dict:
 
 
 def _figures(res: Sensitivity, sc: Scenario, out) -> None:
-    from ..output import finish, pyplot
+    from ..output import finish, pyplot, save
     plt = pyplot()
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5))
     for i, v in enumerate(VELOCITIES):
@@ -290,8 +290,7 @@ def _figures(res: Sensitivity, sc: Scenario, out) -> None:
         a.grid(alpha=0.3)
     fig.suptitle(f"{sc.name}: the strip's friction", fontsize=10)
     fig.subplots_adjust(left=0.07, right=0.98, bottom=0.12, top=0.88, wspace=0.28)
-    fig.savefig(out / "sensitivity_strip.png", dpi=120, pil_kwargs={"compress_level": 3})
-    plt.close(fig)
+    save(fig, out / "sensitivity_strip.png")
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
     c = [r["c_strip_N_s_m"] for r in res.viscous_rows]
