@@ -278,14 +278,14 @@ def cells_section(prefix: str, model_m, without, own_name: str, own_words: str, 
 
 
 # The cells' limit in all (n1 n2), which no table row holds: the C constant itself.
-CELLS_HEADER = Path("fmu_src/cells/cells.h")
+CELLS_HEADER = Path("fmu_src/cells/cell_rows.h")
 
 
 def max_cells() -> int:
-    """PATCH_MAX_CELLS as fmu_src/cells/cells.h defines it."""
-    found = re.search(r"enum \{ PATCH_MAX_CELLS = (\d+) \};", (ROOT / CELLS_HEADER).read_text())
+    """PATCH_MAX_CELLS as fmu_src/cells/cell_rows.h defines it."""
+    found = re.search(r"^#define PATCH_MAX_CELLS (\d+)$", (ROOT / CELLS_HEADER).read_text(), re.M)
     if found is None:
-        raise ValueError(f"{CELLS_HEADER}: no `enum {{ PATCH_MAX_CELLS = N }};`")
+        raise ValueError(f"{CELLS_HEADER}: no `#define PATCH_MAX_CELLS N`")
     return int(found.group(1))
 
 

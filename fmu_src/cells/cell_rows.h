@@ -15,10 +15,14 @@
 /* clang-format off */
 
 /* The largest grid: the model's storage and its serialized state are fixed
- * in size (fmu_model.h), so they hold PATCH_MAX_CELLS (cells.h) cells
- * whatever n1, n2 are: each side at most PATCH_MAX_SIDE, n1 n2 at most
- * 1024 (64 along the rolling axis for a rolling pad, 16 across). */
+ * in size (fmu_model.h), so they hold PATCH_MAX_CELLS cells whatever n1, n2
+ * are: each side at most PATCH_MAX_SIDE (the rows' range), n1 n2 at most
+ * PATCH_MAX_CELLS (64 along the rolling axis for a rolling pad, 16 across).
+ * PATCH_TEXT(x): a macro's value as a string, for the rows' descriptions. */
 #define PATCH_MAX_SIDE 64
+#define PATCH_MAX_CELLS 1024
+#define PATCH_TEXT_OF(x) #x
+#define PATCH_TEXT(x) PATCH_TEXT_OF(x)
 
 #define PATCH_INITIAL_SLIP_ITEMS(E)                                                              \
     E(atInputs, 1, "every cell's slip is its displacement at the end of initialization: no "     \
@@ -40,10 +44,12 @@
       "Side of the patch along the body's axis 1 (X1 at theta = 0)")                             \
     X(width, 20, Float64, parameter, fixed, exact, 0.1, 1e-100, 1e100, "m", "",                  \
       "Side of the patch along the body's axis 2 (X2 at theta = 0)")                             \
-    X(n1, 21, Int32, parameter, fixed, exact, 8, 1, 64, "", "",                                  \
-      "Number of cells along length (at most 64, and n1 n2 at most 1024)")                       \
-    X(n2, 22, Int32, parameter, fixed, exact, 8, 1, 64, "", "",                                  \
-      "Number of cells along width (at most 64, and n1 n2 at most 1024)")
+    X(n1, 21, Int32, parameter, fixed, exact, 8, 1, PATCH_MAX_SIDE, "", "",                      \
+      "Number of cells along length (at most " PATCH_TEXT(PATCH_MAX_SIDE) ", and n1 n2 at most "  \
+      PATCH_TEXT(PATCH_MAX_CELLS) ")")                                                            \
+    X(n2, 22, Int32, parameter, fixed, exact, 8, 1, PATCH_MAX_SIDE, "", "",                      \
+      "Number of cells along width (at most " PATCH_TEXT(PATCH_MAX_SIDE) ", and n1 n2 at most "   \
+      PATCH_TEXT(PATCH_MAX_CELLS) ")")
 
 #define PATCH_MOTION_ROWS(X)                                                                     \
     X(u1, 23, Float64, input, continuous, , 0.0, NO_MIN, NO_MAX, "m", "",                        \

@@ -32,8 +32,6 @@
 extern "C" {
 #endif
 
-enum { PATCH_MAX_CELLS = 1024 };
-
 /* The values of the parameter initialSlip (cells/cell_rows.h). */
 enum { PATCH_INITIAL_AT_INPUTS = 1, PATCH_INITIAL_EXPLICIT = 2 };
 

@@ -124,7 +124,7 @@ PATCH_GEOMETRY: tuple[Row, ...] = (
         description="Number of cells along width (at most 64, and n1 n2 at most 1024)"),
 )
 
-# The most cells a patch or pad has in all, n1 n2 (fmu_src/cells/cells.h's PATCH_MAX_CELLS).
+# The most cells a patch or pad has in all, n1 n2 (fmu_src/cells/cell_rows.h's PATCH_MAX_CELLS).
 PATCH_MAX_CELLS = 1024
 
 
